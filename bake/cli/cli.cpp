@@ -1,0 +1,278 @@
+#include "cli.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "posemorph/bake/bake.h"
+#include "posemorph/bake/error.h"
+#include "posemorph/path.h"
+#include "posemorph/rig.h"
+#include "preview.h"
+
+namespace posemorph::bake {
+namespace {
+
+const char kUsage[] =
+    "usage:\n"
+    "  posemorph-bake RIG.json [-o RIG.pmrig]     bake a rig description (default output: RIG.pmrig)\n"
+    "  posemorph-bake info RIG.pmrig              sizes, counts, factor fill, pose points, paths\n"
+    "  posemorph-bake eval RIG.pmrig (--at X,Y | --path NAME [--time T | --frames K]) -o OUT.svg|.json|.obj\n"
+    "        [--sigma S] [--no-shear-limit] [--linear]\n"
+    "  posemorph-bake sheet RIG.pmrig -o OUT.svg [--columns C] [--rows R] [--no-shear-limit] [--linear]\n";
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+std::vector<unsigned char> ReadBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw BakeError(path, "cannot open file");
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw BakeError(path, "read error");
+  return bytes;
+}
+
+Rig LoadRigFile(const std::string& path) {
+  const std::vector<unsigned char> bytes = ReadBytes(path);
+  Rig rig;
+  Error err;
+  if (!LoadRig(bytes.data(), bytes.size(), &rig, &err))
+    throw BakeError(path, std::string("not a valid rig (") + ErrorCodeName(err.code) + "): " + err.message);
+  return rig;
+}
+
+void WriteText(const std::string& path, const std::string& text) {
+  WriteFileAtomic(path, std::vector<unsigned char>(text.begin(), text.end()));
+}
+
+std::string Extension(const std::string& path) {
+  const auto dot = path.rfind('.');
+  if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return "";
+  std::string e = path.substr(dot + 1);
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return e;
+}
+
+double ParseNumber(const std::string& flag, const std::string& s) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(s, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != s.size() || !std::isfinite(v)) throw UsageError(flag + ": \"" + s + "\" is not a finite number");
+  return v;
+}
+
+int ParseCount(const std::string& flag, const std::string& s, int lo, int hi) {
+  const double v = ParseNumber(flag, s);
+  if (v != std::floor(v) || v < lo || v > hi)
+    throw UsageError(flag + ": expected a whole number in " + std::to_string(lo) + ".." + std::to_string(hi));
+  return int(v);
+}
+
+// Flags after the positional argument: "--name value" pairs and switches.
+struct Args {
+  std::string positional;
+  std::vector<std::pair<std::string, std::string>> options;
+  std::set<std::string> switches;
+
+  static Args Parse(const std::vector<std::string>& a, std::size_t from, const std::set<std::string>& with_value,
+                    const std::set<std::string>& switch_names) {
+    Args out;
+    for (std::size_t i = from; i < a.size(); ++i) {
+      if (with_value.count(a[i])) {
+        if (i + 1 >= a.size()) throw UsageError(a[i] + " needs a value");
+        out.options.push_back({a[i], a[i + 1]});
+        ++i;
+      } else if (switch_names.count(a[i])) {
+        out.switches.insert(a[i]);
+      } else if (!a[i].empty() && a[i][0] == '-') {
+        throw UsageError("unknown option " + a[i]);
+      } else if (out.positional.empty()) {
+        out.positional = a[i];
+      } else {
+        throw UsageError("unexpected argument " + a[i]);
+      }
+    }
+    return out;
+  }
+  const std::string* Get(const std::string& name) const {
+    for (const auto& [k, v] : options)
+      if (k == name) return &v;
+    return nullptr;
+  }
+};
+
+EvalOptions ReadEvalOptions(const Args& args) {
+  EvalOptions o;
+  if (const std::string* s = args.Get("--sigma")) {
+    o.sigma = ParseNumber("--sigma", *s);
+    if (o.sigma < 0 || o.sigma > 1) throw UsageError("--sigma must be in [0, 1]");
+  }
+  o.shear_limit = !args.switches.count("--no-shear-limit");
+  o.interpolation = args.switches.count("--linear") ? Interpolation::kLinear : Interpolation::kRigid;
+  return o;
+}
+
+int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
+  const Args args = Args::Parse(a, from, {"-o"}, {});
+  if (args.positional.empty()) throw UsageError("no rig description given");
+  std::string output;
+  if (const std::string* o = args.Get("-o")) {
+    output = *o;
+  } else {
+    output = args.positional;
+    const auto dot = output.rfind('.');
+    if (dot != std::string::npos && output.find('/', dot) == std::string::npos) output.resize(dot);
+    output += ".pmrig";
+  }
+  RigDescription rig = ReadRigDescription(args.positional);
+  BakeReport report;
+  const std::vector<unsigned char> bytes = BakeRig(rig, &report);
+  WriteFileAtomic(output, bytes);
+  out << "baked " << args.positional << " -> " << output << ": " << report.vertices << " vertices, " << report.triangles
+      << " triangles, " << report.poses << " poses, " << report.paths << " paths, " << report.bytes << " bytes, "
+      << "nnz(L) " << report.factor_nonzeros << ", grid " << report.grid_cells_x << "x" << report.grid_cells_y << ", "
+      << report.seconds * 1e3 << " ms; max pose reproduction error " << report.max_reproduction_error
+      << " of the rig size\n";
+  return 0;
+}
+
+int Info(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
+  const Args args = Args::Parse(a, from, {}, {});
+  if (args.positional.empty()) throw UsageError("no rig file given");
+  const std::vector<unsigned char> bytes = ReadBytes(args.positional);
+  const Rig rig = LoadRigFile(args.positional);
+  const std::uint32_t V = rig.vertex_count(), T = rig.triangle_count(), N = rig.pose_count();
+  // Lower triangle of K (pinned vertex 0 removed): diagonal + one entry per interior edge.
+  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (std::uint32_t t = 0; t < T; ++t)
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t u = rig.triangles()[3 * t + k], v = rig.triangles()[3 * t + (k + 1) % 3];
+      if (u && v) edges.insert({std::min(u, v), std::max(u, v)});
+    }
+  const std::size_t k_lower = edges.size() + (V - 1), l_strict = rig.factor().value.size;
+  const PoseSpaceGrid& g = rig.grid();
+  out << args.positional << ": " << bytes.size() << " bytes (" << double(bytes.size()) / V << " per vertex), arena "
+      << rig.arena_bytes() << " bytes\n"
+      << "  vertices " << V << ", triangles " << T << ", poses " << N << ", paths " << rig.path_count()
+      << (rig.uvs(0).empty() ? ", no uvs" : ", uvs") << "\n"
+      << "  factor: n " << rig.factor().n << ", nnz(K lower) " << k_lower << ", nnz(L) " << l_strict + (V - 1)
+      << " (fill " << double(l_strict + V - 1) / double(k_lower) << "x)\n"
+      << "  weight grid: " << g.cells_x << " x " << g.cells_y << " cells of " << g.cell << ", origin (" << g.origin_x
+      << ", " << g.origin_y << ")\n"
+      << "  rig size " << rig.size() << ", default sigma " << rig.default_sigma() << "\n";
+  for (std::uint32_t i = 0; i < N; ++i) {
+    out << "  pose " << i << " '" << std::string(rig.pose_name(i).data, rig.pose_name(i).size) << "' at ("
+        << rig.pose_points()[2 * i] << ", " << rig.pose_points()[2 * i + 1] << ")";
+    if (rig.pose_image(i).size) out << " image " << std::string(rig.pose_image(i).data, rig.pose_image(i).size);
+    out << "\n";
+  }
+  for (std::uint32_t p = 0; p < rig.path_count(); ++p) {
+    const PathView path = rig.path(p);
+    const double duration = path.keys[3 * (path.key_count() - 1)] - path.keys[0];
+    out << "  path '" << std::string(path.name.data, path.name.size) << "': " << path.key_count() << " keys, "
+        << duration << " s, " << (path.interpolation == PathInterpolation::kCatmullRom ? "catmull-rom" : "linear")
+        << (path.loop ? ", loops" : "") << "\n";
+  }
+  return 0;
+}
+
+int Eval(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
+  const Args args = Args::Parse(a, from, {"-o", "--at", "--path", "--time", "--frames", "--sigma"},
+                                {"--no-shear-limit", "--linear"});
+  if (args.positional.empty()) throw UsageError("no rig file given");
+  const std::string* output = args.Get("-o");
+  if (!output) throw UsageError("eval needs -o OUT.svg|.json|.obj");
+  const std::string ext = Extension(*output);
+  if (ext != "svg" && ext != "json" && ext != "obj") throw UsageError("-o " + *output + ": use .svg, .json or .obj");
+  const std::string *at = args.Get("--at"), *path_name = args.Get("--path");
+  if (!at == !path_name) throw UsageError("give exactly one of --at X,Y or --path NAME");
+  const EvalOptions options = ReadEvalOptions(args);
+  const Rig rig = LoadRigFile(args.positional);
+
+  std::vector<Frame> frames;
+  char label[96];
+  if (at) {
+    const auto comma = at->find(',');
+    if (comma == std::string::npos) throw UsageError("--at: expected X,Y");
+    const double x = ParseNumber("--at", at->substr(0, comma)), y = ParseNumber("--at", at->substr(comma + 1));
+    frames.push_back(EvaluateFrame(rig, x, y, options));
+    std::snprintf(label, sizeof label, "(%.3g, %.3g)", x, y);
+    frames.back().label = label;
+  } else {
+    const int index = rig.FindPath(path_name->c_str());
+    if (index < 0) throw BakeError(args.positional, "has no path named '" + *path_name + "'");
+    const PathView path = rig.path(std::uint32_t(index));
+    const double t0 = path.keys[0], t1 = path.keys[3 * (path.key_count() - 1)];
+    std::vector<double> times;
+    if (const std::string* t = args.Get("--time")) {
+      if (args.Get("--frames")) throw UsageError("give --time or --frames, not both");
+      times.push_back(ParseNumber("--time", *t));
+    } else {
+      const int k = args.Get("--frames") ? ParseCount("--frames", *args.Get("--frames"), 1, 1000) : 16;
+      // A looping path's end is its start again; spread frames over one period.
+      for (int i = 0; i < k; ++i) times.push_back(t0 + (t1 - t0) * i / (path.loop ? k : std::max(1, k - 1)));
+    }
+    for (double t : times) {
+      double x, y;
+      SamplePath(path, t, &x, &y);
+      frames.push_back(EvaluateFrame(rig, x, y, options));
+      std::snprintf(label, sizeof label, "t=%.3g (%.2f, %.2f)", t, x, y);
+      frames.back().label = label;
+    }
+  }
+  if (ext == "obj" && frames.size() != 1) throw UsageError("an OBJ file holds one frame; use --time or --at");
+  const std::string title = args.positional + (at ? " at " + *at : " path " + *path_name);
+  WriteText(*output, ext == "svg" ? FramesSvg(rig, frames, title) : ext == "json" ? FramesJson(rig, frames) : FrameObj(rig, frames[0]));
+  out << "wrote " << *output << " (" << frames.size() << (frames.size() == 1 ? " frame)\n" : " frames)\n");
+  return 0;
+}
+
+int Sheet(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
+  const Args args = Args::Parse(a, from, {"-o", "--columns", "--rows", "--sigma"}, {"--no-shear-limit", "--linear"});
+  if (args.positional.empty()) throw UsageError("no rig file given");
+  const std::string* output = args.Get("-o");
+  if (!output || Extension(*output) != "svg") throw UsageError("sheet needs -o OUT.svg");
+  const int columns = args.Get("--columns") ? ParseCount("--columns", *args.Get("--columns"), 2, 32) : 7;
+  const int rows = args.Get("--rows") ? ParseCount("--rows", *args.Get("--rows"), 1, 32) : 5;
+  const Rig rig = LoadRigFile(args.positional);
+  WriteText(*output, ContactSheetSvg(rig, args.positional + ": poses across pose space", columns, rows, ReadEvalOptions(args)));
+  out << "wrote " << *output << " (" << rig.pose_count() << " poses, " << columns << "x" << rows << " samples)\n";
+  return 0;
+}
+
+}  // namespace
+
+int RunBakeCommand(const std::vector<std::string>& a, std::ostream& out, std::ostream& err) {
+  try {
+    if (a.empty()) throw UsageError("no command given");
+    const std::string& cmd = a[0];
+    if (cmd == "-h" || cmd == "--help" || cmd == "help") {
+      out << kUsage;
+      return 0;
+    }
+    if (cmd == "info") return Info(a, 1, out);
+    if (cmd == "eval") return Eval(a, 1, out);
+    if (cmd == "sheet") return Sheet(a, 1, out);
+    if (cmd == "bake") return Bake(a, 1, out);
+    return Bake(a, 0, out);
+  } catch (const UsageError& e) {
+    err << "posemorph-bake: " << e.what() << "\n" << kUsage;
+    return 2;
+  } catch (const BakeError& e) {
+    err << "posemorph-bake: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    err << "posemorph-bake: error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace posemorph::bake

@@ -1,0 +1,25 @@
+// The biharmonic pose-space weight field of the paper's section 4.1 on a
+// regular grid: minimise sum over edge-adjacent grid triangles of
+// ||grad W_j - grad W_k||^2 + eps' sum_j area_j ||grad W_j||^2 with W(p_i) = e_i.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "posemorph/bake/rig_description.h"
+
+namespace posemorph::bake {
+
+struct WeightGrid {
+  double origin_x = 0, origin_y = 0, cell = 1;
+  std::uint32_t cells_x = 0, cells_y = 0;
+  std::vector<double> weights;  // (cells_x+1)(cells_y+1) x N, row-major in y then x
+};
+
+// Throws BakeError (with `file`) if two points share a grid cell.
+WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, const std::vector<std::string>& names,
+                                 const BakeParameters& parameters, const std::string& file);
+
+}  // namespace posemorph::bake

@@ -1,0 +1,147 @@
+#include "posemorph/bake/pose_space_weights.h"
+
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/triangle_math.h"
+
+namespace posemorph::bake {
+namespace {
+
+// Barycentric coordinates of a point in its grid triangle, with exactly the
+// arithmetic the runtime's WeightsJob uses, so that W(p_i) = e_i holds for the
+// values it computes, not just for the exact ones.
+struct GridLocation {
+  std::uint32_t vertex[3];
+  double lambda[3];
+  std::uint32_t cell;
+};
+
+GridLocation Locate(const WeightGrid& g, const Eigen::Vector2d& p) {
+  const double u = std::clamp((p.x() - g.origin_x) / g.cell, 0.0, double(g.cells_x));
+  const double v = std::clamp((p.y() - g.origin_y) / g.cell, 0.0, double(g.cells_y));
+  const std::uint32_t i = u >= g.cells_x ? g.cells_x - 1 : std::uint32_t(u);
+  const std::uint32_t j = v >= g.cells_y ? g.cells_y - 1 : std::uint32_t(v);
+  const double fx = std::clamp(u - i, 0.0, 1.0), fy = std::clamp(v - j, 0.0, 1.0);
+  const std::uint32_t row = g.cells_x + 1, v00 = j * row + i;
+  GridLocation loc;
+  loc.cell = j * g.cells_x + i;
+  if (fx >= fy) {
+    loc.vertex[0] = v00, loc.vertex[1] = v00 + 1, loc.vertex[2] = v00 + row + 1;
+    loc.lambda[0] = 1 - fx, loc.lambda[1] = fx - fy, loc.lambda[2] = fy;
+  } else {
+    loc.vertex[0] = v00, loc.vertex[1] = v00 + row, loc.vertex[2] = v00 + row + 1;
+    loc.lambda[0] = 1 - fy, loc.lambda[1] = fy - fx, loc.lambda[2] = fx;
+  }
+  return loc;
+}
+
+}  // namespace
+
+WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, const std::vector<std::string>& names,
+                                 const BakeParameters& params, const std::string& file) {
+  const std::size_t N = points.size();
+  Eigen::AlignedBox2d box;
+  for (const auto& p : points) box.extend(p);
+  const double spread = box.sizes().maxCoeff();  // > 0: points are distinct
+
+  // Domain: the points' box grown by margin x spread on every side (a 1D
+  // arrangement still gets a 2D domain), covered by square cells.
+  const Eigen::Vector2d lo = box.min().array() - params.margin * spread;
+  const Eigen::Vector2d hi = box.max().array() + params.margin * spread;
+  const Eigen::Vector2d size = (hi - lo).cwiseMax(1e-9 * spread);
+  WeightGrid g;
+  g.cell = size.maxCoeff() / params.grid_resolution;
+  g.cells_x = std::max<std::uint32_t>(1, std::uint32_t(std::ceil(size.x() / g.cell - 1e-9)));
+  g.cells_y = std::max<std::uint32_t>(1, std::uint32_t(std::ceil(size.y() / g.cell - 1e-9)));
+  const Eigen::Vector2d center = 0.5 * (lo + hi);
+  g.origin_x = center.x() - 0.5 * g.cells_x * g.cell;
+  g.origin_y = center.y() - 0.5 * g.cells_y * g.cell;
+
+  const std::uint32_t row = g.cells_x + 1;
+  const std::size_t G = std::size_t(row) * (g.cells_y + 1);
+  Points grid_points(G);
+  for (std::uint32_t j = 0; j <= g.cells_y; ++j)
+    for (std::uint32_t i = 0; i <= g.cells_x; ++i)
+      grid_points[j * row + i] = {g.origin_x + i * g.cell, g.origin_y + j * g.cell};
+  Triangles tris;
+  for (std::uint32_t j = 0; j < g.cells_y; ++j)
+    for (std::uint32_t i = 0; i < g.cells_x; ++i) {
+      const std::uint32_t v00 = j * row + i;
+      tris.push_back({v00, v00 + 1, v00 + row + 1});
+      tris.push_back({v00, v00 + row + 1, v00 + row});
+    }
+
+  // Gradient operators: grad W = E^-T D (W_a, W_b, W_c).
+  Eigen::Matrix<double, 2, 3> D;
+  D << 1, 0, -1, 0, 1, -1;
+  std::vector<Eigen::Matrix<double, 2, 3>> grads(tris.size());
+  for (std::size_t t = 0; t < tris.size(); ++t) grads[t] = EdgeMatrix(grid_points, tris[t]).inverse().transpose() * D;
+
+  // eps is relative to the points' spread so that it means the same at any
+  // pose-space scale and grid resolution: the field levels out over distances
+  // of about spread / sqrt(eps).
+  const double eps = params.epsilon / (spread * spread);
+  std::vector<Eigen::Triplet<double>> q;
+  auto add_block = [&](const std::vector<std::uint32_t>& vars, const Eigen::MatrixXd& B, double weight) {
+    const Eigen::MatrixXd BtB = weight * B.transpose() * B;
+    for (std::size_t r = 0; r < vars.size(); ++r)
+      for (std::size_t c = 0; c < vars.size(); ++c) q.emplace_back(int(vars[r]), int(vars[c]), BtB(r, c));
+  };
+  const auto neighbours = EdgeNeighbours(tris);
+  for (std::uint32_t t = 0; t < tris.size(); ++t) {
+    add_block({tris[t][0], tris[t][1], tris[t][2]}, grads[t], eps * std::abs(SignedArea(grid_points, tris[t])));
+    for (std::uint32_t u : neighbours[t]) {
+      if (u < t) continue;  // each pair once
+      std::vector<std::uint32_t> vars = {tris[t][0], tris[t][1], tris[t][2]};
+      for (std::uint32_t v : tris[u])
+        if (std::find(vars.begin(), vars.end(), v) == vars.end()) vars.push_back(v);
+      Eigen::MatrixXd B = Eigen::MatrixXd::Zero(2, vars.size());
+      for (int k = 0; k < 3; ++k) {
+        B.col(k) += grads[t].col(k);
+        B.col(std::find(vars.begin(), vars.end(), tris[u][k]) - vars.begin()) -= grads[u].col(k);
+      }
+      add_block(vars, B, 1.0);
+    }
+  }
+
+  // Point constraints by Lagrange multipliers: [Q C^T; C 0] [W; mu] = [0; I].
+  std::vector<std::uint32_t> cell_owner(std::size_t(g.cells_x) * g.cells_y, std::uint32_t(-1));
+  for (std::size_t i = 0; i < N; ++i) {
+    const GridLocation loc = Locate(g, points[i]);
+    if (cell_owner[loc.cell] != std::uint32_t(-1))
+      throw BakeError(file, "pose points '" + names[cell_owner[loc.cell]] + "' and '" + names[i] +
+                                "' fall in one pose-space grid cell; raise bake.grid_resolution (now " +
+                                std::to_string(params.grid_resolution) + ") or move them apart");
+    cell_owner[loc.cell] = std::uint32_t(i);
+    for (int k = 0; k < 3; ++k) {
+      q.emplace_back(int(G + i), int(loc.vertex[k]), loc.lambda[k]);
+      q.emplace_back(int(loc.vertex[k]), int(G + i), loc.lambda[k]);
+    }
+  }
+  Eigen::SparseMatrix<double> kkt(int(G + N), int(G + N));
+  kkt.setFromTriplets(q.begin(), q.end());
+  kkt.makeCompressed();
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
+  lu.compute(kkt);
+  if (lu.info() != Eigen::Success) throw BakeError(file, "the pose-space weight system is singular: " + lu.lastErrorMessage());
+  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(G + N, N);
+  for (std::size_t i = 0; i < N; ++i) rhs(G + i, i) = 1;
+  const Eigen::MatrixXd solution = lu.solve(rhs);
+  if (lu.info() != Eigen::Success || !solution.allFinite()) throw BakeError(file, "the pose-space weight solve failed");
+
+  g.weights.resize(G * N);
+  for (std::size_t v = 0; v < G; ++v) {
+    // The exact field sums to 1 (the constant 1 meets every constraint at zero
+    // energy); dividing by the sum removes the solver's roundoff.
+    const double sum = solution.row(v).sum();
+    for (std::size_t i = 0; i < N; ++i) g.weights[v * N + i] = solution(v, i) / sum;
+  }
+  return g;
+}
+
+}  // namespace posemorph::bake

@@ -1,0 +1,200 @@
+// Reading a rig description (JSON). Every problem names the file and the
+// JSON path of the offending value.
+#include "posemorph/bake/rig_description.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "posemorph/bake/error.h"
+
+namespace posemorph::bake {
+namespace {
+
+using nlohmann::json;
+
+struct Reader {
+  std::string file;
+
+  [[noreturn]] void Fail(const std::string& where, const std::string& problem) const {
+    throw BakeError(file, where.empty() ? problem : where + ": " + problem);
+  }
+  double Number(const json& j, const std::string& where) const {
+    if (!j.is_number()) Fail(where, "expected a number");
+    const double v = j.get<double>();
+    if (!std::isfinite(v)) Fail(where, "number is not finite");
+    return v;
+  }
+  std::uint32_t Index(const json& j, const std::string& where) const {
+    if (!j.is_number_integer()) Fail(where, "expected a non-negative integer vertex index");
+    if (j.is_number_unsigned() ? j.get<std::uint64_t>() > 0xFFFFFFFEull : true)
+      Fail(where, "vertex index " + j.dump() + " is out of range");
+    return std::uint32_t(j.get<std::uint64_t>());
+  }
+  Eigen::Vector2d Point(const json& j, const std::string& where) const {
+    if (!j.is_array() || j.size() != 2) Fail(where, "expected [x, y]");
+    return {Number(j[0], where + "[0]"), Number(j[1], where + "[1]")};
+  }
+  const json& Array(const json& j, const char* key, const std::string& where) const {
+    if (!j.contains(key)) Fail(where, std::string("missing \"") + key + "\"");
+    const json& a = j[key];
+    if (!a.is_array()) Fail(where + "." + key, "expected an array");
+    return a;
+  }
+  std::string String(const json& j, const std::string& where) const {
+    if (!j.is_string()) Fail(where, "expected a string");
+    return j.get<std::string>();
+  }
+  std::vector<Eigen::Vector2d> Points(const json& a, const std::string& where) const {
+    std::vector<Eigen::Vector2d> out;
+    out.reserve(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) out.push_back(Point(a[i], where + "[" + std::to_string(i) + "]"));
+    return out;
+  }
+  std::vector<std::array<std::uint32_t, 3>> ReadTriangles(const json& a, const std::string& where) const {
+    std::vector<std::array<std::uint32_t, 3>> out;
+    out.reserve(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const std::string w = where + "[" + std::to_string(i) + "]";
+      if (!a[i].is_array() || a[i].size() != 3) Fail(w, "expected [a, b, c]");
+      out.push_back({Index(a[i][0], w), Index(a[i][1], w), Index(a[i][2], w)});
+    }
+    return out;
+  }
+};
+
+json ParseJson(const std::string& text, const std::string& file) {
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw BakeError(file, std::string("invalid JSON: ") + e.what());
+  }
+}
+
+std::string ReadText(const std::string& path, const std::string& referenced_from) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    if (referenced_from.empty()) throw BakeError(path, "cannot open file");
+    throw BakeError(path, "cannot open file (named in " + referenced_from + ")");
+  }
+  std::ostringstream s;
+  s << in.rdbuf();
+  if (in.bad()) throw BakeError(path, "read error");
+  return s.str();
+}
+
+}  // namespace
+
+RigDescription ParseRigDescription(const std::string& text, const std::string& file, const std::string& base_dir) {
+  Reader r{file};
+  const json root = ParseJson(text, file);
+  if (!root.is_object()) r.Fail("", "expected a JSON object at the top level");
+  if (!root.contains("posemorph") || !root["posemorph"].is_number_integer() || root["posemorph"].get<int>() != 1)
+    r.Fail("posemorph", "missing or unsupported schema version (this bake reads \"posemorph\": 1)");
+
+  RigDescription rig;
+  rig.file = file;
+  if (root.contains("name")) rig.name = r.String(root["name"], "name");
+  bool have_triangles = root.contains("triangles");
+  if (have_triangles) rig.triangles = r.ReadTriangles(r.Array(root, "triangles", ""), "triangles");
+
+  const json& poses = r.Array(root, "poses", "");
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const std::string w = "poses[" + std::to_string(i) + "]";
+    const json& jp = poses[i];
+    if (!jp.is_object()) r.Fail(w, "expected an object");
+    PoseDescription pose;
+    pose.name = jp.contains("name") ? r.String(jp["name"], w + ".name") : "pose" + std::to_string(i);
+    if (!jp.contains("point")) r.Fail(w, "missing \"point\" (its place in pose space)");
+    pose.point = r.Point(jp["point"], w + ".point");
+    if (jp.contains("vertices") == jp.contains("mesh"))
+      r.Fail(w, "give exactly one of \"vertices\" or \"mesh\" (a mesh file)");
+    if (jp.contains("vertices")) {
+      pose.vertices = r.Points(r.Array(jp, "vertices", w), w + ".vertices");
+    } else {
+      const std::string rel = r.String(jp["mesh"], w + ".mesh");
+      const std::string path = (std::filesystem::path(base_dir) / rel).string();
+      Reader mr{path};
+      const json mesh = ParseJson(ReadText(path, file), path);
+      if (!mesh.is_object()) mr.Fail("", "expected a mesh object {\"vertices\": [...], \"triangles\": [...]}");
+      pose.vertices = mr.Points(mr.Array(mesh, "vertices", ""), "vertices");
+      if (mesh.contains("triangles")) {
+        auto t = mr.ReadTriangles(mr.Array(mesh, "triangles", ""), "triangles");
+        if (!have_triangles) {
+          rig.triangles = std::move(t);
+          have_triangles = true;
+        } else if (t != rig.triangles) {
+          mr.Fail("triangles", "differ from the rig's triangle list; all poses share one connectivity");
+        }
+      }
+    }
+    if (jp.contains("image")) pose.image = r.String(jp["image"], w + ".image");
+    if (jp.contains("uvs")) {
+      for (const Eigen::Vector2d& uv : r.Points(r.Array(jp, "uvs", w), w + ".uvs")) pose.uvs.push_back(uv.cast<float>());
+    }
+    rig.poses.push_back(std::move(pose));
+  }
+  if (!have_triangles) r.Fail("triangles", "missing: give \"triangles\" or a mesh file that has them");
+
+  if (root.contains("bake")) {
+    const json& b = root["bake"];
+    if (!b.is_object()) r.Fail("bake", "expected an object");
+    BakeParameters& p = rig.parameters;
+    if (b.contains("grid_resolution")) {
+      if (!b["grid_resolution"].is_number_integer()) r.Fail("bake.grid_resolution", "expected an integer");
+      const auto v = b["grid_resolution"].get<long long>();
+      if (v < 2 || v > 1024) r.Fail("bake.grid_resolution", "must be in 2..1024");
+      p.grid_resolution = int(v);
+    }
+    if (b.contains("margin")) p.margin = r.Number(b["margin"], "bake.margin");
+    if (b.contains("epsilon")) p.epsilon = r.Number(b["epsilon"], "bake.epsilon");
+    if (b.contains("sigma")) p.sigma = r.Number(b["sigma"], "bake.sigma");
+    if (p.margin < 0 || p.margin > 10) r.Fail("bake.margin", "must be in [0, 10]");
+    if (!(p.epsilon > 0) || p.epsilon > 1e3) r.Fail("bake.epsilon", "must be in (0, 1000]");
+    if (p.sigma < 0 || p.sigma > 1) r.Fail("bake.sigma", "must be in [0, 1]");
+  }
+
+  if (root.contains("paths")) {
+    const json& paths = r.Array(root, "paths", "");
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+      const std::string w = "paths[" + std::to_string(i) + "]";
+      const json& jp = paths[i];
+      if (!jp.is_object()) r.Fail(w, "expected an object");
+      PathDescription path;
+      if (!jp.contains("name")) r.Fail(w, "missing \"name\"");
+      path.name = r.String(jp["name"], w + ".name");
+      if (jp.contains("loop")) {
+        if (!jp["loop"].is_boolean()) r.Fail(w + ".loop", "expected true or false");
+        path.loop = jp["loop"].get<bool>();
+      }
+      if (jp.contains("interpolation")) {
+        const std::string mode = r.String(jp["interpolation"], w + ".interpolation");
+        if (mode != "linear" && mode != "catmull-rom")
+          r.Fail(w + ".interpolation", "\"" + mode + "\" is not \"linear\" or \"catmull-rom\"");
+        path.catmull_rom = mode == "catmull-rom";
+      }
+      const json& keys = r.Array(jp, "keys", w);
+      if (keys.empty()) r.Fail(w + ".keys", "needs at least one key");
+      for (std::size_t k = 0; k < keys.size(); ++k) {
+        const std::string wk = w + ".keys[" + std::to_string(k) + "]";
+        if (!keys[k].is_array() || keys[k].size() != 3) r.Fail(wk, "expected [time, x, y]");
+        path.keys.push_back({r.Number(keys[k][0], wk), r.Number(keys[k][1], wk), r.Number(keys[k][2], wk)});
+        if (k > 0 && !(path.keys[k][0] > path.keys[k - 1][0])) r.Fail(wk, "key times must increase strictly");
+      }
+      for (const PathDescription& other : rig.paths)
+        if (other.name == path.name) r.Fail(w + ".name", "path \"" + path.name + "\" is defined twice");
+      rig.paths.push_back(std::move(path));
+    }
+  }
+  return rig;
+}
+
+RigDescription ReadRigDescription(const std::string& path) {
+  const std::string text = ReadText(path, "");
+  return ParseRigDescription(text, path, std::filesystem::path(path).parent_path().string());
+}
+
+}  // namespace posemorph::bake

@@ -1,0 +1,32 @@
+// Serialising sections into the runtime's binary layout (runtime/FORMAT.md).
+#pragma once
+#include <cstdint>
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace posemorph::bake {
+
+class RigWriter {
+ public:
+  void Add(std::uint32_t tag, std::vector<unsigned char> bytes) { sections_.push_back({tag, std::move(bytes)}); }
+  template <typename T>
+  void AddArray(std::uint32_t tag, const std::vector<T>& values) {
+    std::vector<unsigned char> bytes(values.size() * sizeof(T));
+    if (!values.empty()) std::memcpy(bytes.data(), values.data(), bytes.size());
+    Add(tag, std::move(bytes));
+  }
+  std::vector<unsigned char> Finish() const;
+
+ private:
+  struct Section {
+    std::uint32_t tag;
+    std::vector<unsigned char> bytes;
+  };
+  std::vector<Section> sections_;
+};
+
+// Appends a u32 length and the bytes of s.
+void AppendString(std::vector<unsigned char>& out, const std::string& s);
+
+}  // namespace posemorph::bake

@@ -1,0 +1,129 @@
+// Everything the math needs from the input, checked before any of it runs.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <set>
+#include <sstream>
+
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/rig_description.h"
+#include "posemorph/bake/triangle_math.h"
+#include "posemorph/rig_format.h"
+
+namespace posemorph::bake {
+namespace {
+
+std::string PoseLabel(const RigDescription& rig, std::size_t i) {
+  return "pose '" + rig.poses[i].name + "' (index " + std::to_string(i) + ")";
+}
+
+std::uint32_t FindRoot(std::vector<std::uint32_t>& parent, std::uint32_t v) {
+  while (parent[v] != v) v = parent[v] = parent[parent[v]];
+  return v;
+}
+
+}  // namespace
+
+void ValidateRigDescription(RigDescription& rig) {
+  const std::string& file = rig.file;
+  auto fail = [&](const std::string& problem) { throw BakeError(file, problem); };
+
+  const std::size_t N = rig.poses.size();
+  if (N < 2) fail("a rig needs at least 2 poses, this one has " + std::to_string(N));
+  if (N > format::kMaxPoses) fail("at most " + std::to_string(format::kMaxPoses) + " poses are supported, got " + std::to_string(N));
+  const std::size_t V = rig.poses[0].vertices.size();
+  if (V < 3) fail(PoseLabel(rig, 0) + " has " + std::to_string(V) + " vertices; a mesh needs at least 3");
+  if (V > format::kMaxVertices) fail("too many vertices: " + std::to_string(V));
+  if (rig.triangles.empty()) fail("the triangle list is empty");
+  if (rig.triangles.size() > format::kMaxTriangles) fail("too many triangles: " + std::to_string(rig.triangles.size()));
+  for (std::size_t i = 0; i < N; ++i) {
+    const PoseDescription& p = rig.poses[i];
+    if (p.vertices.size() != V)
+      fail(PoseLabel(rig, i) + " has " + std::to_string(p.vertices.size()) + " vertices, pose 0 has " + std::to_string(V));
+    if (!p.uvs.empty() && p.uvs.size() != V)
+      fail(PoseLabel(rig, i) + " has " + std::to_string(p.uvs.size()) + " uvs for " + std::to_string(V) + " vertices");
+    for (std::size_t j = 0; j < i; ++j)
+      if (rig.poses[j].name == p.name) fail(PoseLabel(rig, i) + ": the name is used by pose " + std::to_string(j) + " too");
+  }
+  const bool any_uvs = std::any_of(rig.poses.begin(), rig.poses.end(), [](const PoseDescription& p) { return !p.uvs.empty(); });
+  if (any_uvs)
+    for (std::size_t i = 0; i < N; ++i)
+      if (rig.poses[i].uvs.empty()) fail(PoseLabel(rig, i) + " has no uvs, but other poses do; give all or none");
+
+  // Indices.
+  std::set<std::array<std::uint32_t, 3>> seen;
+  for (std::size_t t = 0; t < rig.triangles.size(); ++t) {
+    const auto& tri = rig.triangles[t];
+    for (std::uint32_t v : tri)
+      if (v >= V) fail("triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) + ", but there are only " + std::to_string(V));
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
+      fail("triangle " + std::to_string(t) + " repeats a vertex (" + std::to_string(tri[0]) + ", " + std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")");
+    std::array<std::uint32_t, 3> key = tri;
+    std::sort(key.begin(), key.end());
+    if (!seen.insert(key).second) fail("triangle " + std::to_string(t) + " appears twice in the triangle list");
+  }
+
+  // Every vertex in a triangle, all triangles in one vertex-connected part:
+  // otherwise K (one pinned vertex) is singular.
+  std::vector<std::uint32_t> parent(V);
+  std::iota(parent.begin(), parent.end(), 0u);
+  std::vector<char> used(V, 0);
+  for (const auto& tri : rig.triangles)
+    for (int k = 0; k < 3; ++k) {
+      used[tri[k]] = 1;
+      parent[FindRoot(parent, tri[k])] = FindRoot(parent, tri[(k + 1) % 3]);
+    }
+  for (std::size_t v = 0; v < V; ++v) {
+    if (!used[v]) fail("vertex " + std::to_string(v) + " is used by no triangle");
+    if (FindRoot(parent, std::uint32_t(v)) != FindRoot(parent, 0))
+      fail("the mesh falls apart: vertex " + std::to_string(v) + " is not connected to vertex 0 (a rig is one connected mesh)");
+  }
+
+  // Finite numbers (the reader checks JSON numbers; this also covers rigs built in code).
+  for (std::size_t i = 0; i < N; ++i) {
+    const PoseDescription& p = rig.poses[i];
+    if (!p.point.allFinite()) fail(PoseLabel(rig, i) + ": pose-space point is not finite");
+    for (std::size_t v = 0; v < V; ++v)
+      if (!p.vertices[v].allFinite()) fail(PoseLabel(rig, i) + ": vertex " + std::to_string(v) + " is not finite");
+    for (std::size_t v = 0; v < p.uvs.size(); ++v)
+      if (!p.uvs[v].allFinite()) fail(PoseLabel(rig, i) + ": uv " + std::to_string(v) + " is not finite");
+  }
+
+  // Orientation: pose 0 decides (a clockwise mesh is turned around), then every
+  // triangle must keep a clearly positive area in every pose.
+  double total = 0;
+  for (const auto& tri : rig.triangles) total += SignedArea(rig.poses[0].vertices, tri);
+  if (total < 0)
+    for (auto& tri : rig.triangles) std::swap(tri[1], tri[2]);
+  for (std::size_t i = 0; i < N; ++i) {
+    const Points& q = rig.poses[i].vertices;
+    Eigen::AlignedBox2d box;
+    for (const auto& v : q) box.extend(v);
+    const double diag = box.diagonal().norm();
+    if (!(diag > 0)) fail(PoseLabel(rig, i) + ": all vertices coincide");
+    const double min_area = 1e-10 * diag * diag;
+    for (std::size_t t = 0; t < rig.triangles.size(); ++t) {
+      const double a = SignedArea(q, rig.triangles[t]);
+      if (std::abs(a) <= min_area) {
+        std::ostringstream s;
+        s << PoseLabel(rig, i) << ": triangle " << t << " is degenerate (area " << a << ")";
+        fail(s.str());
+      }
+      if (a < 0) {
+        std::ostringstream s;
+        s << PoseLabel(rig, i) << ": triangle " << t << " is flipped (signed area " << a << ", pose 0 is counter-clockwise)";
+        fail(s.str());
+      }
+    }
+  }
+
+  // Pose points: distinct (the grid check later also needs them in distinct cells).
+  for (std::size_t i = 0; i < N; ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (rig.poses[i].point == rig.poses[j].point)
+        fail(PoseLabel(rig, i) + " and " + PoseLabel(rig, j) + " share the pose-space point (" +
+             std::to_string(rig.poses[i].point.x()) + ", " + std::to_string(rig.poses[i].point.y()) + ")");
+}
+
+}  // namespace posemorph::bake

@@ -1,0 +1,52 @@
+// Per-frame work, ozz-animation style: a plain struct of inputs and
+// caller-owned output spans; Validate() checks them, Run() does the work.
+// Neither allocates nor throws. Run() returns false (and does nothing) when
+// Validate() would.
+#pragma once
+#include <cstdint>
+
+#include "posemorph/rig.h"
+#include "posemorph/span.h"
+
+namespace posemorph {
+
+// Weights at a pose-space point. The point is clamped to the baked grid (the
+// field is constant beyond it); a NaN coordinate is replaced by pose 0's
+// coordinate, so any input gives a finite, defined result.
+struct WeightsJob {
+  const Rig* rig = nullptr;
+  double x = 0, y = 0;
+  double sigma = 0;           // texture sharpening in [0, 1] (clamped)
+  bool shear_limit = true;    // false: shear = raw
+  Span<double> raw;           // N: sum 1, may be negative or > 1
+  Span<double> shear;         // N, optional: phi(w) renormalised (phi = clamped smoothstep)
+  Span<double> texture;       // N, optional: sharpened cross-fade weights w''
+
+  bool Validate() const;
+  bool Run() const;
+};
+
+enum class Interpolation : std::uint8_t {
+  kRigid = 0,   // as-rigid-as-possible (the method)
+  kLinear = 1,  // vertex positions blended linearly, for comparison
+};
+
+// Vertex positions for given weights.
+struct MorphJob {
+  const Rig* rig = nullptr;
+  Span<const double> weights;        // N raw weights (rotation angles, centroid)
+  Span<const double> shear_weights;  // N (shear/scale); pass weights again for no limiting
+  Interpolation interpolation = Interpolation::kRigid;
+  Span<double> workspace;            // rig->morph_workspace_size() doubles
+  Span<double> positions;            // 2 x V, interleaved x, y
+  Span<float> positions_f32;         // optional 2 x V copy for the GPU
+
+  bool Validate() const;
+  bool Run() const;
+};
+
+// The scalar maps behind WeightsJob, exposed for tests and renderers.
+double ShearLimit(double w);  // smoothstep clamped to [0, 1]
+void TextureWeights(Span<const double> shear_weights, double sigma, Span<double> out);
+
+}  // namespace posemorph

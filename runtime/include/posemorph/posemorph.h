@@ -1,0 +1,76 @@
+/* posemorph C API: load a baked rig, evaluate poses. C99, no allocation
+ * after pm_rig_load, nothing thrown. Every function returning int returns
+ * PM_OK (0) on success. Thread-safety: a loaded pm_rig is immutable and may
+ * be evaluated from many threads at once, each with its own workspace. */
+#ifndef POSEMORPH_H
+#define POSEMORPH_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+enum {
+  PM_OK = 0,
+  PM_ERROR_INVALID_ARGUMENT = 1,
+  PM_ERROR_TRUNCATED = 2,
+  PM_ERROR_BAD_MAGIC = 3,
+  PM_ERROR_BAD_VERSION = 4,
+  PM_ERROR_BAD_CHECKSUM = 5,
+  PM_ERROR_BAD_LAYOUT = 6,
+  PM_ERROR_BAD_VALUE = 7,
+  PM_ERROR_TOO_LARGE = 8,
+  PM_ERROR_OUT_OF_MEMORY = 9
+};
+
+typedef struct pm_rig pm_rig;
+
+typedef struct pm_error {
+  int code;
+  char message[256];
+} pm_error;
+
+typedef struct pm_rig_info {
+  uint32_t vertex_count;
+  uint32_t triangle_count;
+  uint32_t pose_count;
+  uint32_t path_count;
+  double default_sigma;
+  double size; /* bounding-box diagonal of pose 0 */
+} pm_rig_info;
+
+/* Validates the bytes (which the caller keeps) and makes a rig. err may be NULL. */
+int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err);
+void pm_rig_free(pm_rig* rig);
+void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info);
+const uint32_t* pm_rig_triangles(const pm_rig* rig);            /* 3 x triangle_count */
+const float* pm_rig_uvs(const pm_rig* rig, uint32_t pose);     /* 2 x vertex_count, or NULL */
+
+/* Weights at a pose-space point. raw is required (pose_count doubles);
+ * shear and texture may be NULL. sigma in [0,1] sharpens the texture blend. */
+int pm_weights(const pm_rig* rig, double x, double y, double sigma, int shear_limit,
+               double* raw, double* shear, double* texture);
+
+/* Doubles of workspace pm_morph needs. */
+size_t pm_morph_workspace_size(const pm_rig* rig);
+
+/* Vertex positions (2 x vertex_count, interleaved) for raw and shear weights.
+ * positions_f32 may be NULL. linear != 0 blends vertex positions linearly. */
+int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weights, int linear,
+             double* workspace, double* positions, float* positions_f32);
+
+/* Index of the named path or -1; point on a path at a time in seconds. */
+int pm_path_find(const pm_rig* rig, const char* name);
+int pm_path_sample(const pm_rig* rig, uint32_t path, double time, double* x, double* y);
+
+/* A pose-space point in 4 bytes (x in the low 16 bits, y in the high 16). */
+uint32_t pm_quantize_point(const pm_rig* rig, double x, double y);
+void pm_dequantize_point(const pm_rig* rig, uint32_t packed, double* x, double* y);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* POSEMORPH_H */

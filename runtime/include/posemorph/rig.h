@@ -1,0 +1,116 @@
+// A baked rig: immutable after loading, safe to share between threads and
+// characters. All arrays live in one arena allocated by LoadRig.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+
+#include "posemorph/error.h"
+#include "posemorph/span.h"
+
+namespace posemorph {
+
+enum class PathInterpolation : std::uint8_t { kLinear = 0, kCatmullRom = 1 };
+
+struct StringView {
+  const char* data = nullptr;
+  std::size_t size = 0;
+};
+
+// A pose-space animation path: keys (time, x, y), times strictly increasing.
+struct PathView {
+  StringView name;
+  bool loop = false;
+  PathInterpolation interpolation = PathInterpolation::kLinear;
+  Span<const double> keys;  // 3 x key count: t0, x0, y0, t1, x1, y1, ...
+  std::size_t key_count() const { return keys.size / 3; }
+};
+
+// The regular pose-space grid whose vertex values are the baked weights.
+struct PoseSpaceGrid {
+  double origin_x = 0, origin_y = 0;  // lower-left corner
+  double cell = 1;                    // square cell edge length
+  std::uint32_t cells_x = 0, cells_y = 0;
+  Span<const double> weights;  // (cells_x+1)*(cells_y+1) vertices x N, row-major in y then x
+};
+
+// The LDL^T factor of the pinned cotangent system, permuted: P K P^T = L D L^T.
+struct Factor {
+  std::uint32_t n = 0;                  // vertex_count - 1 (vertex 0 is pinned)
+  Span<const std::uint32_t> order;      // order[k'] = free unknown k placed at k'
+  Span<const std::uint32_t> col_start;  // n + 1, strict lower part of L by column
+  Span<const std::uint32_t> row;        // nnz
+  Span<const double> value;             // nnz
+  Span<const double> inv_diagonal;      // n, 1 / D
+};
+
+struct LoadOptions {
+  // Tests turn this off to prove the structural checks alone keep corrupted
+  // bytes from crashing the loader; applications leave it on.
+  bool verify_checksum = true;
+};
+
+class Rig {
+ public:
+  Rig();
+  ~Rig();
+  Rig(Rig&&) noexcept;
+  Rig& operator=(Rig&&) noexcept;
+  Rig(const Rig&) = delete;
+  Rig& operator=(const Rig&) = delete;
+
+  bool loaded() const { return vertex_count_ != 0; }
+  std::uint32_t vertex_count() const { return vertex_count_; }
+  std::uint32_t triangle_count() const { return triangle_count_; }
+  std::uint32_t pose_count() const { return pose_count_; }
+  std::uint32_t path_count() const { return path_count_; }
+
+  Span<const std::uint32_t> triangles() const { return triangles_; }  // 3 x T
+  Span<const double> pose_positions(std::uint32_t pose) const;       // 2 x V, interleaved
+  Span<const double> pose_points() const { return pose_points_; }    // 2 x N
+  Span<const double> pose_centroids() const { return pose_centroids_; }
+  Span<const double> vertex_masses() const { return vertex_masses_; }  // sum 1
+  Span<const double> gradients() const { return gradients_; }    // 6 x T: area * D^T E^-1
+  Span<const double> angles() const { return angles_; }          // N x T (triangle-major)
+  Span<const double> shears() const { return shears_; }          // 3N x T: S11, S12, S22
+  Span<const float> uvs(std::uint32_t pose) const;                // 2 x V, or empty
+  StringView pose_name(std::uint32_t pose) const;
+  StringView pose_image(std::uint32_t pose) const;  // reference as written by the bake; may be empty
+  PathView path(std::uint32_t index) const;
+  // Index of the path with this name, or -1.
+  int FindPath(const char* name) const;
+
+  const PoseSpaceGrid& grid() const { return grid_; }
+  const Factor& factor() const { return factor_; }
+  double default_sigma() const { return default_sigma_; }
+  double size() const { return rig_size_; }  // bounding-box diagonal of pose 0
+
+  // Doubles a MorphJob needs as workspace.
+  std::size_t morph_workspace_size() const { return 4 * std::size_t(vertex_count_); }
+  std::size_t arena_bytes() const { return arena_size_; }
+
+ private:
+  friend bool LoadRig(const void*, std::size_t, Rig*, Error*, const LoadOptions&);
+  friend struct RigBuilderAccess;
+
+  std::unique_ptr<unsigned char[]> arena_;
+  std::size_t arena_size_ = 0;
+  std::uint32_t vertex_count_ = 0, triangle_count_ = 0, pose_count_ = 0, path_count_ = 0;
+  Span<const std::uint32_t> triangles_;
+  Span<const double> pose_positions_, pose_points_, pose_centroids_, vertex_masses_;
+  Span<const double> gradients_, angles_, shears_;
+  Span<const float> uvs_;
+  Span<const StringView> strings_;  // N names, N images, P path names
+  Span<const PathView> paths_;
+  PoseSpaceGrid grid_;
+  Factor factor_;
+  double default_sigma_ = 0, rig_size_ = 0;
+};
+
+// Validates every byte and builds a Rig. On failure returns false, fills err
+// (if given) and leaves *out empty. Never throws; the only allocation is the
+// rig's arena.
+bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err,
+             const LoadOptions& options = LoadOptions());
+
+}  // namespace posemorph

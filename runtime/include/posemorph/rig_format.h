@@ -1,0 +1,88 @@
+// The baked rig's binary layout, shared by the loader and by the bake's
+// writer. The authoritative description is runtime/FORMAT.md.
+#pragma once
+#include <cstdint>
+
+namespace posemorph::format {
+
+constexpr unsigned char kMagic[8] = {'P', 'M', 'R', 'I', 'G', '\r', '\n', 0x1a};
+constexpr std::uint16_t kVersionMajor = 1;
+constexpr std::uint16_t kVersionMinor = 0;
+constexpr std::uint32_t kHeaderSize = 64;
+constexpr std::uint32_t kSectionEntrySize = 24;
+constexpr std::uint32_t kSectionAlignment = 16;
+constexpr std::uint32_t kMaxSections = 64;
+
+// Header field offsets.
+constexpr std::uint32_t kOffVersionMajor = 8;
+constexpr std::uint32_t kOffVersionMinor = 10;
+constexpr std::uint32_t kOffHeaderSize = 12;
+constexpr std::uint32_t kOffFileSize = 16;
+constexpr std::uint32_t kOffSectionCount = 24;
+constexpr std::uint32_t kOffFlags = 28;
+constexpr std::uint32_t kOffChecksum = 32;
+
+constexpr std::uint32_t Tag(char a, char b, char c, char d) {
+  return std::uint32_t(std::uint8_t(a)) | std::uint32_t(std::uint8_t(b)) << 8 |
+         std::uint32_t(std::uint8_t(c)) << 16 | std::uint32_t(std::uint8_t(d)) << 24;
+}
+
+// Section tags.
+constexpr std::uint32_t kMeta = Tag('M', 'E', 'T', 'A');
+constexpr std::uint32_t kTriangles = Tag('T', 'R', 'I', 'S');
+constexpr std::uint32_t kPosePositions = Tag('P', 'O', 'S', 'E');
+constexpr std::uint32_t kPosePoints = Tag('P', 'P', 'N', 'T');
+constexpr std::uint32_t kPoseCentroids = Tag('P', 'C', 'E', 'N');
+constexpr std::uint32_t kVertexMasses = Tag('M', 'A', 'S', 'S');
+constexpr std::uint32_t kGradients = Tag('G', 'R', 'A', 'D');
+constexpr std::uint32_t kAngles = Tag('A', 'N', 'G', 'L');
+constexpr std::uint32_t kShears = Tag('S', 'H', 'E', 'R');
+constexpr std::uint32_t kPermutation = Tag('P', 'E', 'R', 'M');
+constexpr std::uint32_t kFactorColumns = Tag('L', 'C', 'O', 'L');
+constexpr std::uint32_t kFactorRows = Tag('L', 'R', 'O', 'W');
+constexpr std::uint32_t kFactorValues = Tag('L', 'V', 'A', 'L');
+constexpr std::uint32_t kFactorInvDiagonal = Tag('D', 'I', 'N', 'V');
+constexpr std::uint32_t kWeightGrid = Tag('W', 'G', 'R', 'D');
+constexpr std::uint32_t kStrings = Tag('S', 'T', 'R', 'S');
+constexpr std::uint32_t kPaths = Tag('P', 'A', 'T', 'H');
+constexpr std::uint32_t kPathKeys = Tag('P', 'K', 'E', 'Y');
+constexpr std::uint32_t kUVs = Tag('U', 'V', 'S', ' ');
+
+// META section: 8 x u32 then 5 x f64, 72 bytes.
+struct Meta {
+  std::uint32_t vertex_count;
+  std::uint32_t triangle_count;
+  std::uint32_t pose_count;
+  std::uint32_t path_count;
+  std::uint32_t grid_cells_x;
+  std::uint32_t grid_cells_y;
+  std::uint32_t factor_nonzeros;
+  std::uint32_t flags;  // bit 0: UVS section present
+  double grid_origin_x;
+  double grid_origin_y;
+  double grid_cell_size;
+  double default_sigma;
+  double rig_size;  // bounding-box diagonal of pose 0, the scale tolerances refer to
+};
+constexpr std::uint32_t kMetaSize = 72;
+constexpr std::uint32_t kMetaFlagHasUVs = 1u;
+
+// PATH section entry: key count, then flags (bit 0 loop; bits 8..15 interpolation).
+constexpr std::uint32_t kPathEntrySize = 8;
+constexpr std::uint32_t kPathFlagLoop = 1u;
+constexpr std::uint32_t kPathInterpolationShift = 8;
+
+// Limits the loader enforces so that hostile counts cannot make it allocate
+// absurd amounts or overflow size arithmetic.
+constexpr std::uint32_t kMaxVertices = 1u << 22;
+constexpr std::uint32_t kMaxTriangles = 1u << 23;
+constexpr std::uint32_t kMaxPoses = 64;
+constexpr std::uint32_t kMaxGridCells = 2048;  // per axis
+constexpr std::uint32_t kMaxPaths = 1024;
+constexpr std::uint32_t kMaxPathKeys = 1u << 20;  // all paths together
+constexpr std::uint32_t kMaxFactorNonzeros = 1u << 28;
+constexpr std::uint32_t kMaxStringBytes = 1u << 20;
+
+std::uint32_t Crc32(const unsigned char* data, std::uint64_t size, std::uint32_t crc = 0);
+
+}  // namespace posemorph::format

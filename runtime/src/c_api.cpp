@@ -1,0 +1,107 @@
+// The C surface: thin wrappers over the C++ jobs, nothing more.
+#include <cstring>
+#include <new>
+
+#include "posemorph/jobs.h"
+#include "posemorph/path.h"
+#include "posemorph/posemorph.h"
+#include "posemorph/quantize.h"
+
+struct pm_rig {
+  posemorph::Rig rig;
+};
+
+using posemorph::Span;
+
+extern "C" {
+
+int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err) {
+  posemorph::Error e;
+  if (err) *err = pm_error{};
+  if (!out_rig) {
+    if (err) {
+      err->code = PM_ERROR_INVALID_ARGUMENT;
+      std::strncpy(err->message, "no output pointer given", sizeof(err->message) - 1);
+    }
+    return PM_ERROR_INVALID_ARGUMENT;
+  }
+  *out_rig = nullptr;
+  pm_rig* rig = new (std::nothrow) pm_rig;
+  if (!rig) return PM_ERROR_OUT_OF_MEMORY;
+  if (!posemorph::LoadRig(bytes, size, &rig->rig, &e)) {
+    delete rig;
+    if (err) {
+      err->code = int(e.code);
+      std::memcpy(err->message, e.message, sizeof(err->message));
+    }
+    return int(e.code);
+  }
+  *out_rig = rig;
+  return PM_OK;
+}
+
+void pm_rig_free(pm_rig* rig) { delete rig; }
+
+void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info) {
+  if (!rig || !info) return;
+  const posemorph::Rig& r = rig->rig;
+  *info = pm_rig_info{r.vertex_count(), r.triangle_count(), r.pose_count(), r.path_count(), r.default_sigma(), r.size()};
+}
+
+const uint32_t* pm_rig_triangles(const pm_rig* rig) { return rig ? rig->rig.triangles().data : nullptr; }
+
+const float* pm_rig_uvs(const pm_rig* rig, uint32_t pose) { return rig ? rig->rig.uvs(pose).data : nullptr; }
+
+int pm_weights(const pm_rig* rig, double x, double y, double sigma, int shear_limit, double* raw, double* shear,
+               double* texture) {
+  if (!rig) return PM_ERROR_INVALID_ARGUMENT;
+  const std::size_t n = rig->rig.pose_count();
+  posemorph::WeightsJob job;
+  job.rig = &rig->rig;
+  job.x = x;
+  job.y = y;
+  job.sigma = sigma;
+  job.shear_limit = shear_limit != 0;
+  job.raw = {raw, raw ? n : 0};
+  job.shear = {shear, shear ? n : 0};
+  job.texture = {texture, texture ? n : 0};
+  return job.Run() ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
+}
+
+size_t pm_morph_workspace_size(const pm_rig* rig) { return rig ? rig->rig.morph_workspace_size() : 0; }
+
+int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weights, int linear, double* workspace,
+             double* positions, float* positions_f32) {
+  if (!rig) return PM_ERROR_INVALID_ARGUMENT;
+  const posemorph::Rig& r = rig->rig;
+  const std::size_t n = r.pose_count(), v2 = 2 * std::size_t(r.vertex_count());
+  posemorph::MorphJob job;
+  job.rig = &r;
+  job.weights = {weights, n};
+  job.shear_weights = {shear_weights, n};
+  job.interpolation = linear ? posemorph::Interpolation::kLinear : posemorph::Interpolation::kRigid;
+  job.workspace = {workspace, r.morph_workspace_size()};
+  job.positions = {positions, v2};
+  job.positions_f32 = {positions_f32, positions_f32 ? v2 : 0};
+  return job.Run() ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
+}
+
+int pm_path_find(const pm_rig* rig, const char* name) { return rig ? rig->rig.FindPath(name) : -1; }
+
+int pm_path_sample(const pm_rig* rig, uint32_t path, double time, double* x, double* y) {
+  if (!rig) return PM_ERROR_INVALID_ARGUMENT;
+  return posemorph::SamplePath(rig->rig, path, time, x, y) ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
+}
+
+uint32_t pm_quantize_point(const pm_rig* rig, double x, double y) {
+  if (!rig) return 0;
+  const posemorph::QuantizedPoint q = posemorph::QuantizePoint(rig->rig.grid(), x, y);
+  return uint32_t(q.x) | uint32_t(q.y) << 16;
+}
+
+void pm_dequantize_point(const pm_rig* rig, uint32_t packed, double* x, double* y) {
+  if (!rig || !x || !y) return;
+  posemorph::DequantizePoint(rig->rig.grid(), {uint16_t(packed & 0xFFFFu), uint16_t(packed >> 16)}, x, y);
+}
+
+}  // extern "C"

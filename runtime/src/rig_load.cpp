@@ -1,0 +1,426 @@
+// LoadRig: every byte is hostile. Each count is bounded before it sizes
+// anything, each section's size must equal what the counts imply, each index
+// is range-checked and each number must be finite, so that a Rig that loads is
+// one every job can evaluate without further checks.
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstring>
+#include <new>
+
+#include "posemorph/rig.h"
+#include "posemorph/rig_format.h"
+
+#if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "posemorph's loader maps the little-endian format directly; port ReadU32/ReadF64 first"
+#endif
+
+namespace posemorph {
+namespace {
+
+namespace fmt = format;
+
+bool Fail(Error* err, ErrorCode code, const char* format, ...) {
+  if (err) {
+    err->code = code;
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(err->message, sizeof(err->message), format, args);
+    va_end(args);
+  }
+  return false;
+}
+
+std::uint16_t ReadU16(const unsigned char* p) { std::uint16_t v; std::memcpy(&v, p, 2); return v; }
+std::uint32_t ReadU32(const unsigned char* p) { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
+std::uint64_t ReadU64(const unsigned char* p) { std::uint64_t v; std::memcpy(&v, p, 8); return v; }
+
+void TagName(std::uint32_t tag, char out[5]) {
+  for (int i = 0; i < 4; ++i) {
+    const char c = char((tag >> (8 * i)) & 0xFFu);
+    out[i] = (c >= 32 && c < 127) ? c : '?';
+  }
+  out[4] = 0;
+}
+
+struct Section {
+  std::uint32_t tag = 0;
+  std::uint64_t offset = 0, size = 0;
+};
+
+struct SectionTable {
+  Section entries[fmt::kMaxSections];
+  std::uint32_t count = 0;
+  const Section* Find(std::uint32_t tag) const {
+    for (std::uint32_t i = 0; i < count; ++i)
+      if (entries[i].tag == tag) return &entries[i];
+    return nullptr;
+  }
+};
+
+// Bump allocator over the arena; the first pass (base == nullptr) only sizes.
+struct ArenaLayout {
+  unsigned char* base = nullptr;
+  std::size_t used = 0;
+  template <typename T>
+  T* Take(std::size_t count) {
+    used = (used + alignof(std::max_align_t) - 1) & ~(alignof(std::max_align_t) - 1);
+    T* p = base ? reinterpret_cast<T*>(base + used) : nullptr;
+    used += count * sizeof(T);
+    return p;
+  }
+};
+
+struct Parser {
+  const unsigned char* bytes;
+  std::uint64_t size;
+  SectionTable table;
+  Error* err;
+
+  // The section with `tag`, which must be exactly `expected` bytes long.
+  bool Get(std::uint32_t tag, std::uint64_t expected, const unsigned char** out) {
+    char name[5];
+    TagName(tag, name);
+    const Section* s = table.Find(tag);
+    if (!s) return Fail(err, ErrorCode::kBadLayout, "missing section %s", name);
+    if (s->size != expected)
+      return Fail(err, ErrorCode::kBadLayout, "section %s is %llu bytes, the counts imply %llu",
+                  name, (unsigned long long)s->size, (unsigned long long)expected);
+    *out = bytes + s->offset;
+    return true;
+  }
+};
+
+template <typename T>
+Span<const T> CopyInto(ArenaLayout& arena, const unsigned char* src, std::size_t count) {
+  T* dst = arena.Take<T>(count);
+  if (dst && count) std::memcpy(dst, src, count * sizeof(T));
+  return {dst, count};
+}
+
+bool CheckFinite(Span<const double> values, const char* what, Error* err) {
+  for (std::size_t i = 0; i < values.size; ++i)
+    if (!std::isfinite(values[i]))
+      return Fail(err, ErrorCode::kBadValue, "%s[%zu] is not a finite number", what, i);
+  return true;
+}
+
+}  // namespace
+
+Rig::Rig() = default;
+Rig::~Rig() = default;
+Rig::Rig(Rig&&) noexcept = default;
+Rig& Rig::operator=(Rig&&) noexcept = default;
+
+Span<const double> Rig::pose_positions(std::uint32_t pose) const {
+  if (pose >= pose_count_) return {};
+  return {pose_positions_.data + std::size_t(pose) * 2 * vertex_count_, 2 * std::size_t(vertex_count_)};
+}
+
+Span<const float> Rig::uvs(std::uint32_t pose) const {
+  if (pose >= pose_count_ || uvs_.empty()) return {};
+  return {uvs_.data + std::size_t(pose) * 2 * vertex_count_, 2 * std::size_t(vertex_count_)};
+}
+
+StringView Rig::pose_name(std::uint32_t pose) const {
+  return pose < pose_count_ ? strings_[pose] : StringView{};
+}
+
+StringView Rig::pose_image(std::uint32_t pose) const {
+  return pose < pose_count_ ? strings_[pose_count_ + pose] : StringView{};
+}
+
+PathView Rig::path(std::uint32_t index) const { return index < path_count_ ? paths_[index] : PathView{}; }
+
+int Rig::FindPath(const char* name) const {
+  if (!name) return -1;
+  const std::size_t n = std::strlen(name);
+  for (std::uint32_t i = 0; i < path_count_; ++i)
+    if (paths_[i].name.size == n && std::memcmp(paths_[i].name.data, name, n) == 0) return int(i);
+  return -1;
+}
+
+bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const LoadOptions& options) {
+  if (err) *err = Error{};
+  if (!out) return Fail(err, ErrorCode::kInvalidArgument, "no output rig given");
+  *out = Rig();
+  if (!data && size) return Fail(err, ErrorCode::kInvalidArgument, "null data");
+  const auto* bytes = static_cast<const unsigned char*>(data);
+
+  // Header.
+  if (size < fmt::kHeaderSize)
+    return Fail(err, ErrorCode::kTruncated, "%zu bytes is shorter than the %u-byte header", size,
+                fmt::kHeaderSize);
+  if (std::memcmp(bytes, fmt::kMagic, sizeof(fmt::kMagic)) != 0)
+    return Fail(err, ErrorCode::kBadMagic, "not a posemorph rig (bad magic)");
+  const std::uint16_t major = ReadU16(bytes + fmt::kOffVersionMajor);
+  if (major != fmt::kVersionMajor)
+    return Fail(err, ErrorCode::kBadVersion, "format version %u.%u; this runtime reads %u.x", major,
+                ReadU16(bytes + fmt::kOffVersionMinor), fmt::kVersionMajor);
+  if (ReadU32(bytes + fmt::kOffHeaderSize) != fmt::kHeaderSize)
+    return Fail(err, ErrorCode::kBadLayout, "header size field is %u, expected %u",
+                ReadU32(bytes + fmt::kOffHeaderSize), fmt::kHeaderSize);
+  const std::uint64_t file_size = ReadU64(bytes + fmt::kOffFileSize);
+  if (file_size > size)
+    return Fail(err, ErrorCode::kTruncated, "header says %llu bytes, only %zu given",
+                (unsigned long long)file_size, size);
+  if (file_size < size)
+    return Fail(err, ErrorCode::kBadLayout, "header says %llu bytes, %zu given (trailing bytes)",
+                (unsigned long long)file_size, size);
+  if (ReadU32(bytes + fmt::kOffFlags) != 0)
+    return Fail(err, ErrorCode::kBadVersion, "unknown header flags 0x%x", ReadU32(bytes + fmt::kOffFlags));
+  const std::uint32_t section_count = ReadU32(bytes + fmt::kOffSectionCount);
+  if (section_count == 0 || section_count > fmt::kMaxSections)
+    return Fail(err, ErrorCode::kBadLayout, "section count %u outside 1..%u", section_count,
+                fmt::kMaxSections);
+  const std::uint64_t table_end = fmt::kHeaderSize + std::uint64_t(section_count) * fmt::kSectionEntrySize;
+  if (table_end > size) return Fail(err, ErrorCode::kTruncated, "section table runs past the end");
+  if (options.verify_checksum) {
+    const std::uint32_t stored = ReadU32(bytes + fmt::kOffChecksum);
+    const std::uint32_t actual = fmt::Crc32(bytes + fmt::kHeaderSize, size - fmt::kHeaderSize);
+    if (stored != actual)
+      return Fail(err, ErrorCode::kBadChecksum, "checksum mismatch (stored %08x, computed %08x)",
+                  stored, actual);
+  }
+
+  // Section table: in bounds, aligned, after the table, no two overlapping.
+  Parser parser{bytes, size, {}, err};
+  for (std::uint32_t i = 0; i < section_count; ++i) {
+    const unsigned char* e = bytes + fmt::kHeaderSize + std::size_t(i) * fmt::kSectionEntrySize;
+    Section s{ReadU32(e), ReadU64(e + 8), ReadU64(e + 16)};
+    char name[5];
+    TagName(s.tag, name);
+    if (ReadU32(e + 4) != 0) return Fail(err, ErrorCode::kBadLayout, "section %s: reserved field set", name);
+    if (s.offset < table_end || s.offset > size || s.size > size - s.offset)
+      return Fail(err, ErrorCode::kBadLayout, "section %s lies outside the file", name);
+    if (s.offset % fmt::kSectionAlignment != 0)
+      return Fail(err, ErrorCode::kBadLayout, "section %s is misaligned", name);
+    for (std::uint32_t j = 0; j < parser.table.count; ++j) {
+      const Section& o = parser.table.entries[j];
+      if (o.tag == s.tag) return Fail(err, ErrorCode::kBadLayout, "section %s appears twice", name);
+      if (s.offset < o.offset + o.size && o.offset < s.offset + s.size)
+        return Fail(err, ErrorCode::kBadLayout, "section %s overlaps another", name);
+    }
+    parser.table.entries[parser.table.count++] = s;
+  }
+
+  // META: counts, bounded before they size anything.
+  const unsigned char* p = nullptr;
+  if (!parser.Get(fmt::kMeta, fmt::kMetaSize, &p)) return false;
+  fmt::Meta meta;
+  std::memcpy(&meta, p, sizeof(meta));
+  static_assert(sizeof(fmt::Meta) == fmt::kMetaSize, "Meta layout");
+  const std::uint64_t V = meta.vertex_count, T = meta.triangle_count, N = meta.pose_count,
+                      P = meta.path_count, nnz = meta.factor_nonzeros;
+  if (V < 3 || V > fmt::kMaxVertices)
+    return Fail(err, V < 3 ? ErrorCode::kBadValue : ErrorCode::kTooLarge, "vertex count %llu outside 3..%u",
+                (unsigned long long)V, fmt::kMaxVertices);
+  if (T < 1 || T > fmt::kMaxTriangles)
+    return Fail(err, T < 1 ? ErrorCode::kBadValue : ErrorCode::kTooLarge, "triangle count %llu outside 1..%u",
+                (unsigned long long)T, fmt::kMaxTriangles);
+  if (N < 2 || N > fmt::kMaxPoses)
+    return Fail(err, N < 2 ? ErrorCode::kBadValue : ErrorCode::kTooLarge, "pose count %llu outside 2..%u",
+                (unsigned long long)N, fmt::kMaxPoses);
+  if (P > fmt::kMaxPaths) return Fail(err, ErrorCode::kTooLarge, "path count %llu above %u", (unsigned long long)P, fmt::kMaxPaths);
+  if (meta.grid_cells_x < 1 || meta.grid_cells_y < 1 || meta.grid_cells_x > fmt::kMaxGridCells ||
+      meta.grid_cells_y > fmt::kMaxGridCells)
+    return Fail(err, ErrorCode::kTooLarge, "weight grid %ux%u outside 1..%u cells per axis",
+                meta.grid_cells_x, meta.grid_cells_y, fmt::kMaxGridCells);
+  if (nnz > fmt::kMaxFactorNonzeros)
+    return Fail(err, ErrorCode::kTooLarge, "factor has %llu nonzeros, above %u", (unsigned long long)nnz,
+                fmt::kMaxFactorNonzeros);
+  if ((meta.flags & ~fmt::kMetaFlagHasUVs) != 0)
+    return Fail(err, ErrorCode::kBadVersion, "unknown META flags 0x%x", meta.flags);
+  if (!std::isfinite(meta.grid_origin_x) || !std::isfinite(meta.grid_origin_y) ||
+      !std::isfinite(meta.grid_cell_size) || !(meta.grid_cell_size > 0) ||
+      !std::isfinite(meta.grid_cell_size * meta.grid_cells_x) ||
+      !std::isfinite(meta.grid_cell_size * meta.grid_cells_y) ||
+      !std::isfinite(meta.grid_origin_x + meta.grid_cell_size * meta.grid_cells_x) ||
+      !std::isfinite(meta.grid_origin_y + meta.grid_cell_size * meta.grid_cells_y))
+    return Fail(err, ErrorCode::kBadValue, "weight grid geometry is not finite and positive");
+  if (!std::isfinite(meta.default_sigma) || meta.default_sigma < 0 || meta.default_sigma > 1)
+    return Fail(err, ErrorCode::kBadValue, "default sigma %g outside [0, 1]", meta.default_sigma);
+  if (!std::isfinite(meta.rig_size) || !(meta.rig_size > 0))
+    return Fail(err, ErrorCode::kBadValue, "rig size %g is not finite and positive", meta.rig_size);
+  const std::uint64_t n = V - 1;
+  const std::uint64_t grid_vertices = std::uint64_t(meta.grid_cells_x + 1) * (meta.grid_cells_y + 1);
+  const bool has_uvs = (meta.flags & fmt::kMetaFlagHasUVs) != 0;
+
+  // Sections with sizes implied by the counts.
+  const unsigned char *tris, *poses, *points, *cents, *masses, *grads, *angles, *shears, *perm, *lcol,
+      *lrow, *lval, *dinv, *wgrid, *uvs = nullptr, *paths, *strs, *pkeys;
+  if (!parser.Get(fmt::kTriangles, T * 12, &tris) || !parser.Get(fmt::kPosePositions, N * V * 16, &poses) ||
+      !parser.Get(fmt::kPosePoints, N * 16, &points) || !parser.Get(fmt::kPoseCentroids, N * 16, &cents) ||
+      !parser.Get(fmt::kVertexMasses, V * 8, &masses) || !parser.Get(fmt::kGradients, T * 48, &grads) ||
+      !parser.Get(fmt::kAngles, T * N * 8, &angles) || !parser.Get(fmt::kShears, T * N * 24, &shears) ||
+      !parser.Get(fmt::kPermutation, n * 4, &perm) || !parser.Get(fmt::kFactorColumns, (n + 1) * 4, &lcol) ||
+      !parser.Get(fmt::kFactorRows, nnz * 4, &lrow) || !parser.Get(fmt::kFactorValues, nnz * 8, &lval) ||
+      !parser.Get(fmt::kFactorInvDiagonal, n * 8, &dinv) ||
+      !parser.Get(fmt::kWeightGrid, grid_vertices * N * 8, &wgrid) ||
+      !parser.Get(fmt::kPaths, P * fmt::kPathEntrySize, &paths))
+    return false;
+  if (has_uvs && !parser.Get(fmt::kUVs, N * V * 8, &uvs)) return false;
+  if (!has_uvs && parser.table.Find(fmt::kUVs))
+    return Fail(err, ErrorCode::kBadLayout, "UVS section present but META says none");
+  std::uint64_t key_total = 0;
+  for (std::uint64_t i = 0; i < P; ++i) {
+    const std::uint32_t keys = ReadU32(paths + i * fmt::kPathEntrySize);
+    const std::uint32_t flags = ReadU32(paths + i * fmt::kPathEntrySize + 4);
+    if (keys < 1) return Fail(err, ErrorCode::kBadValue, "path %llu has no keys", (unsigned long long)i);
+    if ((flags & ~(fmt::kPathFlagLoop | (0xFFu << fmt::kPathInterpolationShift))) != 0 ||
+        (flags >> fmt::kPathInterpolationShift) > std::uint32_t(PathInterpolation::kCatmullRom))
+      return Fail(err, ErrorCode::kBadValue, "path %llu has unknown flags 0x%x", (unsigned long long)i, flags);
+    key_total += keys;
+    if (key_total > fmt::kMaxPathKeys)
+      return Fail(err, ErrorCode::kTooLarge, "paths hold more than %u keys", fmt::kMaxPathKeys);
+  }
+  if (!parser.Get(fmt::kPathKeys, key_total * 24, &pkeys)) return false;
+  const Section* strings_section = parser.table.Find(fmt::kStrings);
+  if (!strings_section) return Fail(err, ErrorCode::kBadLayout, "missing section STRS");
+  if (strings_section->size > fmt::kMaxStringBytes)
+    return Fail(err, ErrorCode::kTooLarge, "string table above %u bytes", fmt::kMaxStringBytes);
+  strs = bytes + strings_section->offset;
+  const std::uint64_t string_count = 2 * N + P;
+
+  // Two passes over one layout: size the arena, then fill it.
+  Rig rig;
+  for (int pass = 0; pass < 2; ++pass) {
+    ArenaLayout arena;
+    if (pass == 1) {
+      rig.arena_.reset(new (std::nothrow) unsigned char[rig.arena_size_]);
+      if (!rig.arena_) return Fail(err, ErrorCode::kOutOfMemory, "cannot allocate %zu bytes", rig.arena_size_);
+      arena.base = rig.arena_.get();
+    }
+    rig.triangles_ = CopyInto<std::uint32_t>(arena, tris, T * 3);
+    rig.pose_positions_ = CopyInto<double>(arena, poses, N * V * 2);
+    rig.pose_points_ = CopyInto<double>(arena, points, N * 2);
+    rig.pose_centroids_ = CopyInto<double>(arena, cents, N * 2);
+    rig.vertex_masses_ = CopyInto<double>(arena, masses, V);
+    rig.gradients_ = CopyInto<double>(arena, grads, T * 6);
+    rig.angles_ = CopyInto<double>(arena, angles, T * N);
+    rig.shears_ = CopyInto<double>(arena, shears, T * N * 3);
+    rig.factor_.order = CopyInto<std::uint32_t>(arena, perm, n);
+    rig.factor_.col_start = CopyInto<std::uint32_t>(arena, lcol, n + 1);
+    rig.factor_.row = CopyInto<std::uint32_t>(arena, lrow, nnz);
+    rig.factor_.value = CopyInto<double>(arena, lval, nnz);
+    rig.factor_.inv_diagonal = CopyInto<double>(arena, dinv, n);
+    rig.grid_.weights = CopyInto<double>(arena, wgrid, grid_vertices * N);
+    if (has_uvs) rig.uvs_ = CopyInto<float>(arena, uvs, N * V * 2);
+    const Span<const char> chars = CopyInto<char>(arena, strs, strings_section->size);
+    StringView* strings = arena.Take<StringView>(string_count);
+    PathView* path_views = arena.Take<PathView>(P);
+    const Span<const double> keys = CopyInto<double>(arena, pkeys, key_total * 3);
+    unsigned char* seen = arena.Take<unsigned char>(n);  // scratch for the permutation check
+    if (pass == 0) {
+      rig.arena_size_ = arena.used;
+      continue;
+    }
+
+    // Strings: u32 length + bytes, one after another, exactly filling STRS.
+    std::uint64_t at = 0;
+    for (std::uint64_t i = 0; i < string_count; ++i) {
+      if (chars.size - at < 4) return Fail(err, ErrorCode::kBadValue, "string table truncated at string %llu", (unsigned long long)i);
+      const std::uint32_t len = ReadU32(reinterpret_cast<const unsigned char*>(chars.data + at));
+      at += 4;
+      if (len > chars.size - at) return Fail(err, ErrorCode::kBadValue, "string %llu runs past the string table", (unsigned long long)i);
+      strings[i] = StringView{chars.data + at, len};
+      at += len;
+    }
+    if (at != chars.size) return Fail(err, ErrorCode::kBadValue, "string table has trailing bytes");
+    rig.strings_ = {strings, string_count};
+
+    // Paths: finite keys, strictly increasing times.
+    std::uint64_t key_at = 0;
+    for (std::uint64_t i = 0; i < P; ++i) {
+      const std::uint32_t count = ReadU32(paths + i * fmt::kPathEntrySize);
+      const std::uint32_t flags = ReadU32(paths + i * fmt::kPathEntrySize + 4);
+      PathView& view = path_views[i];
+      view.name = strings[2 * N + i];
+      view.loop = (flags & fmt::kPathFlagLoop) != 0;
+      view.interpolation = PathInterpolation(flags >> fmt::kPathInterpolationShift);
+      view.keys = {keys.data + key_at * 3, std::size_t(count) * 3};
+      key_at += count;
+      if (!CheckFinite(view.keys, "path key", err)) return false;
+      for (std::uint32_t k = 1; k < count; ++k)
+        if (!(view.keys[3 * k] > view.keys[3 * (k - 1)]))
+          return Fail(err, ErrorCode::kBadValue, "path %llu: key times not strictly increasing at key %u",
+                      (unsigned long long)i, k);
+    }
+    rig.paths_ = {path_views, P};
+
+    // Indices.
+    for (std::uint64_t t = 0; t < T; ++t) {
+      const std::uint32_t a = rig.triangles_[3 * t], b = rig.triangles_[3 * t + 1], c = rig.triangles_[3 * t + 2];
+      if (a >= V || b >= V || c >= V)
+        return Fail(err, ErrorCode::kBadValue, "triangle %llu has a vertex index >= %llu", (unsigned long long)t,
+                    (unsigned long long)V);
+      if (a == b || b == c || a == c)
+        return Fail(err, ErrorCode::kBadValue, "triangle %llu repeats a vertex", (unsigned long long)t);
+    }
+    std::memset(seen, 0, n);
+    for (std::uint64_t k = 0; k < n; ++k) {
+      const std::uint32_t v = rig.factor_.order[k];
+      if (v >= n || seen[v]) return Fail(err, ErrorCode::kBadValue, "permutation is not a permutation (entry %llu)", (unsigned long long)k);
+      seen[v] = 1;
+    }
+    // L strictly lower, columns in order, rows increasing within a column: the
+    // triangular solves then touch only rows j < i < n.
+    const auto& col = rig.factor_.col_start;
+    if (col[0] != 0 || col[n] != nnz) return Fail(err, ErrorCode::kBadValue, "factor column pointers do not span the nonzeros");
+    for (std::uint64_t j = 0; j < n; ++j) {
+      if (col[j] > col[j + 1]) return Fail(err, ErrorCode::kBadValue, "factor column %llu has negative length", (unsigned long long)j);
+      for (std::uint32_t q = col[j]; q < col[j + 1]; ++q) {
+        const std::uint32_t r = rig.factor_.row[q];
+        if (r <= j || r >= n || (q > col[j] && r <= rig.factor_.row[q - 1]))
+          return Fail(err, ErrorCode::kBadValue, "factor entry %u (column %llu) has row %u out of order or range", q,
+                      (unsigned long long)j, r);
+      }
+    }
+    for (std::uint64_t j = 0; j < n; ++j)
+      if (!(rig.factor_.inv_diagonal[j] > 0) || !std::isfinite(rig.factor_.inv_diagonal[j]))
+        return Fail(err, ErrorCode::kBadValue, "factor diagonal %llu is not positive and finite", (unsigned long long)j);
+
+    // Numbers.
+    if (!CheckFinite(rig.pose_positions_, "pose positions", err) || !CheckFinite(rig.pose_points_, "pose points", err) ||
+        !CheckFinite(rig.pose_centroids_, "pose centroids", err) || !CheckFinite(rig.vertex_masses_, "vertex masses", err) ||
+        !CheckFinite(rig.gradients_, "gradients", err) || !CheckFinite(rig.angles_, "angles", err) ||
+        !CheckFinite(rig.shears_, "shears", err) || !CheckFinite(rig.factor_.value, "factor values", err) ||
+        !CheckFinite(rig.grid_.weights, "weight grid", err))
+      return false;
+    for (std::size_t i = 0; i < rig.uvs_.size; ++i)
+      if (!std::isfinite(rig.uvs_[i])) return Fail(err, ErrorCode::kBadValue, "uv[%zu] is not finite", i);
+  }
+
+  rig.vertex_count_ = meta.vertex_count;
+  rig.triangle_count_ = meta.triangle_count;
+  rig.pose_count_ = meta.pose_count;
+  rig.path_count_ = meta.path_count;
+  rig.grid_.origin_x = meta.grid_origin_x;
+  rig.grid_.origin_y = meta.grid_origin_y;
+  rig.grid_.cell = meta.grid_cell_size;
+  rig.grid_.cells_x = meta.grid_cells_x;
+  rig.grid_.cells_y = meta.grid_cells_y;
+  rig.factor_.n = meta.vertex_count - 1;
+  rig.default_sigma_ = meta.default_sigma;
+  rig.rig_size_ = meta.rig_size;
+  *out = std::move(rig);
+  return true;
+}
+
+const char* ErrorCodeName(ErrorCode code) {
+  switch (code) {
+    case ErrorCode::kOk: return "ok";
+    case ErrorCode::kInvalidArgument: return "invalid argument";
+    case ErrorCode::kTruncated: return "truncated";
+    case ErrorCode::kBadMagic: return "bad magic";
+    case ErrorCode::kBadVersion: return "unsupported version";
+    case ErrorCode::kBadChecksum: return "bad checksum";
+    case ErrorCode::kBadLayout: return "bad layout";
+    case ErrorCode::kBadValue: return "bad value";
+    case ErrorCode::kTooLarge: return "too large";
+    case ErrorCode::kOutOfMemory: return "out of memory";
+  }
+  return "unknown";
+}
+
+}  // namespace posemorph

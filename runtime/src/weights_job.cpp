@@ -1,0 +1,93 @@
+// Pose-space weights: barycentric interpolation in the baked grid (DESIGN.md
+// section 3), then the paper's shear limiting and texture sharpening.
+#include <cmath>
+
+#include "posemorph/jobs.h"
+
+namespace posemorph {
+namespace {
+
+double Smoothstep(double a, double b, double t) {
+  if (!(b > a)) return t < a ? 0.0 : 1.0;  // sigma = 1: a step at 1/2
+  const double s = (t - a) / (b - a);
+  if (s <= 0) return 0;
+  if (s >= 1) return 1;
+  return s * s * (3 - 2 * s);
+}
+
+double Clamp(double v, double lo, double hi) { return v < lo ? lo : (v > hi ? hi : v); }
+
+}  // namespace
+
+double ShearLimit(double w) { return Smoothstep(0.0, 1.0, w); }
+
+void TextureWeights(Span<const double> shear, double sigma, Span<double> out) {
+  const std::size_t n = shear.size;
+  sigma = std::isfinite(sigma) ? Clamp(sigma, 0, 1) : 0;
+  // The dominant pose, found before `out` (which may alias `shear`) is written.
+  std::size_t dominant = 0;
+  for (std::size_t i = 1; i < n; ++i)
+    if (shear[i] > shear[dominant]) dominant = i;
+  double sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double w = shear[i];
+    out[i] = sigma * Smoothstep(sigma / 2, 1 - sigma / 2, w) + (1 - sigma) * w;
+    sum += out[i];
+  }
+  if (sum > 1e-12) {
+    for (std::size_t i = 0; i < n; ++i) out[i] /= sum;
+  } else {
+    // Only at sigma = 1 with no weight above 1/2: the cut goes to the dominant pose.
+    for (std::size_t i = 0; i < n; ++i) out[i] = i == dominant ? 1.0 : 0.0;
+  }
+}
+
+bool WeightsJob::Validate() const {
+  if (!rig || !rig->loaded()) return false;
+  const std::size_t n = rig->pose_count();
+  return raw.data && raw.size >= n && (shear.size == 0 || (shear.data && shear.size >= n)) &&
+         (texture.size == 0 || (texture.data && texture.size >= n));
+}
+
+bool WeightsJob::Run() const {
+  if (!Validate()) return false;
+  const std::uint32_t n = rig->pose_count();
+  const PoseSpaceGrid& g = rig->grid();
+
+  double px = std::isnan(x) ? rig->pose_points()[0] : x;
+  double py = std::isnan(y) ? rig->pose_points()[1] : y;
+  const double u = Clamp((px - g.origin_x) / g.cell, 0, double(g.cells_x));
+  const double v = Clamp((py - g.origin_y) / g.cell, 0, double(g.cells_y));
+  const std::uint32_t i = u >= g.cells_x ? g.cells_x - 1 : std::uint32_t(u);
+  const std::uint32_t j = v >= g.cells_y ? g.cells_y - 1 : std::uint32_t(v);
+  const double fx = Clamp(u - i, 0, 1), fy = Clamp(v - j, 0, 1);
+
+  // Each cell is split along its (0,0)-(1,1) diagonal, as the bake built it.
+  const std::size_t row = std::size_t(g.cells_x) + 1;
+  const double* w00 = g.weights.data + (std::size_t(j) * row + i) * n;
+  const double* w10 = w00 + n;
+  const double* w01 = w00 + row * n;
+  const double* w11 = w01 + n;
+  if (fx >= fy) {
+    for (std::uint32_t k = 0; k < n; ++k) raw[k] = (1 - fx) * w00[k] + (fx - fy) * w10[k] + fy * w11[k];
+  } else {
+    for (std::uint32_t k = 0; k < n; ++k) raw[k] = (1 - fy) * w00[k] + (fy - fx) * w01[k] + fx * w11[k];
+  }
+
+  Span<double> limited = shear.size ? shear : texture;
+  if (limited.size) {
+    double sum = 0;
+    for (std::uint32_t k = 0; k < n; ++k) {
+      limited[k] = shear_limit ? ShearLimit(raw[k]) : raw[k];
+      sum += limited[k];
+    }
+    if (shear_limit) {
+      // sum(raw) = 1 puts some raw weight at >= 1/N, so sum > 0 for any baked grid.
+      for (std::uint32_t k = 0; k < n; ++k) limited[k] = sum > 0 ? limited[k] / sum : 1.0 / n;
+    }
+  }
+  if (texture.size) TextureWeights(Span<const double>(limited.data, n), sigma, Span<double>(texture.data, n));
+  return true;
+}
+
+}  // namespace posemorph

@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages posemorph needs. Idempotent: packages that
+# are already installed are skipped, and apt is not touched when none is missing.
+set -euo pipefail
+
+packages=(
+  cmake g++ make            # build
+  libeigen3-dev             # bake: sparse Cholesky (LDL^T), AMD ordering, KKT solve
+  nlohmann-json3-dev        # bake: rig description (JSON) reader
+  doctest-dev               # tests
+  libbenchmark-dev          # bench: per-frame evaluation benchmark
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+sudo=""
+[ "$(id -u)" -ne 0 ] && sudo="sudo"
+echo "setup: installing ${missing[*]}"
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
