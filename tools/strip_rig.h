@@ -82,8 +82,6 @@ inline bake::RigDescription SnakeRig() {
   rig.poses.push_back(StripPose("curl", 0, 1, shape, [=](double s) { return 2 * Degrees(300) * s / (L * L); }));
   rig.poses.push_back(StripPose("wave", 0, -1, shape, [=](double s) { return Degrees(75) * 2 * M_PI / L * std::sin(2 * M_PI * s / L); }));
   rig.parameters.grid_resolution = 64;
-  rig.parameters.margin = 0.5;
-  rig.parameters.epsilon = 0.01;
   rig.parameters.sigma = 0.25;
   rig.paths.push_back({"slither", true, true, {{0, -0.9, 0}, {0.5, 0, -0.9}, {1, 0.9, 0}, {1.5, 0, -0.9}, {2, -0.9, 0}}});
   rig.paths.push_back({"curl-up", false, false, {{0, 0, 0}, {1, 0, 1}, {1.5, 0.3, 1.2}, {2.5, 0, 0}}});

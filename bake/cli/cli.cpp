@@ -195,14 +195,19 @@ int Eval(const std::vector<std::string>& a, std::size_t from, std::ostream& out)
   const std::string *at = args.Get("--at"), *path_name = args.Get("--path");
   if (!at == !path_name) throw UsageError("give exactly one of --at X,Y or --path NAME");
   const EvalOptions options = ReadEvalOptions(args);
+  double at_x = 0, at_y = 0;
+  if (at) {
+    const auto comma = at->find(',');
+    if (comma == std::string::npos) throw UsageError("--at: expected X,Y");
+    at_x = ParseNumber("--at", at->substr(0, comma));
+    at_y = ParseNumber("--at", at->substr(comma + 1));
+  }
   const Rig rig = LoadRigFile(args.positional);
 
   std::vector<Frame> frames;
   char label[96];
   if (at) {
-    const auto comma = at->find(',');
-    if (comma == std::string::npos) throw UsageError("--at: expected X,Y");
-    const double x = ParseNumber("--at", at->substr(0, comma)), y = ParseNumber("--at", at->substr(comma + 1));
+    const double x = at_x, y = at_y;
     frames.push_back(EvaluateFrame(rig, x, y, options));
     std::snprintf(label, sizeof label, "(%.3g, %.3g)", x, y);
     frames.back().label = label;

@@ -141,6 +141,20 @@ WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, con
     const double sum = solution.row(v).sum();
     for (std::size_t i = 0; i < N; ++i) g.weights[v * N + i] = solution(v, i) / sum;
   }
+  // The KKT solve meets W(p_i) = e_i only to its conditioning (~1e-12 here);
+  // move the three grid values around each point along its barycentric
+  // coordinates by the residual so the runtime's arithmetic gives e_i to
+  // roundoff. Residuals sum to 0 over the poses, so row sums stay 1.
+  for (std::size_t i = 0; i < N; ++i) {
+    const GridLocation loc = Locate(g, points[i]);
+    const double norm = loc.lambda[0] * loc.lambda[0] + loc.lambda[1] * loc.lambda[1] + loc.lambda[2] * loc.lambda[2];
+    for (std::size_t j = 0; j < N; ++j) {
+      double value = 0;
+      for (int k = 0; k < 3; ++k) value += loc.lambda[k] * g.weights[loc.vertex[k] * N + j];
+      const double residual = (i == j ? 1.0 : 0.0) - value;
+      for (int k = 0; k < 3; ++k) g.weights[loc.vertex[k] * N + j] += loc.lambda[k] / norm * residual;
+    }
+  }
   return g;
 }
 

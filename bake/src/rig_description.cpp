@@ -69,8 +69,12 @@ struct Reader {
 json ParseJson(const std::string& text, const std::string& file) {
   try {
     return json::parse(text);
-  } catch (const json::parse_error& e) {
-    throw BakeError(file, std::string("invalid JSON: ") + e.what());
+  } catch (const json::exception& e) {
+    // Drop nlohmann's "[json.exception.parse_error.101] " tag; keep its explanation.
+    std::string what = e.what();
+    const auto tag_end = what.find("] ");
+    if (what.rfind("[json.exception.", 0) == 0 && tag_end != std::string::npos) what.erase(0, tag_end + 2);
+    throw BakeError(file, "invalid JSON: " + what);
   }
 }
 

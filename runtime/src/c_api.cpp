@@ -52,6 +52,17 @@ const uint32_t* pm_rig_triangles(const pm_rig* rig) { return rig ? rig->rig.tria
 
 const float* pm_rig_uvs(const pm_rig* rig, uint32_t pose) { return rig ? rig->rig.uvs(pose).data : nullptr; }
 
+const double* pm_rig_pose_positions(const pm_rig* rig, uint32_t pose) {
+  return rig ? rig->rig.pose_positions(pose).data : nullptr;
+}
+
+int pm_rig_pose_point(const pm_rig* rig, uint32_t pose, double* x, double* y) {
+  if (!rig || !x || !y || pose >= rig->rig.pose_count()) return PM_ERROR_INVALID_ARGUMENT;
+  *x = rig->rig.pose_points()[2 * pose];
+  *y = rig->rig.pose_points()[2 * pose + 1];
+  return PM_OK;
+}
+
 int pm_weights(const pm_rig* rig, double x, double y, double sigma, int shear_limit, double* raw, double* shear,
                double* texture) {
   if (!rig) return PM_ERROR_INVALID_ARGUMENT;

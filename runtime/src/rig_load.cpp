@@ -169,6 +169,8 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
                 (unsigned long long)file_size, size);
   if (ReadU32(bytes + fmt::kOffFlags) != 0)
     return Fail(err, ErrorCode::kBadVersion, "unknown header flags 0x%x", ReadU32(bytes + fmt::kOffFlags));
+  for (std::uint32_t i = fmt::kOffChecksum + 4; i < fmt::kHeaderSize; ++i)
+    if (bytes[i] != 0) return Fail(err, ErrorCode::kBadLayout, "reserved header byte %u is not zero", i);
   const std::uint32_t section_count = ReadU32(bytes + fmt::kOffSectionCount);
   if (section_count == 0 || section_count > fmt::kMaxSections)
     return Fail(err, ErrorCode::kBadLayout, "section count %u outside 1..%u", section_count,

@@ -47,6 +47,8 @@ void pm_rig_free(pm_rig* rig);
 void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info);
 const uint32_t* pm_rig_triangles(const pm_rig* rig);            /* 3 x triangle_count */
 const float* pm_rig_uvs(const pm_rig* rig, uint32_t pose);     /* 2 x vertex_count, or NULL */
+const double* pm_rig_pose_positions(const pm_rig* rig, uint32_t pose); /* 2 x vertex_count, or NULL */
+int pm_rig_pose_point(const pm_rig* rig, uint32_t pose, double* x, double* y);
 
 /* Weights at a pose-space point. raw is required (pose_count doubles);
  * shear and texture may be NULL. sigma in [0,1] sharpens the texture blend. */

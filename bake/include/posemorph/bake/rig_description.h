@@ -29,8 +29,10 @@ struct PathDescription {
 
 struct BakeParameters {
   int grid_resolution = 64;  // cells along the longer side of the pose-space domain
-  double margin = 0.5;       // domain = points' bounding box grown by margin x its larger side
-  double epsilon = 0.01;     // weight of the gradient term, relative to the points' spread
+  double margin = 1.0;       // domain = points' bounding box grown by margin x its larger side
+  // Weight of the gradient term relative to the biharmonic one; the field
+  // levels out beyond about spread * sqrt(3 / epsilon) from the points.
+  double epsilon = 3.0;
   double sigma = 0.25;       // default texture sharpening
 };
 

@@ -1,0 +1,98 @@
+// Evaluating a frame allocates nothing: every global operator new and malloc
+// is counted while frames run.
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
+#include "posemorph/path.h"
+#include "posemorph/posemorph.h"
+#include "posemorph/quantize.h"
+#include "test_support.h"
+
+// GCC cannot see that these replacements pair malloc with free on purpose.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+
+namespace {
+std::atomic<long> g_allocations{0};
+std::atomic<bool> g_counting{false};
+}  // namespace
+
+void* operator new(std::size_t n) {
+  if (g_counting) ++g_allocations;
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t n) { return operator new(n); }
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
+  if (g_counting) ++g_allocations;
+  return std::malloc(n ? n : 1);
+}
+void* operator new[](std::size_t n, const std::nothrow_t& t) noexcept { return operator new(n, t); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+// malloc itself, for code that would bypass operator new.
+extern "C" void* __libc_malloc(std::size_t);
+extern "C" void* malloc(std::size_t n) {
+  if (g_counting) ++g_allocations;
+  return __libc_malloc(n);
+}
+
+using namespace posemorph;
+using namespace posemorph::test;
+
+TEST_CASE("a frame performs zero heap allocations") {
+  const Rig rig = Bake(samples::SnakeRig());
+  const std::uint32_t N = rig.pose_count();
+  std::vector<double> raw(N), shear(N), tex(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
+  std::vector<float> xf(x.size());
+  const int slither = rig.FindPath("slither");
+
+  g_allocations = 0;
+  g_counting = true;
+  bool ok = true;
+  for (int frame = 0; frame < 500; ++frame) {
+    double px, py;
+    ok &= SamplePath(rig, std::uint32_t(slither), frame / 60.0, &px, &py);
+    unsigned char wire[4];
+    PackPoint(QuantizePoint(rig.grid(), px, py), wire);
+    DequantizePoint(rig.grid(), UnpackPoint(wire), &px, &py);
+    WeightsJob wj;
+    wj.rig = &rig, wj.x = px, wj.y = py, wj.sigma = 0.4;
+    wj.raw = MakeSpan(raw), wj.shear = MakeSpan(shear), wj.texture = MakeSpan(tex);
+    ok &= wj.Run();
+    MorphJob mj;
+    mj.rig = &rig, mj.weights = MakeSpan(raw), mj.shear_weights = MakeSpan(shear);
+    mj.workspace = MakeSpan(work), mj.positions = MakeSpan(x), mj.positions_f32 = MakeSpan(xf);
+    mj.interpolation = frame % 2 ? Interpolation::kRigid : Interpolation::kLinear;
+    ok &= mj.Run();
+  }
+  g_counting = false;
+  CHECK(ok);
+  CHECK(g_allocations.load() == 0);
+}
+
+TEST_CASE("the C API evaluates frames without allocating either") {
+  bake::RigDescription desc = samples::WormLineRig();
+  const std::vector<unsigned char> bytes = bake::BakeRig(desc);
+  pm_rig* rig = nullptr;
+  pm_error err;
+  REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &rig, &err) == PM_OK);
+  pm_rig_info info;
+  pm_rig_get_info(rig, &info);
+  std::vector<double> raw(info.pose_count), shear(info.pose_count), work(pm_morph_workspace_size(rig)),
+      x(2 * info.vertex_count);
+  g_allocations = 0;
+  g_counting = true;
+  int status = 0;
+  for (int frame = 0; frame < 200; ++frame) {
+    status |= pm_weights(rig, -1.5 + frame * 0.015, 0.1, 0.5, 1, raw.data(), shear.data(), nullptr);
+    status |= pm_morph(rig, raw.data(), shear.data(), 0, work.data(), x.data(), nullptr);
+  }
+  g_counting = false;
+  CHECK(status == PM_OK);
+  CHECK(g_allocations.load() == 0);
+  pm_rig_free(rig);
+}

@@ -1,0 +1,219 @@
+// Bad input to posemorph-bake: one clear message naming the file and the
+// problem, a non-zero exit, and no output file (an existing one untouched).
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <unistd.h>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+#include "test_support.h"
+
+using namespace posemorph;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() / ("posemorph-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+  static inline int counter = 0;
+};
+
+json ValidDescription() {
+  return json::parse(R"({
+    "posemorph": 1,
+    "triangles": [[0, 1, 2], [0, 2, 3]],
+    "poses": [
+      {"name": "a", "point": [0, 0], "vertices": [[0, 0], [1, 0], [1, 1], [0, 1]]},
+      {"name": "b", "point": [1, 0], "vertices": [[0, 0], [1, 0.2], [0.9, 1.1], [-0.1, 0.9]]}
+    ],
+    "bake": {"grid_resolution": 8}
+  })");
+}
+
+struct Result {
+  int status;
+  std::string out, err;
+};
+
+Result Run(const std::vector<std::string>& args) {
+  std::ostringstream out, err;
+  const int status = bake::RunBakeCommand(args, out, err);
+  return {status, out.str(), err.str()};
+}
+
+void Write(const fs::path& p, const std::string& text) {
+  std::ofstream f(p, std::ios::binary);
+  f << text;
+}
+
+// Bakes `text` (written to rig.json) over an existing output and checks the
+// failure: status, message mentioning `file_part` and `problem`, output intact,
+// nothing else left in the folder.
+void ExpectFailure(const std::string& text, const std::string& problem, const std::string& file_part = "rig.json",
+                   const std::function<void(const fs::path&)>& extra = nullptr) {
+  TempDir dir;
+  const fs::path input = dir.path / "rig.json", output = dir.path / "out.pmrig";
+  Write(input, text);
+  if (extra) extra(dir.path);
+  Write(output, "previous");
+  std::size_t files_before = std::distance(fs::directory_iterator(dir.path), fs::directory_iterator());
+  const Result r = Run({input.string(), "-o", output.string()});
+  CAPTURE(r.err);
+  CHECK(r.status != 0);
+  CHECK(r.err.find(file_part) != std::string::npos);
+  CHECK(r.err.find(problem) != std::string::npos);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);  // one message, one line
+  std::ifstream f(output, std::ios::binary);
+  std::string content((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  CHECK(content == "previous");
+  CHECK(std::size_t(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator())) == files_before);
+
+  // And without an existing output: none appears.
+  fs::remove(output);
+  CHECK(Run({input.string(), "-o", output.string()}).status != 0);
+  CHECK_FALSE(fs::exists(output));
+}
+
+}  // namespace
+
+TEST_CASE("a valid description bakes and writes its output") {
+  TempDir dir;
+  const fs::path input = dir.path / "rig.json", output = dir.path / "rig.pmrig";
+  Write(input, ValidDescription().dump());
+  const Result r = Run({input.string()});
+  CHECK(r.status == 0);
+  CHECK(fs::exists(output));  // default name: the description's, with .pmrig
+  CHECK(Run({"info", output.string()}).status == 0);
+  CHECK(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()) == 2);
+}
+
+TEST_CASE("wrong vertex count") {
+  json d = ValidDescription();
+  d["poses"][1]["vertices"].erase(3);
+  ExpectFailure(d.dump(), "pose 'b' (index 1) has 3 vertices, pose 0 has 4");
+}
+
+TEST_CASE("out-of-range index") {
+  json d = ValidDescription();
+  d["triangles"][1][2] = 9;
+  ExpectFailure(d.dump(), "triangle 1 uses vertex 9");
+  d["triangles"][1][2] = -1;
+  ExpectFailure(d.dump(), "triangles[1]: vertex index -1 is out of range");
+}
+
+TEST_CASE("repeated index") {
+  json d = ValidDescription();
+  d["triangles"][0] = {0, 2, 2};
+  ExpectFailure(d.dump(), "triangle 0 repeats a vertex");
+  d = ValidDescription();
+  d["triangles"][1] = {2, 0, 1};
+  ExpectFailure(d.dump(), "triangle 1 appears twice");
+}
+
+TEST_CASE("degenerate triangle in a pose") {
+  json d = ValidDescription();
+  d["poses"][1]["vertices"][2] = {0.5, 0.1};  // (0,0), (1,0.2), (0.5,0.1): collinear
+  ExpectFailure(d.dump(), "pose 'b' (index 1): triangle 0 is degenerate");
+}
+
+TEST_CASE("flipped triangle in a pose") {
+  json d = ValidDescription();
+  d["poses"][1]["vertices"][3] = {0.5, -0.8};  // folds triangle 1 over
+  ExpectFailure(d.dump(), "pose 'b' (index 1): triangle 1 is flipped");
+}
+
+TEST_CASE("fewer than 2 poses") {
+  json d = ValidDescription();
+  d["poses"].erase(1);
+  ExpectFailure(d.dump(), "a rig needs at least 2 poses, this one has 1");
+}
+
+TEST_CASE("coincident pose points") {
+  json d = ValidDescription();
+  d["poses"][1]["point"] = {0, 0};
+  ExpectFailure(d.dump(), "share the pose-space point");
+}
+
+TEST_CASE("pose points too close for the weight grid") {
+  json d = ValidDescription();
+  d["poses"].push_back(d["poses"][1]);
+  d["poses"][2]["name"] = "c";
+  d["poses"][2]["point"] = {1e-4, 0};
+  ExpectFailure(d.dump(), "pose points 'a' and 'c' fall in one pose-space grid cell; raise bake.grid_resolution (now 8)");
+}
+
+TEST_CASE("non-finite numbers") {
+  std::string text = ValidDescription().dump();
+  text.replace(text.find("[1,0.2]"), 7, "[1e999,0.2]");
+  ExpectFailure(text, "invalid JSON: number overflow parsing '1e999'");
+  // Descriptions built in code (not from JSON) can hold NaN: validation names it.
+  bake::RigDescription rig = bake::ParseRigDescription(ValidDescription().dump(), "in-memory", ".");
+  rig.poses[1].vertices[2].x() = std::nan("");
+  CHECK_THROWS_WITH(bake::BakeRig(rig), "in-memory: pose 'b' (index 1): vertex 2 is not finite");
+  json d = ValidDescription();
+  d["poses"][0]["point"] = {"x", 0};
+  ExpectFailure(d.dump(), "poses[0].point[0]: expected a number");
+}
+
+TEST_CASE("unreadable and malformed files") {
+  ExpectFailure("{\"posemorph\": 1, \"poses\": [", "invalid JSON");
+  ExpectFailure("[1, 2]", "expected a JSON object");
+  json d = ValidDescription();
+  d["poses"][1].erase("vertices");
+  d["poses"][1]["mesh"] = "missing-mesh.json";
+  ExpectFailure(d.dump(), "cannot open file", "missing-mesh.json");
+  d["poses"][1]["mesh"] = "bad-mesh.json";
+  ExpectFailure(d.dump(), "invalid JSON", "bad-mesh.json",
+                [](const fs::path& dir) { Write(dir / "bad-mesh.json", "{\"vertices\": [[0, 0],"); });
+
+  TempDir dir;
+  const Result r = Run({(dir.path / "nope.json").string(), "-o", (dir.path / "x.pmrig").string()});
+  CHECK(r.status == 1);
+  CHECK(r.err.find("nope.json: cannot open file") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir.path / "x.pmrig"));
+}
+
+TEST_CASE("a mesh file gives the vertices") {
+  TempDir dir;
+  json d = ValidDescription();
+  d["poses"][1].erase("vertices");
+  d["poses"][1]["mesh"] = "b.json";
+  Write(dir.path / "b.json", R"({"vertices": [[0, 0], [1, 0.2], [0.9, 1.1], [-0.1, 0.9]], "triangles": [[0, 1, 2], [0, 2, 3]]})");
+  Write(dir.path / "rig.json", d.dump());
+  CHECK(Run({(dir.path / "rig.json").string()}).status == 0);
+  // A mesh file with other triangles is refused.
+  Write(dir.path / "b.json", R"({"vertices": [[0, 0], [1, 0.2], [0.9, 1.1], [-0.1, 0.9]], "triangles": [[0, 1, 3], [1, 2, 3]]})");
+  const Result r = Run({(dir.path / "rig.json").string()});
+  CHECK(r.status == 1);
+  CHECK(r.err.find("b.json: triangles: differ from the rig's triangle list") != std::string::npos);
+}
+
+TEST_CASE("rig files that are not rigs") {
+  TempDir dir;
+  Write(dir.path / "fake.pmrig", "this is not a rig");
+  for (const char* cmd : {"info", "sheet"}) {
+    const Result r = Run({cmd, (dir.path / "fake.pmrig").string(), "-o", (dir.path / "s.svg").string()});
+    CHECK(r.status != 0);
+  }
+  const Result r = Run({"info", (dir.path / "fake.pmrig").string()});
+  CHECK(r.err.find("fake.pmrig: not a valid rig (truncated)") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir.path / "s.svg"));
+}
+
+TEST_CASE("usage errors exit with status 2") {
+  CHECK(Run({}).status == 2);
+  CHECK(Run({"eval", "x.pmrig"}).status == 2);
+  CHECK(Run({"eval", "x.pmrig", "-o", "a.png", "--at", "0,0"}).status == 2);
+  CHECK(Run({"eval", "x.pmrig", "-o", "a.svg", "--at", "zero,0"}).status == 2);
+  CHECK(Run({"rig.json", "--frobnicate"}).status == 2);
+}
