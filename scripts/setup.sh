@@ -9,6 +9,7 @@ packages=(
   nlohmann-json3-dev        # bake: rig description (JSON) reader
   doctest-dev               # tests
   libbenchmark-dev          # bench: per-frame evaluation benchmark
+  librsvg2-bin              # demo: contact sheet SVG -> PNG (rsvg-convert)
 )
 
 missing=()

@@ -1,0 +1,126 @@
+// Per-frame cost of the runtime on the bundled samples (and a larger strip),
+// plus load and bake time. Run: build/release/bin/posemorph-bench
+#include <benchmark/benchmark.h>
+
+#include "../runtime/src/ldlt_solve.h"
+#include "posemorph/bake/bake.h"
+#include "posemorph/jobs.h"
+#include "posemorph/path.h"
+#include "strip_rig.h"
+
+using namespace posemorph;
+
+namespace {
+
+bake::RigDescription LargeStrip() {
+  // About 1000 vertices: 199 x 4 quads, 5 poses.
+  bake::RigDescription rig = samples::SnakeRig();
+  samples::StripShape shape;
+  shape.segments = 199;
+  shape.across = 4;
+  const double L = shape.length;
+  rig.name = "strip-1000";
+  rig.triangles = samples::StripTriangles(shape);
+  const double turns[] = {0, 120, -120, 300, 90};
+  for (std::size_t i = 0; i < rig.poses.size(); ++i) {
+    const double k = samples::Degrees(turns[i]) / L;
+    rig.poses[i].vertices = samples::BentStrip(shape, [=](double) { return k; });
+  }
+  return rig;
+}
+
+struct Fixture {
+  std::vector<unsigned char> bytes;
+  Rig rig;
+  explicit Fixture(bake::RigDescription desc) {
+    bytes = bake::BakeRig(desc);
+    LoadRig(bytes.data(), bytes.size(), &rig, nullptr);
+  }
+};
+
+Fixture& Get(int which) {
+  static Fixture snake(samples::SnakeRig()), worm(samples::WormLineRig()), large(LargeStrip());
+  return which == 0 ? snake : which == 1 ? worm : large;
+}
+
+void Label(benchmark::State& state, const Rig& rig) {
+  state.SetLabel(std::to_string(rig.vertex_count()) + " vertices, " + std::to_string(rig.triangle_count()) +
+                 " triangles, " + std::to_string(rig.pose_count()) + " poses");
+}
+
+void BM_Frame(benchmark::State& state) {
+  const Rig& rig = Get(int(state.range(0))).rig;
+  const std::uint32_t N = rig.pose_count();
+  std::vector<double> raw(N), shear(N), tex(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
+  std::vector<float> xf(x.size());
+  double t = 0;
+  for (auto _ : state) {
+    double px, py;
+    SamplePath(rig, 0, t, &px, &py);
+    t += 1.0 / 60;
+    WeightsJob wj;
+    wj.rig = &rig, wj.x = px, wj.y = py, wj.sigma = 0.25;
+    wj.raw = MakeSpan(raw), wj.shear = MakeSpan(shear), wj.texture = MakeSpan(tex);
+    wj.Run();
+    MorphJob mj;
+    mj.rig = &rig, mj.weights = MakeSpan(raw), mj.shear_weights = MakeSpan(shear);
+    mj.workspace = MakeSpan(work), mj.positions = MakeSpan(x), mj.positions_f32 = MakeSpan(xf);
+    mj.Run();
+    benchmark::DoNotOptimize(xf.data());
+  }
+  Label(state, rig);
+}
+
+void BM_Weights(benchmark::State& state) {
+  const Rig& rig = Get(int(state.range(0))).rig;
+  std::vector<double> raw(rig.pose_count()), shear(raw.size()), tex(raw.size());
+  double x = -1.3;
+  for (auto _ : state) {
+    WeightsJob wj;
+    wj.rig = &rig, wj.x = x, wj.y = 0.3, wj.sigma = 0.25;
+    wj.raw = MakeSpan(raw), wj.shear = MakeSpan(shear), wj.texture = MakeSpan(tex);
+    wj.Run();
+    x = x > 1.3 ? -1.3 : x + 0.01;
+    benchmark::DoNotOptimize(tex.data());
+  }
+  Label(state, rig);
+}
+
+void BM_Solve(benchmark::State& state) {
+  const Rig& rig = Get(int(state.range(0))).rig;
+  const std::size_t n = rig.factor().n;
+  std::vector<double> b(2 * n, 0.5), scratch(2 * n), x(2 * n);
+  for (auto _ : state) {
+    detail::SolvePinned(rig.factor(), b.data(), scratch.data(), x.data());
+    benchmark::DoNotOptimize(x.data());
+  }
+  Label(state, rig);
+}
+
+void BM_Load(benchmark::State& state) {
+  const Fixture& f = Get(int(state.range(0)));
+  for (auto _ : state) {
+    Rig rig;
+    LoadRig(f.bytes.data(), f.bytes.size(), &rig, nullptr);
+    benchmark::DoNotOptimize(rig.vertex_count());
+  }
+  state.SetLabel(std::to_string(f.bytes.size()) + " bytes");
+}
+
+void BM_Bake(benchmark::State& state) {
+  const bake::RigDescription desc = state.range(0) == 0 ? samples::SnakeRig() : state.range(0) == 1 ? samples::WormLineRig() : LargeStrip();
+  for (auto _ : state) {
+    bake::RigDescription d = desc;
+    benchmark::DoNotOptimize(bake::BakeRig(d).size());
+  }
+}
+
+}  // namespace
+
+// 0: snake sample, 1: worm-line sample, 2: 1000-vertex strip.
+BENCHMARK(BM_Frame)->DenseRange(0, 2);
+BENCHMARK(BM_Weights)->DenseRange(0, 2);
+BENCHMARK(BM_Solve)->DenseRange(0, 2);
+BENCHMARK(BM_Load)->DenseRange(0, 2);
+BENCHMARK(BM_Bake)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();
