@@ -190,3 +190,25 @@ TEST_CASE("collinear pose points bake, evaluate, and extrapolate without degener
     CHECK(MinAreaRatio(rig, x) > 0.5);
   }
 }
+
+TEST_CASE("shear limiting keeps extrapolation past a squashed pose from collapsing") {
+  // Three poses on a line: rest, squashed across to 30%, stretched along.
+  bake::RigDescription desc = BentStripRig(0, 16, 3);
+  desc.poses[1].name = "squashed";
+  for (auto& v : desc.poses[1].vertices) v.y() *= 0.3;
+  bake::PoseDescription longer = desc.poses[0];
+  longer.name = "longer";
+  longer.point = {-1, 0};
+  for (auto& v : longer.vertices) v.x() *= 1.5;
+  desc.poses.push_back(longer);
+  const Rig rig = Bake(desc);
+  // Far beyond "squashed" the raw weights extrapolate (rest < 0, squashed > 1).
+  const Weights w = WeightsAt(rig, 40, 0);
+  CHECK(w.raw[0] < -0.3);
+  CHECK(w.raw[1] > 1.3);
+  const double limited = MinAreaRatio(rig, Morph(rig, w.raw, w.shear));
+  const double unlimited = MinAreaRatio(rig, Morph(rig, w.raw, w.raw));
+  MESSAGE("min area ratio far out: " << limited << " shear-limited, " << unlimited << " without");
+  CHECK(limited > 0.25);   // the squashed pose's own 0.3, no further
+  CHECK(unlimited < 0.1);  // extrapolated stretch folds the strip flat or over
+}
