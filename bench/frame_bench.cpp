@@ -6,6 +6,8 @@
 #include "posemorph/bake/bake.h"
 #include "posemorph/jobs.h"
 #include "posemorph/path.h"
+#include "gingerbread_rig.h"
+#include "posemorph/bake/arap_deformer.h"
 #include "strip_rig.h"
 
 using namespace posemorph;
@@ -115,7 +117,38 @@ void BM_Bake(benchmark::State& state) {
   }
 }
 
+// The edit-mode loop: handles chosen once (factor), then dragged (solve).
+const std::vector<std::uint32_t> kDragHandles = {0, 40, 117, 200, 236};
+
+void BM_DeformerSetup(benchmark::State& state) {
+  const bake::RigDescription g = samples::GingerbreadRig();
+  for (auto _ : state) {
+    bake::ArapDeformer deformer(g.poses[0].vertices, g.triangles, kDragHandles);
+    benchmark::DoNotOptimize(&deformer);
+  }
+  state.SetLabel(std::to_string(g.poses[0].vertices.size()) + " vertices, " + std::to_string(kDragHandles.size()) + " handles");
+}
+
+void BM_DeformerDrag(benchmark::State& state) {
+  const bake::RigDescription g = samples::GingerbreadRig();
+  const bake::ArapDeformer deformer(g.poses[0].vertices, g.triangles, kDragHandles);
+  std::vector<Eigen::Vector2d> targets;
+  for (std::uint32_t h : kDragHandles) targets.push_back(g.poses[0].vertices[h]);
+  bake::Points out;
+  double t = 0;
+  for (auto _ : state) {
+    targets[2] = g.poses[0].vertices[kDragHandles[2]] + Eigen::Vector2d(std::sin(t), std::cos(t)) * 0.5;
+    t += 0.01;
+    deformer.Deform(targets, &out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.SetLabel(std::to_string(g.poses[0].vertices.size()) + " vertices, " + std::to_string(kDragHandles.size()) + " handles");
+}
+
 }  // namespace
+
+BENCHMARK(BM_DeformerSetup)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DeformerDrag)->Unit(benchmark::kMicrosecond);
 
 // 0: snake sample, 1: worm-line sample, 2: 1000-vertex strip.
 BENCHMARK(BM_Frame)->DenseRange(0, 2);

@@ -2,6 +2,7 @@
 // rigid motions stay rigid, unwrapped angles keep bent strips intact.
 #include <Eigen/Dense>
 
+#include "gingerbread_rig.h"
 #include "test_support.h"
 
 using namespace posemorph;
@@ -33,7 +34,8 @@ double RigidFitError(const std::vector<double>& x, const std::vector<Eigen::Vect
 }  // namespace
 
 TEST_CASE("each pose is reproduced at its pose-space point") {
-  for (bake::RigDescription desc : {samples::SnakeRig(), samples::WormLineRig(), BentStripRig(Degrees(300))}) {
+  for (bake::RigDescription desc : {samples::SnakeRig(), samples::WormLineRig(), BentStripRig(Degrees(300)), samples::GingerbreadRig()}) {
+    bake::ResolveDeformedPoses(desc);  // so `original` holds the deformed poses' vertices
     const bake::RigDescription original = desc;
     const Rig rig = Bake(desc);
     for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {

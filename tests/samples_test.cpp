@@ -2,6 +2,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "gingerbread_rig.h"
 #include "sample_json.h"
 #include "test_support.h"
 
@@ -23,6 +24,7 @@ TEST_CASE("committed sample descriptions are what the generator writes") {
   const std::string dir = POSEMORPH_SOURCE_DIR "/assets/";
   CHECK(ReadFile(dir + "snake/snake.json") == samples::DescriptionJson(samples::SnakeRig()));
   CHECK(ReadFile(dir + "worm-line/worm-line.json") == samples::DescriptionJson(samples::WormLineRig()));
+  CHECK(ReadFile(dir + "gingerbread/gingerbread.json") == samples::DescriptionJson(samples::GingerbreadRig()));
 }
 
 TEST_CASE("the snake sample has what the README promises, and bakes to the same bytes twice") {

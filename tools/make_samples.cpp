@@ -3,6 +3,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "gingerbread_rig.h"
 #include "sample_json.h"
 #include "strip_rig.h"
 
@@ -14,7 +15,8 @@ int main(int argc, char** argv) {
   const std::string dir = argv[1];
   const std::pair<std::string, posemorph::bake::RigDescription> samples[] = {
       {dir + "/snake/snake.json", posemorph::samples::SnakeRig()},
-      {dir + "/worm-line/worm-line.json", posemorph::samples::WormLineRig()}};
+      {dir + "/worm-line/worm-line.json", posemorph::samples::WormLineRig()},
+      {dir + "/gingerbread/gingerbread.json", posemorph::samples::GingerbreadRig()}};
   for (const auto& [path, rig] : samples) {
     std::ofstream out(path, std::ios::binary);
     out << posemorph::samples::DescriptionJson(rig);

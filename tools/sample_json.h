@@ -21,9 +21,19 @@ inline std::string DescriptionJson(const bake::RigDescription& rig) {
     json jp;
     jp["name"] = p.name;
     jp["point"] = {p.point.x(), p.point.y()};
-    json v = json::array();
-    for (const auto& q : p.vertices) v.push_back({round(q.x()), round(q.y())});
-    jp["vertices"] = std::move(v);
+    if (p.deformed) {
+      json handles = json::array();
+      for (const auto& h : p.deform.handles) {
+        json jh = h.by_vertex ? json{{"vertex", h.vertex}} : json{{"at", {h.at.x(), h.at.y()}}};
+        jh["to"] = {h.to.x(), h.to.y()};
+        handles.push_back(std::move(jh));
+      }
+      jp["deform"] = {{"from", p.deform.from}, {"handles", std::move(handles)}};
+    } else {
+      json v = json::array();
+      for (const auto& q : p.vertices) v.push_back({round(q.x()), round(q.y())});
+      jp["vertices"] = std::move(v);
+    }
     poses.push_back(std::move(jp));
   }
   root["poses"] = std::move(poses);

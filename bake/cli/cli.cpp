@@ -22,7 +22,8 @@ const char kUsage[] =
     "  posemorph-bake info RIG.pmrig              sizes, counts, factor fill, pose points, paths\n"
     "  posemorph-bake eval RIG.pmrig (--at X,Y | --path NAME [--time T | --frames K]) -o OUT.svg|.json|.obj\n"
     "        [--sigma S] [--no-shear-limit] [--linear]\n"
-    "  posemorph-bake sheet RIG.pmrig -o OUT.svg [--columns C] [--rows R] [--no-shear-limit] [--linear]\n";
+    "  posemorph-bake sheet RIG.pmrig -o OUT.svg [--columns C] [--rows R] [--no-shear-limit] [--linear]\n"
+    "  posemorph-bake deform RIG.json --pose NAME -o MESH.json  write a deformation-made pose as a plain mesh file\n";
 
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
@@ -253,6 +254,32 @@ int Sheet(const std::vector<std::string>& a, std::size_t from, std::ostream& out
   return 0;
 }
 
+int Deform(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
+  const Args args = Args::Parse(a, from, {"-o", "--pose"}, {});
+  if (args.positional.empty()) throw UsageError("no rig description given");
+  const std::string *output = args.Get("-o"), *name = args.Get("--pose");
+  if (!output || !name) throw UsageError("deform needs --pose NAME and -o MESH.json");
+  RigDescription rig = ReadRigDescription(args.positional);
+  ResolveDeformedPoses(rig);
+  const auto it = std::find_if(rig.poses.begin(), rig.poses.end(), [&](const PoseDescription& p) { return p.name == *name; });
+  if (it == rig.poses.end()) throw BakeError(args.positional, "has no pose named '" + *name + "'");
+  // The same mesh-file format a description's "mesh" reads, so the pose can be
+  // edited by hand and used in place of its "deform" entry.
+  std::ostringstream json;
+  json.precision(17);
+  json << "{\"vertices\": [";
+  for (std::size_t v = 0; v < it->vertices.size(); ++v)
+    json << (v ? ", [" : "[") << it->vertices[v].x() << ", " << it->vertices[v].y() << "]";
+  json << "],\n \"triangles\": [";
+  for (std::size_t t = 0; t < rig.triangles.size(); ++t)
+    json << (t ? ", [" : "[") << rig.triangles[t][0] << ", " << rig.triangles[t][1] << ", " << rig.triangles[t][2] << "]";
+  json << "]}\n";
+  WriteText(*output, json.str());
+  out << "wrote " << *output << " (pose '" << *name << "', " << it->vertices.size() << " vertices"
+      << (it->deformed ? ", made from '" + it->deform.from + "'" : std::string(", given directly")) << ")\n";
+  return 0;
+}
+
 }  // namespace
 
 int RunBakeCommand(const std::vector<std::string>& a, std::ostream& out, std::ostream& err) {
@@ -266,6 +293,7 @@ int RunBakeCommand(const std::vector<std::string>& a, std::ostream& out, std::os
     if (cmd == "info") return Info(a, 1, out);
     if (cmd == "eval") return Eval(a, 1, out);
     if (cmd == "sheet") return Sheet(a, 1, out);
+    if (cmd == "deform") return Deform(a, 1, out);
     if (cmd == "bake") return Bake(a, 1, out);
     return Bake(a, 0, out);
   } catch (const UsageError& e) {

@@ -62,6 +62,7 @@ std::vector<unsigned char> Bytes(const T& value) {
 
 std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
   const auto start = std::chrono::steady_clock::now();
+  ResolveDeformedPoses(rig);
   ValidateRigDescription(rig);
   const std::size_t V = rig.poses[0].vertices.size(), T = rig.triangles.size(), N = rig.poses.size();
   const Points& rest = rig.poses[0].vertices;

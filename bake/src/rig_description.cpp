@@ -114,9 +114,29 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
     pose.name = jp.contains("name") ? r.String(jp["name"], w + ".name") : "pose" + std::to_string(i);
     if (!jp.contains("point")) r.Fail(w, "missing \"point\" (its place in pose space)");
     pose.point = r.Point(jp["point"], w + ".point");
-    if (jp.contains("vertices") == jp.contains("mesh"))
-      r.Fail(w, "give exactly one of \"vertices\" or \"mesh\" (a mesh file)");
-    if (jp.contains("vertices")) {
+    if (int(jp.contains("vertices")) + int(jp.contains("mesh")) + int(jp.contains("deform")) != 1)
+      r.Fail(w, "give exactly one of \"vertices\", \"mesh\" (a mesh file) or \"deform\"");
+    if (jp.contains("deform")) {
+      const json& jd = jp["deform"];
+      const std::string wd = w + ".deform";
+      if (!jd.is_object()) r.Fail(wd, "expected {\"from\": POSE, \"handles\": [...]}");
+      if (!jd.contains("from")) r.Fail(wd, "missing \"from\" (the name of the pose to deform)");
+      pose.deformed = true;
+      pose.deform.from = r.String(jd["from"], wd + ".from");
+      const json& handles = r.Array(jd, "handles", wd);
+      for (std::size_t h = 0; h < handles.size(); ++h) {
+        const std::string wh = wd + ".handles[" + std::to_string(h) + "]";
+        const json& jh = handles[h];
+        if (!jh.is_object() || jh.contains("at") == jh.contains("vertex") || !jh.contains("to"))
+          r.Fail(wh, "expected {\"at\": [x, y], \"to\": [x, y]} or {\"vertex\": index, \"to\": [x, y]}");
+        HandleDescription handle;
+        handle.by_vertex = jh.contains("vertex");
+        if (handle.by_vertex) handle.vertex = r.Index(jh["vertex"], wh + ".vertex");
+        else handle.at = r.Point(jh["at"], wh + ".at");
+        handle.to = r.Point(jh["to"], wh + ".to");
+        pose.deform.handles.push_back(handle);
+      }
+    } else if (jp.contains("vertices")) {
       pose.vertices = r.Points(r.Array(jp, "vertices", w), w + ".vertices");
     } else {
       const std::string rel = r.String(jp["mesh"], w + ".mesh");

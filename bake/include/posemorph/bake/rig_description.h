@@ -12,12 +12,29 @@
 
 namespace posemorph::bake {
 
+// A handle of a deformation: a vertex (given by index, or by a point on the
+// source mesh that grabs its nearest vertex) and where it goes.
+struct HandleDescription {
+  bool by_vertex = false;
+  std::uint32_t vertex = 0;
+  Eigen::Vector2d at = Eigen::Vector2d::Zero();
+  Eigen::Vector2d to = Eigen::Vector2d::Zero();
+};
+
+// "This pose is pose `from` with these handles dragged" (paper section 3.2).
+struct DeformDescription {
+  std::string from;
+  std::vector<HandleDescription> handles;
+};
+
 struct PoseDescription {
   std::string name;
   Eigen::Vector2d point = Eigen::Vector2d::Zero();
   std::vector<Eigen::Vector2d> vertices;
   std::string image;                      // as written in the description
   std::vector<Eigen::Vector2f> uvs;       // empty, or one per vertex
+  bool deformed = false;                  // vertices come from `deform` (ResolveDeformedPoses)
+  DeformDescription deform;
 };
 
 struct PathDescription {
@@ -50,6 +67,12 @@ struct RigDescription {
 RigDescription ReadRigDescription(const std::string& path);
 RigDescription ParseRigDescription(const std::string& json_text, const std::string& file,
                                    const std::string& base_dir);
+
+// Computes the vertices of every pose made by deformation (in dependency
+// order), copying its source's drawing and uvs. Throws BakeError naming the
+// pose and the problem: unknown or cyclic source, fewer than 2 handles, a
+// handle off the mesh, coinciding handles, a triangle the deformation flips.
+void ResolveDeformedPoses(RigDescription& rig);
 
 // Checks everything the math needs (counts, indices, orientation, finiteness,
 // connectivity, distinct pose points); throws BakeError naming the pose and

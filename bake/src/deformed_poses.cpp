@@ -1,0 +1,99 @@
+// Poses made by dragging handles on another pose's mesh: they share its
+// connectivity by construction, and its drawing and uvs.
+#include <cmath>
+#include <sstream>
+
+#include "posemorph/bake/arap_deformer.h"
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/rig_description.h"
+
+namespace posemorph::bake {
+
+void ResolveDeformedPoses(RigDescription& rig) {
+  const std::size_t N = rig.poses.size();
+  auto label = [&](std::size_t i) { return "pose '" + rig.poses[i].name + "' (index " + std::to_string(i) + ")"; };
+  auto fail = [&](std::size_t i, const std::string& problem) { throw BakeError(rig.file, label(i) + ": " + problem); };
+
+  std::vector<char> done(N, 0);
+  std::size_t remaining = 0;
+  for (std::size_t i = 0; i < N; ++i) {
+    done[i] = !rig.poses[i].deformed;
+    remaining += rig.poses[i].deformed;
+  }
+  if (remaining == N && N > 0) throw BakeError(rig.file, "every pose is made by deformation; at least one needs vertices");
+  if (remaining == 0) return;
+
+  std::vector<std::size_t> source(N, 0);
+  for (std::size_t i = 0; i < N; ++i) {
+    if (!rig.poses[i].deformed) continue;
+    bool found = false;
+    for (std::size_t j = 0; j < N && !found; ++j)
+      if (rig.poses[j].name == rig.poses[i].deform.from) source[i] = j, found = true;
+    if (!found) fail(i, "deforms pose '" + rig.poses[i].deform.from + "', which the rig does not have");
+    if (source[i] == i) fail(i, "deforms itself");
+  }
+
+  // Each pass resolves the poses whose source is ready; a pass that resolves
+  // nothing means the rest form a cycle.
+  while (remaining > 0) {
+    bool progress = false;
+    for (std::size_t i = 0; i < N; ++i) {
+      if (done[i] || !done[source[i]]) continue;
+      PoseDescription& pose = rig.poses[i];
+      const PoseDescription& from = rig.poses[source[i]];
+      const Points& mesh = from.vertices;
+      const std::size_t V = mesh.size();
+      for (std::size_t t = 0; t < rig.triangles.size(); ++t)
+        for (std::uint32_t v : rig.triangles[t])
+          if (v >= V) fail(i, "its source '" + from.name + "' has " + std::to_string(V) + " vertices, triangle " + std::to_string(t) + " uses vertex " + std::to_string(v));
+      Eigen::AlignedBox2d box;
+      for (const auto& p : mesh) box.extend(p);
+      const double size = box.diagonal().norm();
+
+      std::vector<std::uint32_t> handles;
+      std::vector<Eigen::Vector2d> targets;
+      for (std::size_t h = 0; h < pose.deform.handles.size(); ++h) {
+        const HandleDescription& hd = pose.deform.handles[h];
+        std::uint32_t v = hd.vertex;
+        if (hd.by_vertex) {
+          if (v >= V) fail(i, "handle " + std::to_string(h) + " names vertex " + std::to_string(v) + ", but '" + from.name + "' has " + std::to_string(V));
+        } else if (!HandleVertex(mesh, rig.triangles, hd.at, 1e-3 * size, &v)) {
+          std::ostringstream s;
+          s << "handle " << h << " at (" << hd.at.x() << ", " << hd.at.y() << ") lies outside the mesh of '" << from.name << "'";
+          fail(i, s.str());
+        }
+        for (std::size_t k = 0; k < handles.size(); ++k)
+          if (handles[k] == v)
+            fail(i, "handles " + std::to_string(k) + " and " + std::to_string(h) + " coincide (both grab vertex " + std::to_string(v) + ")");
+        handles.push_back(v);
+        targets.push_back(hd.to);
+      }
+      if (handles.size() < 2) fail(i, "a deformation needs at least 2 handles, this one has " + std::to_string(handles.size()));
+
+      try {
+        ArapDeformer(mesh, rig.triangles, handles).Deform(targets, &pose.vertices);
+      } catch (const BakeError& e) {
+        fail(i, e.what());
+      }
+      for (std::size_t t = 0; t < rig.triangles.size(); ++t) {
+        const double before = SignedArea(mesh, rig.triangles[t]), after = SignedArea(pose.vertices, rig.triangles[t]);
+        if (before > 0 && !(after > 1e-10 * size * size)) {
+          std::ostringstream s;
+          s << "the deformation flips triangle " << t << " (signed area " << after << " from " << before
+            << "); drag its handles less far or add handles";
+          fail(i, s.str());
+        }
+      }
+      pose.image = from.image;
+      pose.uvs = from.uvs;
+      done[i] = 1;
+      --remaining;
+      progress = true;
+    }
+    if (!progress)
+      for (std::size_t i = 0; i < N; ++i)
+        if (!done[i]) fail(i, "deformation sources form a cycle ('" + rig.poses[i].name + "' <- '" + rig.poses[i].deform.from + "' <- ...)");
+  }
+}
+
+}  // namespace posemorph::bake
