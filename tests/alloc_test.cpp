@@ -72,6 +72,21 @@ TEST_CASE("a frame performs zero heap allocations") {
   g_counting = false;
   CHECK(ok);
   CHECK(g_allocations.load() == 0);
+
+  // A batch of 20 characters (two full groups and a partial one) too.
+  const std::size_t count = 20;
+  std::vector<double> bw, bws, bwork(rig.batch_workspace_size()), bx(count * x.size());
+  for (std::size_t k = 0; k < count; ++k) bw.insert(bw.end(), raw.begin(), raw.end()), bws.insert(bws.end(), shear.begin(), shear.end());
+  MorphBatchJob batch;
+  batch.rig = &rig, batch.count = count;
+  batch.weights = MakeSpan(bw), batch.shear_weights = MakeSpan(bws);
+  batch.workspace = MakeSpan(bwork), batch.positions = MakeSpan(bx);
+  g_allocations = 0;
+  g_counting = true;
+  for (int frame = 0; frame < 50; ++frame) ok &= batch.Run();
+  g_counting = false;
+  CHECK(ok);
+  CHECK(g_allocations.load() == 0);
 }
 
 TEST_CASE("the C API evaluates frames without allocating either") {

@@ -4,7 +4,7 @@
 // the baked factor, then move the area-weighted centroid to sum_i w_i c_i.
 #include <cmath>
 
-#include "ldlt_solve.h"
+#include "morph_kernel.h"
 #include "posemorph/jobs.h"
 
 namespace posemorph {
@@ -33,36 +33,47 @@ void Linear(const Rig& rig, const double* w, double* x) {
   }
 }
 
+// Triangles go through the blend one by one and through sin/cos and A in
+// blocks of kLanes, the same per-element operations the batch performs.
+__attribute__((target_clones("avx512f", "avx2", "default")))
 void Rigid(const Rig& rig, const double* w, const double* ws, double* work, double* x) {
+  using detail::kLanes;
+  using detail::Lanes;
   const std::uint32_t V = rig.vertex_count(), T = rig.triangle_count(), N = rig.pose_count();
   double* b = work;  // 2V: right-hand side, both coordinates
   for (std::size_t k = 0; k < 2 * std::size_t(V); ++k) b[k] = 0;
 
   const std::uint32_t* tri = rig.triangles().data;
   const double* grad = rig.gradients().data;
-  const double* angle = rig.angles().data;
-  const double* shear = rig.shears().data;
-  for (std::uint32_t t = 0; t < T; ++t, tri += 3, grad += 6, angle += N, shear += 3 * N) {
-    double alpha = 0, s11 = 0, s12 = 0, s22 = 0;
-    for (std::uint32_t i = 0; i < N; ++i) {
-      alpha += w[i] * angle[i];
-      s11 += ws[i] * shear[3 * i];
-      s12 += ws[i] * shear[3 * i + 1];
-      s22 += ws[i] * shear[3 * i + 2];
+  const double* blocks = rig.blend_blocks().data;
+  static_assert(kLanes == 8, "the loader builds blend blocks of 8 triangles");
+  for (std::uint32_t t0 = 0; t0 < T; t0 += kLanes) {
+    const std::uint32_t count = T - t0 < std::uint32_t(kLanes) ? T - t0 : std::uint32_t(kLanes);
+    // Lane j is triangle t0 + j; per lane the same sums as BlendTriangle.
+    const double* in = blocks + std::size_t(t0 / kLanes) * 4 * N * kLanes;
+    Lanes alpha = w[0] * detail::Load(in), s11 = ws[0] * detail::Load(in + kLanes),
+          s12 = ws[0] * detail::Load(in + 2 * kLanes), s22 = ws[0] * detail::Load(in + 3 * kLanes);
+    for (std::uint32_t i = 1; i < N; ++i) {
+      const double* p = in + std::size_t(i) * 4 * kLanes;
+      alpha += w[i] * detail::Load(p);
+      s11 += ws[i] * detail::Load(p + kLanes);
+      s12 += ws[i] * detail::Load(p + 2 * kLanes);
+      s22 += ws[i] * detail::Load(p + 3 * kLanes);
     }
-    const double c = std::cos(alpha), s = std::sin(alpha);
-    // A = R(alpha) S; row d of A pulls the three vertices through grad (3x2).
-    const double a11 = c * s11 - s * s12, a12 = c * s12 - s * s22;
-    const double a21 = s * s11 + c * s12, a22 = s * s12 + c * s22;
-    for (int k = 0; k < 3; ++k) {
-      const double g0 = grad[2 * k], g1 = grad[2 * k + 1];
-      b[2 * tri[k]] += g0 * a11 + g1 * a12;
-      b[2 * tri[k] + 1] += g0 * a21 + g1 * a22;
+    alignas(64) double block[4][kLanes];
+    Lanes s, c, a11, a12, a21, a22;
+    detail::SinCos(alpha, &s, &c);
+    detail::TargetMatrix(c, s, s11, s12, s22, &a11, &a12, &a21, &a22);
+    detail::Store(block[0], a11), detail::Store(block[1], a12), detail::Store(block[2], a21), detail::Store(block[3], a22);
+    for (std::uint32_t j = 0; j < count; ++j) {
+      const std::size_t t = t0 + j;
+      detail::AddToRhs<double>(tri + 3 * t, grad + 6 * t, block[0][j], block[1][j], block[2][j], block[3][j], b);
     }
   }
-  // Vertex 0 is pinned at the origin; the centroid shift below places the mesh.
-  detail::SolvePinned(rig.factor(), b + 2, work + 2 * std::size_t(V), x + 2);
+  // Vertex 0 is pinned at the origin; the centroid shift places the mesh.
+  detail::SolvePinnedKernel<double>(rig.factor(), b + 2, work + 2 * std::size_t(V), x + 2);
   x[0] = x[1] = 0;
+  detail::PlaceCentroid<double>(rig, w, x);
 }
 
 }  // namespace
@@ -70,28 +81,12 @@ void Rigid(const Rig& rig, const double* w, const double* ws, double* work, doub
 bool MorphJob::Run() const {
   if (!Validate()) return false;
   const Rig& r = *rig;
-  const std::uint32_t V = r.vertex_count(), N = r.pose_count();
+  const std::uint32_t V = r.vertex_count();
   double* x = positions.data;
   if (interpolation == Interpolation::kLinear) {
     Linear(r, weights.data, x);
   } else {
     Rigid(r, weights.data, shear_weights.data, workspace.data, x);
-    double cx = 0, cy = 0, tx = 0, ty = 0;
-    const double* m = r.vertex_masses().data;
-    for (std::uint32_t v = 0; v < V; ++v) {
-      cx += m[v] * x[2 * v];
-      cy += m[v] * x[2 * v + 1];
-    }
-    const double* c = r.pose_centroids().data;
-    for (std::uint32_t i = 0; i < N; ++i) {
-      tx += weights[i] * c[2 * i];
-      ty += weights[i] * c[2 * i + 1];
-    }
-    const double dx = tx - cx, dy = ty - cy;
-    for (std::uint32_t v = 0; v < V; ++v) {
-      x[2 * v] += dx;
-      x[2 * v + 1] += dy;
-    }
   }
   if (positions_f32.size)
     for (std::size_t k = 0; k < 2 * std::size_t(V); ++k) positions_f32[k] = float(x[k]);

@@ -313,6 +313,12 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
     PathView* path_views = arena.Take<PathView>(P);
     const Span<const double> keys = CopyInto<double>(arena, pkeys, key_total * 3);
     unsigned char* seen = arena.Take<unsigned char>(n);  // scratch for the permutation check
+    std::uint32_t* row_start = arena.Take<std::uint32_t>(n + 1);
+    std::uint32_t* row_col = arena.Take<std::uint32_t>(nnz);
+    double* row_value = arena.Take<double>(nnz);
+    std::uint32_t* row_fill = arena.Take<std::uint32_t>(n);  // scratch for the transpose
+    const std::uint64_t blocks = (T + 7) / 8;
+    double* blend = arena.Take<double>(blocks * 4 * N * 8);
     if (pass == 0) {
       rig.arena_size_ = arena.used;
       continue;
@@ -378,6 +384,32 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
                       (unsigned long long)j, r);
       }
     }
+    // Rows of L from its (now validated) columns: within a row, columns ascend.
+    std::memset(row_start, 0, (n + 1) * sizeof(std::uint32_t));
+    for (std::uint64_t q = 0; q < nnz; ++q) ++row_start[rig.factor_.row[q] + 1];
+    for (std::uint64_t i = 0; i < n; ++i) row_start[i + 1] += row_start[i];
+    std::memcpy(row_fill, row_start, n * sizeof(std::uint32_t));
+    for (std::uint64_t j = 0; j < n; ++j)
+      for (std::uint32_t q = col[j]; q < col[j + 1]; ++q) {
+        const std::uint32_t at = row_fill[rig.factor_.row[q]]++;
+        row_col[at] = std::uint32_t(j);
+        row_value[at] = rig.factor_.value[q];
+      }
+    // Blend blocks: [block][pose][alpha, s11, s12, s22][lane]; spare lanes of
+    // the last block are zero.
+    std::memset(blend, 0, blocks * 4 * N * 8 * sizeof(double));
+    for (std::uint64_t t = 0; t < T; ++t)
+      for (std::uint64_t i = 0; i < N; ++i) {
+        double* at = blend + ((t / 8) * N + i) * 32 + t % 8;
+        at[0] = rig.angles_[t * N + i];
+        at[8] = rig.shears_[(t * N + i) * 3];
+        at[16] = rig.shears_[(t * N + i) * 3 + 1];
+        at[24] = rig.shears_[(t * N + i) * 3 + 2];
+      }
+    rig.blend_blocks_ = {blend, blocks * 4 * N * 8};
+    rig.factor_.row_start = {row_start, n + 1};
+    rig.factor_.row_col = {row_col, nnz};
+    rig.factor_.row_value = {row_value, nnz};
     for (std::uint64_t j = 0; j < n; ++j)
       if (!(rig.factor_.inv_diagonal[j] > 0) || !std::isfinite(rig.factor_.inv_diagonal[j]))
         return Fail(err, ErrorCode::kBadValue, "factor diagonal %llu is not positive and finite", (unsigned long long)j);

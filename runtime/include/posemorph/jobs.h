@@ -45,6 +45,24 @@ struct MorphJob {
   bool Run() const;
 };
 
+// Rigid positions for many characters sharing one rig. They are evaluated in
+// groups of 8 whose arithmetic runs in SIMD lanes, so the rig's data is read
+// once per group; every result equals what MorphJob gives for that character,
+// bit for bit. To use several threads, run one job per thread over disjoint
+// ranges of characters, each with its own workspace.
+struct MorphBatchJob {
+  const Rig* rig = nullptr;
+  std::size_t count = 0;             // characters
+  Span<const double> weights;        // count x N raw weights, character after character
+  Span<const double> shear_weights;  // count x N
+  Span<double> workspace;            // rig->batch_workspace_size() doubles
+  Span<double> positions;            // count x 2V
+  Span<float> positions_f32;         // optional, count x 2V
+
+  bool Validate() const;
+  bool Run() const;
+};
+
 // The scalar maps behind WeightsJob, exposed for tests and renderers.
 double ShearLimit(double w);  // smoothstep clamped to [0, 1]
 void TextureWeights(Span<const double> shear_weights, double sigma, Span<double> out);

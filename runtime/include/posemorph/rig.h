@@ -42,6 +42,11 @@ struct Factor {
   Span<const std::uint32_t> row;        // nnz
   Span<const double> value;             // nnz
   Span<const double> inv_diagonal;      // n, 1 / D
+  // The same strict lower triangle by rows, built at load, so that the
+  // forward solve gathers instead of scattering.
+  Span<const std::uint32_t> row_start;  // n + 1
+  Span<const std::uint32_t> row_col;    // nnz
+  Span<const double> row_value;         // nnz
 };
 
 struct LoadOptions {
@@ -73,6 +78,9 @@ class Rig {
   Span<const double> gradients() const { return gradients_; }    // 6 x T: area * D^T E^-1
   Span<const double> angles() const { return angles_; }          // N x T (triangle-major)
   Span<const double> shears() const { return shears_; }          // 3N x T: S11, S12, S22
+  // The same angles and stretches regrouped at load for SIMD: per block of 8
+  // triangles, per pose, the 8 values of alpha, S11, S12, S22 (4N x 8 per block).
+  Span<const double> blend_blocks() const { return blend_blocks_; }
   Span<const float> uvs(std::uint32_t pose) const;                // 2 x V, or empty
   StringView pose_name(std::uint32_t pose) const;
   StringView pose_image(std::uint32_t pose) const;  // reference as written by the bake; may be empty
@@ -87,6 +95,8 @@ class Rig {
 
   // Doubles a MorphJob needs as workspace.
   std::size_t morph_workspace_size() const { return 4 * std::size_t(vertex_count_); }
+  // Doubles a MorphBatchJob needs as workspace, whatever its character count.
+  std::size_t batch_workspace_size() const;
   std::size_t arena_bytes() const { return arena_size_; }
 
  private:
@@ -98,7 +108,7 @@ class Rig {
   std::uint32_t vertex_count_ = 0, triangle_count_ = 0, pose_count_ = 0, path_count_ = 0;
   Span<const std::uint32_t> triangles_;
   Span<const double> pose_positions_, pose_points_, pose_centroids_, vertex_masses_;
-  Span<const double> gradients_, angles_, shears_;
+  Span<const double> gradients_, angles_, shears_, blend_blocks_;
   Span<const float> uvs_;
   Span<const StringView> strings_;  // N names, N images, P path names
   Span<const PathView> paths_;

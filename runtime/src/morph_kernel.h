@@ -1,0 +1,103 @@
+// The arithmetic of one frame, written once over T = double (one character)
+// or T = Lanes (kLanes characters sharing a rig). Every lane performs exactly
+// the operations a single evaluation performs, in the same order, so batched
+// results equal single ones bit for bit.
+#pragma once
+#include <cstdint>
+
+#include "posemorph/rig.h"
+#include "simd.h"
+#include "sincos.h"
+
+namespace posemorph::detail {
+
+// Blended angle and stretch of one triangle: alpha with the raw weights w,
+// S with the shear-limited weights ws (DESIGN.md section 3).
+template <typename T>
+inline void BlendTriangle(const double* angle, const double* shear, const T* w, const T* ws, std::uint32_t N,
+                          T* alpha, T* s11, T* s12, T* s22) {
+  T a = w[0] * angle[0], b = ws[0] * shear[0], c = ws[0] * shear[1], d = ws[0] * shear[2];
+  for (std::uint32_t i = 1; i < N; ++i) {
+    a += w[i] * angle[i];
+    b += ws[i] * shear[3 * i];
+    c += ws[i] * shear[3 * i + 1];
+    d += ws[i] * shear[3 * i + 2];
+  }
+  *alpha = a, *s11 = b, *s12 = c, *s22 = d;
+}
+
+// A = R(alpha) S.
+template <typename T>
+inline void TargetMatrix(T c, T s, T s11, T s12, T s22, T* a11, T* a12, T* a21, T* a22) {
+  *a11 = c * s11 - s * s12;
+  *a12 = c * s12 - s * s22;
+  *a21 = s * s11 + c * s12;
+  *a22 = s * s12 + c * s22;
+}
+
+// Row k of a triangle's gradient operator pulls vertex k by A's rows.
+template <typename T>
+inline void AddToRhs(const std::uint32_t* tri, const double* grad, T a11, T a12, T a21, T a22, T* b) {
+  for (int k = 0; k < 3; ++k) {
+    const double g0 = grad[2 * k], g1 = grad[2 * k + 1];
+    b[2 * tri[k]] += g0 * a11 + g1 * a12;
+    b[2 * tri[k] + 1] += g0 * a21 + g1 * a22;
+  }
+}
+
+// K x = b for the n free unknowns (unknown k is vertex k + 1), both
+// coordinates interleaved. y: 2n scratch. b and x may be the same array: b is
+// read only in the forward pass, x written only in the backward one.
+// Forward: z_i = b'_i - sum_j L_ij z_j over row i (gather, from the CSR copy).
+// Backward: x_j = z_j / d_j - sum_i L_ij x_i over column j (gather, CSC).
+template <typename T>
+inline void SolvePinnedKernel(const Factor& f, const T* bf, T* y, T* xf) {
+  const std::uint32_t n = f.n;
+  const std::uint32_t* order = f.order.data;
+  for (std::uint32_t i = 0; i < n; ++i) {
+    T sx = bf[2 * order[i]], sy = bf[2 * order[i] + 1];
+    for (std::uint32_t p = f.row_start[i]; p < f.row_start[i + 1]; ++p) {
+      const double l = f.row_value[p];
+      const std::uint32_t j = f.row_col[p];
+      sx -= l * y[2 * j];
+      sy -= l * y[2 * j + 1];
+    }
+    y[2 * i] = sx, y[2 * i + 1] = sy;
+  }
+  for (std::uint32_t j = n; j-- > 0;) {
+    T sx = y[2 * j] * f.inv_diagonal[j], sy = y[2 * j + 1] * f.inv_diagonal[j];
+    for (std::uint32_t p = f.col_start[j]; p < f.col_start[j + 1]; ++p) {
+      const double l = f.value[p];
+      const std::uint32_t i = f.row[p];
+      sx -= l * y[2 * i];
+      sy -= l * y[2 * i + 1];
+    }
+    y[2 * j] = sx, y[2 * j + 1] = sy;
+    xf[2 * order[j]] = sx, xf[2 * order[j] + 1] = sy;
+  }
+}
+
+// Moves the mass-weighted centroid of x (2V) to sum_i w_i c_i.
+template <typename T>
+inline void PlaceCentroid(const Rig& rig, const T* w, T* x) {
+  const std::uint32_t V = rig.vertex_count(), N = rig.pose_count();
+  const double* m = rig.vertex_masses().data;
+  const double* c = rig.pose_centroids().data;
+  T cx = m[0] * x[0], cy = m[0] * x[1];
+  for (std::uint32_t v = 1; v < V; ++v) {
+    cx += m[v] * x[2 * v];
+    cy += m[v] * x[2 * v + 1];
+  }
+  T tx = w[0] * c[0], ty = w[0] * c[1];
+  for (std::uint32_t i = 1; i < N; ++i) {
+    tx += w[i] * c[2 * i];
+    ty += w[i] * c[2 * i + 1];
+  }
+  const T dx = tx - cx, dy = ty - cy;
+  for (std::uint32_t v = 0; v < V; ++v) {
+    x[2 * v] += dx;
+    x[2 * v + 1] += dy;
+  }
+}
+
+}  // namespace posemorph::detail

@@ -1,0 +1,27 @@
+// Lanes of doubles as GCC/Clang vector types: arithmetic on them is the same
+// IEEE operation per lane as on a plain double, so a kernel written once over
+// `double` and over `Lanes` gives bit-identical results per lane at any width
+// and on any instruction set (contraction into FMA is off for the runtime).
+#pragma once
+#include <cstring>
+
+namespace posemorph::detail {
+
+constexpr int kLanes = 8;
+typedef double Lanes __attribute__((vector_size(kLanes * sizeof(double))));
+
+inline Lanes Broadcast(double v) {
+  Lanes out;
+  for (int i = 0; i < kLanes; ++i) out[i] = v;
+  return out;
+}
+
+inline Lanes Load(const double* p) {
+  Lanes v;
+  std::memcpy(&v, p, sizeof(v));
+  return v;
+}
+
+inline void Store(double* p, Lanes v) { std::memcpy(p, &v, sizeof(v)); }
+
+}  // namespace posemorph::detail

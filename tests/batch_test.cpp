@@ -1,0 +1,125 @@
+// Batched evaluation equals single evaluation bit for bit, whatever the
+// group boundaries or the split across threads.
+#include <cstring>
+#include <random>
+#include <thread>
+
+#include "gingerbread_rig.h"
+#include "test_support.h"
+
+using namespace posemorph;
+using namespace posemorph::test;
+
+namespace {
+
+struct Crowd {
+  std::size_t count;
+  std::vector<double> w, ws;
+};
+
+Crowd RandomCrowd(const Rig& rig, std::size_t count, unsigned seed) {
+  const PoseSpaceGrid& g = rig.grid();
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> ux(g.origin_x - 1, g.origin_x + g.cell * g.cells_x + 1);
+  std::uniform_real_distribution<double> uy(g.origin_y - 1, g.origin_y + g.cell * g.cells_y + 1);
+  Crowd c{count, {}, {}};
+  for (std::size_t k = 0; k < count; ++k) {
+    const Weights w = WeightsAt(rig, ux(rng), uy(rng));
+    c.w.insert(c.w.end(), w.raw.begin(), w.raw.end());
+    c.ws.insert(c.ws.end(), w.shear.begin(), w.shear.end());
+  }
+  return c;
+}
+
+std::vector<double> RunBatch(const Rig& rig, const Crowd& c, std::size_t begin, std::size_t end, std::vector<float>* f32 = nullptr) {
+  const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
+  std::vector<double> work(rig.batch_workspace_size()), x((end - begin) * v2);
+  MorphBatchJob job;
+  job.rig = &rig;
+  job.count = end - begin;
+  job.weights = {c.w.data() + begin * N, job.count * N};
+  job.shear_weights = {c.ws.data() + begin * N, job.count * N};
+  job.workspace = MakeSpan(work);
+  job.positions = MakeSpan(x);
+  if (f32) {
+    f32->resize(x.size());
+    job.positions_f32 = MakeSpan(*f32);
+  }
+  REQUIRE(job.Run());
+  return x;
+}
+
+bool SameBits(const double* a, const double* b, std::size_t n) { return std::memcmp(a, b, n * sizeof(double)) == 0; }
+
+}  // namespace
+
+TEST_CASE("a batch gives each character exactly what MorphJob gives it") {
+  for (bake::RigDescription desc : {samples::SnakeRig(), samples::GingerbreadRig()}) {
+    const Rig rig = Bake(desc);
+    const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
+    for (std::size_t count : {1u, 3u, 8u, 13u, 64u}) {
+      const Crowd crowd = RandomCrowd(rig, count, unsigned(count));
+      std::vector<float> f32;
+      const std::vector<double> batch = RunBatch(rig, crowd, 0, count, &f32);
+      for (std::size_t k = 0; k < count; ++k) {
+        const std::vector<double> w(crowd.w.begin() + k * N, crowd.w.begin() + (k + 1) * N);
+        const std::vector<double> ws(crowd.ws.begin() + k * N, crowd.ws.begin() + (k + 1) * N);
+        const std::vector<double> single = Morph(rig, w, ws);
+        CAPTURE(count);
+        CAPTURE(k);
+        CHECK(SameBits(single.data(), batch.data() + k * v2, v2));
+        for (std::size_t i = 0; i < v2; ++i) REQUIRE(f32[k * v2 + i] == float(single[i]));
+      }
+    }
+  }
+}
+
+TEST_CASE("splitting a crowd across threads changes no bit") {
+  const Rig rig = Bake(samples::SnakeRig());
+  const std::size_t count = 100, v2 = 2 * std::size_t(rig.vertex_count());
+  const Crowd crowd = RandomCrowd(rig, count, 42);
+  const std::vector<double> whole = RunBatch(rig, crowd, 0, count);
+  for (std::size_t threads : {2u, 3u, 7u}) {
+    std::vector<std::vector<double>> parts(threads);
+    std::vector<std::thread> pool;
+    for (std::size_t t = 0; t < threads; ++t)
+      pool.emplace_back([&, t] {
+        const std::size_t begin = count * t / threads, end = count * (t + 1) / threads;
+        std::vector<double> work(rig.batch_workspace_size()), x((end - begin) * v2);
+        MorphBatchJob job;
+        job.rig = &rig, job.count = end - begin;
+        job.weights = {crowd.w.data() + begin * rig.pose_count(), job.count * rig.pose_count()};
+        job.shear_weights = {crowd.ws.data() + begin * rig.pose_count(), job.count * rig.pose_count()};
+        job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
+        job.Run();
+        parts[t] = std::move(x);
+      });
+    for (auto& th : pool) th.join();
+    std::vector<double> joined;
+    for (const auto& p : parts) joined.insert(joined.end(), p.begin(), p.end());
+    CAPTURE(threads);
+    REQUIRE(joined.size() == whole.size());
+    CHECK(SameBits(joined.data(), whole.data(), whole.size()));
+  }
+}
+
+TEST_CASE("a batch refuses inputs that do not fit") {
+  const Rig rig = Bake(samples::SnakeRig());
+  const Crowd crowd = RandomCrowd(rig, 4, 1);
+  std::vector<double> work(rig.batch_workspace_size()), x(4 * 2 * rig.vertex_count());
+  MorphBatchJob job;
+  job.rig = &rig, job.count = 4;
+  job.weights = MakeSpan(crowd.w), job.shear_weights = MakeSpan(crowd.ws);
+  job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
+  CHECK(job.Validate());
+  job.count = 5;  // more characters than weights
+  CHECK_FALSE(job.Run());
+  job.count = 4;
+  job.workspace.size -= 1;
+  CHECK_FALSE(job.Run());
+  job.workspace = MakeSpan(work);
+  std::vector<double> bad = crowd.w;
+  bad[3] = std::nan("");
+  job.weights = MakeSpan(bad);
+  CHECK_FALSE(job.Run());
+}
