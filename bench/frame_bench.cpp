@@ -156,4 +156,3 @@ BENCHMARK(BM_Weights)->DenseRange(0, 2);
 BENCHMARK(BM_Solve)->DenseRange(0, 2);
 BENCHMARK(BM_Load)->DenseRange(0, 2);
 BENCHMARK(BM_Bake)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
-BENCHMARK_MAIN();

@@ -8,7 +8,8 @@ packages=(
   libeigen3-dev             # bake: sparse Cholesky (LDL^T), AMD ordering, KKT solve
   nlohmann-json3-dev        # bake: rig description (JSON) reader
   doctest-dev               # tests
-  libbenchmark-dev          # bench: per-frame evaluation benchmark
+  libbenchmark-dev          # bench: the benchmark suite
+  libsuitesparse-dev        # bench: CHOLMOD, the solver the runtime is measured against
   librsvg2-bin              # demo: contact sheet SVG -> PNG (rsvg-convert)
 )
 

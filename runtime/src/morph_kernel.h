@@ -14,7 +14,7 @@ namespace posemorph::detail {
 // Blended angle and stretch of one triangle: alpha with the raw weights w,
 // S with the shear-limited weights ws (DESIGN.md section 3).
 template <typename T>
-inline void BlendTriangle(const double* angle, const double* shear, const T* w, const T* ws, std::uint32_t N,
+POSEMORPH_LANES_INLINE void BlendTriangle(const double* angle, const double* shear, const T* w, const T* ws, std::uint32_t N,
                           T* alpha, T* s11, T* s12, T* s22) {
   T a = w[0] * angle[0], b = ws[0] * shear[0], c = ws[0] * shear[1], d = ws[0] * shear[2];
   for (std::uint32_t i = 1; i < N; ++i) {
@@ -28,7 +28,7 @@ inline void BlendTriangle(const double* angle, const double* shear, const T* w, 
 
 // A = R(alpha) S.
 template <typename T>
-inline void TargetMatrix(T c, T s, T s11, T s12, T s22, T* a11, T* a12, T* a21, T* a22) {
+POSEMORPH_LANES_INLINE void TargetMatrix(T c, T s, T s11, T s12, T s22, T* a11, T* a12, T* a21, T* a22) {
   *a11 = c * s11 - s * s12;
   *a12 = c * s12 - s * s22;
   *a21 = s * s11 + c * s12;
@@ -37,7 +37,7 @@ inline void TargetMatrix(T c, T s, T s11, T s12, T s22, T* a11, T* a12, T* a21, 
 
 // Row k of a triangle's gradient operator pulls vertex k by A's rows.
 template <typename T>
-inline void AddToRhs(const std::uint32_t* tri, const double* grad, T a11, T a12, T a21, T a22, T* b) {
+POSEMORPH_LANES_INLINE void AddToRhs(const std::uint32_t* tri, const double* grad, T a11, T a12, T a21, T a22, T* b) {
   for (int k = 0; k < 3; ++k) {
     const double g0 = grad[2 * k], g1 = grad[2 * k + 1];
     b[2 * tri[k]] += g0 * a11 + g1 * a12;
@@ -51,7 +51,7 @@ inline void AddToRhs(const std::uint32_t* tri, const double* grad, T a11, T a12,
 // Forward: z_i = b'_i - sum_j L_ij z_j over row i (gather, from the CSR copy).
 // Backward: x_j = z_j / d_j - sum_i L_ij x_i over column j (gather, CSC).
 template <typename T>
-inline void SolvePinnedKernel(const Factor& f, const T* bf, T* y, T* xf) {
+POSEMORPH_LANES_INLINE void SolvePinnedKernel(const Factor& f, const T* bf, T* y, T* xf) {
   const std::uint32_t n = f.n;
   const std::uint32_t* order = f.order.data;
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -79,7 +79,7 @@ inline void SolvePinnedKernel(const Factor& f, const T* bf, T* y, T* xf) {
 
 // Moves the mass-weighted centroid of x (2V) to sum_i w_i c_i.
 template <typename T>
-inline void PlaceCentroid(const Rig& rig, const T* w, T* x) {
+POSEMORPH_LANES_INLINE void PlaceCentroid(const Rig& rig, const T* w, T* x) {
   const std::uint32_t V = rig.vertex_count(), N = rig.pose_count();
   const double* m = rig.vertex_masses().data;
   const double* c = rig.pose_centroids().data;

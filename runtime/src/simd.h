@@ -7,21 +7,27 @@
 
 namespace posemorph::detail {
 
+// Every helper that takes or returns Lanes is forced inline: the kernels are
+// compiled once per instruction set (target_clones), and an out-of-line call
+// between code built for different sets would pass the vectors by different
+// ABIs (GCC's -Wpsabi note), which breaks unoptimised builds.
+#define POSEMORPH_LANES_INLINE inline __attribute__((always_inline))
+
 constexpr int kLanes = 8;
 typedef double Lanes __attribute__((vector_size(kLanes * sizeof(double))));
 
-inline Lanes Broadcast(double v) {
+POSEMORPH_LANES_INLINE Lanes Broadcast(double v) {
   Lanes out;
   for (int i = 0; i < kLanes; ++i) out[i] = v;
   return out;
 }
 
-inline Lanes Load(const double* p) {
+POSEMORPH_LANES_INLINE Lanes Load(const double* p) {
   Lanes v;
   std::memcpy(&v, p, sizeof(v));
   return v;
 }
 
-inline void Store(double* p, Lanes v) { std::memcpy(p, &v, sizeof(v)); }
+POSEMORPH_LANES_INLINE void Store(double* p, Lanes v) { std::memcpy(p, &v, sizeof(v)); }
 
 }  // namespace posemorph::detail

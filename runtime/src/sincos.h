@@ -5,11 +5,12 @@
 // then Taylor series to degree 15 (sin) and 16 (cos) on [-pi/4, pi/4]: the
 // truncation error is below (pi/4)^17/17! = 4.6e-17.
 #pragma once
+#include "simd.h"
 
 namespace posemorph::detail {
 
 template <typename T>
-inline void SinCos(T x, T* sin_out, T* cos_out) {
+POSEMORPH_LANES_INLINE void SinCos(T x, T* sin_out, T* cos_out) {
   const double kTwoOverPi = 0.63661977236758134308;
   const double kRound = 6755399441055744.0;               // 1.5 * 2^52: adding it rounds to an integer
   const double kHalfPiHigh = 1.57079632673412561417e+00;  // pi/2 to 33 bits

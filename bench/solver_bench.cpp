@@ -1,0 +1,253 @@
+// The runtime against the general-purpose sparse solvers on the same matrix,
+// and batched crowds. Rigs: plates of about 500..4000 vertices bent into N = 4
+// or 8 poses, generated here. Run through scripts/bench.sh for the table.
+#include <benchmark/benchmark.h>
+#include <cholmod.h>
+
+#include <Eigen/SparseCholesky>
+#include <atomic>
+#include <map>
+#include <thread>
+
+#include "../runtime/src/ldlt_solve.h"
+#include "posemorph/bake/arap_system.h"
+#include "posemorph/bake/bake.h"
+#include "posemorph/jobs.h"
+#include "strip_rig.h"
+
+using namespace posemorph;
+
+namespace {
+
+// A plate twice as long as wide, `across` quads across, in N bent poses whose
+// points sit on a circle around the rest pose.
+bake::RigDescription PlateRig(int across, int poses) {
+  samples::StripShape shape;
+  shape.length = 10, shape.width = 5, shape.segments = 2 * across, shape.across = across;
+  const double L = shape.length;
+  // Bends keep the radius above half the width (no flips).
+  const std::function<double(double)> kappa[] = {
+      [](double) { return 0.0; },
+      [=](double) { return samples::Degrees(90) / L; },
+      [=](double) { return -samples::Degrees(90) / L; },
+      [=](double s) { return 2 * samples::Degrees(100) * s / (L * L); },
+      [=](double s) { return -2 * samples::Degrees(100) * s / (L * L); },
+      [=](double s) { return 0.3 * std::sin(2 * M_PI * s / L); },
+      [=](double s) { return -0.3 * std::sin(2 * M_PI * s / L); },
+      [=](double s) { return 0.25 * std::sin(M_PI * s / L); },
+  };
+  bake::RigDescription rig;
+  rig.name = "plate";
+  rig.triangles = samples::StripTriangles(shape);
+  for (int i = 0; i < poses; ++i) {
+    const double a = 2 * M_PI * (i - 1) / (poses - 1);
+    rig.poses.push_back(samples::StripPose("p" + std::to_string(i), i ? std::cos(a) : 0, i ? std::sin(a) : 0, shape, kappa[i]));
+  }
+  return rig;
+}
+
+const int kAcross[] = {15, 22, 31, 44};  // 496, 1035, 2016, 4005 vertices
+
+struct Case {
+  Rig rig;
+  Eigen::SparseMatrix<double> K;  // the same pinned matrix the bake factored
+  Eigen::MatrixXd rhs;            // two right-hand sides (x and y)
+};
+
+const Case& GetCase(int size, int poses) {
+  static std::map<std::pair<int, int>, Case> cases;
+  auto [it, inserted] = cases.try_emplace({size, poses});
+  if (inserted) {
+    bake::RigDescription desc = PlateRig(kAcross[size], poses);
+    const std::vector<unsigned char> bytes = bake::BakeRig(desc);
+    LoadRig(bytes.data(), bytes.size(), &it->second.rig, nullptr);
+    it->second.K = bake::BuildArapSystem(desc.poses[0].vertices, desc.triangles, "").K;
+    it->second.rhs = Eigen::MatrixXd::Random(it->second.K.rows(), 2);
+  }
+  return it->second;
+}
+
+void Label(benchmark::State& state, const Rig& rig) {
+  state.SetLabel("V=" + std::to_string(rig.vertex_count()) + " N=" + std::to_string(rig.pose_count()) +
+                 " nnz(L)=" + std::to_string(rig.factor().value.size + rig.factor().n));
+}
+
+void BM_RuntimeFrame(benchmark::State& state) {
+  const Rig& rig = GetCase(int(state.range(0)), int(state.range(1))).rig;
+  const std::uint32_t N = rig.pose_count();
+  std::vector<double> w(N), ws(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
+  double t = 0;
+  for (auto _ : state) {
+    WeightsJob wj;
+    wj.rig = &rig, wj.x = 0.8 * std::cos(t), wj.y = 0.8 * std::sin(t);
+    wj.raw = MakeSpan(w), wj.shear = MakeSpan(ws);
+    wj.Run();
+    MorphJob mj;
+    mj.rig = &rig, mj.weights = MakeSpan(w), mj.shear_weights = MakeSpan(ws);
+    mj.workspace = MakeSpan(work), mj.positions = MakeSpan(x);
+    mj.Run();
+    benchmark::DoNotOptimize(x.data());
+    t += 0.01;
+  }
+  Label(state, rig);
+}
+
+void BM_RuntimeSolve(benchmark::State& state) {
+  const Case& c = GetCase(int(state.range(0)), int(state.range(1)));
+  const std::size_t n = c.rig.factor().n;
+  std::vector<double> b(2 * n), scratch(2 * n), x(2 * n);
+  for (std::size_t k = 0; k < n; ++k) b[2 * k] = c.rhs(k, 0), b[2 * k + 1] = c.rhs(k, 1);
+  for (auto _ : state) {
+    detail::SolvePinned(c.rig.factor(), b.data(), scratch.data(), x.data());
+    benchmark::DoNotOptimize(x.data());
+  }
+  Label(state, c.rig);
+}
+
+void BM_EigenSolve(benchmark::State& state) {
+  const Case& c = GetCase(int(state.range(0)), int(state.range(1)));
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(c.K);
+  Eigen::MatrixXd x(c.rhs.rows(), 2);
+  for (auto _ : state) {
+    x = ldlt.solve(c.rhs);
+    benchmark::DoNotOptimize(x.data());
+  }
+  Label(state, c.rig);
+}
+
+// What a naive implementation does: factor the (unchanged) matrix every frame.
+// Eigen's symbolic analysis is reused, so this counts only the numeric work.
+void BM_EigenRefactorEveryFrame(benchmark::State& state) {
+  const Case& c = GetCase(int(state.range(0)), int(state.range(1)));
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  ldlt.analyzePattern(c.K);
+  Eigen::MatrixXd x(c.rhs.rows(), 2);
+  for (auto _ : state) {
+    ldlt.factorize(c.K);
+    x = ldlt.solve(c.rhs);
+    benchmark::DoNotOptimize(x.data());
+  }
+  Label(state, c.rig);
+}
+
+void BM_CholmodSolve(benchmark::State& state) {
+  const Case& c = GetCase(int(state.range(0)), int(state.range(1)));
+  cholmod_common cm;
+  cholmod_start(&cm);
+  // CHOLMOD's defaults (AMD/METIS ordering, supernodal when it pays).
+  Eigen::SparseMatrix<double> upper = c.K.triangularView<Eigen::Upper>();
+  upper.makeCompressed();
+  cholmod_sparse A{};
+  A.nrow = A.ncol = std::size_t(upper.rows());
+  A.nzmax = std::size_t(upper.nonZeros());
+  A.p = upper.outerIndexPtr();
+  A.i = upper.innerIndexPtr();
+  A.x = upper.valuePtr();
+  A.stype = 1;  // symmetric, upper part stored
+  A.itype = CHOLMOD_INT, A.xtype = CHOLMOD_REAL, A.dtype = CHOLMOD_DOUBLE;
+  A.sorted = 1, A.packed = 1;
+  cholmod_factor* L = cholmod_analyze(&A, &cm);
+  cholmod_factorize(&A, L, &cm);
+  cholmod_dense* B = cholmod_allocate_dense(A.nrow, 2, A.nrow, CHOLMOD_REAL, &cm);
+  std::memcpy(B->x, c.rhs.data(), sizeof(double) * 2 * A.nrow);
+  cholmod_dense *X = nullptr, *Y = nullptr, *E = nullptr;
+  for (auto _ : state) {
+    cholmod_solve2(CHOLMOD_A, L, B, nullptr, &X, nullptr, &Y, &E, &cm);  // reuses X, Y, E
+    benchmark::DoNotOptimize(X->x);
+  }
+  state.counters["supernodal"] = L->is_super;
+  cholmod_free_dense(&X, &cm), cholmod_free_dense(&Y, &cm), cholmod_free_dense(&E, &cm), cholmod_free_dense(&B, &cm);
+  cholmod_free_factor(&L, &cm);
+  cholmod_finish(&cm);
+  Label(state, c.rig);
+}
+
+// A persistent pool: workers wait for a frame number, run their share, report.
+class Pool {
+ public:
+  explicit Pool(int threads) : threads_(threads) {
+    for (int t = 1; t < threads; ++t) workers_.emplace_back([this, t] { Work(t); });
+  }
+  ~Pool() {
+    stop_ = true;
+    frame_.fetch_add(1);
+    for (auto& w : workers_) w.join();
+  }
+  template <typename F>
+  void Run(F& part) {  // part(thread index, thread count)
+    task_ = [](void* f, int t, int n) { (*static_cast<F*>(f))(t, n); };
+    arg_ = &part;
+    done_ = 0;
+    frame_.fetch_add(1);
+    part(0, threads_);
+    while (done_.load() != threads_ - 1) std::this_thread::yield();
+  }
+
+ private:
+  void Work(int t) {
+    long seen = 0;
+    for (;;) {
+      while (frame_.load() == seen) std::this_thread::yield();
+      seen = frame_.load();
+      if (stop_) return;
+      task_(arg_, t, threads_);
+      done_.fetch_add(1);
+    }
+  }
+  int threads_;
+  std::vector<std::thread> workers_;
+  std::atomic<long> frame_{0};
+  std::atomic<int> done_{0};
+  std::atomic<bool> stop_{false};
+  void (*task_)(void*, int, int) = nullptr;
+  void* arg_ = nullptr;
+};
+
+// K characters of one rig per frame: each one's weights, then the batched morph.
+void BM_Crowd(benchmark::State& state) {
+  const Rig& rig = GetCase(1, 8).rig;  // ~1000 vertices, N = 8
+  const std::size_t count = std::size_t(state.range(0));
+  const int threads = int(state.range(1));
+  const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
+  std::vector<double> w(count * N), ws(count * N), x(count * v2);
+  std::vector<std::vector<double>> work(threads, std::vector<double>(rig.batch_workspace_size()));
+  Pool pool(threads);
+  double time = 0;
+  auto part = [&](int t, int n) {
+    const std::size_t begin = count * t / n, end = count * (t + 1) / n;
+    for (std::size_t k = begin; k < end; ++k) {
+      WeightsJob wj;
+      wj.rig = &rig, wj.x = std::cos(time + 0.1 * k), wj.y = std::sin(1.3 * time + 0.2 * k);
+      wj.raw = {w.data() + k * N, N}, wj.shear = {ws.data() + k * N, N};
+      wj.Run();
+    }
+    MorphBatchJob job;
+    job.rig = &rig, job.count = end - begin;
+    job.weights = {w.data() + begin * N, job.count * N}, job.shear_weights = {ws.data() + begin * N, job.count * N};
+    job.workspace = MakeSpan(work[t]), job.positions = {x.data() + begin * v2, job.count * v2};
+    job.Run();
+  };
+  for (auto _ : state) {
+    pool.Run(part);
+    time += 1.0 / 60;
+    benchmark::DoNotOptimize(x.data());
+  }
+  state.counters["us_per_character"] =
+      benchmark::Counter(double(count), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert,
+                         benchmark::Counter::kIs1000);
+  Label(state, rig);
+}
+
+void SizesAndPoses(benchmark::internal::Benchmark* b) {
+  for (int poses : {4, 8})
+    for (int size = 0; size < 4; ++size) b->Args({size, poses});
+}
+
+}  // namespace
+
+BENCHMARK(BM_RuntimeFrame)->Apply(SizesAndPoses);
+BENCHMARK(BM_RuntimeSolve)->Apply(SizesAndPoses);
+BENCHMARK(BM_EigenSolve)->Apply(SizesAndPoses);
+BENCHMARK(BM_CholmodSolve)->Apply(SizesAndPoses);
+BENCHMARK(BM_EigenRefactorEveryFrame)->Apply(SizesAndPoses);
+BENCHMARK(BM_Crowd)->ArgsProduct({{1, 4, 8, 64, 1000}, {1, 2}})->UseRealTime()->Unit(benchmark::kMicrosecond);
