@@ -45,6 +45,33 @@ POSEMORPH_LANES_INLINE void AddToRhs(const std::uint32_t* tri, const double* gra
   }
 }
 
+template <typename T>
+POSEMORPH_LANES_INLINE T Zero();
+template <>
+POSEMORPH_LANES_INLINE double Zero<double>() { return 0.0; }
+template <>
+POSEMORPH_LANES_INLINE Lanes Zero<Lanes>() { return Broadcast(0.0); }
+
+// s - sum_p l[p] * v[2 idx[p] + d] for d = 0, 1 over p in [begin, end), in
+// four interleaved partial sums: one running sum would chain every
+// subtraction behind the previous one's latency, which is what bounded the
+// solve (about 15 nonzeros per row).
+template <typename T>
+POSEMORPH_LANES_INLINE void GatherSubtract(const double* l, const std::uint32_t* idx, std::uint32_t begin, std::uint32_t end,
+                                           const T* v, T* sx, T* sy) {
+  T x0 = *sx, y0 = *sy, x1 = Zero<T>(), y1 = x1, x2 = x1, y2 = x1, x3 = x1, y3 = x1;
+  std::uint32_t p = begin;
+  for (; p + 4 <= end; p += 4) {
+    x0 -= l[p] * v[2 * idx[p]], y0 -= l[p] * v[2 * idx[p] + 1];
+    x1 -= l[p + 1] * v[2 * idx[p + 1]], y1 -= l[p + 1] * v[2 * idx[p + 1] + 1];
+    x2 -= l[p + 2] * v[2 * idx[p + 2]], y2 -= l[p + 2] * v[2 * idx[p + 2] + 1];
+    x3 -= l[p + 3] * v[2 * idx[p + 3]], y3 -= l[p + 3] * v[2 * idx[p + 3] + 1];
+  }
+  for (; p < end; ++p) x0 -= l[p] * v[2 * idx[p]], y0 -= l[p] * v[2 * idx[p] + 1];
+  *sx = (x0 + x1) + (x2 + x3);
+  *sy = (y0 + y1) + (y2 + y3);
+}
+
 // K x = b for the n free unknowns (unknown k is vertex k + 1), both
 // coordinates interleaved. y: 2n scratch. b and x may be the same array: b is
 // read only in the forward pass, x written only in the backward one.
@@ -56,22 +83,12 @@ POSEMORPH_LANES_INLINE void SolvePinnedKernel(const Factor& f, const T* bf, T* y
   const std::uint32_t* order = f.order.data;
   for (std::uint32_t i = 0; i < n; ++i) {
     T sx = bf[2 * order[i]], sy = bf[2 * order[i] + 1];
-    for (std::uint32_t p = f.row_start[i]; p < f.row_start[i + 1]; ++p) {
-      const double l = f.row_value[p];
-      const std::uint32_t j = f.row_col[p];
-      sx -= l * y[2 * j];
-      sy -= l * y[2 * j + 1];
-    }
+    GatherSubtract(f.row_value.data, f.row_col.data, f.row_start[i], f.row_start[i + 1], y, &sx, &sy);
     y[2 * i] = sx, y[2 * i + 1] = sy;
   }
   for (std::uint32_t j = n; j-- > 0;) {
     T sx = y[2 * j] * f.inv_diagonal[j], sy = y[2 * j + 1] * f.inv_diagonal[j];
-    for (std::uint32_t p = f.col_start[j]; p < f.col_start[j + 1]; ++p) {
-      const double l = f.value[p];
-      const std::uint32_t i = f.row[p];
-      sx -= l * y[2 * i];
-      sy -= l * y[2 * i + 1];
-    }
+    GatherSubtract(f.value.data, f.row.data, f.col_start[j], f.col_start[j + 1], y, &sx, &sy);
     y[2 * j] = sx, y[2 * j + 1] = sy;
     xf[2 * order[j]] = sx, xf[2 * order[j] + 1] = sy;
   }
@@ -83,17 +100,18 @@ POSEMORPH_LANES_INLINE void PlaceCentroid(const Rig& rig, const T* w, T* x) {
   const std::uint32_t V = rig.vertex_count(), N = rig.pose_count();
   const double* m = rig.vertex_masses().data;
   const double* c = rig.pose_centroids().data;
-  T cx = m[0] * x[0], cy = m[0] * x[1];
-  for (std::uint32_t v = 1; v < V; ++v) {
-    cx += m[v] * x[2 * v];
-    cy += m[v] * x[2 * v + 1];
+  // Four partial sums, for the same latency reason as GatherSubtract.
+  T cx[4] = {Zero<T>(), Zero<T>(), Zero<T>(), Zero<T>()}, cy[4] = {cx[0], cx[0], cx[0], cx[0]};
+  for (std::uint32_t v = 0; v < V; ++v) {
+    cx[v % 4] += m[v] * x[2 * v];
+    cy[v % 4] += m[v] * x[2 * v + 1];
   }
   T tx = w[0] * c[0], ty = w[0] * c[1];
   for (std::uint32_t i = 1; i < N; ++i) {
     tx += w[i] * c[2 * i];
     ty += w[i] * c[2 * i + 1];
   }
-  const T dx = tx - cx, dy = ty - cy;
+  const T dx = tx - ((cx[0] + cx[1]) + (cx[2] + cx[3])), dy = ty - ((cy[0] + cy[1]) + (cy[2] + cy[3]));
   for (std::uint32_t v = 0; v < V; ++v) {
     x[2 * v] += dx;
     x[2 * v + 1] += dy;

@@ -1,0 +1,58 @@
+"""Prints posemorph-bench's JSON output (medians) as the README's tables."""
+import json
+import re
+import sys
+
+
+def main(path):
+    with open(path) as f:
+        data = json.load(f)
+    median = {}
+    label = {}
+    for b in data["benchmarks"]:
+        if b.get("aggregate_name") != "median":
+            continue
+        name = b["run_name"]
+        median[name] = b["real_time"] * {"ns": 1e-3, "us": 1, "ms": 1e3}[b["time_unit"]]  # microseconds
+        label[name] = b.get("label", "")
+    ctx = data["context"]
+    print(f"{ctx.get('num_cpus')} x {ctx.get('mhz_per_cpu')} MHz, {ctx.get('date')}; medians of "
+          f"{data['benchmarks'][0].get('repetitions', '?')} interleaved repetitions, microseconds\n")
+
+    print("| vertices | N | nnz(L) | frame | solve | Eigen solve | CHOLMOD solve | refactor+solve | solve/Eigen | solve/CHOLMOD | frame/Eigen solve |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for size in range(4):
+        for poses in (4, 8):
+            key = f"/{size}/{poses}"
+            need = ["BM_RuntimeFrame", "BM_RuntimeSolve", "BM_EigenSolve", "BM_CholmodSolve", "BM_EigenRefactorEveryFrame"]
+            if not all(n + key in median for n in need):
+                continue
+            frame, solve, eigen, cholmod, refactor = (median[n + key] for n in need)
+            m = re.search(r"V=(\d+) N=(\d+) nnz\(L\)=(\d+)", label["BM_RuntimeSolve" + key])
+            print(f"| {m.group(1)} | {m.group(2)} | {m.group(3)} | {frame:.1f} | {solve:.1f} | {eigen:.1f} | {cholmod:.1f} | "
+                  f"{refactor:.0f} | {solve / eigen:.2f} | {solve / cholmod:.2f} | {frame / eigen:.2f} |")
+
+    print("\nCrowds of one rig (the 1035-vertex, N = 8 plate), weights + batched morph per frame:\n")
+    print("| characters | threads | frame | per character |")
+    print("|---|---|---|---|")
+    for name in sorted((n for n in median if n.startswith("BM_Crowd/")),
+                       key=lambda n: tuple(int(x) for x in n.split("/")[1:3])):
+        count, threads = (int(x) for x in name.split("/")[1:3])
+        t = median[name]
+        print(f"| {count} | {threads} | {t:.0f} us | {t / count:.1f} us |")
+
+    print("\nSamples (single character):\n")
+    print("| benchmark | median |")
+    print("|---|---|")
+    names = {"0": "snake", "1": "worm-line", "2": "strip-1000"}
+    for n in sorted(median):
+        m = re.match(r"BM_(Frame|Weights|Solve|Load|Bake)/(\d)$", n)
+        if m:
+            print(f"| {m.group(1)} {names[m.group(2)]} ({label[n]}) | {median[n]:.1f} us |")
+    for n in ("BM_DeformerSetup", "BM_DeformerDrag"):
+        if n in median:
+            print(f"| {n[3:]} gingerbread ({label[n]}) | {median[n]:.1f} us |")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1])
