@@ -103,6 +103,23 @@ TEST_CASE("splitting a crowd across threads changes no bit") {
   }
 }
 
+TEST_CASE("a batch can write only the single-precision copy") {
+  const Rig rig = Bake(samples::SnakeRig());
+  for (std::size_t count : {2u, 11u}) {  // the one-by-one fallback and a group
+    const Crowd crowd = RandomCrowd(rig, count, 9);
+    std::vector<float> with_doubles;
+    const std::vector<double> doubles = RunBatch(rig, crowd, 0, count, &with_doubles);
+    std::vector<double> work(rig.batch_workspace_size());
+    std::vector<float> only(doubles.size());
+    MorphBatchJob job;
+    job.rig = &rig, job.count = count;
+    job.weights = MakeSpan(crowd.w), job.shear_weights = MakeSpan(crowd.ws);
+    job.workspace = MakeSpan(work), job.positions_f32 = MakeSpan(only);
+    REQUIRE(job.Run());
+    CHECK(only == with_doubles);
+  }
+}
+
 TEST_CASE("a batch refuses inputs that do not fit") {
   const Rig rig = Bake(samples::SnakeRig());
   const Crowd crowd = RandomCrowd(rig, 4, 1);
@@ -118,6 +135,9 @@ TEST_CASE("a batch refuses inputs that do not fit") {
   job.workspace.size -= 1;
   CHECK_FALSE(job.Run());
   job.workspace = MakeSpan(work);
+  job.positions = {};
+  CHECK_FALSE(job.Run());  // no output at all
+  job.positions = MakeSpan(x);
   std::vector<double> bad = crowd.w;
   bad[3] = std::nan("");
   job.weights = MakeSpan(bad);

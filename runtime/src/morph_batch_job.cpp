@@ -10,8 +10,12 @@ namespace posemorph {
 using detail::kLanes;
 using detail::Lanes;
 
+// Groups with fewer characters than this are evaluated one by one.
+constexpr std::size_t kMinLanes = 3;
+
 std::size_t Rig::batch_workspace_size() const {
-  // b/x (2V lanes) and y (2n lanes), plus slack to align to the lane size.
+  // b/x (2V lanes) and y (2n lanes), plus slack to align to the lane size;
+  // also enough for MorphJob, which a small last group falls back to.
   return (4 * std::size_t(vertex_count_) + 1) * kLanes;
 }
 
@@ -22,7 +26,8 @@ bool MorphBatchJob::Validate() const {
   if (count > (std::size_t(-1) / 2) / (v2 + n)) return false;
   if (!weights.data || weights.size < count * n || !shear_weights.data || shear_weights.size < count * n) return false;
   if (!workspace.data || workspace.size < rig->batch_workspace_size()) return false;
-  if (!positions.data || positions.size < count * v2) return false;
+  if (positions.size == 0 && positions_f32.size == 0) return false;
+  if (positions.size != 0 && (!positions.data || positions.size < count * v2)) return false;
   if (positions_f32.size != 0 && (!positions_f32.data || positions_f32.size < count * v2)) return false;
   for (std::size_t k = 0; k < count * n; ++k)
     if (!std::isfinite(weights[k]) || !std::isfinite(shear_weights[k])) return false;
@@ -68,6 +73,23 @@ bool MorphBatchJob::Run() const {
   alignas(sizeof(Lanes)) Lanes W[64], WS[64];  // N <= 64, the format's limit
   for (std::size_t g = 0; g < count; g += kLanes) {
     const std::size_t lanes = count - g < std::size_t(kLanes) ? count - g : std::size_t(kLanes);
+    if (lanes < kMinLanes) {
+      // A group costs about four single evaluations; below that, evaluate
+      // one by one (the same arithmetic, so the same bits).
+      // Doubles go to the caller's array, or to the spare half of the workspace.
+      for (std::size_t k = g; k < count; ++k) {
+        MorphJob one;
+        one.rig = rig;
+        one.weights = {weights.data + k * N, N};
+        one.shear_weights = {shear_weights.data + k * N, N};
+        one.workspace = {workspace.data, r.morph_workspace_size()};
+        one.positions = positions.size ? Span<double>(positions.data + k * v2, v2)
+                                       : Span<double>(workspace.data + r.morph_workspace_size(), v2);
+        if (positions_f32.size) one.positions_f32 = {positions_f32.data + k * v2, v2};
+        one.Run();
+      }
+      break;
+    }
     // A short last group repeats its last character in the spare lanes.
     for (std::uint32_t i = 0; i < N; ++i)
       for (int l = 0; l < kLanes; ++l) {
@@ -76,13 +98,16 @@ bool MorphBatchJob::Run() const {
         WS[i][l] = shear_weights[ch * N + i];
       }
     RunGroup(r, W, WS, x, y);
-    for (std::size_t l = 0; l < lanes; ++l) {
-      double* out = positions.data + (g + l) * v2;
-      for (std::size_t k = 0; k < v2; ++k) out[k] = x[k][l];
-      if (positions_f32.size) {
-        float* out32 = positions_f32.data + (g + l) * v2;
-        for (std::size_t k = 0; k < v2; ++k) out32[k] = float(x[k][l]);
-      }
+    // One pass over the lanes, writing each character's array in order.
+    if (positions.size) {
+      double* out = positions.data + g * v2;
+      for (std::size_t k = 0; k < v2; ++k)
+        for (std::size_t l = 0; l < lanes; ++l) out[l * v2 + k] = x[k][l];
+    }
+    if (positions_f32.size) {
+      float* out32 = positions_f32.data + g * v2;
+      for (std::size_t k = 0; k < v2; ++k)
+        for (std::size_t l = 0; l < lanes; ++l) out32[l * v2 + k] = float(x[k][l]);
     }
   }
   return true;

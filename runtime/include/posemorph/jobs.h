@@ -56,8 +56,8 @@ struct MorphBatchJob {
   Span<const double> weights;        // count x N raw weights, character after character
   Span<const double> shear_weights;  // count x N
   Span<double> workspace;            // rig->batch_workspace_size() doubles
-  Span<double> positions;            // count x 2V
-  Span<float> positions_f32;         // optional, count x 2V
+  Span<double> positions;            // count x 2V, or empty when only floats are wanted
+  Span<float> positions_f32;         // count x 2V, or empty; at least one of the two
 
   bool Validate() const;
   bool Run() const;
