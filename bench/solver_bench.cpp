@@ -5,7 +5,9 @@
 #include <cholmod.h>
 
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <map>
 #include <thread>
 
@@ -104,13 +106,74 @@ void BM_RuntimeSolve(benchmark::State& state) {
   Label(state, c.rig);
 }
 
+struct EigenSolver {
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
+  Eigen::MatrixXd x;
+  explicit EigenSolver(const Case& c) : ldlt(c.K), x(c.rhs.rows(), 2) {}
+  void Solve(const Case& c) { x = ldlt.solve(c.rhs); }
+};
+
+struct CholmodSolver {
+  cholmod_common cm;
+  Eigen::SparseMatrix<double> upper;
+  cholmod_sparse A{};
+  cholmod_factor* L = nullptr;
+  cholmod_dense *B = nullptr, *X = nullptr, *Y = nullptr, *E = nullptr;
+  explicit CholmodSolver(const Case& c) {
+    cholmod_start(&cm);  // CHOLMOD's defaults: AMD/METIS ordering, supernodal when it pays
+    upper = c.K.triangularView<Eigen::Upper>();
+    upper.makeCompressed();
+    A.nrow = A.ncol = std::size_t(upper.rows());
+    A.nzmax = std::size_t(upper.nonZeros());
+    A.p = upper.outerIndexPtr(), A.i = upper.innerIndexPtr(), A.x = upper.valuePtr();
+    A.stype = 1;  // symmetric, upper part stored
+    A.itype = CHOLMOD_INT, A.xtype = CHOLMOD_REAL, A.dtype = CHOLMOD_DOUBLE;
+    A.sorted = 1, A.packed = 1;
+    L = cholmod_analyze(&A, &cm);
+    cholmod_factorize(&A, L, &cm);
+    B = cholmod_allocate_dense(A.nrow, 2, A.nrow, CHOLMOD_REAL, &cm);
+    std::memcpy(B->x, c.rhs.data(), sizeof(double) * 2 * A.nrow);
+  }
+  ~CholmodSolver() {
+    cholmod_free_dense(&X, &cm), cholmod_free_dense(&Y, &cm), cholmod_free_dense(&E, &cm), cholmod_free_dense(&B, &cm);
+    cholmod_free_factor(&L, &cm);
+    cholmod_finish(&cm);
+  }
+  void Solve() { cholmod_solve2(CHOLMOD_A, L, B, nullptr, &X, nullptr, &Y, &E, &cm); }  // reuses X, Y, E
+};
+
+struct RuntimeSolver {
+  std::vector<double> b, scratch, x;
+  explicit RuntimeSolver(const Case& c) : b(2 * c.rig.factor().n), scratch(b.size()), x(b.size()) {
+    for (std::size_t k = 0; k < c.rig.factor().n; ++k) b[2 * k] = c.rhs(k, 0), b[2 * k + 1] = c.rhs(k, 1);
+  }
+  void Solve(const Case& c) { detail::SolvePinned(c.rig.factor(), b.data(), scratch.data(), x.data()); }
+};
+
+struct RuntimeFrame {
+  std::vector<double> w, ws, work, x;
+  double t = 0;
+  explicit RuntimeFrame(const Rig& rig)
+      : w(rig.pose_count()), ws(rig.pose_count()), work(rig.morph_workspace_size()), x(2 * rig.vertex_count()) {}
+  void Run(const Rig& rig) {
+    WeightsJob wj;
+    wj.rig = &rig, wj.x = 0.8 * std::cos(t), wj.y = 0.8 * std::sin(t);
+    wj.raw = MakeSpan(w), wj.shear = MakeSpan(ws);
+    wj.Run();
+    MorphJob mj;
+    mj.rig = &rig, mj.weights = MakeSpan(w), mj.shear_weights = MakeSpan(ws);
+    mj.workspace = MakeSpan(work), mj.positions = MakeSpan(x);
+    mj.Run();
+    t += 0.01;
+  }
+};
+
 void BM_EigenSolve(benchmark::State& state) {
   const Case& c = GetCase(int(state.range(0)), int(state.range(1)));
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(c.K);
-  Eigen::MatrixXd x(c.rhs.rows(), 2);
+  EigenSolver solver(c);
   for (auto _ : state) {
-    x = ldlt.solve(c.rhs);
-    benchmark::DoNotOptimize(x.data());
+    solver.Solve(c);
+    benchmark::DoNotOptimize(solver.x.data());
   }
   Label(state, c.rig);
 }
@@ -132,33 +195,48 @@ void BM_EigenRefactorEveryFrame(benchmark::State& state) {
 
 void BM_CholmodSolve(benchmark::State& state) {
   const Case& c = GetCase(int(state.range(0)), int(state.range(1)));
-  cholmod_common cm;
-  cholmod_start(&cm);
-  // CHOLMOD's defaults (AMD/METIS ordering, supernodal when it pays).
-  Eigen::SparseMatrix<double> upper = c.K.triangularView<Eigen::Upper>();
-  upper.makeCompressed();
-  cholmod_sparse A{};
-  A.nrow = A.ncol = std::size_t(upper.rows());
-  A.nzmax = std::size_t(upper.nonZeros());
-  A.p = upper.outerIndexPtr();
-  A.i = upper.innerIndexPtr();
-  A.x = upper.valuePtr();
-  A.stype = 1;  // symmetric, upper part stored
-  A.itype = CHOLMOD_INT, A.xtype = CHOLMOD_REAL, A.dtype = CHOLMOD_DOUBLE;
-  A.sorted = 1, A.packed = 1;
-  cholmod_factor* L = cholmod_analyze(&A, &cm);
-  cholmod_factorize(&A, L, &cm);
-  cholmod_dense* B = cholmod_allocate_dense(A.nrow, 2, A.nrow, CHOLMOD_REAL, &cm);
-  std::memcpy(B->x, c.rhs.data(), sizeof(double) * 2 * A.nrow);
-  cholmod_dense *X = nullptr, *Y = nullptr, *E = nullptr;
+  CholmodSolver solver(c);
   for (auto _ : state) {
-    cholmod_solve2(CHOLMOD_A, L, B, nullptr, &X, nullptr, &Y, &E, &cm);  // reuses X, Y, E
-    benchmark::DoNotOptimize(X->x);
+    solver.Solve();
+    benchmark::DoNotOptimize(solver.X->x);
   }
-  state.counters["supernodal"] = L->is_super;
-  cholmod_free_dense(&X, &cm), cholmod_free_dense(&Y, &cm), cholmod_free_dense(&E, &cm), cholmod_free_dense(&B, &cm);
-  cholmod_free_factor(&L, &cm);
-  cholmod_finish(&cm);
+  state.counters["supernodal"] = solver.L->is_super;
+  state.counters["cholmod_nnz_L"] = solver.cm.lnz;
+  state.counters["cholmod_ordering"] = solver.cm.method[solver.cm.selected].ordering;
+  Label(state, c.rig);
+}
+
+// Ratios measured in pairs: each iteration times a short burst of every
+// contender back to back, and the counters are the medians of the per-burst
+// ratios, so a machine that speeds up or slows down between bursts moves
+// numerator and denominator together.
+void BM_PairedRatios(benchmark::State& state) {
+  const Case& c = GetCase(int(state.range(0)), int(state.range(1)));
+  RuntimeSolver runtime(c);
+  EigenSolver eigen(c);
+  CholmodSolver cholmod(c);
+  RuntimeFrame frame(c.rig);
+  using Clock = std::chrono::steady_clock;
+  auto burst = [](auto&& f) {
+    const auto start = Clock::now();
+    for (int k = 0; k < 8; ++k) f();
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
+  std::vector<double> vs_eigen, vs_cholmod, frame_vs_eigen;
+  for (auto _ : state) {
+    const double tr = burst([&] { runtime.Solve(c); });
+    const double te = burst([&] { eigen.Solve(c); });
+    const double tc = burst([&] { cholmod.Solve(); });
+    const double tf = burst([&] { frame.Run(c.rig); });
+    vs_eigen.push_back(tr / te), vs_cholmod.push_back(tr / tc), frame_vs_eigen.push_back(tf / te);
+  }
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  state.counters["solve_vs_eigen"] = median(vs_eigen);
+  state.counters["solve_vs_cholmod"] = median(vs_cholmod);
+  state.counters["frame_vs_eigen_solve"] = median(frame_vs_eigen);
   Label(state, c.rig);
 }
 
@@ -251,4 +329,5 @@ BENCHMARK(BM_RuntimeSolve)->Apply(SizesAndPoses);
 BENCHMARK(BM_EigenSolve)->Apply(SizesAndPoses);
 BENCHMARK(BM_CholmodSolve)->Apply(SizesAndPoses);
 BENCHMARK(BM_EigenRefactorEveryFrame)->Apply(SizesAndPoses);
+BENCHMARK(BM_PairedRatios)->Apply(SizesAndPoses)->MinTime(1.0);
 BENCHMARK(BM_Crowd)->ArgsProduct({{1, 4, 8, 64, 1000}, {1, 2}})->UseRealTime()->Unit(benchmark::kMicrosecond);

@@ -152,3 +152,15 @@ TEST_CASE("loader messages name the problem") {
   CHECK_FALSE(LoadRig(nullptr, 100, &rig, &err));
   CHECK(err.code == ErrorCode::kInvalidArgument);
 }
+
+TEST_CASE("CRC-32 matches the standard check value at every alignment and length") {
+  // The check value of CRC-32/ISO-HDLC: CRC of the ASCII digits "123456789".
+  const unsigned char digits[] = {'1', '2', '3', '4', '5', '6', '7', '8', '9'};
+  CHECK(format::Crc32(digits, 9) == 0xCBF43926u);
+  // Eight bytes at a time and one at a time agree for every split.
+  std::vector<unsigned char> bytes(100);
+  for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<unsigned char>(i * 37 + 11);
+  const std::uint32_t whole = format::Crc32(bytes.data(), bytes.size());
+  for (std::size_t cut = 0; cut <= bytes.size(); ++cut)
+    CHECK(format::Crc32(bytes.data() + cut, bytes.size() - cut, format::Crc32(bytes.data(), cut)) == whole);
+}

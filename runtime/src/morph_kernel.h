@@ -52,22 +52,22 @@ POSEMORPH_LANES_INLINE double Zero<double>() { return 0.0; }
 template <>
 POSEMORPH_LANES_INLINE Lanes Zero<Lanes>() { return Broadcast(0.0); }
 
-// s - sum_p l[p] * v[2 idx[p] + d] for d = 0, 1 over p in [begin, end), in
+// s - sum_p l[p] * v[idx2[p] + d] for d = 0, 1 over p in [begin, end), in
 // four interleaved partial sums: one running sum would chain every
 // subtraction behind the previous one's latency, which is what bounded the
 // solve (about 15 nonzeros per row).
 template <typename T>
-POSEMORPH_LANES_INLINE void GatherSubtract(const double* l, const std::uint32_t* idx, std::uint32_t begin, std::uint32_t end,
-                                           const T* v, T* sx, T* sy) {
+POSEMORPH_LANES_INLINE void GatherSubtract(const double* l, const std::uint32_t* idx2, std::uint32_t begin,
+                                           std::uint32_t end, const T* v, T* sx, T* sy) {
   T x0 = *sx, y0 = *sy, x1 = Zero<T>(), y1 = x1, x2 = x1, y2 = x1, x3 = x1, y3 = x1;
   std::uint32_t p = begin;
   for (; p + 4 <= end; p += 4) {
-    x0 -= l[p] * v[2 * idx[p]], y0 -= l[p] * v[2 * idx[p] + 1];
-    x1 -= l[p + 1] * v[2 * idx[p + 1]], y1 -= l[p + 1] * v[2 * idx[p + 1] + 1];
-    x2 -= l[p + 2] * v[2 * idx[p + 2]], y2 -= l[p + 2] * v[2 * idx[p + 2] + 1];
-    x3 -= l[p + 3] * v[2 * idx[p + 3]], y3 -= l[p + 3] * v[2 * idx[p + 3] + 1];
+    x0 -= l[p] * v[idx2[p]], y0 -= l[p] * v[idx2[p] + 1];
+    x1 -= l[p + 1] * v[idx2[p + 1]], y1 -= l[p + 1] * v[idx2[p + 1] + 1];
+    x2 -= l[p + 2] * v[idx2[p + 2]], y2 -= l[p + 2] * v[idx2[p + 2] + 1];
+    x3 -= l[p + 3] * v[idx2[p + 3]], y3 -= l[p + 3] * v[idx2[p + 3] + 1];
   }
-  for (; p < end; ++p) x0 -= l[p] * v[2 * idx[p]], y0 -= l[p] * v[2 * idx[p] + 1];
+  for (; p < end; ++p) x0 -= l[p] * v[idx2[p]], y0 -= l[p] * v[idx2[p] + 1];
   *sx = (x0 + x1) + (x2 + x3);
   *sy = (y0 + y1) + (y2 + y3);
 }
@@ -83,12 +83,12 @@ POSEMORPH_LANES_INLINE void SolvePinnedKernel(const Factor& f, const T* bf, T* y
   const std::uint32_t* order = f.order.data;
   for (std::uint32_t i = 0; i < n; ++i) {
     T sx = bf[2 * order[i]], sy = bf[2 * order[i] + 1];
-    GatherSubtract(f.row_value.data, f.row_col.data, f.row_start[i], f.row_start[i + 1], y, &sx, &sy);
+    GatherSubtract(f.row_value.data, f.row_col2.data, f.row_start[i], f.row_start[i + 1], y, &sx, &sy);
     y[2 * i] = sx, y[2 * i + 1] = sy;
   }
   for (std::uint32_t j = n; j-- > 0;) {
     T sx = y[2 * j] * f.inv_diagonal[j], sy = y[2 * j + 1] * f.inv_diagonal[j];
-    GatherSubtract(f.value.data, f.row.data, f.col_start[j], f.col_start[j + 1], y, &sx, &sy);
+    GatherSubtract(f.value.data, f.col_row2.data, f.col_start[j], f.col_start[j + 1], y, &sx, &sy);
     y[2 * j] = sx, y[2 * j + 1] = sy;
     xf[2 * order[j]] = sx, xf[2 * order[j] + 1] = sy;
   }

@@ -42,11 +42,13 @@ struct Factor {
   Span<const std::uint32_t> row;        // nnz
   Span<const double> value;             // nnz
   Span<const double> inv_diagonal;      // n, 1 / D
-  // The same strict lower triangle by rows, built at load, so that the
-  // forward solve gathers instead of scattering.
-  Span<const std::uint32_t> row_start;  // n + 1
-  Span<const std::uint32_t> row_col;    // nnz
-  Span<const double> row_value;         // nnz
+  // Built at load for the two gather loops of the solve: the strict lower
+  // triangle by rows (forward), and indices pre-doubled to address the
+  // interleaved x, y pairs directly.
+  Span<const std::uint32_t> row_start;   // n + 1
+  Span<const std::uint32_t> row_col2;    // nnz: 2 x column, row by row
+  Span<const double> row_value;          // nnz
+  Span<const std::uint32_t> col_row2;    // nnz: 2 x row, column by column (as `row`)
 };
 
 struct LoadOptions {
