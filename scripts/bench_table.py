@@ -9,16 +9,20 @@ def main(path):
         data = json.load(f)
     median = {}
     label = {}
+    paired = {}
     for b in data["benchmarks"]:
         if b.get("aggregate_name") != "median":
             continue
-        name = b["run_name"]
+        name = re.sub(r"/min_time:[0-9.]+", "", b["run_name"])
+        if name.startswith("BM_PairedRatios/"):
+            paired[name[len("BM_PairedRatios"):]] = b
         median[name] = b["real_time"] * {"ns": 1e-3, "us": 1, "ms": 1e3}[b["time_unit"]]  # microseconds
         label[name] = b.get("label", "")
     ctx = data["context"]
     print(f"{ctx.get('num_cpus')} x {ctx.get('mhz_per_cpu')} MHz, {ctx.get('date')}; medians of "
           f"{data['benchmarks'][0].get('repetitions', '?')} interleaved repetitions, microseconds\n")
 
+    print("Times are medians; the last three columns are medians of ratios measured in back-to-back bursts (BM_PairedRatios).\n")
     print("| vertices | N | nnz(L) | frame | solve | Eigen solve | CHOLMOD solve | refactor+solve | solve/Eigen | solve/CHOLMOD | frame/Eigen solve |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for size in range(4):
@@ -29,8 +33,11 @@ def main(path):
                 continue
             frame, solve, eigen, cholmod, refactor = (median[n + key] for n in need)
             m = re.search(r"V=(\d+) N=(\d+) nnz\(L\)=(\d+)", label["BM_RuntimeSolve" + key])
+            p = paired.get(key)
+            ratios = (f"{p['solve_vs_eigen']:.2f} | {p['solve_vs_cholmod']:.2f} | {p['frame_vs_eigen_solve']:.2f}" if p else
+                      f"{solve / eigen:.2f} | {solve / cholmod:.2f} | {frame / eigen:.2f}")
             print(f"| {m.group(1)} | {m.group(2)} | {m.group(3)} | {frame:.1f} | {solve:.1f} | {eigen:.1f} | {cholmod:.1f} | "
-                  f"{refactor:.0f} | {solve / eigen:.2f} | {solve / cholmod:.2f} | {frame / eigen:.2f} |")
+                  f"{refactor:.0f} | {ratios} |")
 
     print("\nCrowds of one rig (the 1035-vertex, N = 8 plate), weights + batched morph per frame:\n")
     print("| characters | threads | frame | per character |")

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <fstream>
 #include <set>
@@ -11,6 +12,7 @@
 #include "posemorph/bake/error.h"
 #include "posemorph/path.h"
 #include "posemorph/rig.h"
+#include "posemorph/rig_format.h"
 #include "preview.h"
 
 namespace posemorph::bake {
@@ -169,6 +171,17 @@ int Info(const std::vector<std::string>& a, std::size_t from, std::ostream& out)
       << "  weight grid: " << g.cells_x << " x " << g.cells_y << " cells of " << g.cell << ", origin (" << g.origin_x
       << ", " << g.origin_y << ")\n"
       << "  rig size " << rig.size() << ", default sigma " << rig.default_sigma() << "\n";
+  // Where the bytes go (the loader has validated the table already).
+  std::uint32_t sections = 0;
+  std::memcpy(&sections, bytes.data() + format::kOffSectionCount, 4);
+  out << "  sections:";
+  for (std::uint32_t s = 0; s < sections; ++s) {
+    const unsigned char* e = bytes.data() + format::kHeaderSize + std::size_t(s) * format::kSectionEntrySize;
+    std::uint64_t size = 0;
+    std::memcpy(&size, e + 16, 8);
+    out << ' ' << std::string(reinterpret_cast<const char*>(e), 4) << ' ' << size;
+  }
+  out << "\n";
   for (std::uint32_t i = 0; i < N; ++i) {
     out << "  pose " << i << " '" << std::string(rig.pose_name(i).data, rig.pose_name(i).size) << "' at ("
         << rig.pose_points()[2 * i] << ", " << rig.pose_points()[2 * i + 1] << ")";
