@@ -74,38 +74,6 @@ void Label(benchmark::State& state, const Rig& rig) {
                  " nnz(L)=" + std::to_string(rig.factor().value.size + rig.factor().n));
 }
 
-void BM_RuntimeFrame(benchmark::State& state) {
-  const Rig& rig = GetCase(int(state.range(0)), int(state.range(1))).rig;
-  const std::uint32_t N = rig.pose_count();
-  std::vector<double> w(N), ws(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
-  double t = 0;
-  for (auto _ : state) {
-    WeightsJob wj;
-    wj.rig = &rig, wj.x = 0.8 * std::cos(t), wj.y = 0.8 * std::sin(t);
-    wj.raw = MakeSpan(w), wj.shear = MakeSpan(ws);
-    wj.Run();
-    MorphJob mj;
-    mj.rig = &rig, mj.weights = MakeSpan(w), mj.shear_weights = MakeSpan(ws);
-    mj.workspace = MakeSpan(work), mj.positions = MakeSpan(x);
-    mj.Run();
-    benchmark::DoNotOptimize(x.data());
-    t += 0.01;
-  }
-  Label(state, rig);
-}
-
-void BM_RuntimeSolve(benchmark::State& state) {
-  const Case& c = GetCase(int(state.range(0)), int(state.range(1)));
-  const std::size_t n = c.rig.factor().n;
-  std::vector<double> b(2 * n), scratch(2 * n), x(2 * n);
-  for (std::size_t k = 0; k < n; ++k) b[2 * k] = c.rhs(k, 0), b[2 * k + 1] = c.rhs(k, 1);
-  for (auto _ : state) {
-    detail::SolvePinned(c.rig.factor(), b.data(), scratch.data(), x.data());
-    benchmark::DoNotOptimize(x.data());
-  }
-  Label(state, c.rig);
-}
-
 struct EigenSolver {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt;
   Eigen::MatrixXd x;
@@ -167,6 +135,26 @@ struct RuntimeFrame {
     t += 0.01;
   }
 };
+
+void BM_RuntimeFrame(benchmark::State& state) {
+  const Rig& rig = GetCase(int(state.range(0)), int(state.range(1))).rig;
+  RuntimeFrame frame(rig);
+  for (auto _ : state) {
+    frame.Run(rig);
+    benchmark::DoNotOptimize(frame.x.data());
+  }
+  Label(state, rig);
+}
+
+void BM_RuntimeSolve(benchmark::State& state) {
+  const Case& c = GetCase(int(state.range(0)), int(state.range(1)));
+  RuntimeSolver solver(c);
+  for (auto _ : state) {
+    solver.Solve(c);
+    benchmark::DoNotOptimize(solver.x.data());
+  }
+  Label(state, c.rig);
+}
 
 void BM_EigenSolve(benchmark::State& state) {
   const Case& c = GetCase(int(state.range(0)), int(state.range(1)));
