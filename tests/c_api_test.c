@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "posemorph/posemorph.h"
 
@@ -52,6 +53,26 @@ int main(int argc, char** argv) {
     double worst = 0;
     for (uint32_t k = 0; k < 2 * info.vertex_count; ++k) worst = fmax(worst, fabs(x[k] - q[k]));
     EXPECT(worst <= 1e-9 * info.size);
+  }
+  /* A batch of all poses at once gives what pm_morph gave, bit for bit. */
+  {
+    const size_t n = info.pose_count, v2 = 2 * (size_t)info.vertex_count;
+    double* bw = calloc(n * n, sizeof(double));
+    double* bws = calloc(n * n, sizeof(double));
+    double* bwork = calloc(pm_batch_workspace_size(rig), sizeof(double));
+    double* bx = calloc(n * v2, sizeof(double));
+    for (uint32_t i = 0; i < info.pose_count; ++i) {
+      double px, py;
+      pm_rig_pose_point(rig, i, &px, &py);
+      pm_weights(rig, px, py, 0, 1, bw + i * n, bws + i * n, NULL);
+    }
+    EXPECT(pm_morph_batch(rig, n, bw, bws, bwork, bx, NULL) == PM_OK);
+    for (uint32_t i = 0; i < info.pose_count; ++i) {
+      EXPECT(pm_morph(rig, bw + i * n, bws + i * n, 0, work, x, NULL) == PM_OK);
+      EXPECT(memcmp(x, bx + i * v2, v2 * sizeof(double)) == 0);
+    }
+    EXPECT(pm_morph_batch(rig, n, bw, bws, bwork, NULL, NULL) == PM_ERROR_INVALID_ARGUMENT);
+    free(bw), free(bws), free(bwork), free(bx);
   }
   EXPECT(pm_path_find(rig, "no such path") == -1);
   if (info.path_count > 0) {

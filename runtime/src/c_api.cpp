@@ -97,6 +97,25 @@ int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weigh
   return job.Run() ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
 }
 
+size_t pm_batch_workspace_size(const pm_rig* rig) { return rig ? rig->rig.batch_workspace_size() : 0; }
+
+int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const double* shear_weights,
+                   double* workspace, double* positions, float* positions_f32) {
+  if (!rig) return PM_ERROR_INVALID_ARGUMENT;
+  const posemorph::Rig& r = rig->rig;
+  const std::size_t n = r.pose_count(), v2 = 2 * std::size_t(r.vertex_count());
+  if (count > (std::size_t(-1) / 2) / (v2 + n)) return PM_ERROR_INVALID_ARGUMENT;
+  posemorph::MorphBatchJob job;
+  job.rig = &r;
+  job.count = count;
+  job.weights = {weights, weights ? count * n : 0};
+  job.shear_weights = {shear_weights, shear_weights ? count * n : 0};
+  job.workspace = {workspace, workspace ? r.batch_workspace_size() : 0};
+  job.positions = {positions, positions ? count * v2 : 0};
+  job.positions_f32 = {positions_f32, positions_f32 ? count * v2 : 0};
+  return job.Run() ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
+}
+
 int pm_path_find(const pm_rig* rig, const char* name) { return rig ? rig->rig.FindPath(name) : -1; }
 
 int pm_path_sample(const pm_rig* rig, uint32_t path, double time, double* x, double* y) {

@@ -63,6 +63,15 @@ size_t pm_morph_workspace_size(const pm_rig* rig);
 int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weights, int linear,
              double* workspace, double* positions, float* positions_f32);
 
+/* Many characters sharing one rig: `count` sets of pose_count weights (raw,
+ * and shear-limited) in, `count` position arrays out (either may be NULL,
+ * not both). Equal to pm_morph per character, bit for bit. To use several
+ * threads, call it per thread on disjoint ranges, each with its own
+ * workspace of pm_batch_workspace_size() doubles. */
+size_t pm_batch_workspace_size(const pm_rig* rig);
+int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const double* shear_weights,
+                   double* workspace, double* positions, float* positions_f32);
+
 /* Index of the named path or -1; point on a path at a time in seconds. */
 int pm_path_find(const pm_rig* rig, const char* name);
 int pm_path_sample(const pm_rig* rig, uint32_t path, double time, double* x, double* y);
