@@ -41,7 +41,8 @@ typedef struct pm_rig_info {
   double size; /* bounding-box diagonal of pose 0 */
 } pm_rig_info;
 
-/* Validates the bytes (which the caller keeps) and makes a rig. err may be NULL. */
+/* Validates the bytes and makes a rig, copying what it needs into one
+ * allocation: the caller may free the bytes afterwards. err may be NULL. */
 int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err);
 void pm_rig_free(pm_rig* rig);
 void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info);
