@@ -33,8 +33,9 @@ void Linear(const Rig& rig, const double* w, double* x) {
   }
 }
 
-// Triangles go through the blend one by one and through sin/cos and A in
-// blocks of kLanes, the same per-element operations the batch performs.
+// Triangles go through the blend, sin/cos and A in blocks of kLanes (lane j
+// is triangle t0 + j) and into the right-hand side one by one: per element
+// the operations the batch performs with a character in each lane.
 __attribute__((target_clones("avx512f", "avx2", "default")))
 void Rigid(const Rig& rig, const double* w, const double* ws, double* work, double* x) {
   using detail::kLanes;
