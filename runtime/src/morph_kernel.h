@@ -4,6 +4,7 @@
 // results equal single ones bit for bit.
 #pragma once
 #include <cstdint>
+#include <cstring>
 
 #include "posemorph/rig.h"
 #include "simd.h"
@@ -70,6 +71,22 @@ POSEMORPH_LANES_INLINE void GatherSubtract(const double* l, const std::uint32_t*
   for (; p < end; ++p) x0 -= l[p] * v[idx2[p]], y0 -= l[p] * v[idx2[p] + 1];
   *sx = (x0 + x1) + (x2 + x3);
   *sy = (y0 + y1) + (y2 + y3);
+}
+
+// One character: the x and y rows as the two lanes of a pair, the same
+// per-lane operations as the generic version.
+template <>
+POSEMORPH_LANES_INLINE void AddToRhs<double>(const std::uint32_t* tri, const double* grad, double a11, double a12,
+                                             double a21, double a22, double* b) {
+  typedef double Pair __attribute__((vector_size(16)));
+  const Pair c0 = {a11, a21}, c1 = {a12, a22};
+  for (int k = 0; k < 3; ++k) {
+    const Pair g0 = {grad[2 * k], grad[2 * k]}, g1 = {grad[2 * k + 1], grad[2 * k + 1]};
+    Pair v;
+    std::memcpy(&v, b + 2 * tri[k], sizeof(v));
+    v += g0 * c0 + g1 * c1;
+    std::memcpy(b + 2 * tri[k], &v, sizeof(v));
+  }
 }
 
 // K x = b for the n free unknowns (unknown k is vertex k + 1), both
