@@ -4,7 +4,6 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
-#include <map>
 
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/triangle_math.h"

@@ -1,7 +1,6 @@
 // Everything the math needs from the input, checked before any of it runs.
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <numeric>
 #include <set>
 #include <sstream>
