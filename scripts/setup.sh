@@ -10,6 +10,8 @@ packages=(
   doctest-dev               # tests
   libbenchmark-dev          # bench: the benchmark suite
   libsuitesparse-dev        # bench: CHOLMOD, the solver the runtime is measured against
+  libpng-dev                # bake: reading drawings (PNG alpha)
+  libtinyxml2-dev           # bake: reading SVG outlines (XML)
   librsvg2-bin              # demo: contact sheet SVG -> PNG (rsvg-convert)
 )
 

@@ -10,6 +10,7 @@
 namespace posemorph::bake {
 
 void ResolveDeformedPoses(RigDescription& rig) {
+  MapDrawings(rig);
   const std::size_t N = rig.poses.size();
   auto label = [&](std::size_t i) { return "pose '" + rig.poses[i].name + "' (index " + std::to_string(i) + ")"; };
   auto fail = [&](std::size_t i, const std::string& problem) { throw BakeError(rig.file, label(i) + ": " + problem); };

@@ -114,9 +114,25 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
     pose.name = jp.contains("name") ? r.String(jp["name"], w + ".name") : "pose" + std::to_string(i);
     if (!jp.contains("point")) r.Fail(w, "missing \"point\" (its place in pose space)");
     pose.point = r.Point(jp["point"], w + ".point");
-    if (int(jp.contains("vertices")) + int(jp.contains("mesh")) + int(jp.contains("deform")) != 1)
-      r.Fail(w, "give exactly one of \"vertices\", \"mesh\" (a mesh file) or \"deform\"");
-    if (jp.contains("deform")) {
+    if (int(jp.contains("vertices")) + int(jp.contains("mesh")) + int(jp.contains("deform")) +
+            int(jp.contains("drawing")) + int(jp.contains("outline")) != 1)
+      r.Fail(w, "give exactly one of \"vertices\", \"mesh\" (a mesh file), \"deform\", \"drawing\" (PNG or SVG) "
+                "or \"outline\"");
+    if (jp.contains("drawing") || jp.contains("outline")) {
+      pose.drawn = true;
+      if (jp.contains("drawing")) {
+        pose.drawing = r.String(jp["drawing"], w + ".drawing");
+        pose.drawing_path = (std::filesystem::path(base_dir) / pose.drawing).string();
+      } else {
+        pose.outline = r.Points(r.Array(jp, "outline", w), w + ".outline");
+        if (pose.outline.size() < 3) r.Fail(w + ".outline", "needs at least 3 points");
+      }
+      if (!jp.contains("landmarks"))
+        r.Fail(w, "missing \"landmarks\": [[x, y], ...] on the outline; the first is the start point every pose shares");
+      pose.landmarks = r.Points(r.Array(jp, "landmarks", w), w + ".landmarks");
+      if (pose.landmarks.empty()) r.Fail(w + ".landmarks", "needs at least the start point");
+      if (jp.contains("uvs")) r.Fail(w + ".uvs", "a drawn pose gets its uvs from its drawing; remove them");
+    } else if (jp.contains("deform")) {
       const json& jd = jp["deform"];
       const std::string wd = w + ".deform";
       if (!jd.is_object()) r.Fail(wd, "expected {\"from\": POSE, \"handles\": [...]}");
@@ -161,7 +177,31 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
     }
     rig.poses.push_back(std::move(pose));
   }
-  if (!have_triangles) r.Fail("triangles", "missing: give \"triangles\" or a mesh file that has them");
+  bool any_drawn = false, all_meshed = true;
+  for (const PoseDescription& p : rig.poses) any_drawn |= p.drawn, all_meshed &= p.drawn || p.deformed;
+  if (any_drawn && have_triangles)
+    r.Fail("triangles", "drawn poses get their triangles from the mapping; remove \"triangles\" and mesh files");
+  if (any_drawn && !all_meshed)
+    r.Fail("poses", "when one pose is drawn, every pose must be drawn (\"drawing\" or \"outline\") or deformed");
+  if (!have_triangles && !any_drawn) r.Fail("triangles", "missing: give \"triangles\" or a mesh file that has them");
+
+  if (root.contains("mapping")) {
+    const json& m = root["mapping"];
+    if (!m.is_object()) r.Fail("mapping", "expected an object");
+    MappingParameters& p = rig.mapping;
+    auto number = [&](const char* key, double& v, double lo, double hi, const char* range) {
+      if (!m.contains(key)) return;
+      v = r.Number(m[key], std::string("mapping.") + key);
+      if (!(v >= lo && v <= hi)) r.Fail(std::string("mapping.") + key, std::string("must be in ") + range);
+    };
+    number("simplify_tolerance", p.simplify_tolerance, 0, 1e6, "[0, 1e6]");
+    number("max_edge_length", p.max_edge_length, 0, 1e9, "[0, 1e9] (0: automatic)");
+    number("min_angle", p.min_angle, 0, 35, "[0, 35] degrees");
+    number("alpha_threshold", p.alpha_threshold, 1.0 / 255, 1, "[1/255, 1]");
+    number("curve_tolerance", p.curve_tolerance, 1e-6, 1e6, "[1e-6, 1e6]");
+    number("spacing", p.spacing, 1e-6, 1e9, "[1e-6, 1e9]");
+    number("landmark_distance", p.landmark_distance, 0, 1, "[0, 1]");
+  }
 
   if (root.contains("bake")) {
     const json& b = root["bake"];

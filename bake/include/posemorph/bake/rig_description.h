@@ -35,6 +35,37 @@ struct PoseDescription {
   std::vector<Eigen::Vector2f> uvs;       // empty, or one per vertex
   bool deformed = false;                  // vertices come from `deform` (ResolveDeformedPoses)
   DeformDescription deform;
+  // A drawn pose: its mesh comes from N-way mapping (MapDrawings).
+  bool drawn = false;
+  std::string drawing;                      // PNG or SVG as written; empty for an outline
+  std::string drawing_path;                 // resolved against the description's folder
+  std::vector<Eigen::Vector2d> outline;     // given directly (rig coordinates, y up)
+  std::vector<Eigen::Vector2d> landmarks;   // corresponding boundary points; the first is the start point
+};
+
+// How drawings become meshes (bake/RIG_DESCRIPTION.md, "mapping").
+struct MappingParameters {
+  double simplify_tolerance = 2.0;  // drawing units (pixels): how far the polygon may stray from the outline
+  double max_edge_length = 0;       // drawing units; 0: a tenth of pose 0's bounding-box diagonal
+  double min_angle = 20;            // degrees: refinement splits triangles below it (bounded rounds)
+  double alpha_threshold = 0.5;     // PNG: alpha at or above this is the shape
+  double curve_tolerance = 0.25;    // SVG: curve flattening, drawing units
+  double spacing = 1.0;             // drawing units between matched boundary samples
+  double landmark_distance = 0.05;  // a landmark may lie this far off its outline, times the outline's size
+};
+
+// What mapping made, for the bake report and the closing figures.
+struct MappingReport {
+  bool mapped = false;
+  std::vector<std::size_t> outline_vertices;  // per drawn pose, as extracted
+  std::size_t matched_vertices = 0;           // corresponding boundary points before simplification
+  std::size_t boundary_vertices = 0;          // after simplification
+  std::size_t steiner_points = 0;             // interior points the compatible triangulation added
+  std::size_t vertices = 0, triangles = 0;    // after refinement
+  double min_angle_degrees = 0;               // over all triangles and drawn poses
+  double simplification_error = 0;            // drawing units
+  double seconds = 0;
+  std::vector<std::string> warnings;          // e.g. specks dropped from a drawing
 };
 
 struct PathDescription {
@@ -59,7 +90,9 @@ struct RigDescription {
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<PoseDescription> poses;
   BakeParameters parameters;
+  MappingParameters mapping;
   std::vector<PathDescription> paths;
+  MappingReport mapping_report;  // filled by MapDrawings
 };
 
 // Reads and parses a description; relative mesh paths resolve against its
@@ -68,7 +101,14 @@ RigDescription ReadRigDescription(const std::string& path);
 RigDescription ParseRigDescription(const std::string& json_text, const std::string& file,
                                    const std::string& base_dir);
 
-// Computes the vertices of every pose made by deformation (in dependency
+// Turns drawn poses (a drawing or an outline, with landmarks) into compatible
+// meshes: outlines, boundary matching, enclosing simplification, compatible
+// triangulation and refinement (bake/src/mapping/). Fills the triangles, each
+// drawn pose's vertices, image and uvs, and rig.mapping_report. Does nothing
+// when no pose is drawn. Throws BakeError naming the pose and the problem.
+void MapDrawings(RigDescription& rig);
+
+// Maps drawings first (MapDrawings), then computes the vertices of every pose made by deformation (in dependency
 // order), copying its source's drawing and uvs. Throws BakeError naming the
 // pose and the problem: unknown or cyclic source, fewer than 2 handles, a
 // handle off the mesh, coinciding handles, a triangle the deformation flips.

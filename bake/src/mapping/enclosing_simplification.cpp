@@ -1,0 +1,292 @@
+// Compatible enclosing simplification (paper section 3.1; Baxter et al.
+// 2009). Starts from the M corresponding points, pushed just outward so each
+// polygon encloses its outline, then removes the N-tuple whose removal costs
+// least (maximum over poses) until that cost exceeds the tolerance. Removing
+// vertex j joins its neighbours a and b; where the outline between them bulges
+// past the chord, a and b slide outward along their other edges until the
+// chord clears it, so those edges keep their lines and the outline stays
+// inside. Every step is checked exactly on the integer grid: the new edges
+// keep the outline on their inner side, cross neither the outline nor the
+// rest of the polygon.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+#include "geometry.h"
+#include "posemorph/bake/error.h"
+
+namespace posemorph::bake::mapping {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+struct PoseState {
+  const Polygon* outline = nullptr;
+  std::vector<double> cumulative;  // arc length at each outline vertex (size n + 1)
+  double perimeter = 0;
+  std::vector<double> at;          // per corresponding point, unwrapped arc length
+  Polygon pos;                     // current vertex positions (grid)
+
+  // Outline vertex indices strictly between arc lengths s0 < s1 (s1 may wrap past the perimeter).
+  template <typename F>
+  void ForSpan(double s0, double s1, F&& f) const {
+    const std::size_t n = outline->size();
+    double len = std::fmod(s1 - s0, perimeter);
+    if (len <= 0) len += perimeter;
+    s0 = std::fmod(s0, perimeter);
+    if (s0 < 0) s0 += perimeter;
+    const double end = s0 + len;
+    std::size_t i = std::upper_bound(cumulative.begin(), cumulative.end() - 1, s0) - cumulative.begin();
+    double base = 0;
+    for (std::size_t steps = 0; steps < n; ++steps, ++i) {
+      if (i >= n) i -= n, base += perimeter;
+      if (base + cumulative[i] >= end) break;
+      f(i);
+    }
+  }
+};
+
+// Signed distance of q outside the directed line a->b (positive: to the right, outside).
+double Outside(const Point& a, const Point& b, const Point& q) {
+  const Point d = b - a;
+  const double len = d.norm();
+  return len > 0 ? -(d.x() * (q - a).y() - d.y() * (q - a).x()) / len : (q - a).norm();
+}
+
+// Where the line through p0 -> p1 meets the line {x : n.(x - c) = 0}; false if parallel or behind p0.
+bool HitLine(const Point& p0, const Point& p1, const Point& c, const Point& n, Point& hit) {
+  const Point d = p1 - p0;
+  const double denom = n.dot(d);
+  if (std::abs(denom) < 1e-12 * d.norm()) return false;
+  const double s = n.dot(c - p0) / denom;
+  if (!(s > 0.05)) return false;
+  hit = p0 + s * d;
+  return std::abs(hit.x()) < kGridLimit / 2 && std::abs(hit.y()) < kGridLimit / 2;
+}
+
+struct Linked {
+  std::vector<std::size_t> prev, next;
+  std::vector<bool> alive;
+};
+
+// Does the segment (p, q) meet any alive polygon edge other than those at
+// its own vertices u, v (indices), or fold back onto its neighbours?
+bool HitsPolygon(const PoseState& st, const Linked& L, std::size_t u, std::size_t v, const Point& p,
+                 const Point& q, std::size_t start) {
+  const Point lo = p.cwiseMin(q), hi = p.cwiseMax(q);
+  std::size_t e = start;
+  do {
+    const std::size_t f = L.next[e];
+    const Point &c = st.pos[e], &d = st.pos[f];
+    if (!(std::max(c.x(), d.x()) < lo.x() || std::min(c.x(), d.x()) > hi.x() || std::max(c.y(), d.y()) < lo.y() ||
+          std::min(c.y(), d.y()) > hi.y())) {
+      const bool shares_u = e == u || f == u, shares_v = e == v || f == v;
+      if (shares_u && shares_v) {
+        // the same edge (or the reverse of a 2-gon): skip
+      } else if (shares_u || shares_v) {
+        const Point& shared = shares_u ? p : q;
+        const Point& mine = shares_u ? q : p;
+        const Point& theirs = (e == u || e == v) ? d : c;
+        if (Cross(shared, mine, theirs) == 0 && (mine - shared).dot(theirs - shared) > 0) return true;
+      } else if (SegmentsMeet(p, q, c, d)) {
+        return true;
+      }
+    }
+    e = f;
+  } while (e != start);
+  return false;
+}
+
+bool CrossesOutline(const Polygon& outline, const Point& p, const Point& q) {
+  const Point lo = p.cwiseMin(q), hi = p.cwiseMax(q);
+  for (std::size_t i = 0, n = outline.size(); i < n; ++i) {
+    const Point &c = outline[i], &d = outline[(i + 1) % n];
+    if (std::max(c.x(), d.x()) < lo.x() || std::min(c.x(), d.x()) > hi.x() || std::max(c.y(), d.y()) < lo.y() ||
+        std::min(c.y(), d.y()) > hi.y())
+      continue;
+    if (ProperlyCross(p, q, c, d)) return true;
+  }
+  return false;
+}
+
+// Every outline vertex between the edge's ends is on its inner side (or on it).
+bool SpanInside(const PoseState& st, std::size_t a, std::size_t b, const Point& pa, const Point& pb) {
+  bool ok = true;
+  st.ForSpan(st.at[a], st.at[b], [&](std::size_t k) {
+    if (ok && Cross(pa, pb, (*st.outline)[k]) < 0) ok = false;
+  });
+  return ok;
+}
+
+double SpanOutside(const PoseState& st, std::size_t a, std::size_t b, const Point& pa, const Point& pb) {
+  double worst = -kInf;
+  st.ForSpan(st.at[a], st.at[b], [&](std::size_t k) { worst = std::max(worst, Outside(pa, pb, (*st.outline)[k])); });
+  return worst;
+}
+
+double SpanDistance(const PoseState& st, std::size_t a, std::size_t b, const Point& pa, const Point& pb) {
+  double worst = 0;
+  st.ForSpan(st.at[a], st.at[b], [&](std::size_t k) { worst = std::max(worst, -Outside(pa, pb, (*st.outline)[k])); });
+  return worst;
+}
+
+struct Candidate {
+  double error = kInf;
+  std::vector<Point> a, b;  // per pose, new positions of the two neighbours
+};
+
+}  // namespace
+
+SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const CorrespondedBoundary& boundary,
+                                     double tolerance) {
+  const std::size_t N = outlines.size(), M = boundary.points[0].size();
+  std::vector<PoseState> st(N);
+  std::vector<bool> landmark(M, false);
+  for (std::size_t k : boundary.landmarks) landmark[k] = true;
+
+  // 1. The corresponding points, each edge pushed out just past its span.
+  for (std::size_t i = 0; i < N; ++i) {
+    PoseState& s = st[i];
+    s.outline = &outlines[i];
+    s.cumulative.assign(outlines[i].size() + 1, 0);
+    for (std::size_t k = 0; k < outlines[i].size(); ++k)
+      s.cumulative[k + 1] = s.cumulative[k] + (outlines[i][(k + 1) % outlines[i].size()] - outlines[i][k]).norm();
+    s.perimeter = s.cumulative.back();
+    s.at = boundary.at[i];
+    const Polygon& q = boundary.points[i];
+    std::vector<double> offset(M, 0);
+    for (std::size_t e = 0; e < M; ++e) {
+      const std::size_t f = (e + 1) % M;
+      offset[e] = std::max(0.0, SpanOutside(s, e, f, q[e], q[f])) + 2.0;
+    }
+    for (int attempt = 0;; ++attempt) {
+      s.pos.assign(M, Point::Zero());
+      for (std::size_t k = 0; k < M; ++k) {
+        const std::size_t e0 = (k + M - 1) % M, e1 = k;
+        // Along the vertex's bisecting normal, far enough for both edges
+        // (a capped miter: sharp turns move at most ~3x the offset, never flip an edge).
+        const Point d0 = (q[k] - q[e0]).normalized(), d1 = (q[(k + 1) % M] - q[k]).normalized();
+        const Point n0(d0.y(), -d0.x()), n1(d1.y(), -d1.x());  // outward normals
+        Point nb = n0 + n1;
+        nb = nb.norm() > 1e-6 ? Point(nb.normalized()) : n1;
+        const double need = std::max(offset[e0] / std::max(0.3, nb.dot(n0)), offset[e1] / std::max(0.3, nb.dot(n1)));
+        const Point x = need * nb;
+        s.pos[k] = Snap(q[k] + x);
+      }
+      bool all_ok = true;
+      for (std::size_t e = 0; e < M; ++e) {
+        const std::size_t f = (e + 1) % M;
+        if (!SpanInside(s, e, f, s.pos[e], s.pos[f]) || CrossesOutline(outlines[i], s.pos[e], s.pos[f])) {
+          offset[e] = offset[e] * 1.5 + 2.0;
+          all_ok = false;
+        }
+      }
+      if (all_ok && IsSimplePolygon(s.pos)) break;
+      if (attempt == 30) throw BakeError("", "pose " + std::to_string(i) + ": cannot build a polygon enclosing the outline");
+    }
+  }
+
+  // 2. Greedy removal.
+  Linked L;
+  L.prev.resize(M), L.next.resize(M), L.alive.assign(M, true);
+  for (std::size_t k = 0; k < M; ++k) L.prev[k] = (k + M - 1) % M, L.next[k] = (k + 1) % M;
+  std::size_t alive = M;
+  std::vector<std::uint32_t> version(M, 0);
+
+  auto evaluate = [&](std::size_t j) {
+    Candidate c;
+    if (landmark[j] || alive <= std::max<std::size_t>(4, boundary.landmarks.size() + 2)) return c;
+    const std::size_t a = L.prev[j], b = L.next[j], pa = L.prev[a], nb = L.next[b];
+    c.a.resize(N), c.b.resize(N);
+    double error = 0;
+    for (std::size_t i = 0; i < N; ++i) {
+      const PoseState& s = st[i];
+      Point A = s.pos[a], B = s.pos[b];
+      double out = SpanOutside(s, a, b, A, B);
+      if (out > -0.5) {  // the outline reaches the chord: move it out, with a margin of a few grid units
+        const Point d = (B - A).normalized();
+        const Point n(d.y(), -d.x());
+        const Point c0 = A + (std::max(out, 0.0) + 2.0) * n;
+        if (!HitLine(s.pos[pa], A, c0, n, A) || !HitLine(s.pos[nb], B, c0, n, B)) return Candidate{};
+        A = Snap(A), B = Snap(B);
+      }
+      error = std::max({error, SpanDistance(s, a, b, A, B), (A - s.pos[a]).norm(), (B - s.pos[b]).norm()});
+      c.a[i] = A, c.b[i] = B;
+    }
+    c.error = error;
+    return c;
+  };
+
+  auto valid = [&](std::size_t j, const Candidate& c) {
+    const std::size_t a = L.prev[j], b = L.next[j], pa = L.prev[a], nb = L.next[b];
+    for (std::size_t i = 0; i < N; ++i) {
+      PoseState& s = st[i];
+      const Point A = c.a[i], B = c.b[i];
+      if (!SpanInside(s, a, b, A, B)) return false;
+      const bool moved_a = A != s.pos[a], moved_b = B != s.pos[b];
+      if (moved_a && !SpanInside(s, pa, a, s.pos[pa], A)) return false;
+      if (moved_b && !SpanInside(s, b, nb, B, s.pos[nb])) return false;
+      if (CrossesOutline(*s.outline, A, B) || (moved_a && CrossesOutline(*s.outline, s.pos[pa], A)) ||
+          (moved_b && CrossesOutline(*s.outline, B, s.pos[nb])))
+        return false;
+      // Test the new edges against the polygon as it would be.
+      const Point old_a = s.pos[a], old_b = s.pos[b];
+      s.pos[a] = A, s.pos[b] = B;
+      L.next[a] = b, L.prev[b] = a;
+      const bool hit = HitsPolygon(s, L, a, b, A, B, a) || (moved_a && HitsPolygon(s, L, pa, a, s.pos[pa], A, a)) ||
+                       (moved_b && HitsPolygon(s, L, b, nb, B, s.pos[nb], a));
+      L.next[a] = j, L.prev[b] = j;
+      s.pos[a] = old_a, s.pos[b] = old_b;
+      if (hit) return false;
+    }
+    return true;
+  };
+
+  using Entry = std::tuple<double, std::size_t, std::uint32_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (std::size_t j = 0; j < M; ++j) {
+    const double e = evaluate(j).error;
+    if (e <= tolerance) queue.emplace(e, j, version[j]);
+  }
+  double max_error = 0;
+  while (!queue.empty()) {
+    const auto [e, j, v] = queue.top();
+    queue.pop();
+    if (!L.alive[j] || v != version[j]) continue;
+    const Candidate c = evaluate(j);
+    if (c.error > tolerance) continue;
+    if (c.error > e) {  // neighbourhood changed since it was queued
+      queue.emplace(c.error, j, version[j]);
+      continue;
+    }
+    if (!valid(j, c)) continue;  // until a neighbour changes
+    const std::size_t a = L.prev[j], b = L.next[j];
+    for (std::size_t i = 0; i < N; ++i) st[i].pos[a] = c.a[i], st[i].pos[b] = c.b[i];
+    L.next[a] = b, L.prev[b] = a, L.alive[j] = false;
+    --alive;
+    max_error = std::max(max_error, c.error);
+    // Candidates within two links of a or b depend on what moved.
+    std::size_t around[6] = {L.prev[L.prev[a]], L.prev[a], a, b, L.next[b], L.next[L.next[b]]};
+    for (std::size_t k : around) {
+      ++version[k];
+      const double ek = evaluate(k).error;
+      if (ek <= tolerance) queue.emplace(ek, k, version[k]);
+    }
+  }
+
+  SimplifiedBoundary out;
+  out.polygons.resize(N);
+  out.max_error = max_error;
+  std::size_t first = boundary.landmarks.empty() ? 0 : boundary.landmarks[0];
+  std::size_t k = first;
+  do {
+    if (landmark[k]) out.landmarks.push_back(out.kept.size());
+    out.kept.push_back(k);
+    for (std::size_t i = 0; i < N; ++i) out.polygons[i].push_back(st[i].pos[k]);
+    k = L.next[k];
+  } while (k != first);
+  return out;
+}
+
+}  // namespace posemorph::bake::mapping

@@ -1,0 +1,202 @@
+// Drawing (PNG with alpha) -> outline. The shape is the largest 4-connected
+// set of pixels with alpha >= threshold, holes filled, and every diagonal
+// pinch closed (two pixels touching only at a corner), so its border is one
+// simple curve. That curve is traced by marching squares through the pixel
+// centres, crossing each cell edge where alpha crosses the threshold.
+#include <png.h>
+
+#include <algorithm>
+#include <cstring>
+#include <deque>
+#include <unordered_map>
+
+#include "geometry.h"
+#include "posemorph/bake/error.h"
+
+namespace posemorph::bake::mapping {
+namespace {
+
+struct Mask {
+  int w = 0, h = 0;  // padded by one transparent pixel on every side
+  std::vector<unsigned char> in;
+  unsigned char& at(int x, int y) { return in[std::size_t(y) * w + x]; }
+  unsigned char at(int x, int y) const { return in[std::size_t(y) * w + x]; }
+};
+
+// Labels the 4-connected components of value `value`; returns sizes.
+std::vector<std::size_t> Components(const Mask& m, unsigned char value, std::vector<int>& label) {
+  label.assign(m.in.size(), -1);
+  std::vector<std::size_t> sizes;
+  std::vector<std::size_t> stack;
+  for (std::size_t s = 0; s < m.in.size(); ++s) {
+    if (m.in[s] != value || label[s] >= 0) continue;
+    const int id = int(sizes.size());
+    sizes.push_back(0);
+    label[s] = id;
+    stack.push_back(s);
+    while (!stack.empty()) {
+      const std::size_t p = stack.back();
+      stack.pop_back();
+      ++sizes[id];
+      const int x = int(p % m.w), y = int(p / m.w);
+      const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
+      for (int k = 0; k < 4; ++k) {
+        if (nx[k] < 0 || ny[k] < 0 || nx[k] >= m.w || ny[k] >= m.h) continue;
+        const std::size_t q = std::size_t(ny[k]) * m.w + nx[k];
+        if (m.in[q] == value && label[q] < 0) {
+          label[q] = id;
+          stack.push_back(q);
+        }
+      }
+    }
+  }
+  return sizes;
+}
+
+// Background not connected to the border becomes shape. Returns pixels filled.
+std::size_t FillHoles(Mask& m) {
+  std::vector<int> label;
+  Components(m, 0, label);
+  const int outside = label[0];  // the padding is background and touches everything outside
+  std::size_t filled = 0;
+  for (std::size_t p = 0; p < m.in.size(); ++p)
+    if (m.in[p] == 0 && label[p] != outside) m.in[p] = 1, ++filled;
+  return filled;
+}
+
+// Two shape pixels meeting only at a corner would make the border touch
+// itself; the shape takes one of the two background pixels of that block.
+std::size_t ClosePinches(Mask& m) {
+  std::size_t changed = 0;
+  for (int y = 0; y + 1 < m.h; ++y)
+    for (int x = 0; x + 1 < m.w; ++x) {
+      const unsigned char a = m.at(x, y), b = m.at(x + 1, y), c = m.at(x, y + 1), d = m.at(x + 1, y + 1);
+      if (a && d && !b && !c) m.at(x + 1, y) = 1, ++changed;
+      else if (b && c && !a && !d) m.at(x, y) = 1, ++changed;
+    }
+  return changed;
+}
+
+}  // namespace
+
+ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width, int height, double threshold,
+                              const std::string& file) {
+  if (!(threshold > 0 && threshold <= 1)) throw BakeError(file, "alpha threshold must be in (0, 1]");
+  if (width <= 0 || height <= 0 || alpha.size() != std::size_t(width) * std::size_t(height))
+    throw BakeError(file, "image is empty");
+  ImageOutline result;
+  result.width = width;
+  result.height = height;
+
+  Mask m;
+  m.w = width + 2;
+  m.h = height + 2;
+  m.in.assign(std::size_t(m.w) * m.h, 0);
+  const double cut = threshold * 255.0;
+  auto a = [&](int x, int y) -> double {  // padded coordinates
+    if (x <= 0 || y <= 0 || x > width || y > height) return 0;
+    return alpha[std::size_t(y - 1) * width + (x - 1)];
+  };
+  for (int y = 1; y <= height; ++y)
+    for (int x = 1; x <= width; ++x) m.at(x, y) = a(x, y) >= cut;
+
+  std::vector<int> label;
+  const std::vector<std::size_t> sizes = Components(m, 1, label);
+  if (sizes.empty())
+    throw BakeError(file, "image is empty or fully transparent (no pixel has alpha >= " +
+                              std::to_string(threshold).substr(0, 4) + ")");
+  const int keep = int(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
+  for (std::size_t p = 0; p < m.in.size(); ++p)
+    if (m.in[p] && label[p] != keep) m.in[p] = 0, ++result.dropped_pixels;
+  result.dropped_components = int(sizes.size()) - 1;
+  if (sizes[keep] < 4) throw BakeError(file, "the drawn shape is smaller than 4 pixels");
+
+  for (;;) {
+    result.filled_hole_pixels += FillHoles(m);
+    if (ClosePinches(m) == 0) break;
+  }
+
+  // Signed field through the pixel centres: positive inside. Pixels the mask
+  // overrides (filled holes, dropped specks) sit just across the threshold.
+  const double delta = 1.0 / 512;
+  auto f = [&](int x, int y) {
+    const double v = a(x, y) / 255.0 - threshold;
+    return m.at(x, y) ? std::max(v, delta) : std::min(v, -delta);
+  };
+  auto centre = [](int x, int y) { return Point(x - 0.5, y - 0.5); };  // padded -> image pixel centre
+  // Crossing points keyed by cell edge: 2 * pixel index (+1 for the vertical edge below it).
+  auto crossing = [&](int x0, int y0, int x1, int y1) {
+    const double f0 = f(x0, y0), f1 = f(x1, y1);
+    const double t = f0 / (f0 - f1);
+    return Point(centre(x0, y0) + t * (centre(x1, y1) - centre(x0, y0)));
+  };
+  std::unordered_map<std::size_t, std::size_t> next;  // edge key -> edge key, shape on one fixed side
+  std::unordered_map<std::size_t, Point> where;
+  for (int y = 0; y + 1 < m.h; ++y)
+    for (int x = 0; x + 1 < m.w; ++x) {
+      // Walk the cell's corners c0 (x,y) c1 (x+1,y) c2 (x+1,y+1) c3 (x,y+1).
+      const int cx[4] = {x, x + 1, x + 1, x}, cy[4] = {y, y, y + 1, y + 1};
+      bool in[4];
+      for (int k = 0; k < 4; ++k) in[k] = m.at(cx[k], cy[k]) != 0;
+      std::size_t leave = 0, enter = 0;
+      int crossings = 0;
+      for (int k = 0; k < 4; ++k) {
+        const int l = (k + 1) % 4;
+        if (in[k] == in[l]) continue;
+        ++crossings;
+        // Key of the edge between corners k and l.
+        const int ex = std::min(cx[k], cx[l]), ey = std::min(cy[k], cy[l]);
+        const std::size_t key = 2 * (std::size_t(ey) * m.w + ex) + (cx[k] == cx[l] ? 1 : 0);
+        if (!where.count(key)) where[key] = crossing(cx[k], cy[k], cx[l], cy[l]);
+        (in[k] ? leave : enter) = key;
+      }
+      if (crossings == 0) continue;
+      if (crossings != 2) throw BakeError(file, "internal: ambiguous marching-squares cell");
+      next[leave] = enter;
+    }
+
+  // Follow every loop; the outer border is the one enclosing the most area.
+  std::unordered_map<std::size_t, bool> seen;
+  Polygon best;
+  double best_area = 0;
+  for (const auto& [start, unused] : next) {
+    (void)unused;
+    if (seen.count(start)) continue;
+    Polygon loop;
+    std::size_t k = start;
+    do {
+      seen[k] = true;
+      loop.push_back(where.at(k));
+      k = next.at(k);
+    } while (k != start && loop.size() <= next.size());
+    const double area = std::abs(SignedArea(loop));
+    if (area > best_area) best_area = area, best = std::move(loop);
+  }
+  result.outline = std::move(best);
+  return result;
+}
+
+ImageOutline OutlineFromPng(const std::string& path, double threshold) {
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, path.c_str()))
+    throw BakeError(path, std::string("cannot read PNG: ") + image.message);
+  image.format = PNG_FORMAT_GA;  // grey + alpha: only the alpha is used
+  if (image.width == 0 || image.height == 0 || image.width > 16384 || image.height > 16384) {
+    png_image_free(&image);
+    throw BakeError(path, "PNG size " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                              " is outside 1..16384");
+  }
+  std::vector<unsigned char> ga(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, ga.data(), 0, nullptr)) {
+    const std::string message = image.message;
+    png_image_free(&image);
+    throw BakeError(path, "cannot decode PNG: " + message);
+  }
+  std::vector<unsigned char> alpha(std::size_t(image.width) * image.height);
+  for (std::size_t i = 0; i < alpha.size(); ++i) alpha[i] = ga[2 * i + 1];
+  return OutlineFromAlpha(alpha, int(image.width), int(image.height), threshold, path);
+}
+
+}  // namespace posemorph::bake::mapping

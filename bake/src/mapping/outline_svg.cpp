@@ -1,0 +1,237 @@
+// Drawing (SVG) -> outline: one <path> or <polygon>, curves flattened.
+// The XML is read with tinyxml2; only the path-data grammar is parsed here.
+#include <tinyxml2.h>
+
+#include <cctype>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "geometry.h"
+#include "posemorph/bake/error.h"
+
+namespace posemorph::bake::mapping {
+namespace {
+
+struct PathScanner {
+  const std::string& d;
+  const std::string& file;
+  std::size_t i = 0;
+
+  void SkipSeparators() {
+    while (i < d.size() && (std::isspace(static_cast<unsigned char>(d[i])) || d[i] == ',')) ++i;
+  }
+  bool AtNumber() {
+    SkipSeparators();
+    if (i >= d.size()) return false;
+    const char c = d[i];
+    return std::isdigit(static_cast<unsigned char>(c)) || c == '-' || c == '+' || c == '.';
+  }
+  double Number() {
+    SkipSeparators();
+    const char* begin = d.c_str() + i;
+    char* end = nullptr;
+    const double v = std::strtod(begin, &end);
+    if (end == begin || !std::isfinite(v))
+      throw BakeError(file, "path data: expected a number at character " + std::to_string(i));
+    i += std::size_t(end - begin);
+    return v;
+  }
+};
+
+void FlattenCubic(const Point& p0, const Point& p1, const Point& p2, const Point& p3, double tol, int depth,
+                  Polygon& out) {
+  const Point chord = p3 - p0;
+  const double len = chord.norm();
+  auto dist = [&](const Point& q) {
+    if (len == 0) return (q - p0).norm();
+    return std::abs(chord.x() * (q - p0).y() - chord.y() * (q - p0).x()) / len;
+  };
+  if (depth >= 18 || std::max(dist(p1), dist(p2)) <= tol) {
+    out.push_back(p3);
+    return;
+  }
+  const Point a = (p0 + p1) / 2, b = (p1 + p2) / 2, c = (p2 + p3) / 2;
+  const Point ab = (a + b) / 2, bc = (b + c) / 2, mid = (ab + bc) / 2;
+  FlattenCubic(p0, a, ab, mid, tol, depth + 1, out);
+  FlattenCubic(mid, bc, c, p3, tol, depth + 1, out);
+}
+
+Polygon Deduplicated(Polygon p) {
+  Polygon out;
+  for (const Point& q : p)
+    if (out.empty() || (q - out.back()).norm() > 0) out.push_back(q);
+  while (out.size() > 1 && out.front() == out.back()) out.pop_back();
+  return out;
+}
+
+double Length(const char* text) {  // "120", "120px"
+  if (!text) return 0;
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  return end == text ? 0 : v;
+}
+
+}  // namespace
+
+Polygon FlattenSvgPath(const std::string& d, double tol, const std::string& file) {
+  if (!(tol > 0)) throw BakeError(file, "curve flattening tolerance must be positive");
+  PathScanner s{d, file};
+  Polygon out;
+  Point cur(0, 0), start(0, 0), last_control(0, 0);
+  char previous = 0;
+  bool begun = false;
+  for (;;) {
+    s.SkipSeparators();
+    if (s.i >= d.size()) break;
+    char cmd = d[s.i];
+    if (std::isalpha(static_cast<unsigned char>(cmd))) {
+      ++s.i;
+    } else if (previous != 0 && previous != 'Z' && previous != 'z') {
+      cmd = previous == 'M' ? 'L' : previous == 'm' ? 'l' : previous;  // repeated arguments
+    } else {
+      throw BakeError(file, "path data: expected a command at character " + std::to_string(s.i));
+    }
+    const bool rel = std::islower(static_cast<unsigned char>(cmd));
+    const char up = char(std::toupper(static_cast<unsigned char>(cmd)));
+    if (!begun && up != 'M') throw BakeError(file, "path data must start with M");
+    if (begun && up == 'M') break;  // the outline is the first subpath
+    auto pt = [&]() {
+      const double x = s.Number(), y = s.Number();
+      return rel ? Point(cur + Point(x, y)) : Point(x, y);
+    };
+    switch (up) {
+      case 'M':
+        cur = start = pt();
+        out.push_back(cur);
+        begun = true;
+        break;
+      case 'L':
+        cur = pt();
+        out.push_back(cur);
+        break;
+      case 'H': {
+        const double x = s.Number();
+        cur = Point(rel ? cur.x() + x : x, cur.y());
+        out.push_back(cur);
+        break;
+      }
+      case 'V': {
+        const double y = s.Number();
+        cur = Point(cur.x(), rel ? cur.y() + y : y);
+        out.push_back(cur);
+        break;
+      }
+      case 'C': case 'S': {
+        Point c1;
+        const char pu = char(std::toupper(static_cast<unsigned char>(previous)));
+        if (up == 'C') c1 = pt();
+        else c1 = (pu == 'C' || pu == 'S') ? Point(2 * cur - last_control) : cur;
+        const Point c2 = pt(), end = pt();
+        FlattenCubic(cur, c1, c2, end, tol, 0, out);
+        last_control = c2;
+        cur = end;
+        break;
+      }
+      case 'Q': case 'T': {
+        Point c;
+        const char pu = char(std::toupper(static_cast<unsigned char>(previous)));
+        if (up == 'Q') c = pt();
+        else c = (pu == 'Q' || pu == 'T') ? Point(2 * cur - last_control) : cur;
+        const Point end = pt();
+        FlattenCubic(cur, cur + 2.0 / 3 * (c - cur), end + 2.0 / 3 * (c - end), end, tol, 0, out);
+        last_control = c;
+        cur = end;
+        break;
+      }
+      case 'Z':
+        cur = start;
+        break;
+      case 'A':
+        throw BakeError(file, "path data: arcs (A) are not supported in an outline; use curves (C, Q)");
+      default:
+        throw BakeError(file, std::string("path data: unknown command '") + cmd + "'");
+    }
+    previous = cmd;
+    if (up == 'Z') {
+      s.SkipSeparators();
+      if (s.i < d.size()) break;  // only the first closed subpath
+    }
+  }
+  return Deduplicated(std::move(out));
+}
+
+SvgOutline OutlineFromSvgText(const std::string& text, double tol, const std::string& file) {
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS)
+    throw BakeError(file, std::string("invalid SVG (XML): ") + doc.ErrorStr());
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  if (!root || std::string(root->Name()) != "svg") throw BakeError(file, "not an SVG document (no <svg> root)");
+
+  SvgOutline result;
+  if (const char* vb = root->Attribute("viewBox")) {
+    std::string t(vb);
+    for (char& c : t) if (c == ',') c = ' ';
+    std::istringstream nums(t);
+    double x, y, w, h;
+    if (!(nums >> x >> y >> w >> h) || !(w > 0) || !(h > 0)) throw BakeError(file, "viewBox is not \"x y width height\"");
+    result.canvas_origin = Point(x, y);
+    result.canvas_size = Point(w, h);
+  } else {
+    result.canvas_size = Point(Length(root->Attribute("width")), Length(root->Attribute("height")));
+    if (!(result.canvas_size.x() > 0) || !(result.canvas_size.y() > 0))
+      throw BakeError(file, "the <svg> element needs a viewBox or width and height");
+  }
+
+  // Depth-first, document order; id="outline" wins.
+  const tinyxml2::XMLElement* chosen = nullptr;
+  const tinyxml2::XMLElement* first = nullptr;
+  std::vector<const tinyxml2::XMLElement*> stack{root};
+  while (!stack.empty() && !chosen) {
+    const tinyxml2::XMLElement* e = stack.back();
+    stack.pop_back();
+    const std::string name = e->Name();
+    if (name == "path" || name == "polygon") {
+      if (!first) first = e;
+      const char* id = e->Attribute("id");
+      if (id && std::string(id) == "outline") chosen = e;
+    }
+    std::vector<const tinyxml2::XMLElement*> children;
+    for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) children.push_back(c);
+    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(*it);
+  }
+  if (!chosen) chosen = first;
+  if (!chosen) throw BakeError(file, "no <path> or <polygon> to take the outline from");
+  for (const tinyxml2::XMLNode* n = chosen; n && n->ToElement(); n = n->Parent())
+    if (n->ToElement()->Attribute("transform"))
+      throw BakeError(file, "the outline element (or a group around it) has a transform; apply it to the coordinates");
+
+  if (std::string(chosen->Name()) == "path") {
+    const char* d = chosen->Attribute("d");
+    if (!d) throw BakeError(file, "the outline <path> has no d attribute");
+    result.outline = FlattenSvgPath(d, tol, file);
+  } else {
+    const char* pts = chosen->Attribute("points");
+    if (!pts) throw BakeError(file, "the outline <polygon> has no points attribute");
+    const std::string spts(pts);
+    PathScanner s{spts, file};
+    Polygon p;
+    while (s.AtNumber()) {
+      const double x = s.Number(), y = s.Number();
+      p.push_back({x, y});
+    }
+    result.outline = Deduplicated(std::move(p));
+  }
+  if (result.outline.size() < 3) throw BakeError(file, "the outline has fewer than 3 distinct points");
+  return result;
+}
+
+SvgOutline OutlineFromSvg(const std::string& path, double tol) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw BakeError(path, "cannot open file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return OutlineFromSvgText(s.str(), tol, path);
+}
+
+}  // namespace posemorph::bake::mapping
