@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Quick start, command 1: install what is missing, build, bake the bundled
-# snake and write a contact sheet of its poses across pose space.
+# Quick start, command 1: install what is missing, build, bake the drawn
+# character Pip from its five drawings (N-way mapping: outlines, matching,
+# simplification, compatible triangulation) and write a contact sheet of its
+# poses across pose space; then the other samples.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
@@ -8,15 +10,21 @@ cmake --preset release >/dev/null
 cmake --build --preset release -j"$(nproc)" >/dev/null
 mkdir -p out
 bin=build/release/bin
+drawn=build/release/assets   # the SVG drawings of assets/pip and assets/sprout, rasterised by the build
+$bin/posemorph-bake $drawn/pip/pip.json -o out/pip.pmrig
+$bin/posemorph-bake info out/pip.pmrig
+$bin/posemorph-bake sheet out/pip.pmrig -o out/pip-sheet.svg
+$bin/posemorph-bake eval out/pip.pmrig --path hello --frames 16 -o out/pip-hello.svg
+$bin/posemorph-bake $drawn/sprout/sprout.json -o out/sprout.pmrig
+$bin/posemorph-bake sheet out/sprout.pmrig -o out/sprout-sheet.svg
+# Procedural samples: a snake given as meshes, and a figure whose poses are made by dragging handles.
 $bin/posemorph-bake assets/snake/snake.json -o out/snake.pmrig
-$bin/posemorph-bake info out/snake.pmrig
 $bin/posemorph-bake sheet out/snake.pmrig -o out/snake-sheet.svg
 $bin/posemorph-bake eval out/snake.pmrig --path slither --frames 16 -o out/snake-slither.svg
-# A rig whose poses are made by dragging handles on one drawn mesh.
 $bin/posemorph-bake assets/gingerbread/gingerbread.json -o out/gingerbread.pmrig
 $bin/posemorph-bake sheet out/gingerbread.pmrig -o out/gingerbread-sheet.svg
 if command -v rsvg-convert >/dev/null; then
-  for sheet in snake-sheet gingerbread-sheet; do
+  for sheet in pip-sheet sprout-sheet snake-sheet gingerbread-sheet; do
     rsvg-convert out/$sheet.svg -o out/$sheet.png
     echo "wrote out/$sheet.png"
   done

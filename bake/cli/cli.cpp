@@ -123,7 +123,7 @@ EvalOptions ReadEvalOptions(const Args& args) {
   return o;
 }
 
-int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
+int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out, std::ostream& err) {
   const Args args = Args::Parse(a, from, {"-o"}, {});
   if (args.positional.empty()) throw UsageError("no rig description given");
   std::string output;
@@ -144,6 +144,16 @@ int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out)
       << "nnz(L) " << report.factor_nonzeros << ", grid " << report.grid_cells_x << "x" << report.grid_cells_y << ", "
       << report.seconds * 1e3 << " ms; max pose reproduction error " << report.max_reproduction_error
       << " of the rig size\n";
+  const MappingReport& m = rig.mapping_report;
+  for (const std::string& w : m.warnings) err << "posemorph-bake: warning: " << w << "\n";
+  if (m.mapped) {
+    out << "mapped drawings: outlines";
+    for (std::size_t v : m.outline_vertices) out << " " << v;
+    out << " vertices; " << m.matched_vertices << " matched boundary points -> " << m.boundary_vertices
+        << " after simplification (max error " << m.simplification_error << "); " << m.steiner_points
+        << " Steiner points; " << m.vertices << " vertices, " << m.triangles << " triangles after refinement; "
+        << "min angle " << m.min_angle_degrees << " degrees over all poses; " << m.seconds * 1e3 << " ms\n";
+  }
   return 0;
 }
 
@@ -307,8 +317,8 @@ int RunBakeCommand(const std::vector<std::string>& a, std::ostream& out, std::os
     if (cmd == "eval") return Eval(a, 1, out);
     if (cmd == "sheet") return Sheet(a, 1, out);
     if (cmd == "deform") return Deform(a, 1, out);
-    if (cmd == "bake") return Bake(a, 1, out);
-    return Bake(a, 0, out);
+    if (cmd == "bake") return Bake(a, 1, out, err);
+    return Bake(a, 0, out, err);
   } catch (const UsageError& e) {
     err << "posemorph-bake: " << e.what() << "\n" << kUsage;
     return 2;

@@ -54,17 +54,6 @@ double Outside(const Point& a, const Point& b, const Point& q) {
   return len > 0 ? -(d.x() * (q - a).y() - d.y() * (q - a).x()) / len : (q - a).norm();
 }
 
-// Where the line through p0 -> p1 meets the line {x : n.(x - c) = 0}; false if parallel or behind p0.
-bool HitLine(const Point& p0, const Point& p1, const Point& c, const Point& n, Point& hit) {
-  const Point d = p1 - p0;
-  const double denom = n.dot(d);
-  if (std::abs(denom) < 1e-12 * d.norm()) return false;
-  const double s = n.dot(c - p0) / denom;
-  if (!(s > 0.05)) return false;
-  hit = p0 + s * d;
-  return std::abs(hit.x()) < kGridLimit / 2 && std::abs(hit.y()) < kGridLimit / 2;
-}
-
 struct Linked {
   std::vector<std::size_t> prev, next;
   std::vector<bool> alive;
@@ -204,14 +193,22 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
       const PoseState& s = st[i];
       Point A = s.pos[a], B = s.pos[b];
       double out = SpanOutside(s, a, b, A, B);
-      if (out > -0.5) {  // the outline reaches the chord: move it out, with a margin of a few grid units
+      if (out > -0.5) {
+        // The outline reaches the chord: move both ends out along its normal,
+        // past the bulge by a margin of a few grid units. Their other edges
+        // turn outward about their far ends, so they still clear their spans
+        // (checked exactly in `valid`).
         const Point d = (B - A).normalized();
         const Point n(d.y(), -d.x());
-        const Point c0 = A + (std::max(out, 0.0) + 2.0) * n;
-        if (!HitLine(s.pos[pa], A, c0, n, A) || !HitLine(s.pos[nb], B, c0, n, B)) return Candidate{};
-        A = Snap(A), B = Snap(B);
+        A = Snap(A + (std::max(out, 0.0) + 2.0) * n);
+        B = Snap(B + (std::max(out, 0.0) + 2.0) * n);
+        if (std::abs(A.x()) > kGridLimit / 2 || std::abs(A.y()) > kGridLimit / 2 || std::abs(B.x()) > kGridLimit / 2 ||
+            std::abs(B.y()) > kGridLimit / 2)
+          return Candidate{};
       }
-      error = std::max({error, SpanDistance(s, a, b, A, B), (A - s.pos[a]).norm(), (B - s.pos[b]).norm()});
+      // One-sided distance from the outline to every edge that changes.
+      error = std::max({error, SpanDistance(s, a, b, A, B), SpanDistance(s, pa, a, s.pos[pa], A),
+                        SpanDistance(s, b, nb, B, s.pos[nb])});
       c.a[i] = A, c.b[i] = B;
     }
     c.error = error;
