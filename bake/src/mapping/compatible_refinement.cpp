@@ -210,16 +210,31 @@ class Refiner {
             ++count;
           }
           if (count == 0) continue;
-          const Point old = pos[v];
-          pos[v] = Snap(sum / count);
-          bool ok = true;
-          double local_after = M_PI;
-          for (std::size_t t : incident[v]) {
-            const Tri& tri = m_.triangles[t];
-            ok = ok && Positive(pos, tri);
-            local_after = std::min(local_after, TriangleMinAngle(pos[tri[0]], pos[tri[1]], pos[tri[2]]));
+          // Try the angle-based position, the neighbours' centroid, and halfway
+          // to each; keep whichever raises the local smallest angle most.
+          Point centroid = Point::Zero();
+          for (const auto& [nj, next] : after_of) {
+            (void)next;
+            centroid += pos[nj];
           }
-          if (!ok || local_after < local_before) pos[v] = old;
+          centroid /= double(after_of.size());
+          const Point old = pos[v];
+          const Point angle_based = sum / count;
+          const Point tries[4] = {angle_based, centroid, (old + angle_based) / 2, (old + centroid) / 2};
+          Point best = old;
+          double best_angle = local_before;
+          for (const Point& t : tries) {
+            pos[v] = Snap(t);
+            bool ok = true;
+            double local_after = M_PI;
+            for (std::size_t tri : incident[v]) {
+              const Tri& tr = m_.triangles[tri];
+              ok = ok && Positive(pos, tr);
+              local_after = std::min(local_after, TriangleMinAngle(pos[tr[0]], pos[tr[1]], pos[tr[2]]));
+            }
+            if (ok && local_after > best_angle) best = pos[v], best_angle = local_after;
+          }
+          pos[v] = best;
         }
   }
 
@@ -256,7 +271,7 @@ void RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& prm) {
   Refiner r(mesh);
   if (prm.max_edge_length > 0) r.SplitLong(prm.max_edge_length);
   r.Flip();
-  r.Smooth(4);
+  r.Smooth(8);
   r.Flip();
   const double goal = prm.min_angle_goal * M_PI / 180;
   const double min_length = prm.max_edge_length > 0 ? prm.max_edge_length / 4 : 0;
@@ -264,7 +279,7 @@ void RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& prm) {
     if (MinAngleDegrees(mesh) >= prm.min_angle_goal) break;
     if (r.SplitBad(goal, min_length) == 0) break;
     r.Flip();
-    r.Smooth(4);
+    r.Smooth(8);
     r.Flip();
   }
 }

@@ -183,36 +183,67 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
   std::size_t alive = M;
   std::vector<std::uint32_t> version(M, 0);
 
+  // Three ways to remove vertex j between a and b, the cheapest taken:
+  //   chord   join a and b; where the outline bulges past the chord, move
+  //           both out along its normal (their other edges turn outward
+  //           about their far ends and still clear their spans);
+  //   corner  fold the edge a-j (or j-b) into one vertex where the lines of
+  //           its two neighbouring edges meet: those edges keep their lines,
+  //           the polygon only grows by the triangle a, corner, j.
+  // Landmarks are never removed; like any vertex they may move outward within
+  // the tolerance. `valid` checks the result exactly.
+  auto meet = [](const Point& p0, const Point& p1, const Point& q0, const Point& q1, Point& x) {
+    // Line p0->p1 extended past p1 meets line q0->q1 extended past q1.
+    const Point d = p1 - p0, e = q1 - q0;
+    const double den = d.x() * e.y() - d.y() * e.x();
+    if (std::abs(den) < 1e-9 * d.norm() * e.norm()) return false;
+    const Point w = q0 - p0;
+    const double s = (w.x() * e.y() - w.y() * e.x()) / den, u = (w.x() * d.y() - w.y() * d.x()) / den;
+    if (!(s >= 1) || !(u >= 1)) return false;
+    x = Snap(p0 + s * d);
+    return std::abs(x.x()) < kGridLimit / 2 && std::abs(x.y()) < kGridLimit / 2;
+  };
   auto evaluate = [&](std::size_t j) {
-    Candidate c;
-    if (landmark[j] || alive <= std::max<std::size_t>(4, boundary.landmarks.size() + 2)) return c;
+    Candidate best;
+    if (landmark[j] || alive <= std::max<std::size_t>(4, boundary.landmarks.size() + 2)) return best;
     const std::size_t a = L.prev[j], b = L.next[j], pa = L.prev[a], nb = L.next[b];
-    c.a.resize(N), c.b.resize(N);
-    double error = 0;
-    for (std::size_t i = 0; i < N; ++i) {
-      const PoseState& s = st[i];
-      Point A = s.pos[a], B = s.pos[b];
-      double out = SpanOutside(s, a, b, A, B);
-      if (out > -0.5) {
-        // The outline reaches the chord: move both ends out along its normal,
-        // past the bulge by a margin of a few grid units. Their other edges
-        // turn outward about their far ends, so they still clear their spans
-        // (checked exactly in `valid`).
-        const Point d = (B - A).normalized();
-        const Point n(d.y(), -d.x());
-        A = Snap(A + (std::max(out, 0.0) + 2.0) * n);
-        B = Snap(B + (std::max(out, 0.0) + 2.0) * n);
-        if (std::abs(A.x()) > kGridLimit / 2 || std::abs(A.y()) > kGridLimit / 2 || std::abs(B.x()) > kGridLimit / 2 ||
-            std::abs(B.y()) > kGridLimit / 2)
-          return Candidate{};
+    for (int option = 0; option < 3; ++option) {
+      Candidate c;
+      c.a.resize(N), c.b.resize(N);
+      double error = 0;
+      bool possible = true;
+      for (std::size_t i = 0; i < N && possible; ++i) {
+        const PoseState& s = st[i];
+        Point A = s.pos[a], B = s.pos[b];
+        if (option == 0) {
+          const double out = SpanOutside(s, a, b, A, B);
+          if (out > -0.5) {
+            const Point d = (B - A).normalized();
+            const Point n(d.y(), -d.x());
+            A = Snap(A + (std::max(out, 0.0) + 2.0) * n);
+            B = Snap(B + (std::max(out, 0.0) + 2.0) * n);
+            if (std::abs(A.x()) > kGridLimit / 2 || std::abs(A.y()) > kGridLimit / 2 ||
+                std::abs(B.x()) > kGridLimit / 2 || std::abs(B.y()) > kGridLimit / 2)
+              possible = false;
+          }
+        } else if (option == 1) {
+          possible = meet(s.pos[pa], s.pos[a], s.pos[b], s.pos[j], A);
+          if (possible) error = std::max({error, (A - s.pos[a]).norm(), (A - s.pos[j]).norm()});
+        } else {
+          possible = meet(s.pos[nb], s.pos[b], s.pos[a], s.pos[j], B);
+          if (possible) error = std::max({error, (B - s.pos[b]).norm(), (B - s.pos[j]).norm()});
+        }
+        if (!possible) break;
+        // One-sided distance from the outline to every edge that changes.
+        error = std::max({error, SpanDistance(s, a, b, A, B), SpanDistance(s, pa, a, s.pos[pa], A),
+                          SpanDistance(s, b, nb, B, s.pos[nb])});
+        c.a[i] = A, c.b[i] = B;
       }
-      // One-sided distance from the outline to every edge that changes.
-      error = std::max({error, SpanDistance(s, a, b, A, B), SpanDistance(s, pa, a, s.pos[pa], A),
-                        SpanDistance(s, b, nb, B, s.pos[nb])});
-      c.a[i] = A, c.b[i] = B;
+      if (!possible) continue;
+      c.error = error;
+      if (c.error < best.error) best = std::move(c);
     }
-    c.error = error;
-    return c;
+    return best;
   };
 
   auto valid = [&](std::size_t j, const Candidate& c) {
@@ -240,21 +271,33 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
     return true;
   };
 
+  // Order: error, scaled down for a vertex with a short edge in some pose, so
+  // such vertices go first; short edges next to long ones make thin triangles
+  // later. Only the error itself decides whether a removal is allowed.
+  const double short_edge = 4 * tolerance;
+  auto priority = [&](std::size_t j, double error) {
+    double shortest = kInf;
+    for (std::size_t i = 0; i < N; ++i)
+      shortest = std::min({shortest, (st[i].pos[j] - st[i].pos[L.prev[j]]).norm(),
+                           (st[i].pos[j] - st[i].pos[L.next[j]]).norm()});
+    return error * std::clamp(shortest / short_edge, 0.05, 1.0);
+  };
   using Entry = std::tuple<double, std::size_t, std::uint32_t>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
   for (std::size_t j = 0; j < M; ++j) {
     const double e = evaluate(j).error;
-    if (e <= tolerance) queue.emplace(e, j, version[j]);
+    if (e <= tolerance) queue.emplace(priority(j, e), j, version[j]);
   }
   double max_error = 0;
   while (!queue.empty()) {
-    const auto [e, j, v] = queue.top();
+    const auto [key, j, v] = queue.top();
     queue.pop();
     if (!L.alive[j] || v != version[j]) continue;
     const Candidate c = evaluate(j);
     if (c.error > tolerance) continue;
-    if (c.error > e) {  // neighbourhood changed since it was queued
-      queue.emplace(c.error, j, version[j]);
+    const double now = priority(j, c.error);
+    if (now > key) {  // neighbourhood changed since it was queued
+      queue.emplace(now, j, version[j]);
       continue;
     }
     if (!valid(j, c)) continue;  // until a neighbour changes
@@ -268,7 +311,7 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
     for (std::size_t k : around) {
       ++version[k];
       const double ek = evaluate(k).error;
-      if (ek <= tolerance) queue.emplace(ek, k, version[k]);
+      if (ek <= tolerance) queue.emplace(priority(k, ek), k, version[k]);
     }
   }
 

@@ -9,7 +9,8 @@
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/rig_description.h"
 
-namespace posemorph::bake {
+namespace posemorph {
+namespace bake {
 namespace {
 
 using mapping::Point;
@@ -52,6 +53,110 @@ Polygon WithoutRepeats(const Polygon& p) {
 }
 
 }  // namespace
+
+}  // namespace bake
+
+namespace bake::mapping {
+
+MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines, const std::vector<std::vector<Point>>& rig_landmarks,
+                          const MappingParameters& prm, const std::vector<std::string>& labels,
+                          const std::string& file) {
+  const std::size_t N = rig_outlines.size();
+  auto fail = [&](std::size_t k, const std::string& problem) -> void {
+    throw BakeError(file, labels[k] + ": " + problem);
+  };
+  MappingStages st;
+  // Onto the integer grid; exact checks from here on.
+  double extent = 0;
+  for (std::size_t k = 0; k < N; ++k) {
+    for (const Point& p : rig_outlines[k]) extent = std::max(extent, p.cwiseAbs().maxCoeff());
+    for (const Point& p : rig_landmarks[k]) extent = std::max(extent, p.cwiseAbs().maxCoeff());
+  }
+  const Grid grid = Grid::For(extent);
+  st.grid_scale = grid.scale;
+  for (std::size_t k = 0; k < N; ++k) {
+    Polygon g;
+    for (const Point& p : rig_outlines[k]) g.push_back(grid.ToGrid(p));
+    g = WithoutRepeats(g);
+    if (g.size() < 3 || SignedArea(g) == 0) fail(k, "the outline encloses no area");
+    if (!IsSimplePolygon(g)) fail(k, "the outline crosses or touches itself; it must be one simple closed curve");
+    if (SignedArea(g) < 0) std::reverse(g.begin(), g.end());
+    st.outlines.push_back(std::move(g));
+  }
+
+  // Landmarks: same count everywhere, near the outline, in the same order.
+  for (std::size_t k = 0; k < N; ++k) {
+    const std::vector<Point>& given = rig_landmarks[k];
+    if (given.empty()) fail(k, "needs at least one landmark (the start point)");
+    if (given.size() != rig_landmarks[0].size())
+      fail(k, "gives " + std::to_string(given.size()) + " landmark(s) but " + labels[0] + " gives " +
+                  std::to_string(rig_landmarks[0].size()) +
+                  "; every drawn pose needs the same corresponding points, the start point first");
+    Eigen::AlignedBox2d box;
+    for (const Point& p : rig_outlines[k]) box.extend(p);
+    const double size = box.diagonal().norm();
+    std::vector<Point> on;
+    std::vector<double> at;
+    for (std::size_t l = 0; l < given.size(); ++l) {
+      double dist = 0;
+      const double s = NearestArcLength(st.outlines[k], grid.ToGrid(given[l]), &dist);
+      dist /= grid.scale;
+      if (dist > prm.landmark_distance * size)
+        fail(k, "landmark " + std::to_string(l) + " is " + Format(dist) + " from the outline (more than " +
+                    Format(prm.landmark_distance * 100) + "% of the outline's size, " + Format(size) + ")");
+      on.push_back(PointAtArcLength(st.outlines[k], s));
+      at.push_back(s);
+    }
+    double perimeter = 0;
+    for (std::size_t i = 0; i < st.outlines[k].size(); ++i)
+      perimeter += (st.outlines[k][(i + 1) % st.outlines[k].size()] - st.outlines[k][i]).norm();
+    double previous = 0;
+    for (std::size_t l = 1; l < at.size(); ++l) {
+      double rel = std::fmod(at[l] - at[0], perimeter);
+      if (rel < 0) rel += perimeter;
+      if (!(rel > previous))
+        fail(k, "landmark " + std::to_string(l) + " is out of order or coincides with another: landmarks must follow "
+                "the outline in the same direction in every pose");
+      previous = rel;
+    }
+    st.landmarks.push_back(std::move(on));
+  }
+
+  // Correspondence, simplification, compatible triangulation, refinement.
+  MatchingParameters mp;
+  mp.spacing = prm.spacing * grid.scale;
+  st.matched = MatchBoundaries(st.outlines, st.landmarks, mp);
+  try {
+    st.simplified = SimplifyEnclosing(st.outlines, st.matched, prm.simplify_tolerance * grid.scale);
+  } catch (const BakeError& e) {
+    throw BakeError(file, e.what());
+  }
+  for (std::size_t k = 0; k < N; ++k) {
+    // The promise of this stage, checked exactly: simple, and the outline inside or on it.
+    const Polygon& q = st.simplified.polygons[k];
+    bool ok = IsSimplePolygon(q) && SignedArea(q) > 0;
+    for (const Point& p : st.outlines[k]) ok = ok && PointInPolygon(q, p) >= 0;
+    if (!ok) fail(k, "internal: the simplified boundary does not enclose the outline");
+  }
+  std::string names;
+  for (const std::string& l : labels) names += (names.empty() ? "" : ", ") + l;
+  try {
+    st.mesh = TriangulateCompatibly(st.simplified.polygons, names);
+  } catch (const BakeError& e) {
+    throw BakeError(file, e.what());
+  }
+  Eigen::AlignedBox2d box0;
+  for (const Point& p : rig_outlines[0]) box0.extend(p);
+  RefinementParameters rp;
+  rp.max_edge_length = (prm.max_edge_length > 0 ? prm.max_edge_length : box0.diagonal().norm() / 10) * grid.scale;
+  rp.min_angle_goal = prm.min_angle;
+  RefineCompatibly(st.mesh, rp);
+  return st;
+}
+
+}  // namespace bake::mapping
+
+namespace bake {
 
 void MapDrawings(RigDescription& rig) {
   std::vector<DrawnPose> drawn;
@@ -99,107 +204,25 @@ void MapDrawings(RigDescription& rig) {
     }
     if (d.from_drawing)
       for (const Point& p : pose.landmarks) d.landmarks.push_back({p.x(), -p.y()});
-    if (std::abs(mapping::SignedArea(raw)) == 0) fail(d, "the outline encloses no area");
-    if (mapping::SignedArea(raw) < 0) std::reverse(raw.begin(), raw.end());
     d.outline = std::move(raw);
     report.outline_vertices.push_back(d.outline.size());
   }
 
-  // 2. Onto the integer grid; exact checks from here on.
-  double extent = 0;
-  for (const DrawnPose& d : drawn) {
-    for (const Point& p : d.outline) extent = std::max(extent, p.cwiseAbs().maxCoeff());
-    for (const Point& p : d.landmarks) extent = std::max(extent, p.cwiseAbs().maxCoeff());
-  }
-  const mapping::Grid grid = mapping::Grid::For(extent);
   std::vector<Polygon> outlines;
-  for (DrawnPose& d : drawn) {
-    Polygon g;
-    for (const Point& p : d.outline) g.push_back(grid.ToGrid(p));
-    g = WithoutRepeats(g);
-    if (g.size() < 3 || mapping::SignedArea(g) <= 0) fail(d, "the outline encloses no area");
-    if (!mapping::IsSimplePolygon(g)) fail(d, "the outline crosses or touches itself; it must be one simple closed curve");
-    outlines.push_back(std::move(g));
-  }
-
-  // 3. Landmarks: same count everywhere, near the outline, in the same order.
-  const DrawnPose& first = drawn[0];
   std::vector<std::vector<Point>> landmarks;
-  for (std::size_t k = 0; k < drawn.size(); ++k) {
-    const DrawnPose& d = drawn[k];
-    if (d.landmarks.size() != first.landmarks.size())
-      fail(d, "gives " + std::to_string(d.landmarks.size()) + " landmark(s) but pose '" +
-                  rig.poses[first.index].name + "' gives " + std::to_string(first.landmarks.size()) +
-                  "; every drawn pose needs the same corresponding points, the start point first");
-    Eigen::AlignedBox2d box;
-    for (const Point& p : d.outline) box.extend(p);
-    const double size = box.diagonal().norm();
-    std::vector<Point> on;
-    std::vector<double> at;
-    for (std::size_t l = 0; l < d.landmarks.size(); ++l) {
-      double dist = 0;
-      const double s = mapping::NearestArcLength(outlines[k], grid.ToGrid(d.landmarks[l]), &dist);
-      dist /= grid.scale;
-      if (dist > prm.landmark_distance * size)
-        fail(d, "landmark " + std::to_string(l) + " is " + Format(dist) + " from the outline (more than " +
-                    Format(prm.landmark_distance * 100) + "% of the outline's size, " + Format(size) + ")");
-      on.push_back(mapping::PointAtArcLength(outlines[k], s));
-      at.push_back(s);
-    }
-    // Counter-clockwise from the start point, strictly increasing.
-    const double perimeter = [&] {
-      double p = 0;
-      for (std::size_t i = 0; i < outlines[k].size(); ++i)
-        p += (outlines[k][(i + 1) % outlines[k].size()] - outlines[k][i]).norm();
-      return p;
-    }();
-    double previous = 0;
-    for (std::size_t l = 1; l < at.size(); ++l) {
-      double rel = std::fmod(at[l] - at[0], perimeter);
-      if (rel < 0) rel += perimeter;
-      if (!(rel > previous))
-        fail(d, "landmark " + std::to_string(l) + " is out of order or coincides with another: landmarks must follow "
-                "the outline in the same direction in every pose");
-      previous = rel;
-    }
-    landmarks.push_back(std::move(on));
+  std::vector<std::string> labels;
+  for (const DrawnPose& d : drawn) {
+    outlines.push_back(d.outline);
+    landmarks.push_back(d.landmarks);
+    labels.push_back("pose '" + rig.poses[d.index].name + "' (index " + std::to_string(d.index) + ")");
   }
-
-  // 4. Correspondence, simplification, compatible triangulation, refinement.
-  mapping::MatchingParameters mp;
-  mp.spacing = prm.spacing * grid.scale;
-  const mapping::CorrespondedBoundary matched = mapping::MatchBoundaries(outlines, landmarks, mp);
-  report.matched_vertices = matched.points[0].size();
-  mapping::SimplifiedBoundary simple;
-  try {
-    simple = mapping::SimplifyEnclosing(outlines, matched, prm.simplify_tolerance * grid.scale);
-  } catch (const BakeError& e) {
-    throw BakeError(rig.file, e.what());
-  }
-  report.boundary_vertices = simple.polygons[0].size();
-  report.simplification_error = simple.max_error / grid.scale;
-  for (std::size_t k = 0; k < drawn.size(); ++k) {
-    // The promise of this stage, checked exactly: simple, and the outline inside or on it.
-    const Polygon& q = simple.polygons[k];
-    bool ok = mapping::IsSimplePolygon(q) && mapping::SignedArea(q) > 0;
-    for (const Point& p : outlines[k]) ok = ok && mapping::PointInPolygon(q, p) >= 0;
-    if (!ok) fail(drawn[k], "internal: the simplified boundary does not enclose the outline");
-  }
-  std::string names;
-  for (const DrawnPose& d : drawn) names += (names.empty() ? "'" : ", '") + rig.poses[d.index].name + "'";
-  mapping::CompatibleMesh mesh;
-  try {
-    mesh = mapping::TriangulateCompatibly(simple.polygons, "poses " + names);
-  } catch (const BakeError& e) {
-    throw BakeError(rig.file, e.what());
-  }
+  const mapping::MappingStages st = mapping::MapPolygons(outlines, landmarks, prm, labels, rig.file);
+  const mapping::CompatibleMesh& mesh = st.mesh;
+  const mapping::Grid grid{st.grid_scale};
+  report.matched_vertices = st.matched.points[0].size();
+  report.boundary_vertices = st.simplified.polygons[0].size();
+  report.simplification_error = st.simplified.max_error / grid.scale;
   report.steiner_points = mesh.steiner_points;
-  Eigen::AlignedBox2d box0;
-  for (const Point& p : drawn[0].outline) box0.extend(p);
-  mapping::RefinementParameters rp;
-  rp.max_edge_length = (prm.max_edge_length > 0 ? prm.max_edge_length : box0.diagonal().norm() / 10) * grid.scale;
-  rp.min_angle_goal = prm.min_angle;
-  mapping::RefineCompatibly(mesh, rp);
   report.min_angle_degrees = mapping::MinAngleDegrees(mesh);
   report.vertices = mesh.vertices[0].size();
   report.triangles = mesh.triangles.size();
@@ -229,4 +252,5 @@ void MapDrawings(RigDescription& rig) {
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-}  // namespace posemorph::bake
+}  // namespace bake
+}  // namespace posemorph

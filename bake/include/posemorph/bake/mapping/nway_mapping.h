@@ -14,15 +14,17 @@
 
 #include <Eigen/Core>
 
+#include "posemorph/bake/rig_description.h"
+
 namespace posemorph::bake::mapping {
 
 using Point = Eigen::Vector2d;
-using Polygon = std::vector<Point>;  // closed implicitly; counter-clockwise once it leaves a loader
+using Polygon = std::vector<Point>;  // closed implicitly
 
 // --- Outlines -------------------------------------------------------------
 
 struct ImageOutline {
-  Polygon outline;           // pixel units, y down (image rows), counter-clockwise on screen
+  Polygon outline;           // pixel units, y down (image rows); either orientation
   int width = 0, height = 0;
   int dropped_components = 0;  // specks smaller than the kept shape
   std::size_t dropped_pixels = 0;
@@ -37,7 +39,7 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
                               double alpha_threshold, const std::string& file);
 
 struct SvgOutline {
-  Polygon outline;             // user units, y down
+  Polygon outline;             // user units, y down; either orientation
   Point canvas_origin{0, 0};   // viewBox origin (or 0, 0)
   Point canvas_size{0, 0};     // viewBox size (or width, height)
 };
@@ -120,5 +122,22 @@ struct RefinementParameters {
 void RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& parameters);
 
 double MinAngleDegrees(const CompatibleMesh& mesh);  // over all triangles and poses
+
+// --- All stages -------------------------------------------------------------
+
+struct MappingStages {
+  double grid_scale = 1;                        // grid units per rig unit (a power of two)
+  std::vector<Polygon> outlines;                // grid, counter-clockwise, simple
+  std::vector<std::vector<Point>> landmarks;    // on the outlines, grid
+  CorrespondedBoundary matched;
+  SimplifiedBoundary simplified;
+  CompatibleMesh mesh;                          // grid
+};
+// Outlines and landmarks in rig coordinates (y up, any orientation); labels
+// name each pose in messages. The driver behind MapDrawings, exposed so
+// tests can check every stage's promise. Throws BakeError naming `file`.
+MappingStages MapPolygons(const std::vector<Polygon>& outlines, const std::vector<std::vector<Point>>& landmarks,
+                          const MappingParameters& parameters, const std::vector<std::string>& labels,
+                          const std::string& file);
 
 }  // namespace posemorph::bake::mapping
