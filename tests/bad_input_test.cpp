@@ -1,5 +1,9 @@
 // Bad input to posemorph-bake: one clear message naming the file and the
 // problem, a non-zero exit, and no output file (an existing one untouched).
+#include <png.h>
+
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -216,4 +220,132 @@ TEST_CASE("usage errors exit with status 2") {
   CHECK(Run({"eval", "x.pmrig", "-o", "a.png", "--at", "0,0"}).status == 2);
   CHECK(Run({"eval", "x.pmrig", "-o", "a.svg", "--at", "zero,0"}).status == 2);
   CHECK(Run({"rig.json", "--frobnicate"}).status == 2);
+}
+
+// --- Drawn poses (N-way mapping) ---------------------------------------------
+
+namespace {
+
+void WritePngAlpha(const fs::path& p, int w, int h, const std::function<int(int, int)>& alpha) {
+  std::vector<unsigned char> rgba(std::size_t(w) * h * 4, 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) rgba[(std::size_t(y) * w + x) * 4 + 3] = (unsigned char)alpha(x, y);
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  image.width = png_uint_32(w);
+  image.height = png_uint_32(h);
+  image.format = PNG_FORMAT_RGBA;
+  REQUIRE(png_image_write_to_file(&image, p.string().c_str(), 0, rgba.data(), 0, nullptr));
+}
+
+json Outline(const std::vector<std::array<double, 2>>& points) {
+  json a = json::array();
+  for (const auto& p : points) a.push_back({p[0], p[1]});
+  return a;
+}
+
+json DrawnDescription() {
+  // Two squares, the second sheared; landmarks at two corners.
+  return json::parse(R"({
+    "posemorph": 1,
+    "poses": [
+      {"name": "a", "point": [0, 0], "outline": [[0, 0], [40, 0], [40, 40], [0, 40]], "landmarks": [[0, 0], [40, 40]]},
+      {"name": "b", "point": [1, 0], "outline": [[0, 0], [40, 0], [50, 40], [10, 40]], "landmarks": [[0, 0], [50, 40]]}
+    ],
+    "bake": {"grid_resolution": 8}
+  })");
+}
+
+json Spiral(double turns, double width) {
+  std::vector<std::array<double, 2>> right, left;
+  for (int k = 0; k <= 160; ++k) {
+    const double t = k / 160.0, a = t * turns * 2 * M_PI, r = 20 + 60 * t;
+    const double dx = 60 * std::cos(a) - r * turns * 2 * M_PI * std::sin(a);
+    const double dy = 60 * std::sin(a) + r * turns * 2 * M_PI * std::cos(a);
+    const double n = std::hypot(dx, dy);
+    right.push_back({r * std::cos(a) + width * dy / n, r * std::sin(a) - width * dx / n});
+    left.push_back({r * std::cos(a) - width * dy / n, r * std::sin(a) + width * dx / n});
+  }
+  right.insert(right.end(), left.rbegin(), left.rend());
+  return Outline(right);
+}
+
+}  // namespace
+
+TEST_CASE("a drawn rig bakes") {
+  TempDir dir;
+  Write(dir.path / "rig.json", DrawnDescription().dump());
+  const Result r = Run({(dir.path / "rig.json").string(), "-o", (dir.path / "out.pmrig").string()});
+  CAPTURE(r.err);
+  CHECK(r.status == 0);
+  CHECK(r.out.find("mapped drawings") != std::string::npos);
+}
+
+TEST_CASE("drawn poses: bad drawings and correspondences") {
+  json d = DrawnDescription();
+  d["poses"][1]["outline"] = Outline({{0, 0}, {40, 40}, {40, 0}, {0, 40}});
+  ExpectFailure(d.dump(), "pose 'b' (index 1): the outline crosses or touches itself");
+
+  d = DrawnDescription();
+  d["poses"][1]["landmarks"] = json::parse("[[0, 0]]");
+  ExpectFailure(d.dump(), "pose 'b' (index 1): gives 1 landmark(s) but pose 'a' (index 0) gives 2");
+
+  d = DrawnDescription();
+  d["poses"][1]["landmarks"][1] = {25, 20};  // the middle of the shape
+  ExpectFailure(d.dump(), "pose 'b' (index 1): landmark 1 is 19.4 from the outline (more than 5% of the outline's size");
+
+  d = DrawnDescription();
+  d["poses"][0].erase("landmarks");
+  ExpectFailure(d.dump(), "poses[0]: missing \"landmarks\"");
+
+  d = DrawnDescription();
+  d["poses"][1]["landmarks"] = json::parse("[[50, 40], [0, 0]]");
+  d["poses"][1]["landmarks"][0] = {0, 0};
+  d["poses"][1]["landmarks"][1] = {0, 0};
+  ExpectFailure(d.dump(), "pose 'b' (index 1): landmark 1 is out of order or coincides with another");
+
+  // Spirals of 0.6 and 2 turns need more Steiner points than the rig allows.
+  d = DrawnDescription();
+  d["poses"][0]["outline"] = Spiral(0.6, 9);
+  d["poses"][1]["outline"] = Spiral(2.0, 6);
+  d["poses"][0]["landmarks"] = json::array({d["poses"][0]["outline"][0]});
+  d["poses"][1]["landmarks"] = json::array({d["poses"][1]["outline"][0]});
+  d["mapping"] = {{"max_steiner_points", 2}};
+  ExpectFailure(d.dump(), "cannot be triangulated compatibly with at most 2 Steiner points");
+
+  d = DrawnDescription();
+  d["poses"][0].erase("outline");
+  d["poses"][0]["drawing"] = "a.gif";
+  ExpectFailure(d.dump(), "pose 'a' (index 0): drawing \"a.gif\" is neither .png nor .svg");
+  d["poses"][0]["drawing"] = "missing.png";
+  ExpectFailure(d.dump(), "missing.png: cannot read PNG");
+
+  // A transparent drawing, and an SVG whose outline crosses itself.
+  d["poses"][0]["drawing"] = "clear.png";
+  ExpectFailure(d.dump(), "pose 'a' (index 0): ", "clear.png: image is empty or fully transparent",
+                [](const fs::path& p) { WritePngAlpha(p / "clear.png", 32, 32, [](int, int) { return 0; }); });
+  d["poses"][0]["drawing"] = "bow.svg";
+  ExpectFailure(d.dump(), "pose 'a' (index 0): the outline crosses or touches itself", "rig.json",
+                [](const fs::path& p) {
+                  Write(p / "bow.svg", R"(<svg xmlns="http://www.w3.org/2000/svg" width="64" height="64">)"
+                                       R"(<path d="M 0 0 L 40 40 L 40 0 L 0 40 Z"/></svg>)");
+                });
+}
+
+TEST_CASE("drawn poses: a PNG drawing with a speck bakes with a warning") {
+  TempDir dir;
+  json d = DrawnDescription();
+  d["poses"][0].erase("outline");
+  d["poses"][0]["drawing"] = "a.png";
+  d["poses"][0]["landmarks"] = json::parse("[[8, 48], [48, 8]]");  // image rows go down
+  WritePngAlpha(dir.path / "a.png", 64, 64, [](int x, int y) {
+    if (x >= 8 && x < 48 && y >= 8 && y < 48) return 255;
+    return (x == 60 && y == 60) ? 255 : 0;
+  });
+  Write(dir.path / "rig.json", d.dump());
+  const Result r = Run({(dir.path / "rig.json").string(), "-o", (dir.path / "out.pmrig").string()});
+  CAPTURE(r.err);
+  CHECK(r.status == 0);
+  CHECK(r.err.find("a.png: dropped 1 speck(s) apart from the shape (1 pixels)") != std::string::npos);
 }

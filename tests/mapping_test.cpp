@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <functional>
+#include <algorithm>
+#include <filesystem>
 #include <map>
 
 #include "posemorph/bake/bake.h"
@@ -104,6 +106,28 @@ pb::RigDescription OutlineRig(const std::vector<Polygon>& outlines) {
   return rig;
 }
 
+// Rig-space polygon -> grid coordinates the exact tests accept (a power-of-two scale).
+Polygon OnGrid(const Polygon& p, double scale = 1024) {
+  Polygon out;
+  for (const Point& q : p) out.push_back(Point(std::nearbyint(q.x() * scale), std::nearbyint(q.y() * scale)));
+  return out;
+}
+
+double DistanceToPolyline(const Polygon& p, const Point& q) {
+  double best = 1e300;
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+    const Point a = p[i], b = p[i + 1], ab = b - a;
+    const double t = std::clamp((q - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+    best = std::min(best, (a + t * ab - q).norm());
+  }
+  return best;
+}
+
+Polygon Closed(Polygon p) {
+  p.push_back(p.front());
+  return p;
+}
+
 double Orient2(const Point& a, const Point& b, const Point& c) {
   return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
 }
@@ -142,5 +166,207 @@ TEST_CASE("mapping: robustness corpus triangulates compatibly") {
                  << r.steiner_points << " Steiner, " << r.vertices << " vertices, " << r.triangles
                  << " triangles, min angle " << r.min_angle_degrees << ", " << r.seconds * 1e3 << " ms");
     CheckCompatible(rig);
+  }
+}
+
+TEST_CASE("mapping: every stage keeps its promise on the corpus") {
+  // Enclosure, simplicity, and landmarks mapping to one shared vertex.
+  const std::vector<std::vector<Polygon>> cases = {
+      {Star(6, 100, 35, 0), Star(6, 90, 50, 0.3), Star(6, 120, 25, -0.2)},
+      {Comb(5, 0), Comb(5, 14), Comb(5, -9)},
+      {DeepC(0.3), DeepC(0.1), DeepC(0.9)},
+      {SShape(40, 4), SShape(-35, 3)},
+  };
+  for (const auto& shapes : cases) {
+    std::vector<std::vector<Point>> landmarks;
+    std::vector<std::string> labels;
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+      landmarks.push_back({shapes[i][0], shapes[i][shapes[i].size() / 2]});
+      labels.push_back("pose " + std::to_string(i));
+    }
+    pb::MappingParameters prm;
+    const pm::MappingStages st = pm::MapPolygons(shapes, landmarks, prm, labels, "corpus");
+    const double tol = prm.simplify_tolerance * st.grid_scale;
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+      CAPTURE(i);
+      const Polygon& q = st.simplified.polygons[i];
+      CHECK(pm::IsSimplePolygon(q));
+      CHECK(pm::SignedArea(q) > 0);
+      CHECK(pm::Encloses(q, st.outlines[i]));
+      for (const Point& p : st.outlines[i]) REQUIRE(pm::PointInPolygon(q, p) >= 0);
+      // No polygon point strays further than the tolerance from the outline.
+      for (const Point& p : q) CHECK(DistanceToPolyline(Closed(st.outlines[i]), p) <= tol * 1.5 + 4);
+      // Landmark k is vertex simplified.landmarks[k] in every pose, near where the user put it.
+      for (std::size_t k = 0; k < landmarks[i].size(); ++k)
+        CHECK((q[st.simplified.landmarks[k]] - st.landmarks[i][k]).norm() <= tol + 4);
+    }
+    REQUIRE(st.simplified.landmarks.size() == 2);
+  }
+}
+
+TEST_CASE("mapping: matching a shape to its own rotated, scaled copy is the identity") {
+  Polygon blob;
+  for (int k = 0; k < 400; ++k) {
+    const double t = 2 * M_PI * k / 400, r = 60 + 15 * std::sin(3 * t) + 8 * std::cos(5 * t);
+    blob.push_back({r * std::cos(t), r * std::sin(t)});
+  }
+  const double angle = 0.7, scale = 1.6;
+  const Point shift(30, -20);
+  Polygon copy = Transformed(blob, angle, scale, shift);
+  std::rotate(copy.begin(), copy.begin() + 137, copy.end());  // its vertex 0 is elsewhere
+  auto back = [&](const Point& p) {
+    const Point q = (p - shift) / scale;
+    return Point(std::cos(-angle) * q.x() - std::sin(-angle) * q.y(), std::sin(-angle) * q.x() + std::cos(-angle) * q.y());
+  };
+  const std::vector<std::vector<Point>> landmarks = {{blob[10], blob[150]},
+                                                     {Transformed({blob[10]}, angle, scale, shift)[0],
+                                                      Transformed({blob[150]}, angle, scale, shift)[0]}};
+  pm::MatchingParameters prm;
+  prm.spacing = 1.0;
+  const pm::CorrespondedBoundary m = pm::MatchBoundaries({blob, copy}, landmarks, prm);
+  REQUIRE(m.points[0].size() == m.points[1].size());
+  REQUIRE(m.points[0].size() > 300);
+  double worst = 0;
+  for (std::size_t j = 0; j < m.points[0].size(); ++j) worst = std::max(worst, (back(m.points[1][j]) - m.points[0][j]).norm());
+  MESSAGE("identity matching: worst distance " << worst << " (sample spacing " << prm.spacing << ")");
+  CHECK(worst <= 1e-6);
+  // The user's points map exactly onto each other.
+  for (std::size_t k = 0; k < 2; ++k) {
+    CHECK((m.points[0][m.landmarks[k]] - landmarks[0][k]).norm() <= 1e-9);
+    CHECK((m.points[1][m.landmarks[k]] - landmarks[1][k]).norm() <= 1e-9);
+  }
+}
+
+TEST_CASE("mapping: outlines from alpha") {
+  const int W = 64, H = 64;
+  std::vector<unsigned char> alpha(W * H, 0);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) {
+      const double d = std::hypot(x + 0.5 - 32, y + 0.5 - 32);
+      double a = std::clamp(20.5 - d, 0.0, 1.0);   // anti-aliased disk of radius 20
+      if (d < 5) a = 0;                             // a hole
+      alpha[y * W + x] = (unsigned char)std::lround(a * 255);
+    }
+  for (int y = 1; y < 4; ++y)
+    for (int x = 1; x < 4; ++x) alpha[y * W + x] = 255;  // a speck
+  const pm::ImageOutline io = pm::OutlineFromAlpha(alpha, W, H, 0.5, "disk.png");
+  CHECK(io.dropped_components == 1);
+  CHECK(io.dropped_pixels == 9);
+  CHECK(io.filled_hole_pixels >= 70);
+  CHECK(pm::IsSimplePolygon(OnGrid(io.outline)));
+  CHECK(std::abs(std::abs(pm::SignedArea(io.outline)) - M_PI * 400) < 0.02 * M_PI * 400);
+  for (const Point& p : io.outline) CHECK(std::abs((p - Point(32, 32)).norm() - 20) < 0.75);
+
+  // Two blocks meeting only at a corner, and a one-pixel line: still one simple curve.
+  std::fill(alpha.begin(), alpha.end(), 0);
+  for (int y = 10; y < 20; ++y)
+    for (int x = 10; x < 20; ++x) alpha[y * W + x] = alpha[(y + 10) * W + x + 10] = 255;
+  for (int x = 30; x < 60; ++x) alpha[25 * W + x] = 255;
+  const pm::ImageOutline pinch = pm::OutlineFromAlpha(alpha, W, H, 0.5, "pinch.png");
+  CHECK(pm::IsSimplePolygon(OnGrid(pinch.outline)));
+  double max_x = 0;
+  for (const Point& p : pinch.outline) max_x = std::max(max_x, p.x());
+  CHECK(max_x > 59);  // the thin line is part of the shape
+
+  std::fill(alpha.begin(), alpha.end(), 10);
+  CHECK_THROWS_WITH_AS(pm::OutlineFromAlpha(alpha, W, H, 0.5, "clear.png"),
+                       doctest::Contains("clear.png: image is empty or fully transparent"), pb::BakeError);
+}
+
+TEST_CASE("mapping: SVG outlines") {
+  const Polygon square = pm::FlattenSvgPath("M 10 10 h 20 v 20 H 10 Z", 0.1, "t.svg");
+  REQUIRE(square.size() == 4);
+  CHECK(square[2] == Point(30, 30));
+  CHECK(pm::FlattenSvgPath("m 10 10 l 20 0 l 0 20 l -20 0 z", 0.1, "t.svg") == square);
+  CHECK(pm::FlattenSvgPath("M10,10 30,10 30,30 10,30z", 0.1, "t.svg") == square);  // implicit lines
+
+  // Curves: every point of the true curve within the tolerance of the polygon.
+  for (const double tol : {0.5, 0.05}) {
+    const Polygon cubic = pm::FlattenSvgPath("M 0 0 C 0 50 100 50 100 0 Z", tol, "c.svg");
+    const Polygon quad = pm::FlattenSvgPath("M 0 0 Q 50 100 100 0 z", tol, "q.svg");
+    double worst_c = 0, worst_q = 0;
+    for (int k = 0; k <= 1000; ++k) {
+      const double t = k / 1000.0, u = 1 - t;
+      const Point c = 3 * u * u * t * Point(0, 50) + 3 * u * t * t * Point(100, 50) + t * t * t * Point(100, 0);
+      const Point q = 2 * u * t * Point(50, 100) + t * t * Point(100, 0);
+      worst_c = std::max(worst_c, DistanceToPolyline(cubic, c));
+      worst_q = std::max(worst_q, DistanceToPolyline(quad, q));
+    }
+    CHECK(worst_c <= tol);
+    CHECK(worst_q <= tol);
+    CHECK(cubic.size() < std::size_t(60 / std::sqrt(tol)));
+  }
+
+  const pm::SvgOutline so = pm::OutlineFromSvgText(
+      R"svg(<svg xmlns="http://www.w3.org/2000/svg" viewBox="5 6 200 100">
+           <path d="M 0 0 L 1 0 L 1 1 Z"/>
+           <g><polygon id="outline" points="10,10 50,10 50,40"/></g></svg>)svg",
+      0.1, "p.svg");
+  CHECK(so.outline == Polygon{{10, 10}, {50, 10}, {50, 40}});
+  CHECK(so.canvas_origin == Point(5, 6));
+  CHECK(so.canvas_size == Point(200, 100));
+  CHECK_THROWS_WITH_AS(pm::OutlineFromSvgText(R"svg(<svg width="9" height="9"><path d="M 0 0 A 5 5 0 0 1 9 9 Z"/></svg>)svg", 0.1, "a.svg"),
+                       doctest::Contains("a.svg: path data: arcs (A) are not supported"), pb::BakeError);
+  CHECK_THROWS_WITH_AS(pm::OutlineFromSvgText(R"svg(<svg width="9" height="9"><path transform="scale(2)" d="M 0 0 L 9 0 L 9 9 Z"/></svg>)svg", 0.1, "t.svg"),
+                       doctest::Contains("has a transform"), pb::BakeError);
+  CHECK_THROWS_WITH_AS(pm::OutlineFromSvgText("<svg", 0.1, "x.svg"), doctest::Contains("x.svg: invalid SVG"), pb::BakeError);
+}
+
+namespace {
+
+struct SampleFigures {
+  std::string name;
+  std::size_t max_boundary;  // reached: see README
+  double min_angle;          // reached
+  std::size_t max_steiner;
+};
+
+}  // namespace
+
+TEST_CASE("mapping: the drawn samples map with the quality reached") {
+  for (const SampleFigures& f : {SampleFigures{"pip", 55, 9.4, 0}, SampleFigures{"sprout", 65, 13.1, 0}}) {
+    CAPTURE(f.name);
+    const std::string dir = std::string(POSEMORPH_DRAWN_SAMPLES) + "/" + f.name;
+    REQUIRE_MESSAGE(std::filesystem::exists(dir + "/rest.png"), "the build rasterises the drawings (rsvg-convert)");
+    pb::RigDescription rig = pb::ReadRigDescription(dir + "/" + f.name + ".json");
+    pb::MapDrawings(rig);
+    const pb::MappingReport& r = rig.mapping_report;
+    MESSAGE(f.name << ": outlines " << r.outline_vertices[0] << ".. vertices, " << r.matched_vertices << " matched -> "
+                   << r.boundary_vertices << " boundary, " << r.steiner_points << " Steiner, " << r.vertices
+                   << " vertices, " << r.triangles << " triangles, min angle " << r.min_angle_degrees);
+    CHECK(r.boundary_vertices <= f.max_boundary);
+    CHECK(r.steiner_points <= f.max_steiner);
+    CHECK(r.min_angle_degrees >= f.min_angle);
+    CheckCompatible(rig);
+
+    // Each pose's mesh covers every opaque pixel of its own drawing, seen through its uvs.
+    for (const pb::PoseDescription& pose : rig.poses) {
+      CAPTURE(pose.name);
+      int W = 0, H = 0;
+      const std::vector<unsigned char> alpha = pm::ReadPngAlpha(dir + "/" + pose.image, &W, &H);
+      REQUIRE(pose.uvs.size() == pose.vertices.size());
+      std::vector<Point> uv;
+      for (const auto& t : pose.uvs) uv.push_back(Point(t.x() * W, t.y() * H));
+      std::size_t opaque = 0, uncovered = 0;
+      for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+          if (alpha[std::size_t(y) * W + x] < 128) continue;
+          ++opaque;
+          const Point c(x + 0.5, y + 0.5);
+          bool covered = false;
+          for (const auto& t : rig.triangles) {
+            // uv space has y down, so triangles are clockwise there.
+            const double d0 = Orient2(uv[t[0]], uv[t[1]], c), d1 = Orient2(uv[t[1]], uv[t[2]], c),
+                         d2 = Orient2(uv[t[2]], uv[t[0]], c);
+            if (d0 <= 0 && d1 <= 0 && d2 <= 0) {
+              covered = true;
+              break;
+            }
+          }
+          uncovered += !covered;
+        }
+      CHECK(opaque > 5000);
+      CHECK(uncovered == 0);
+    }
   }
 }

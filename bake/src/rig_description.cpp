@@ -201,6 +201,12 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
     number("curve_tolerance", p.curve_tolerance, 1e-6, 1e6, "[1e-6, 1e6]");
     number("spacing", p.spacing, 1e-6, 1e9, "[1e-6, 1e9]");
     number("landmark_distance", p.landmark_distance, 0, 1, "[0, 1]");
+    if (m.contains("max_steiner_points")) {
+      if (!m["max_steiner_points"].is_number_integer() || m["max_steiner_points"].get<long long>() < 0 ||
+          m["max_steiner_points"].get<long long>() > 100000)
+        r.Fail("mapping.max_steiner_points", "expected an integer in 0..100000");
+      p.max_steiner_points = int(m["max_steiner_points"].get<long long>());
+    }
   }
 
   if (root.contains("bake")) {

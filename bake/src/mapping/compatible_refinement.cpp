@@ -176,21 +176,22 @@ class Refiner {
     std::vector<std::vector<std::size_t>> incident(V);
     for (std::size_t t = 0; t < m_.triangles.size(); ++t)
       for (std::size_t v : m_.triangles[t]) incident[v].push_back(t);
-    for (int pass = 0; pass < passes; ++pass)
+    for (int pass = 0; pass < passes; ++pass) {
+      std::size_t moved = 0;
       for (Polygon& pos : m_.vertices)
         for (std::size_t v = 0; v < V; ++v) {
           if (boundary_[v] || incident[v].empty()) continue;
           // Around v: each triangle (v, a, b) counter-clockwise; neighbour a's ring
           // neighbours are the previous and next vertices around v.
           Point sum = Point::Zero();
-          double local_before = M_PI;
+          double local_before = 1;  // smallest angle as -cos: larger is better
           std::unordered_map<std::size_t, std::size_t> after_of, before_of;
           for (std::size_t t : incident[v]) {
             Tri tri = m_.triangles[t];
             while (tri[0] != v) std::rotate(tri.begin(), tri.begin() + 1, tri.end());
             after_of[tri[1]] = tri[2];
             before_of[tri[2]] = tri[1];
-            local_before = std::min(local_before, TriangleMinAngle(pos[tri[0]], pos[tri[1]], pos[tri[2]]));
+            local_before = std::min(local_before, -MinAngleCosine(pos[tri[0]], pos[tri[1]], pos[tri[2]]));
           }
           int count = 0;
           for (const auto& [nj, next] : after_of) {
@@ -210,8 +211,9 @@ class Refiner {
             ++count;
           }
           if (count == 0) continue;
-          // Try the angle-based position, the neighbours' centroid, and halfway
-          // to each; keep whichever raises the local smallest angle most.
+          // Try steps of 1, 1/2, 1/4 and 1/10 toward the angle-based position and
+          // toward the neighbours' centroid; keep whichever raises the local
+          // smallest angle most.
           Point centroid = Point::Zero();
           for (const auto& [nj, next] : after_of) {
             (void)next;
@@ -220,22 +222,25 @@ class Refiner {
           centroid /= double(after_of.size());
           const Point old = pos[v];
           const Point angle_based = sum / count;
-          const Point tries[4] = {angle_based, centroid, (old + angle_based) / 2, (old + centroid) / 2};
           Point best = old;
           double best_angle = local_before;
-          for (const Point& t : tries) {
-            pos[v] = Snap(t);
+          for (int k = 0; k < 8; ++k) {
+            const double f = k % 4 == 0 ? 1.0 : k % 4 == 1 ? 0.5 : k % 4 == 2 ? 0.25 : 0.1;
+            pos[v] = Snap(old + f * ((k < 4 ? angle_based : centroid) - old));
             bool ok = true;
-            double local_after = M_PI;
+            double local_after = 1;
             for (std::size_t tri : incident[v]) {
               const Tri& tr = m_.triangles[tri];
               ok = ok && Positive(pos, tr);
-              local_after = std::min(local_after, TriangleMinAngle(pos[tr[0]], pos[tr[1]], pos[tr[2]]));
+              local_after = std::min(local_after, -MinAngleCosine(pos[tr[0]], pos[tr[1]], pos[tr[2]]));
             }
             if (ok && local_after > best_angle) best = pos[v], best_angle = local_after;
           }
+          moved += best != old;
           pos[v] = best;
         }
+      if (moved == 0) break;
+    }
   }
 
   // Splits the longest edge of each triangle whose smallest angle is below the goal.
@@ -271,7 +276,7 @@ void RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& prm) {
   Refiner r(mesh);
   if (prm.max_edge_length > 0) r.SplitLong(prm.max_edge_length);
   r.Flip();
-  r.Smooth(8);
+  r.Smooth(24);
   r.Flip();
   const double goal = prm.min_angle_goal * M_PI / 180;
   const double min_length = prm.max_edge_length > 0 ? prm.max_edge_length / 4 : 0;
@@ -279,7 +284,7 @@ void RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& prm) {
     if (MinAngleDegrees(mesh) >= prm.min_angle_goal) break;
     if (r.SplitBad(goal, min_length) == 0) break;
     r.Flip();
-    r.Smooth(8);
+    r.Smooth(24);
     r.Flip();
   }
 }

@@ -162,14 +162,14 @@ LinkPaths ComputeLinkPaths(const View& v) {
 
 }  // namespace
 
-CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const std::string& what) {
+CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const std::string& what,
+                                     std::size_t max_steiner_points) {
   const std::size_t N = polygons.size(), n0 = polygons[0].size();
   CompatibleMesh mesh;
   mesh.vertices = polygons;
   mesh.boundary_vertices = n0;
   std::vector<Piece> stack(1);
   for (std::size_t k = 0; k < n0; ++k) stack[0].push_back(k);
-  const std::size_t steiner_limit = 4 * n0 + 64;
 
   while (!stack.empty()) {
     Piece piece = std::move(stack.back());
@@ -225,7 +225,10 @@ CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const
       std::sort(options.begin(), options.end());
       for (const auto& [k, sliver, unbalance, a, b] : options) {
         (void)sliver, (void)unbalance;
-        if (mesh.vertices[0].size() + std::size_t(k) > n0 + steiner_limit) break;
+        if (mesh.steiner_points + std::size_t(k) > max_steiner_points) {
+          throw BakeError("", what + ": the drawings cannot be triangulated compatibly with at most " +
+                                  std::to_string(max_steiner_points) + " Steiner points (mapping.max_steiner_points)");
+        }
         // Each pose's path, padded to k points by subdividing its longest link.
         std::vector<Polygon> paths(N);
         bool ok = true;
@@ -263,12 +266,12 @@ CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const
         }
         for (std::size_t i = 0; i < N; ++i)
           for (std::size_t j = 0; j < chain.size(); ++j) mesh.vertices[i][chain[j]] = paths[i][j + 1];
+        mesh.steiner_points += chain.size();
         break;
       }
       if (!found)
         throw BakeError("", what + ": the drawings cannot be triangulated compatibly (no chord joins the same two "
                                    "boundary points inside every pose)");
-      mesh.steiner_points += chain.size();
     }
     Piece left(piece.begin() + std::ptrdiff_t(A), piece.begin() + std::ptrdiff_t(B) + 1);
     left.insert(left.end(), chain.rbegin(), chain.rend());

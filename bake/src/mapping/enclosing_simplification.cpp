@@ -120,6 +120,14 @@ double SpanDistance(const PoseState& st, std::size_t a, std::size_t b, const Poi
   return worst;
 }
 
+// How far a polygon vertex stands from the outline near it: the outline
+// vertices of its two edges' spans and its own matched point.
+double VertexDistance(const PoseState& st, std::size_t prev, std::size_t next, const Point& at_k, const Point& p) {
+  double best = (p - at_k).norm();
+  st.ForSpan(st.at[prev], st.at[next], [&](std::size_t v) { best = std::min(best, (p - (*st.outline)[v]).norm()); });
+  return best;
+}
+
 struct Candidate {
   double error = kInf;
   std::vector<Point> a, b;  // per pose, new positions of the two neighbours
@@ -234,9 +242,12 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
           if (possible) error = std::max({error, (B - s.pos[b]).norm(), (B - s.pos[j]).norm()});
         }
         if (!possible) break;
-        // One-sided distance from the outline to every edge that changes.
+        // Distance between outline and polygon where it changes: outline to
+        // the new edges, and the moved vertices to the outline.
         error = std::max({error, SpanDistance(s, a, b, A, B), SpanDistance(s, pa, a, s.pos[pa], A),
                           SpanDistance(s, b, nb, B, s.pos[nb])});
+        if (A != s.pos[a]) error = std::max(error, VertexDistance(s, pa, b, boundary.points[i][a], A));
+        if (B != s.pos[b]) error = std::max(error, VertexDistance(s, a, nb, boundary.points[i][b], B));
         c.a[i] = A, c.b[i] = B;
       }
       if (!possible) continue;

@@ -1,6 +1,7 @@
 // Exact predicates on grid coordinates (integers held in doubles, |x| < 2^26)
 // and the segment and polygon tests every mapping stage shares.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 
@@ -47,8 +48,19 @@ inline double AngleAt(const Point& a, const Point& b, const Point& c) {  // at a
   return std::atan2(std::abs(u.x() * v.y() - u.y() * v.x()), u.dot(v));
 }
 
+// Cosine of the smallest angle, which lies opposite the shortest edge (law of
+// cosines). Decreases as the smallest angle grows: a cheap quality to compare.
+inline double MinAngleCosine(const Point& a, const Point& b, const Point& c) {
+  const double ab = (b - a).squaredNorm(), bc = (c - b).squaredNorm(), ca = (a - c).squaredNorm();
+  double opposite = ab, s1 = bc, s2 = ca;
+  if (bc < opposite) opposite = bc, s1 = ab, s2 = ca;
+  if (ca < opposite) opposite = ca, s1 = ab, s2 = bc;
+  if (s1 == 0 || s2 == 0) return 1;
+  return std::clamp((s1 + s2 - opposite) / (2 * std::sqrt(s1 * s2)), -1.0, 1.0);
+}
+
 inline double TriangleMinAngle(const Point& a, const Point& b, const Point& c) {
-  return std::min({AngleAt(a, b, c), AngleAt(b, c, a), AngleAt(c, a, b)});
+  return std::acos(MinAngleCosine(a, b, c));
 }
 
 // Maps drawing coordinates to the integer grid and back by a power of two,

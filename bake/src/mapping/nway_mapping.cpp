@@ -78,8 +78,9 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines, const std::v
     Polygon g;
     for (const Point& p : rig_outlines[k]) g.push_back(grid.ToGrid(p));
     g = WithoutRepeats(g);
-    if (g.size() < 3 || SignedArea(g) == 0) fail(k, "the outline encloses no area");
+    if (g.size() < 3) fail(k, "the outline encloses no area");
     if (!IsSimplePolygon(g)) fail(k, "the outline crosses or touches itself; it must be one simple closed curve");
+    if (SignedArea(g) == 0) fail(k, "the outline encloses no area");
     if (SignedArea(g) < 0) std::reverse(g.begin(), g.end());
     st.outlines.push_back(std::move(g));
   }
@@ -134,14 +135,13 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines, const std::v
   for (std::size_t k = 0; k < N; ++k) {
     // The promise of this stage, checked exactly: simple, and the outline inside or on it.
     const Polygon& q = st.simplified.polygons[k];
-    bool ok = IsSimplePolygon(q) && SignedArea(q) > 0;
-    for (const Point& p : st.outlines[k]) ok = ok && PointInPolygon(q, p) >= 0;
-    if (!ok) fail(k, "internal: the simplified boundary does not enclose the outline");
+    if (!IsSimplePolygon(q) || SignedArea(q) <= 0 || !Encloses(q, st.outlines[k]))
+      fail(k, "internal: the simplified boundary does not enclose the outline");
   }
   std::string names;
   for (const std::string& l : labels) names += (names.empty() ? "" : ", ") + l;
   try {
-    st.mesh = TriangulateCompatibly(st.simplified.polygons, names);
+    st.mesh = TriangulateCompatibly(st.simplified.polygons, names, std::size_t(prm.max_steiner_points));
   } catch (const BakeError& e) {
     throw BakeError(file, e.what());
   }

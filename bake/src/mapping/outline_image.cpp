@@ -176,7 +176,7 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
   return result;
 }
 
-ImageOutline OutlineFromPng(const std::string& path, double threshold) {
+std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height) {
   png_image image;
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;
@@ -196,7 +196,15 @@ ImageOutline OutlineFromPng(const std::string& path, double threshold) {
   }
   std::vector<unsigned char> alpha(std::size_t(image.width) * image.height);
   for (std::size_t i = 0; i < alpha.size(); ++i) alpha[i] = ga[2 * i + 1];
-  return OutlineFromAlpha(alpha, int(image.width), int(image.height), threshold, path);
+  *width = int(image.width);
+  *height = int(image.height);
+  return alpha;
+}
+
+ImageOutline OutlineFromPng(const std::string& path, double threshold) {
+  int width = 0, height = 0;
+  const std::vector<unsigned char> alpha = ReadPngAlpha(path, &width, &height);
+  return OutlineFromAlpha(alpha, width, height, threshold, path);
 }
 
 }  // namespace posemorph::bake::mapping

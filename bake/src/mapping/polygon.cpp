@@ -65,4 +65,47 @@ int PointInPolygon(const Polygon& p, const Point& q) {
   return inside ? 1 : -1;
 }
 
+namespace {
+
+// b is inside the interior angle at v or on one of its two rays.
+bool InClosedCone(const Point& u, const Point& v, const Point& w, const Point& b) {
+  if (InCone(u, v, w, b)) return true;
+  return (Cross(v, w, b) == 0 && (w - v).dot(b - v) > 0) || (Cross(v, u, b) == 0 && (u - v).dot(b - v) > 0);
+}
+
+}  // namespace
+
+bool Encloses(const Polygon& outer, const Polygon& inner) {
+  std::vector<int> where(inner.size());
+  for (std::size_t i = 0; i < inner.size(); ++i) {
+    where[i] = PointInPolygon(outer, inner[i]);
+    if (where[i] < 0) return false;
+  }
+  // With every vertex inside or on, an edge leaves only by crossing an edge of
+  // `outer`, by passing through one of its vertices into the exterior, or by
+  // running outside between two boundary points (then its midpoint is outside).
+  Polygon doubled;
+  for (std::size_t i = 0, n = inner.size(); i < n; ++i) {
+    const Point &a = inner[i], &b = inner[(i + 1) % n];
+    const Point lo = a.cwiseMin(b), hi = a.cwiseMax(b);
+    for (std::size_t k = 0, m = outer.size(); k < m; ++k) {
+      const Point &c = outer[k], &d = outer[(k + 1) % m];
+      if (std::max(c.x(), d.x()) < lo.x() || std::min(c.x(), d.x()) > hi.x() || std::max(c.y(), d.y()) < lo.y() ||
+          std::min(c.y(), d.y()) > hi.y())
+        continue;
+      if (ProperlyCross(a, b, c, d)) return false;
+      if (c != a && c != b && OnSegment(a, b, c)) {
+        const Point& before = outer[(k + m - 1) % m];
+        if (!InClosedCone(before, c, d, a) || !InClosedCone(before, c, d, b)) return false;
+      }
+    }
+    if (where[i] == 0 && where[(i + 1) % n] == 0) {
+      if (doubled.empty())
+        for (const Point& p : outer) doubled.push_back(2 * p);
+      if (PointInPolygon(doubled, a + b) < 0) return false;
+    }
+  }
+  return true;
+}
+
 }  // namespace posemorph::bake::mapping

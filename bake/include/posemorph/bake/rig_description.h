@@ -52,6 +52,7 @@ struct MappingParameters {
   double curve_tolerance = 0.25;    // SVG: curve flattening, drawing units
   double spacing = 1.0;             // drawing units between matched boundary samples
   double landmark_distance = 0.05;  // a landmark may lie this far off its outline, times the outline's size
+  int max_steiner_points = 100;     // interior points the compatible triangulation may add
 };
 
 // What mapping made, for the bake report and the closing figures.

@@ -35,6 +35,8 @@ struct ImageOutline {
 // the outline traced where alpha crosses the threshold (marching squares,
 // sub-pixel). Throws BakeError naming the file.
 ImageOutline OutlineFromPng(const std::string& path, double alpha_threshold);
+// The alpha channel of a PNG (any colour type), row by row. Throws BakeError naming the file.
+std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height);
 ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width, int height,
                               double alpha_threshold, const std::string& file);
 
@@ -60,6 +62,8 @@ double SignedArea(const Polygon& p);
 bool IsSimplePolygon(const Polygon& p);  // no two edges meet except neighbours at their shared vertex
 // +1 strictly inside, 0 on the boundary, -1 outside. Exact.
 int PointInPolygon(const Polygon& p, const Point& q);
+// Every point of `inner` (vertices and edges) inside or on `outer`. Exact.
+bool Encloses(const Polygon& outer, const Polygon& inner);
 
 // --- Correspondence ---------------------------------------------------------
 
@@ -107,8 +111,9 @@ struct CompatibleMesh {
 // Splits all N polygons along chords valid in every pose (stage I), through
 // one Steiner point per pose (II) or the fewest over shortest link paths
 // (III) until every piece is a triangle. Throws BakeError naming `what` when
-// no compatible split exists.
-CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const std::string& what);
+// no compatible split exists or more than `max_steiner_points` would be needed.
+CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const std::string& what,
+                                     std::size_t max_steiner_points);
 
 struct RefinementParameters {
   double max_edge_length = 0;   // 0: no splitting for length
