@@ -347,24 +347,26 @@ TEST_CASE("mapping: the drawn samples map with the quality reached") {
       REQUIRE(pose.uvs.size() == pose.vertices.size());
       std::vector<Point> uv;
       for (const auto& t : pose.uvs) uv.push_back(Point(t.x() * W, t.y() * H));
-      std::size_t opaque = 0, uncovered = 0;
-      for (int y = 0; y < H; ++y)
-        for (int x = 0; x < W; ++x) {
-          if (alpha[std::size_t(y) * W + x] < 128) continue;
-          ++opaque;
-          const Point c(x + 0.5, y + 0.5);
-          bool covered = false;
-          for (const auto& t : rig.triangles) {
-            // uv space has y down, so triangles are clockwise there.
-            const double d0 = Orient2(uv[t[0]], uv[t[1]], c), d1 = Orient2(uv[t[1]], uv[t[2]], c),
-                         d2 = Orient2(uv[t[2]], uv[t[0]], c);
-            if (d0 <= 0 && d1 <= 0 && d2 <= 0) {
-              covered = true;
-              break;
-            }
+      // Mark the pixel centres each triangle covers (uv space has y down, so
+      // triangles are clockwise there), then look for opaque pixels left over.
+      std::vector<char> covered(alpha.size(), 0);
+      for (const auto& t : rig.triangles) {
+        const Point lo = uv[t[0]].cwiseMin(uv[t[1]]).cwiseMin(uv[t[2]]);
+        const Point hi = uv[t[0]].cwiseMax(uv[t[1]]).cwiseMax(uv[t[2]]);
+        for (int y = std::max(0, int(lo.y()) - 1); y <= std::min(H - 1, int(hi.y()) + 1); ++y)
+          for (int x = std::max(0, int(lo.x()) - 1); x <= std::min(W - 1, int(hi.x()) + 1); ++x) {
+            const Point c(x + 0.5, y + 0.5);
+            if (Orient2(uv[t[0]], uv[t[1]], c) <= 0 && Orient2(uv[t[1]], uv[t[2]], c) <= 0 &&
+                Orient2(uv[t[2]], uv[t[0]], c) <= 0)
+              covered[std::size_t(y) * W + x] = 1;
           }
-          uncovered += !covered;
-        }
+      }
+      std::size_t opaque = 0, uncovered = 0;
+      for (std::size_t p = 0; p < alpha.size(); ++p) {
+        if (alpha[p] < 128) continue;
+        ++opaque;
+        uncovered += !covered[p];
+      }
       CHECK(opaque > 5000);
       CHECK(uncovered == 0);
     }

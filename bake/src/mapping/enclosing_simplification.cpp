@@ -68,8 +68,7 @@ bool HitsPolygon(const PoseState& st, const Linked& L, std::size_t u, std::size_
   do {
     const std::size_t f = L.next[e];
     const Point &c = st.pos[e], &d = st.pos[f];
-    if (!(std::max(c.x(), d.x()) < lo.x() || std::min(c.x(), d.x()) > hi.x() || std::max(c.y(), d.y()) < lo.y() ||
-          std::min(c.y(), d.y()) > hi.y())) {
+    if (!OutsideBox(lo, hi, c, d)) {
       const bool shares_u = e == u || f == u, shares_v = e == v || f == v;
       if (shares_u && shares_v) {
         // the same edge (or the reverse of a 2-gon): skip
@@ -91,9 +90,7 @@ bool CrossesOutline(const Polygon& outline, const Point& p, const Point& q) {
   const Point lo = p.cwiseMin(q), hi = p.cwiseMax(q);
   for (std::size_t i = 0, n = outline.size(); i < n; ++i) {
     const Point &c = outline[i], &d = outline[(i + 1) % n];
-    if (std::max(c.x(), d.x()) < lo.x() || std::min(c.x(), d.x()) > hi.x() || std::max(c.y(), d.y()) < lo.y() ||
-        std::min(c.y(), d.y()) > hi.y())
-      continue;
+    if (OutsideBox(lo, hi, c, d)) continue;
     if (ProperlyCross(p, q, c, d)) return true;
   }
   return false;

@@ -25,6 +25,12 @@ inline bool OnSegment(const Point& a, const Point& b, const Point& c) {
          std::min(a.y(), b.y()) <= c.y() && c.y() <= std::max(a.y(), b.y());
 }
 
+// Segment c-d lies wholly outside the box [lo, hi]: a quick reject before exact tests.
+inline bool OutsideBox(const Point& lo, const Point& hi, const Point& c, const Point& d) {
+  return std::max(c.x(), d.x()) < lo.x() || std::min(c.x(), d.x()) > hi.x() || std::max(c.y(), d.y()) < lo.y() ||
+         std::min(c.y(), d.y()) > hi.y();
+}
+
 // The open segments cross at one point interior to both.
 inline bool ProperlyCross(const Point& a, const Point& b, const Point& c, const Point& d) {
   const std::int64_t o1 = Cross(a, b, c), o2 = Cross(a, b, d), o3 = Cross(c, d, a), o4 = Cross(c, d, b);

@@ -42,7 +42,6 @@ bool IsSimplePolygon(const Polygon& p) {
         const Point& x = f == (e + 1) % n ? a : b;
         const Point& y = f == (e + 1) % n ? d : c;
         if (Cross(shared, x, y) == 0 && (x - shared).dot(y - shared) > 0) return false;
-        if (n == 3) continue;
         continue;
       }
       if (SegmentsMeet(a, b, c, d)) return false;
@@ -90,9 +89,7 @@ bool Encloses(const Polygon& outer, const Polygon& inner) {
     const Point lo = a.cwiseMin(b), hi = a.cwiseMax(b);
     for (std::size_t k = 0, m = outer.size(); k < m; ++k) {
       const Point &c = outer[k], &d = outer[(k + 1) % m];
-      if (std::max(c.x(), d.x()) < lo.x() || std::min(c.x(), d.x()) > hi.x() || std::max(c.y(), d.y()) < lo.y() ||
-          std::min(c.y(), d.y()) > hi.y())
-        continue;
+      if (OutsideBox(lo, hi, c, d)) continue;
       if (ProperlyCross(a, b, c, d)) return false;
       if (c != a && c != b && OnSegment(a, b, c)) {
         const Point& before = outer[(k + m - 1) % m];
