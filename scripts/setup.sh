@@ -12,7 +12,13 @@ packages=(
   libsuitesparse-dev        # bench: CHOLMOD, the solver the runtime is measured against
   libpng-dev                # bake: reading drawings (PNG alpha)
   libtinyxml2-dev           # bake: reading SVG outlines (XML)
-  librsvg2-bin              # demo: contact sheet SVG -> PNG (rsvg-convert)
+  librsvg2-bin              # build: drawn samples SVG -> PNG; demo: contact sheets (rsvg-convert)
+  libvulkan-dev             # viewer: Vulkan headers and loader
+  glslang-tools             # viewer: GLSL -> SPIR-V at build time (glslangValidator)
+  mesa-vulkan-drivers       # viewer: lavapipe, Vulkan on the CPU
+  vulkan-validationlayers   # viewer tests: the Khronos validation layer
+  libglfw3-dev              # viewer: the window
+  xvfb                      # viewer tests: a display for the window smoke test
 )
 
 missing=()

@@ -1,0 +1,133 @@
+// posemorph-view: preview a baked rig. With --headless it renders offscreen
+// (no window system needed) and writes PNG frames; otherwise it opens a
+// window (when built with GLFW and a display is there).
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "posemorph/rig.h"
+#include "scene.h"
+#include "window.h"
+
+using namespace posemorph;
+using namespace posemorph::viewer;
+
+namespace {
+
+const char* kUsage =
+    "usage: posemorph-view RIG.pmrig [--images DIR] [--headless -o OUT.png] [--size WxH]\n"
+    "         [--at X,Y | --path NAME [--time T] [--frames K]] [--crowd K] [--sigma S]\n"
+    "         [--no-shear-limit] [--linear] [--wireframe] [--validation]\n"
+    "  --images DIR  where the rig's drawings are (default: the rig's folder)\n"
+    "  --frames K    with --path: K frames over the path's duration, OUT-000.png ...\n"
+    "  --validation  enable the Vulkan validation layer; any message fails (exit 3)\n";
+
+int Usage(const std::string& problem) {
+  std::fprintf(stderr, "posemorph-view: %s\n%s", problem.c_str(), kUsage);
+  return 2;
+}
+
+int Fail(const std::string& problem) {
+  std::fprintf(stderr, "posemorph-view: error: %s\n", problem.c_str());
+  return 1;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string rig_path, images, output;
+  bool headless = false, validation = false;
+  std::uint32_t width = 640, height = 640, frames = 0;
+  Scene scene;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
+    const char* v = nullptr;
+    if (a == "--headless") headless = true;
+    else if (a == "--validation") validation = true;
+    else if (a == "--no-shear-limit") scene.shear_limit = false;
+    else if (a == "--linear") scene.linear = true;
+    else if (a == "--wireframe") scene.wireframe = true;
+    else if (a == "-o" && (v = value())) output = v;
+    else if (a == "--images" && (v = value())) images = v;
+    else if (a == "--path" && (v = value())) scene.path = v;
+    else if (a == "--time" && (v = value())) scene.time = std::atof(v);
+    else if (a == "--sigma" && (v = value())) scene.sigma = std::atof(v);
+    else if (a == "--frames" && (v = value())) frames = std::uint32_t(std::atoi(v));
+    else if (a == "--crowd" && (v = value())) scene.crowd = std::uint32_t(std::max(1, std::atoi(v)));
+    else if (a == "--size" && (v = value())) {
+      if (std::sscanf(v, "%ux%u", &width, &height) != 2 || width == 0 || height == 0 || width > 8192 || height > 8192)
+        return Usage("--size wants WxH, each 1..8192");
+    } else if (a == "--at" && (v = value())) {
+      if (std::sscanf(v, "%lf,%lf", &scene.x, &scene.y) != 2) return Usage("--at wants X,Y");
+    } else if (!a.empty() && a[0] != '-' && rig_path.empty()) rig_path = a;
+    else return Usage("unknown or incomplete argument \"" + a + "\"");
+  }
+  if (rig_path.empty()) return Usage("no rig given");
+  if (images.empty()) {
+    const auto slash = rig_path.rfind('/');
+    images = slash == std::string::npos ? "." : rig_path.substr(0, slash);
+  }
+
+  std::ifstream in(rig_path, std::ios::binary);
+  if (!in) return Fail(rig_path + ": cannot open file");
+  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Rig rig;
+  Error err;
+  if (!LoadRig(bytes.data(), bytes.size(), &rig, &err)) return Fail(rig_path + ": " + err.message);
+  Drawings drawings;
+  std::string problem;
+  if (!LoadDrawings(rig, images, &drawings, &problem)) return Fail(rig_path + ": " + problem);
+
+  if (!headless) return RunWindow(rig, drawings, scene, width, height, validation);
+  if (output.empty()) return Usage("--headless needs -o OUT.png");
+
+  Gpu gpu;
+  GpuOptions options;
+  options.validation = validation;
+  if (!gpu.Init(options, &problem)) return Fail(problem);
+  RigRenderer renderer;
+  if (!renderer.Init(gpu, rig, drawings, OffscreenTarget::kFormat, scene.crowd, &problem)) return Fail(problem);
+  OffscreenTarget target;
+  target.Init(gpu, width, height);
+  const float background[4] = {0.93f, 0.94f, 0.95f, 1.0f};
+
+  std::vector<std::string> outputs;
+  std::vector<double> times;
+  if (frames > 0) {
+    const int p = rig.FindPath(scene.path.c_str());
+    if (scene.path.empty() || p < 0) return Fail("--frames needs a --path the rig has");
+    const PathView path = rig.path(std::uint32_t(p));
+    const double t0 = path.keys.data[0], t1 = path.keys.data[path.keys.size - 3];
+    std::string stem = output;
+    if (stem.size() > 4 && stem.compare(stem.size() - 4, 4, ".png") == 0) stem.resize(stem.size() - 4);
+    for (std::uint32_t f = 0; f < frames; ++f) {
+      char name[32];
+      std::snprintf(name, sizeof name, "-%03u.png", f);
+      outputs.push_back(stem + name);
+      times.push_back(t0 + (t1 - t0) * f / frames);
+    }
+  } else {
+    outputs.push_back(output);
+    times.push_back(scene.time);
+  }
+  for (std::size_t f = 0; f < outputs.size(); ++f) {
+    scene.time = times[f];
+    View view;
+    std::uint32_t count = 0;
+    if (!PrepareScene(rig, scene, renderer, &view, &count, &problem)) return Fail(problem);
+    target.Render([&](VkCommandBuffer cmd) { renderer.Record(cmd, count, view, width, height, scene.wireframe); },
+                  background);
+    if (!WritePng(outputs[f], target.pixels(), width, height, &problem)) return Fail(problem);
+  }
+  std::printf("wrote %s%s (%ux%u, %s)\n", outputs[0].c_str(), outputs.size() > 1 ? " ..." : "", width, height,
+              gpu.device_name().c_str());
+  if (gpu.validation_messages() > 0)
+    return std::fprintf(stderr, "posemorph-view: %d validation message(s)\n", gpu.validation_messages()), 3;
+  return 0;
+}

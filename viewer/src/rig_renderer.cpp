@@ -1,0 +1,345 @@
+#include "rig_renderer.h"
+
+#include <png.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "blend.frag.h"
+#include "skin.vert.h"
+
+namespace posemorph::viewer {
+
+bool ReadPng(const std::string& path, std::vector<unsigned char>* rgba, std::uint32_t* width, std::uint32_t* height,
+             std::string* error) {
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&image, path.c_str())) {
+    *error = path + ": cannot read PNG: " + image.message;
+    return false;
+  }
+  image.format = PNG_FORMAT_RGBA;
+  rgba->assign(PNG_IMAGE_SIZE(image), 0);
+  if (!png_image_finish_read(&image, nullptr, rgba->data(), 0, nullptr)) {
+    *error = path + ": cannot decode PNG: " + image.message;
+    png_image_free(&image);
+    return false;
+  }
+  *width = image.width;
+  *height = image.height;
+  return true;
+}
+
+bool WritePng(const std::string& path, const unsigned char* rgba, std::uint32_t width, std::uint32_t height,
+              std::string* error) {
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  image.width = width;
+  image.height = height;
+  image.format = PNG_FORMAT_RGBA;
+  if (!png_image_write_to_file(&image, path.c_str(), 0, rgba, 0, nullptr)) {
+    *error = path + ": cannot write PNG: " + image.message;
+    return false;
+  }
+  return true;
+}
+
+bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::string* error) {
+  const std::uint32_t N = rig.pose_count();
+  if (rig.uvs(0).size == 0) {
+    *error = "the rig has no uvs, so there is nothing to draw its drawings with (bake it from drawings)";
+    return false;
+  }
+  std::vector<std::vector<unsigned char>> images(N);
+  std::vector<std::uint32_t> w(N), h(N);
+  for (std::uint32_t i = 0; i < N; ++i) {
+    const StringView name = rig.pose_image(i);
+    if (name.size == 0) {
+      *error = "pose " + std::to_string(i) + " has no image reference";
+      return false;
+    }
+    const std::string path = dir + "/" + std::string(name.data, name.size);
+    if (!ReadPng(path, &images[i], &w[i], &h[i], error)) return false;
+  }
+  out->width = *std::max_element(w.begin(), w.end());
+  out->height = *std::max_element(h.begin(), h.end());
+  out->rgba.assign(N, std::vector<unsigned char>(std::size_t(out->width) * out->height * 4));
+  for (std::uint32_t i = 0; i < N; ++i)
+    for (std::uint32_t y = 0; y < out->height; ++y)
+      for (std::uint32_t x = 0; x < out->width; ++x) {
+        // Nearest resampling to the common size (uvs are relative, so they still fit).
+        const std::uint32_t sx = x * w[i] / out->width, sy = y * h[i] / out->height;
+        const unsigned char* s = &images[i][(std::size_t(sy) * w[i] + sx) * 4];
+        unsigned char* d = &out->rgba[i][(std::size_t(y) * out->width + x) * 4];
+        for (int c = 0; c < 3; ++c) d[c] = (unsigned char)((s[c] * s[3] + 127) / 255);  // premultiply
+        d[3] = s[3];
+      }
+  return true;
+}
+
+void PickDrawings(const double* w, std::uint32_t N, InstanceData* out) {
+  std::int32_t best[4] = {0, 0, 0, 0};
+  double weight[4] = {0, 0, 0, 0};
+  int count = 0;
+  for (std::uint32_t i = 0; i < N; ++i) {
+    const double v = w[i];
+    int at = count < 4 ? count : 4;
+    while (at > 0 && weight[at - 1] < v) --at;
+    if (at >= 4) continue;
+    for (int k = std::min(count, 3); k > at; --k) best[k] = best[k - 1], weight[k] = weight[k - 1];
+    best[at] = std::int32_t(i), weight[at] = v;
+    count = std::min(count + 1, 4);
+  }
+  double sum = 0;
+  for (int k = 0; k < count; ++k) sum += std::max(weight[k], 0.0);
+  for (int k = 0; k < 4; ++k) {
+    out->layers[k] = k < count ? best[k] : best[0];
+    out->weights[k] = k < count && sum > 0 ? float(std::max(weight[k], 0.0) / sum) : 0.0f;
+  }
+  if (sum <= 0) out->weights[0] = 1;
+}
+
+namespace {
+
+struct Push {  // matches the push constants of both shaders (scalar layout)
+  VkDeviceAddress positions, uvs, instances;
+  float view_scale[2], view_offset[2];
+  std::uint32_t vertex_count, flat_colour;
+};
+
+VkShaderModule Module(VkDevice device, const std::uint32_t* code, std::size_t bytes) {
+  VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  ci.codeSize = bytes;
+  ci.pCode = code;
+  VkShaderModule m = VK_NULL_HANDLE;
+  vkCreateShaderModule(device, &ci, nullptr, &m);
+  return m;
+}
+
+}  // namespace
+
+bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFormat target_format,
+                       std::uint32_t max_instances, std::string* error) {
+  gpu_ = &gpu;
+  VkDevice dev = gpu.device();
+  const std::uint32_t V = rig.vertex_count(), N = rig.pose_count();
+  vertex_count_ = V;
+  index_count_ = 3 * rig.triangle_count();
+  max_instances_ = max_instances;
+  const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+
+  indices_ = gpu.CreateBuffer(4ull * index_count_, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+  std::memcpy(indices_.mapped, rig.triangles().data, 4ull * index_count_);
+  uvs_ = gpu.CreateBuffer(8ull * V * N, storage);
+  for (std::uint32_t i = 0; i < N; ++i) std::memcpy(static_cast<char*>(uvs_.mapped) + 8ull * V * i, rig.uvs(i).data, 8ull * V);
+  positions_ = gpu.CreateBuffer(8ull * V * max_instances, storage);
+  instances_ = gpu.CreateBuffer(sizeof(InstanceData) * max_instances, storage);
+
+  // The drawings as one texture array.
+  const std::size_t layer_bytes = std::size_t(drawings.width) * drawings.height * 4;
+  staging_ = gpu.CreateBuffer(layer_bytes * N, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  for (std::uint32_t i = 0; i < N; ++i)
+    std::memcpy(static_cast<char*>(staging_.mapped) + layer_bytes * i, drawings.rgba[i].data(), layer_bytes);
+  drawings_ = gpu.CreateImage(VK_FORMAT_R8G8B8A8_UNORM, drawings.width, drawings.height, N,
+                              VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
+  gpu.RunOnce([&](VkCommandBuffer cmd) {
+    Transition(cmd, drawings_.image, N, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, N};
+    copy.imageExtent = {drawings.width, drawings.height, 1};
+    vkCmdCopyBufferToImage(cmd, staging_.buffer, drawings_.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    Transition(cmd, drawings_.image, N, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+  });
+  gpu.Destroy(staging_);
+
+  VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+  sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
+  sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
+  sci.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;  // outside the drawing: nothing
+  vkCreateSampler(dev, &sci, nullptr, &sampler_);
+
+  VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
+                                       nullptr};
+  VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+  lci.bindingCount = 1;
+  lci.pBindings = &binding;
+  vkCreateDescriptorSetLayout(dev, &lci, nullptr, &set_layout_);
+  VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
+  VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  dpi.maxSets = 1;
+  dpi.poolSizeCount = 1;
+  dpi.pPoolSizes = &size;
+  vkCreateDescriptorPool(dev, &dpi, nullptr, &pool_);
+  VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  dai.descriptorPool = pool_;
+  dai.descriptorSetCount = 1;
+  dai.pSetLayouts = &set_layout_;
+  vkAllocateDescriptorSets(dev, &dai, &set_);
+  VkDescriptorImageInfo dii{sampler_, drawings_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+  VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  write.dstSet = set_;
+  write.descriptorCount = 1;
+  write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  write.pImageInfo = &dii;
+  vkUpdateDescriptorSets(dev, 1, &write, 0, nullptr);
+
+  VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(Push)};
+  VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  pli.setLayoutCount = 1;
+  pli.pSetLayouts = &set_layout_;
+  pli.pushConstantRangeCount = 1;
+  pli.pPushConstantRanges = &range;
+  vkCreatePipelineLayout(dev, &pli, nullptr, &layout_);
+
+  VkShaderModule vs = Module(dev, kSkinVert, sizeof kSkinVert), fs = Module(dev, kBlendFrag, sizeof kBlendFrag);
+  VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
+                                               {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO}};
+  stages[0].stage = VK_SHADER_STAGE_VERTEX_BIT;
+  stages[0].module = vs;
+  stages[0].pName = "main";
+  stages[1].stage = VK_SHADER_STAGE_FRAGMENT_BIT;
+  stages[1].module = fs;
+  stages[1].pName = "main";
+  VkPipelineVertexInputStateCreateInfo vin{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+  VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+  ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+  VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+  vp.viewportCount = vp.scissorCount = 1;
+  VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+  rs.polygonMode = VK_POLYGON_MODE_FILL;
+  rs.cullMode = VK_CULL_MODE_NONE;
+  rs.lineWidth = 1;
+  VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+  ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+  VkPipelineColorBlendAttachmentState blend{};
+  blend.blendEnable = VK_TRUE;  // premultiplied "over"
+  blend.srcColorBlendFactor = blend.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+  blend.dstColorBlendFactor = blend.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+  blend.colorBlendOp = blend.alphaBlendOp = VK_BLEND_OP_ADD;
+  blend.colorWriteMask = 0xF;
+  VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+  cb.attachmentCount = 1;
+  cb.pAttachments = &blend;
+  const VkDynamicState dyn[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+  VkPipelineDynamicStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  ds.dynamicStateCount = 2;
+  ds.pDynamicStates = dyn;
+  VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+  rendering.colorAttachmentCount = 1;
+  rendering.pColorAttachmentFormats = &target_format;
+  VkGraphicsPipelineCreateInfo gpi{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+  gpi.pNext = &rendering;
+  gpi.stageCount = 2;
+  gpi.pStages = stages;
+  gpi.pVertexInputState = &vin;
+  gpi.pInputAssemblyState = &ia;
+  gpi.pViewportState = &vp;
+  gpi.pRasterizationState = &rs;
+  gpi.pMultisampleState = &ms;
+  gpi.pColorBlendState = &cb;
+  gpi.pDynamicState = &ds;
+  gpi.layout = layout_;
+  const VkResult fill = vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &fill_);
+  VkPhysicalDeviceFeatures features;
+  vkGetPhysicalDeviceFeatures(gpu.physical(), &features);
+  if (features.fillModeNonSolid) {
+    rs.polygonMode = VK_POLYGON_MODE_LINE;
+    vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &lines_);
+  }
+  vkDestroyShaderModule(dev, vs, nullptr);
+  vkDestroyShaderModule(dev, fs, nullptr);
+  if (fill != VK_SUCCESS) {
+    *error = "cannot create the drawing pipeline";
+    return false;
+  }
+  return true;
+}
+
+RigRenderer::~RigRenderer() {
+  if (!gpu_) return;
+  VkDevice dev = gpu_->device();
+  vkDeviceWaitIdle(dev);
+  if (fill_) vkDestroyPipeline(dev, fill_, nullptr);
+  if (lines_) vkDestroyPipeline(dev, lines_, nullptr);
+  if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);
+  if (pool_) vkDestroyDescriptorPool(dev, pool_, nullptr);
+  if (set_layout_) vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
+  if (sampler_) vkDestroySampler(dev, sampler_, nullptr);
+  gpu_->Destroy(drawings_);
+  for (Buffer* b : {&indices_, &uvs_, &positions_, &instances_, &staging_}) gpu_->Destroy(*b);
+}
+
+void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const View& view, std::uint32_t width,
+                         std::uint32_t height, bool wireframe) const {
+  VkViewport viewport{0, 0, float(width), float(height), 0, 1};
+  VkRect2D scissor{{0, 0}, {width, height}};
+  vkCmdSetViewport(cmd, 0, 1, &viewport);
+  vkCmdSetScissor(cmd, 0, 1, &scissor);
+  // Rig space is y up; clip space is y down. Keep the aspect ratio: fit the view rectangle.
+  const double w = view.x1 - view.x0, h = view.y1 - view.y0;
+  const double s = std::min(2.0 * width / w, 2.0 * height / h);
+  Push push{};
+  push.positions = positions_.address;
+  push.uvs = uvs_.address;
+  push.instances = instances_.address;
+  push.view_scale[0] = float(s / width);
+  push.view_scale[1] = float(-s / height);
+  push.view_offset[0] = float(-(view.x0 + view.x1) / 2 * s / width);
+  push.view_offset[1] = float((view.y0 + view.y1) / 2 * s / height);
+  push.vertex_count = vertex_count_;
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
+  vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, fill_);
+  vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
+  vkCmdDrawIndexed(cmd, index_count_, count, 0, 0, 0);
+  if (wireframe && lines_) {
+    push.flat_colour = 1;
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lines_);
+    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
+    vkCmdDrawIndexed(cmd, index_count_, count, 0, 0, 0);
+  }
+}
+
+OffscreenTarget::~OffscreenTarget() {
+  if (!gpu_) return;
+  gpu_->Destroy(color_);
+  gpu_->Destroy(readback_);
+}
+
+void OffscreenTarget::Init(Gpu& gpu, std::uint32_t width, std::uint32_t height) {
+  gpu_ = &gpu;
+  width_ = width;
+  height_ = height;
+  color_ = gpu.CreateImage(kFormat, width, height, 1, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  readback_ = gpu.CreateBuffer(4ull * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+}
+
+void OffscreenTarget::Render(const std::function<void(VkCommandBuffer)>& draw, const float background[4]) {
+  gpu_->RunOnce([&](VkCommandBuffer cmd) {
+    Transition(cmd, color_.image, 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    color.imageView = color_.view;
+    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    std::memcpy(color.clearValue.color.float32, background, 4 * sizeof(float));
+    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    ri.renderArea = {{0, 0}, {width_, height_}};
+    ri.layerCount = 1;
+    ri.colorAttachmentCount = 1;
+    ri.pColorAttachments = &color;
+    vkCmdBeginRendering(cmd, &ri);
+    draw(cmd);
+    vkCmdEndRendering(cmd);
+    Transition(cmd, color_.image, 1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {width_, height_, 1};
+    vkCmdCopyImageToBuffer(cmd, color_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer, 1, &copy);
+  });
+}
+
+}  // namespace posemorph::viewer

@@ -1,0 +1,95 @@
+// Draws characters of one baked rig: the runtime's positions for K
+// characters go into one buffer that the vertex shader reads (GPU skinning,
+// one instanced draw for the crowd); the fragment shader cross-fades each
+// character's four most weighted drawings (premultiplied alpha).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gpu.h"
+#include "posemorph/rig.h"
+
+namespace posemorph::viewer {
+
+// The rig's drawings, premultiplied RGBA8, all resampled to one size.
+struct Drawings {
+  std::uint32_t width = 0, height = 0;
+  std::vector<std::vector<unsigned char>> rgba;  // one per pose
+};
+// Reads each pose's image (rig.pose_image) from `dir`. False with a message
+// naming the file when one is missing or unreadable, or the rig has no uvs.
+bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::string* error);
+
+struct InstanceData {  // matches `Instance` in shaders/skin.vert (scalar layout)
+  float offset[2] = {0, 0};
+  float scale = 1;
+  float pad = 0;
+  std::int32_t layers[4] = {0, 0, 0, 0};
+  float weights[4] = {1, 0, 0, 0};
+};
+// The four largest texture weights, renormalised (ties to the lower pose).
+void PickDrawings(const double* texture_weights, std::uint32_t pose_count, InstanceData* out);
+
+struct View {  // which rectangle of rig space fills the target
+  double x0 = -1, y0 = -1, x1 = 1, y1 = 1;
+};
+
+class RigRenderer {
+ public:
+  RigRenderer() = default;
+  RigRenderer(const RigRenderer&) = delete;
+  RigRenderer& operator=(const RigRenderer&) = delete;
+  ~RigRenderer();
+
+  bool Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFormat target_format, std::uint32_t max_instances,
+            std::string* error);
+  // Written by the caller before Record: instance-major float x, y per vertex.
+  float* positions() { return static_cast<float*>(positions_.mapped); }
+  InstanceData* instances() { return static_cast<InstanceData*>(instances_.mapped); }
+  std::uint32_t max_instances() const { return max_instances_; }
+  // Inside dynamic rendering on a target of the format given to Init.
+  void Record(VkCommandBuffer cmd, std::uint32_t instance_count, const View& view, std::uint32_t width,
+              std::uint32_t height, bool wireframe) const;
+
+ private:
+  Gpu* gpu_ = nullptr;
+  std::uint32_t vertex_count_ = 0, index_count_ = 0, max_instances_ = 0;
+  Buffer indices_, uvs_, positions_, instances_, staging_;
+  Image drawings_;
+  VkSampler sampler_ = VK_NULL_HANDLE;
+  VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;
+  VkDescriptorPool pool_ = VK_NULL_HANDLE;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+  VkPipelineLayout layout_ = VK_NULL_HANDLE;
+  VkPipeline fill_ = VK_NULL_HANDLE, lines_ = VK_NULL_HANDLE;
+};
+
+// An image to render into and read back (headless capture).
+class OffscreenTarget {
+ public:
+  static constexpr VkFormat kFormat = VK_FORMAT_R8G8B8A8_UNORM;
+  OffscreenTarget() = default;
+  OffscreenTarget(const OffscreenTarget&) = delete;
+  OffscreenTarget& operator=(const OffscreenTarget&) = delete;
+  ~OffscreenTarget();
+  void Init(Gpu& gpu, std::uint32_t width, std::uint32_t height);
+  // Clears to an opaque background, lets `draw` record, copies the result out; waits.
+  void Render(const std::function<void(VkCommandBuffer)>& draw, const float background[4]);
+  const unsigned char* pixels() const { return static_cast<const unsigned char*>(readback_.mapped); }
+  std::uint32_t width() const { return width_; }
+  std::uint32_t height() const { return height_; }
+
+ private:
+  Gpu* gpu_ = nullptr;
+  std::uint32_t width_ = 0, height_ = 0;
+  Image color_;
+  Buffer readback_;
+};
+
+bool WritePng(const std::string& path, const unsigned char* rgba, std::uint32_t width, std::uint32_t height,
+              std::string* error);
+bool ReadPng(const std::string& path, std::vector<unsigned char>* rgba, std::uint32_t* width, std::uint32_t* height,
+             std::string* error);
+
+}  // namespace posemorph::viewer

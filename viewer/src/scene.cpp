@@ -1,0 +1,90 @@
+#include "scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "posemorph/jobs.h"
+#include "posemorph/path.h"
+
+namespace posemorph::viewer {
+
+View CharacterBounds(const Rig& rig) {
+  View v{1e300, 1e300, -1e300, -1e300};
+  for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
+    const Span<const double> p = rig.pose_positions(i);
+    for (std::size_t k = 0; k < p.size; k += 2) {
+      v.x0 = std::min(v.x0, p.data[k]), v.x1 = std::max(v.x1, p.data[k]);
+      v.y0 = std::min(v.y0, p.data[k + 1]), v.y1 = std::max(v.y1, p.data[k + 1]);
+    }
+  }
+  const double margin = 0.06 * std::max(v.x1 - v.x0, v.y1 - v.y0);
+  return {v.x0 - margin, v.y0 - margin, v.x1 + margin, v.y1 + margin};
+}
+
+bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, View* view, std::uint32_t* count,
+                  std::string* error) {
+  const std::uint32_t N = rig.pose_count(), V = rig.vertex_count(), K = std::max<std::uint32_t>(scene.crowd, 1);
+  if (K > renderer.max_instances()) {
+    *error = "a crowd of " + std::to_string(K) + " is more than the renderer holds (" +
+             std::to_string(renderer.max_instances()) + ")";
+    return false;
+  }
+  int path = -1;
+  if (!scene.path.empty()) {
+    path = rig.FindPath(scene.path.c_str());
+    if (path < 0) {
+      *error = "the rig has no path \"" + scene.path + "\"";
+      return false;
+    }
+  }
+  const View one = CharacterBounds(rig);
+  const double cw = one.x1 - one.x0, ch = one.y1 - one.y0;
+  const std::uint32_t columns = std::uint32_t(std::ceil(std::sqrt(double(K))));
+  const std::uint32_t rows = (K + columns - 1) / columns;
+  const double sigma = scene.sigma < 0 ? rig.default_sigma() : scene.sigma;
+
+  std::vector<double> raw(N), shear(N), texture(N), positions(2 * V), workspace(rig.morph_workspace_size());
+  for (std::uint32_t k = 0; k < K; ++k) {
+    double x = scene.x, y = scene.y;
+    if (path >= 0) {
+      const PathView p = rig.path(std::uint32_t(path));
+      const double t0 = p.keys.data[0], t1 = p.keys.data[p.keys.size - 3];
+      const double t = scene.time + (t1 - t0) * double(k) / double(K);
+      SamplePath(p, t, &x, &y);
+    }
+    WeightsJob wj;
+    wj.rig = &rig;
+    wj.x = x, wj.y = y;
+    wj.sigma = sigma;
+    wj.shear_limit = scene.shear_limit;
+    wj.raw = {raw.data(), N};
+    wj.shear = {shear.data(), N};
+    wj.texture = {texture.data(), N};
+    if (!wj.Run()) {
+      *error = "weights failed";
+      return false;
+    }
+    MorphJob mj;
+    mj.rig = &rig;
+    mj.weights = {raw.data(), N};
+    mj.shear_weights = {shear.data(), N};
+    mj.interpolation = scene.linear ? Interpolation::kLinear : Interpolation::kRigid;
+    mj.workspace = {workspace.data(), workspace.size()};
+    mj.positions = {positions.data(), positions.size()};
+    mj.positions_f32 = {renderer.positions() + std::size_t(k) * 2 * V, 2 * std::size_t(V)};
+    if (!mj.Run()) {
+      *error = "morph failed";
+      return false;
+    }
+    InstanceData& inst = renderer.instances()[k];
+    PickDrawings(texture.data(), N, &inst);
+    inst.scale = 1;
+    inst.offset[0] = float(cw * double(k % columns));
+    inst.offset[1] = float(-ch * double(k / columns));
+  }
+  *view = {one.x0, one.y0 - ch * (rows - 1), one.x1 + cw * (columns - 1), one.y1};
+  *count = K;
+  return true;
+}
+
+}  // namespace posemorph::viewer

@@ -1,0 +1,32 @@
+// What a frame shows: one character at a pose-space point (or a path time),
+// or a crowd walking a path at staggered phases. Used by the headless
+// capture, the window and the frame-hash tests alike.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "rig_renderer.h"
+
+namespace posemorph::viewer {
+
+struct Scene {
+  double x = 0, y = 0;        // pose-space point (when path is empty)
+  std::string path;           // a path of the rig: characters follow it
+  double time = 0;            // seconds along the path
+  double sigma = -1;          // texture sharpening; < 0: the rig's default
+  bool shear_limit = true;
+  bool linear = false;        // linear vertex blending instead of rigid (the paper's comparison)
+  std::uint32_t crowd = 1;    // characters, laid out on a grid, phases spread over the path
+  bool wireframe = false;
+};
+
+// Evaluates the characters of a scene with the runtime into the renderer's
+// buffers and returns the view that frames them. False with a message for
+// an unknown path or a crowd larger than the renderer holds.
+bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, View* view, std::uint32_t* count,
+                  std::string* error);
+
+// The rectangle of rig space that holds every pose of one character.
+View CharacterBounds(const Rig& rig);
+
+}  // namespace posemorph::viewer
