@@ -29,3 +29,17 @@ if command -v rsvg-convert >/dev/null; then
     echo "wrote out/$sheet.png"
   done
 fi
+# The viewer: a window when there is a display, otherwise frames rendered headless.
+view=$bin/posemorph-view
+if [ ! -x $view ]; then
+  echo "posemorph-view was not built (see the cmake warnings); skipping the viewer"
+elif [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
+  echo "opening the viewer on out/pip.pmrig (close the window to finish)"
+  $view out/pip.pmrig --images $drawn/pip --description $drawn/pip/pip.json
+else
+  mkdir -p out/frames
+  $view out/pip.pmrig --images $drawn/pip --headless --size 480x480 --path hello --frames 24 -o out/frames/pip-hello.png
+  $view out/pip.pmrig --images $drawn/pip --headless --size 1280x720 --path hello --crowd 100 -o out/frames/pip-crowd.png
+  $view out/pip.pmrig --images $drawn/pip --headless --size 960x480 --at 1.4,0.4 --compare -o out/frames/pip-rigid-vs-linear.png
+  $view out/sprout.pmrig --images $drawn/sprout --headless --size 480x480 --path breeze --frames 24 -o out/frames/sprout-breeze.png
+fi

@@ -18,6 +18,7 @@ packages=(
   mesa-vulkan-drivers       # viewer: lavapipe, Vulkan on the CPU
   vulkan-validationlayers   # viewer tests: the Khronos validation layer
   libglfw3-dev              # viewer: the window
+  libimgui-dev              # viewer: the panel (Dear ImGui with its GLFW and Vulkan backends)
   xvfb                      # viewer tests: a display for the window smoke test
 )
 

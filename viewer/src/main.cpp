@@ -22,10 +22,16 @@ namespace {
 const char* kUsage =
     "usage: posemorph-view RIG.pmrig [--images DIR] [--headless -o OUT.png] [--size WxH]\n"
     "         [--at X,Y | --path NAME [--time T] [--frames K]] [--crowd K] [--sigma S]\n"
-    "         [--no-shear-limit] [--linear] [--wireframe] [--validation]\n"
+    "         [--no-shear-limit] [--linear] [--compare] [--bases] [--wireframe] [--validation]\n"
+    "         [--smoke-test SHOT.png [--frames K]] [--description RIG.json]\n"
     "  --images DIR  where the rig's drawings are (default: the rig's folder)\n"
     "  --frames K    with --path: K frames over the path's duration, OUT-000.png ...\n"
-    "  --validation  enable the Vulkan validation layer; any message fails (exit 3)\n";
+    "  --compare     rigid (left) and linear (right) interpolation side by side\n"
+    "  --bases       the N base poses in a row\n"
+    "  --validation  enable the Vulkan validation layer; any message fails (exit 3)\n"
+    "  --smoke-test  window: drag the pad along a circle for K frames (default 60), resizing the window\n"
+    "                half-way, save a screenshot of the last frame, exit\n"
+    "  --description window: the rig description that recorded gestures are saved into\n";
 
 int Usage(const std::string& problem) {
   std::fprintf(stderr, "posemorph-view: %s\n%s", problem.c_str(), kUsage);
@@ -41,6 +47,7 @@ int Fail(const std::string& problem) {
 
 int main(int argc, char** argv) {
   std::string rig_path, images, output;
+  WindowOptions window;
   bool headless = false, validation = false;
   std::uint32_t width = 640, height = 640, frames = 0;
   Scene scene;
@@ -53,7 +60,11 @@ int main(int argc, char** argv) {
     else if (a == "--no-shear-limit") scene.shear_limit = false;
     else if (a == "--linear") scene.linear = true;
     else if (a == "--wireframe") scene.wireframe = true;
+    else if (a == "--compare") scene.compare_linear = true;
+    else if (a == "--bases") scene.show_bases = true;
     else if (a == "-o" && (v = value())) output = v;
+    else if (a == "--smoke-test" && (v = value())) window.smoke_test = v;
+    else if (a == "--description" && (v = value())) window.description = v;
     else if (a == "--images" && (v = value())) images = v;
     else if (a == "--path" && (v = value())) scene.path = v;
     else if (a == "--time" && (v = value())) scene.time = std::atof(v);
@@ -84,7 +95,12 @@ int main(int argc, char** argv) {
   std::string problem;
   if (!LoadDrawings(rig, images, &drawings, &problem)) return Fail(rig_path + ": " + problem);
 
-  if (!headless) return RunWindow(rig, drawings, scene, width, height, validation);
+  if (!headless) {
+    window.validation = validation;
+    if (width != 640 || height != 640) window.width = width, window.height = height;
+    if (frames > 0) window.smoke_frames = frames;
+    return RunWindow(rig, drawings, scene, window);
+  }
   if (output.empty()) return Usage("--headless needs -o OUT.png");
 
   Gpu gpu;
@@ -92,7 +108,8 @@ int main(int argc, char** argv) {
   options.validation = validation;
   if (!gpu.Init(options, &problem)) return Fail(problem);
   RigRenderer renderer;
-  if (!renderer.Init(gpu, rig, drawings, OffscreenTarget::kFormat, scene.crowd, &problem)) return Fail(problem);
+  if (!renderer.Init(gpu, rig, drawings, OffscreenTarget::kFormat, SceneCharacters(rig, scene), &problem))
+    return Fail(problem);
   OffscreenTarget target;
   target.Init(gpu, width, height);
   const float background[4] = {0.93f, 0.94f, 0.95f, 1.0f};

@@ -273,9 +273,9 @@ RigRenderer::~RigRenderer() {
 }
 
 void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const View& view, std::uint32_t width,
-                         std::uint32_t height, bool wireframe) const {
-  VkViewport viewport{0, 0, float(width), float(height), 0, 1};
-  VkRect2D scissor{{0, 0}, {width, height}};
+                         std::uint32_t height, bool wireframe, std::int32_t x, std::int32_t y) const {
+  VkViewport viewport{float(x), float(y), float(width), float(height), 0, 1};
+  VkRect2D scissor{{x, y}, {width, height}};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
   // Rig space is y up; clip space is y down. Keep the aspect ratio: fit the view rectangle.

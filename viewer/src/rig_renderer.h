@@ -49,8 +49,9 @@ class RigRenderer {
   InstanceData* instances() { return static_cast<InstanceData*>(instances_.mapped); }
   std::uint32_t max_instances() const { return max_instances_; }
   // Inside dynamic rendering on a target of the format given to Init.
+  // The view fills the viewport of `width` x `height` pixels at (x, y) of the target.
   void Record(VkCommandBuffer cmd, std::uint32_t instance_count, const View& view, std::uint32_t width,
-              std::uint32_t height, bool wireframe) const;
+              std::uint32_t height, bool wireframe, std::int32_t x = 0, std::int32_t y = 0) const;
 
  private:
   Gpu* gpu_ = nullptr;

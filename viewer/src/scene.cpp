@@ -21,11 +21,17 @@ View CharacterBounds(const Rig& rig) {
   return {v.x0 - margin, v.y0 - margin, v.x1 + margin, v.y1 + margin};
 }
 
+std::uint32_t SceneCharacters(const Rig& rig, const Scene& scene) {
+  if (scene.show_bases) return rig.pose_count();
+  if (scene.compare_linear) return 2;
+  return std::max<std::uint32_t>(scene.crowd, 1);
+}
+
 bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, View* view, std::uint32_t* count,
                   std::string* error) {
-  const std::uint32_t N = rig.pose_count(), V = rig.vertex_count(), K = std::max<std::uint32_t>(scene.crowd, 1);
+  const std::uint32_t N = rig.pose_count(), V = rig.vertex_count(), K = SceneCharacters(rig, scene);
   if (K > renderer.max_instances()) {
-    *error = "a crowd of " + std::to_string(K) + " is more than the renderer holds (" +
+    *error = "a scene of " + std::to_string(K) + " characters is more than the renderer holds (" +
              std::to_string(renderer.max_instances()) + ")";
     return false;
   }
@@ -39,19 +45,24 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Vie
   }
   const View one = CharacterBounds(rig);
   const double cw = one.x1 - one.x0, ch = one.y1 - one.y0;
-  const std::uint32_t columns = std::uint32_t(std::ceil(std::sqrt(double(K))));
+  const std::uint32_t columns =
+      scene.show_bases || scene.compare_linear ? K : std::uint32_t(std::ceil(std::sqrt(double(K))));
   const std::uint32_t rows = (K + columns - 1) / columns;
   const double sigma = scene.sigma < 0 ? rig.default_sigma() : scene.sigma;
 
   std::vector<double> raw(N), shear(N), texture(N), positions(2 * V), workspace(rig.morph_workspace_size());
   for (std::uint32_t k = 0; k < K; ++k) {
     double x = scene.x, y = scene.y;
-    if (path >= 0) {
+    bool linear = scene.linear;
+    if (scene.show_bases) {
+      x = rig.pose_points().data[2 * k], y = rig.pose_points().data[2 * k + 1];
+    } else if (path >= 0) {
       const PathView p = rig.path(std::uint32_t(path));
       const double t0 = p.keys.data[0], t1 = p.keys.data[p.keys.size - 3];
-      const double t = scene.time + (t1 - t0) * double(k) / double(K);
+      const double t = scene.time + (scene.compare_linear ? 0.0 : (t1 - t0) * double(k) / double(K));
       SamplePath(p, t, &x, &y);
     }
+    if (scene.compare_linear) linear = k == 1;
     WeightsJob wj;
     wj.rig = &rig;
     wj.x = x, wj.y = y;
@@ -68,7 +79,7 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Vie
     mj.rig = &rig;
     mj.weights = {raw.data(), N};
     mj.shear_weights = {shear.data(), N};
-    mj.interpolation = scene.linear ? Interpolation::kLinear : Interpolation::kRigid;
+    mj.interpolation = linear ? Interpolation::kLinear : Interpolation::kRigid;
     mj.workspace = {workspace.data(), workspace.size()};
     mj.positions = {positions.data(), positions.size()};
     mj.positions_f32 = {renderer.positions() + std::size_t(k) * 2 * V, 2 * std::size_t(V)};

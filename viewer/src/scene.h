@@ -18,7 +18,12 @@ struct Scene {
   bool linear = false;        // linear vertex blending instead of rigid (the paper's comparison)
   std::uint32_t crowd = 1;    // characters, laid out on a grid, phases spread over the path
   bool wireframe = false;
+  bool compare_linear = false;  // two characters: rigid (left) and linear (right) at the same point
+  bool show_bases = false;      // the N base poses in a row, each exactly at its point
 };
+
+// How many characters the scene draws.
+std::uint32_t SceneCharacters(const Rig& rig, const Scene& scene);
 
 // Evaluates the characters of a scene with the runtime into the renderer's
 // buffers and returns the view that frames them. False with a message for

@@ -1,13 +1,21 @@
-// The interactive viewer window (GLFW + Vulkan swapchain).
+// The interactive viewer window (GLFW + Vulkan swapchain + Dear ImGui).
 #pragma once
 #include <cstdint>
+#include <string>
 
 #include "scene.h"
 
 namespace posemorph::viewer {
 
+struct WindowOptions {
+  std::uint32_t width = 1280, height = 760;
+  bool validation = false;
+  std::string smoke_test;        // non-empty: drive the pad for `smoke_frames` frames, save this screenshot, exit
+  std::uint32_t smoke_frames = 60;
+  std::string description;       // rig description to save recorded gestures into
+};
+
 // Runs until the window closes; returns the process exit status.
-int RunWindow(const Rig& rig, const Drawings& drawings, Scene scene, std::uint32_t width, std::uint32_t height,
-              bool validation);
+int RunWindow(const Rig& rig, const Drawings& drawings, Scene scene, const WindowOptions& options);
 
 }  // namespace posemorph::viewer

@@ -1,11 +1,11 @@
-// Built when GLFW is not available: the viewer is headless only.
+// Built when GLFW or Dear ImGui is not available: the viewer is headless only.
 #include <cstdio>
 
 #include "window.h"
 
 namespace posemorph::viewer {
 
-int RunWindow(const Rig&, const Drawings&, Scene, std::uint32_t, std::uint32_t, bool) {
+int RunWindow(const Rig&, const Drawings&, Scene, const WindowOptions&) {
   std::fprintf(stderr, "posemorph-view: this build has no window support; use --headless -o OUT.png\n");
   return 2;
 }
