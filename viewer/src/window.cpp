@@ -14,10 +14,13 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "posemorph/bake/arap_deformer.h"
+#include "posemorph/bake/error.h"
 #include "posemorph/jobs.h"
 #include "posemorph/path.h"
 #include "window.h"
@@ -37,6 +40,19 @@ struct Swapchain {
   std::vector<VkImageView> views;
   std::vector<VkFramebuffer> framebuffers;
   std::vector<VkSemaphore> rendered;  // one per image: presentation waits on it
+};
+
+// Edit mode: handles dragged on one base pose's mesh make a new pose
+// (as-rigid-as-possible shape manipulation, the bake's ArapDeformer).
+struct Edit {
+  bool on = false;
+  int pose = 0;
+  std::vector<std::uint32_t> handles;
+  std::vector<Eigen::Vector2d> targets;
+  std::unique_ptr<bake::ArapDeformer> deformer;  // for this handle set
+  bake::Points rest, current;
+  int dragging = -1;
+  int saved = 0;
 };
 
 struct Gesture {
@@ -66,6 +82,10 @@ class Viewer {
   void Pad();
   void Frame(bool screenshot);
   void SaveGesture();
+  void EditUi();
+  void EditInput(const View& view, std::int32_t x0, std::uint32_t w, std::uint32_t h);
+  bool EditScene(View* view, std::uint32_t* count);
+  void SavePose();
 
   const Rig& rig_;
   const Drawings& drawings_;
@@ -95,6 +115,17 @@ class Viewer {
   double clock_ = 0;
   double eval_ms_ = 0;
   std::uint32_t smoke_frame_ = 0;
+  Edit edit_;
+};
+
+// The same mapping as RigRenderer::Record: rig space <-> window pixels.
+struct ViewMap {
+  double s, cx, cy, px, py;  // pixels per unit; view centre; viewport centre in pixels
+  ViewMap(const View& v, std::int32_t x0, std::uint32_t w, std::uint32_t h)
+      : s(std::min(w / (v.x1 - v.x0), h / (v.y1 - v.y0))), cx((v.x0 + v.x1) / 2), cy((v.y0 + v.y1) / 2),
+        px(x0 + w / 2.0), py(h / 2.0) {}
+  ImVec2 ToScreen(const Eigen::Vector2d& p) const { return ImVec2(float(px + (p.x() - cx) * s), float(py - (p.y() - cy) * s)); }
+  Eigen::Vector2d ToRig(const ImVec2& q) const { return {cx + (q.x - px) / s, cy - (q.y - py) / s}; }
 };
 
 bool Viewer::CreateSwapchain() {
@@ -282,6 +313,125 @@ void Viewer::SaveGesture() {
   }
 }
 
+void Viewer::EditUi() {
+  ImGui::Separator();
+  ImGui::TextUnformatted("Edit (drag handles on a base pose)");
+  if (ImGui::Checkbox("edit mode", &edit_.on)) edit_.dragging = -1;
+  if (!edit_.on) return;
+  const StringView current = rig_.pose_name(std::uint32_t(edit_.pose));
+  if (ImGui::BeginCombo("from", std::string(current.data, current.size).c_str())) {
+    for (std::uint32_t i = 0; i < rig_.pose_count(); ++i) {
+      const StringView n = rig_.pose_name(i);
+      if (ImGui::Selectable(std::string(n.data, n.size).c_str(), int(i) == edit_.pose) && int(i) != edit_.pose) {
+        edit_.pose = int(i);
+        edit_.handles.clear(), edit_.targets.clear(), edit_.deformer.reset();
+      }
+    }
+    ImGui::EndCombo();
+  }
+  if (ImGui::Button("clear handles")) edit_.handles.clear(), edit_.targets.clear(), edit_.deformer.reset();
+  ImGui::SameLine();
+  if (ImGui::Button("save pose") && edit_.handles.size() >= 2) SavePose();
+  ImGui::Text("%zu handle(s): click the mesh to add, drag to move", edit_.handles.size());
+}
+
+void Viewer::EditInput(const View& view, std::int32_t x0, std::uint32_t w, std::uint32_t h) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const ViewMap map(view, x0, w, h);
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  for (std::size_t k = 0; k < edit_.handles.size(); ++k) {
+    const ImVec2 p = map.ToScreen(edit_.targets[k]);
+    draw->AddCircleFilled(p, 6, IM_COL32(230, 60, 40, 230));
+    draw->AddCircle(p, 7, IM_COL32(20, 20, 20, 255), 0, 1.5f);
+  }
+  if (io.WantCaptureMouse || io.MousePos.x < x0) return;
+  if (io.MouseClicked[0]) {
+    edit_.dragging = -1;
+    for (std::size_t k = 0; k < edit_.handles.size(); ++k) {
+      const ImVec2 p = map.ToScreen(edit_.targets[k]);
+      if (std::hypot(p.x - io.MousePos.x, p.y - io.MousePos.y) < 9) edit_.dragging = int(k);
+    }
+    if (edit_.dragging < 0) {
+      // A new handle on the vertex under the click (as the description's "at" handles pick it).
+      std::uint32_t vertex = 0;
+      bake::Triangles tris;
+      for (std::uint32_t t = 0; t < rig_.triangle_count(); ++t)
+        tris.push_back({rig_.triangles().data[3 * t], rig_.triangles().data[3 * t + 1], rig_.triangles().data[3 * t + 2]});
+      if (bake::HandleVertex(edit_.current, tris, map.ToRig(io.MousePos), 6 / map.s, &vertex) &&
+          std::find(edit_.handles.begin(), edit_.handles.end(), vertex) == edit_.handles.end()) {
+        edit_.handles.push_back(vertex);
+        edit_.targets.push_back(edit_.current[vertex]);
+        edit_.deformer.reset();
+        edit_.dragging = int(edit_.handles.size()) - 1;
+      }
+    }
+  }
+  if (!io.MouseDown[0]) edit_.dragging = -1;
+  if (edit_.dragging >= 0) edit_.targets[std::size_t(edit_.dragging)] = map.ToRig(io.MousePos);
+}
+
+bool Viewer::EditScene(View* view, std::uint32_t* count) {
+  const std::uint32_t V = rig_.vertex_count();
+  const Span<const double> p = rig_.pose_positions(std::uint32_t(edit_.pose));
+  edit_.rest.resize(V);
+  for (std::uint32_t v = 0; v < V; ++v) edit_.rest[v] = Eigen::Vector2d(p.data[2 * v], p.data[2 * v + 1]);
+  edit_.current = edit_.rest;
+  if (edit_.handles.size() >= 2) {
+    try {
+      if (!edit_.deformer) {
+        bake::Triangles tris;
+        for (std::uint32_t t = 0; t < rig_.triangle_count(); ++t)
+          tris.push_back({rig_.triangles().data[3 * t], rig_.triangles().data[3 * t + 1], rig_.triangles().data[3 * t + 2]});
+        edit_.deformer = std::make_unique<bake::ArapDeformer>(edit_.rest, tris, edit_.handles);
+      }
+      edit_.deformer->Deform(edit_.targets, &edit_.current);
+    } catch (const bake::BakeError& e) {
+      status_ = e.what();
+      edit_.current = edit_.rest;
+    }
+  }
+  float* out = renderer_.positions();
+  for (std::uint32_t v = 0; v < V; ++v) out[2 * v] = float(edit_.current[v].x()), out[2 * v + 1] = float(edit_.current[v].y());
+  InstanceData& inst = renderer_.instances()[0];
+  inst = InstanceData{};
+  for (int k = 0; k < 4; ++k) inst.layers[k] = edit_.pose;
+  *view = CharacterBounds(rig_);
+  *count = 1;
+  return true;
+}
+
+void Viewer::SavePose() {
+  if (options_.description.empty()) {
+    status_ = "start with --description RIG.json to save poses";
+    return;
+  }
+  try {
+    std::ifstream in(options_.description);
+    if (!in) throw std::runtime_error("cannot open " + options_.description);
+    nlohmann::json d = nlohmann::json::parse(in);
+    std::string name;
+    auto taken = [&](const std::string& n) {
+      return std::any_of(d["poses"].begin(), d["poses"].end(),
+                         [&](const nlohmann::json& p) { return p.value("name", "") == n; });
+    };
+    do name = "edit-" + std::to_string(++edit_.saved);
+    while (taken(name));
+    const StringView from = rig_.pose_name(std::uint32_t(edit_.pose));
+    nlohmann::json handles = nlohmann::json::array();
+    for (std::size_t k = 0; k < edit_.handles.size(); ++k)
+      handles.push_back({{"vertex", edit_.handles[k]}, {"to", {edit_.targets[k].x(), edit_.targets[k].y()}}});
+    d["poses"].push_back({{"name", name},
+                          {"point", {scene_.x, scene_.y}},
+                          {"deform", {{"from", std::string(from.data, from.size)}, {"handles", handles}}}});
+    const std::string tmp = options_.description + ".tmp";
+    std::ofstream(tmp) << d.dump(2) << "\n";
+    std::rename(tmp.c_str(), options_.description.c_str());
+    status_ = "saved pose \"" + name + "\" at the pad's point into " + options_.description + " (bake again to use it)";
+  } catch (const std::exception& e) {
+    status_ = std::string("cannot save: ") + e.what();
+  }
+}
+
 void Viewer::BuildUi() {
   ImGui::SetNextWindowPos(ImVec2(0, 0));
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth, float(sc_.extent.height)));
@@ -331,6 +481,7 @@ void Viewer::BuildUi() {
   ImGui::Checkbox("wireframe", &scene_.wireframe);
   ImGui::Checkbox("rigid | linear side by side", &scene_.compare_linear);
   ImGui::Checkbox("base drawings", &scene_.show_bases);
+  EditUi();
   int crowd = int(scene_.crowd);
   if (ImGui::SliderInt("crowd", &crowd, 1, int(kMaxCharacters))) scene_.crowd = std::uint32_t(crowd);
   ImGui::Text("%.1f fps, CPU %.3f ms per frame for %u character(s)", ImGui::GetIO().Framerate, eval_ms_,
@@ -378,7 +529,8 @@ void Viewer::Frame(bool screenshot) {
   std::uint32_t count = 0;
   std::string problem;
   const auto t0 = std::chrono::steady_clock::now();
-  const bool prepared = PrepareScene(rig_, shown, renderer_, &view, &count, &problem);
+  const bool prepared =
+      edit_.on ? EditScene(&view, &count) : PrepareScene(rig_, shown, renderer_, &view, &count, &problem);
   eval_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (!prepared) status_ = problem, count = 0;
 
@@ -566,9 +718,26 @@ int Viewer::Run() {
       const float a = float(smoke_frame_) / float(options_.smoke_frames) * 6.2831853f;
       io.MousePos = ImVec2(cx + 0.3f * size * std::cos(a), cy + 0.3f * size * std::sin(a));
       io.MouseDown[0] = smoke_frame_ > 0 && smoke_frame_ + 1 < options_.smoke_frames;
+      if (smoke_frame_ == options_.smoke_frames * 3 / 4 && rig_.vertex_count() > 2) {
+        // Then edit mode: pin vertex 0, drag the vertex farthest from it.
+        edit_.on = true;
+        const Span<const double> p = rig_.pose_positions(0);
+        std::uint32_t far = 1;
+        double best = 0;
+        for (std::uint32_t v = 1; v < rig_.vertex_count(); ++v) {
+          const double d = std::hypot(p.data[2 * v] - p.data[0], p.data[2 * v + 1] - p.data[1]);
+          if (d > best) best = d, far = v;
+        }
+        edit_.handles = {0, far};
+        edit_.targets = {Eigen::Vector2d(p.data[0], p.data[1]), Eigen::Vector2d(p.data[2 * far], p.data[2 * far + 1])};
+      }
+      if (edit_.on && edit_.targets.size() == 2) edit_.targets[1].x() += 0.2 * rig_.size() / options_.smoke_frames;
     }
     ImGui::NewFrame();
     BuildUi();
+    if (edit_.on && sc_.extent.width > kPanelWidth + 8)
+      EditInput(CharacterBounds(rig_), std::int32_t(kPanelWidth), sc_.extent.width - std::uint32_t(kPanelWidth),
+                sc_.extent.height);
     ImGui::Render();
     const bool last_frame = smoke && smoke_frame_ + 1 >= options_.smoke_frames;
     Frame(last_frame);
