@@ -1,7 +1,7 @@
 #version 460
-// Cross-fades a character's drawings: each pose's own drawing sampled through
-// that pose's uvs, weighted by the texture weights w'' (premultiplied alpha,
-// so the sum is a premultiplied colour too).
+// Cross-fades a character's drawings: each pose's own drawing sampled
+// through that pose's uvs, weighted by the texture weights w''
+// (premultiplied alpha, so the sum is a premultiplied colour too).
 #extension GL_EXT_scalar_block_layout : require
 
 layout(set = 0, binding = 0) uniform sampler2DArray drawings;
@@ -14,22 +14,27 @@ layout(push_constant, scalar) uniform Push {
   uint flat_colour;
 } pc;
 
-layout(location = 0) in vec2 uv0;
-layout(location = 1) in vec2 uv1;
-layout(location = 2) in vec2 uv2;
-layout(location = 3) in vec2 uv3;
-layout(location = 4) flat in vec4 weights;
-layout(location = 5) flat in ivec4 layers;
+layout(location = 0) in vec4 uv01;
+layout(location = 1) in vec4 uv23;
+layout(location = 2) in vec4 uv45;
+layout(location = 3) in vec4 uv67;
+layout(location = 4) flat in vec4 weights0;
+layout(location = 5) flat in vec4 weights1;
+layout(location = 6) flat in ivec4 layers0;
+layout(location = 7) flat in ivec4 layers1;
 layout(location = 0) out vec4 colour;
+
+vec4 Drawing(float w, vec2 uv, int layer) {
+  return w == 0.0 ? vec4(0.0) : w * texture(drawings, vec3(uv, float(layer)));
+}
 
 void main() {
   if (pc.flat_colour != 0u) {
-    colour = vec4(0.1, 0.1, 0.1, 1.0) * 0.6;
+    colour = vec4(0.06, 0.06, 0.06, 0.6);
     return;
   }
-  vec4 c = weights.x * texture(drawings, vec3(uv0, float(layers.x)));
-  c += weights.y * texture(drawings, vec3(uv1, float(layers.y)));
-  c += weights.z * texture(drawings, vec3(uv2, float(layers.z)));
-  c += weights.w * texture(drawings, vec3(uv3, float(layers.w)));
-  colour = c;
+  colour = Drawing(weights0.x, uv01.xy, layers0.x) + Drawing(weights0.y, uv01.zw, layers0.y) +
+           Drawing(weights0.z, uv23.xy, layers0.z) + Drawing(weights0.w, uv23.zw, layers0.w) +
+           Drawing(weights1.x, uv45.xy, layers1.x) + Drawing(weights1.y, uv45.zw, layers1.y) +
+           Drawing(weights1.z, uv67.xy, layers1.z) + Drawing(weights1.w, uv67.zw, layers1.w);
 }

@@ -167,3 +167,23 @@ TEST_CASE("frames: the rendered base pose is its own drawing where the mesh cove
     CHECK(double(off) / double(compared) < 0.002);
   }
 }
+
+TEST_CASE("frames: a character shows all its drawings up to 8, else the 8 most weighted") {
+  const double five[5] = {0.1, 0.4, 0.0, 0.3, 0.2};
+  InstanceData inst;
+  PickDrawings(five, 5, &inst);
+  double sum = 0;
+  for (std::uint32_t k = 0; k < kDrawingsPerCharacter; ++k) sum += inst.weights[k];
+  CHECK(sum == doctest::Approx(1.0));
+  CHECK(inst.layers[0] == 1);
+  CHECK(inst.weights[0] == doctest::Approx(0.4));
+  CHECK(inst.layers[3] == 0);
+  CHECK(inst.weights[3] == doctest::Approx(0.1));
+
+  double ten[10];
+  for (int i = 0; i < 10; ++i) ten[i] = (i + 1) / 55.0;  // 1..10, sum 1
+  PickDrawings(ten, 10, &inst);
+  CHECK(inst.layers[0] == 9);
+  CHECK(inst.layers[7] == 2);
+  CHECK(inst.weights[0] == doctest::Approx(10.0 / 52.0));  // poses 0 and 1 (weights 1, 2) dropped
+}

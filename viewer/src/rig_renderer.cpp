@@ -81,21 +81,21 @@ bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::st
 }
 
 void PickDrawings(const double* w, std::uint32_t N, InstanceData* out) {
-  std::int32_t best[4] = {0, 0, 0, 0};
-  double weight[4] = {0, 0, 0, 0};
-  int count = 0;
-  for (std::uint32_t i = 0; i < N; ++i) {
-    const double v = w[i];
-    int at = count < 4 ? count : 4;
-    while (at > 0 && weight[at - 1] < v) --at;
-    if (at >= 4) continue;
-    for (int k = std::min(count, 3); k > at; --k) best[k] = best[k - 1], weight[k] = weight[k - 1];
-    best[at] = std::int32_t(i), weight[at] = v;
-    count = std::min(count + 1, 4);
+  constexpr std::uint32_t K = kDrawingsPerCharacter;
+  std::int32_t best[K] = {};
+  double weight[K] = {};
+  std::uint32_t count = 0;
+  for (std::uint32_t i = 0; i < N; ++i) {  // insertion into a short sorted list
+    std::uint32_t at = count;
+    while (at > 0 && weight[at - 1] < w[i]) --at;
+    if (at >= K) continue;
+    for (std::uint32_t k = std::min(count, K - 1); k > at; --k) best[k] = best[k - 1], weight[k] = weight[k - 1];
+    best[at] = std::int32_t(i), weight[at] = w[i];
+    count = std::min(count + 1, K);
   }
   double sum = 0;
-  for (int k = 0; k < count; ++k) sum += std::max(weight[k], 0.0);
-  for (int k = 0; k < 4; ++k) {
+  for (std::uint32_t k = 0; k < count; ++k) sum += std::max(weight[k], 0.0);
+  for (std::uint32_t k = 0; k < K; ++k) {
     out->layers[k] = k < count ? best[k] : best[0];
     out->weights[k] = k < count && sum > 0 ? float(std::max(weight[k], 0.0) / sum) : 0.0f;
   }

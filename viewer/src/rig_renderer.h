@@ -1,7 +1,7 @@
 // Draws characters of one baked rig: the runtime's positions for K
 // characters go into one buffer that the vertex shader reads (GPU skinning,
-// one instanced draw for the crowd); the fragment shader cross-fades each
-// character's four most weighted drawings (premultiplied alpha).
+// one instanced draw for the crowd); the fragment shader cross-fades the
+// character's drawings with its texture weights (premultiplied alpha).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -21,14 +21,17 @@ struct Drawings {
 // naming the file when one is missing or unreadable, or the rig has no uvs.
 bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::string* error);
 
+constexpr std::uint32_t kDrawingsPerCharacter = 8;
+
 struct InstanceData {  // matches `Instance` in shaders/skin.vert (scalar layout)
   float offset[2] = {0, 0};
   float scale = 1;
   float pad = 0;
-  std::int32_t layers[4] = {0, 0, 0, 0};
-  float weights[4] = {1, 0, 0, 0};
+  std::int32_t layers[kDrawingsPerCharacter] = {};
+  float weights[kDrawingsPerCharacter] = {1};
 };
-// The four largest texture weights, renormalised (ties to the lower pose).
+// The drawings a character shows: all N with their texture weights when
+// N <= 8; otherwise the 8 largest, renormalised (ties to the lower pose).
 void PickDrawings(const double* texture_weights, std::uint32_t pose_count, InstanceData* out);
 
 struct View {  // which rectangle of rig space fills the target

@@ -394,7 +394,7 @@ bool Viewer::EditScene(View* view, std::uint32_t* count) {
   for (std::uint32_t v = 0; v < V; ++v) out[2 * v] = float(edit_.current[v].x()), out[2 * v + 1] = float(edit_.current[v].y());
   InstanceData& inst = renderer_.instances()[0];
   inst = InstanceData{};
-  for (int k = 0; k < 4; ++k) inst.layers[k] = edit_.pose;
+  for (std::uint32_t k = 0; k < kDrawingsPerCharacter; ++k) inst.layers[k] = edit_.pose;
   *view = CharacterBounds(rig_);
   *count = 1;
   return true;
