@@ -1,6 +1,7 @@
 // The runtime's triangular solves against Eigen on a cotangent matrix the test
 // assembles itself from the rest mesh.
 #include <Eigen/SparseCholesky>
+#include <cstring>
 #include <random>
 
 #include "../runtime/src/ldlt_solve.h"
@@ -56,5 +57,61 @@ TEST_CASE("runtime solve equals Eigen SimplicialLDLT on the same system") {
       detail::SolvePinned(rig.factor(), bi.data(), scratch.data(), bi.data());
       CHECK(bi == x);
     }
+  }
+}
+
+TEST_CASE("16-bit and 32-bit solve indices give the same bits, single and batched") {
+  const bake::RigDescription desc = samples::SnakeRig();
+  bake::RigDescription copy = desc;
+  const std::vector<unsigned char> bytes = bake::BakeRig(copy);
+  Rig narrow, wide;
+  Error err;
+  REQUIRE(LoadRig(bytes.data(), bytes.size(), &narrow, &err));
+  LoadOptions options;
+  options.wide_solve_indices = true;
+  REQUIRE(LoadRig(bytes.data(), bytes.size(), &wide, &err, options));
+  REQUIRE(narrow.factor().row_col2_16.size > 0);
+  REQUIRE(narrow.factor().row_col2.size == 0);
+  REQUIRE(wide.factor().row_col2_16.size == 0);
+  REQUIRE(wide.factor().row_col2.size > 0);
+  // The narrow rig's arena is smaller by the index bytes saved.
+  CHECK(narrow.arena_bytes() < wide.arena_bytes());
+
+  const std::uint32_t N = narrow.pose_count(), V = narrow.vertex_count();
+  std::vector<double> raw(N), shear(N);
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0.3, 0.4}, {-0.8, 0.1}, {1.7, -2.0}}) {
+    std::vector<double> out[2];
+    for (int which = 0; which < 2; ++which) {
+      const Rig& rig = which ? wide : narrow;
+      WeightsJob wj;
+      wj.rig = &rig;
+      wj.x = x, wj.y = y;
+      wj.raw = {raw.data(), N};
+      wj.shear = {shear.data(), N};
+      REQUIRE(wj.Run());
+      std::vector<double> workspace(rig.morph_workspace_size());
+      out[which].resize(2 * V);
+      MorphJob mj;
+      mj.rig = &rig;
+      mj.weights = {raw.data(), N};
+      mj.shear_weights = {shear.data(), N};
+      mj.workspace = {workspace.data(), workspace.size()};
+      mj.positions = {out[which].data(), out[which].size()};
+      REQUIRE(mj.Run());
+    }
+    CHECK(std::memcmp(out[0].data(), out[1].data(), out[0].size() * sizeof(double)) == 0);
+    // Batched on the wide rig equals single on the narrow one.
+    std::vector<double> weights, shears;
+    for (int c = 0; c < 9; ++c) weights.insert(weights.end(), raw.begin(), raw.end()), shears.insert(shears.end(), shear.begin(), shear.end());
+    std::vector<double> batch(9 * 2 * V), workspace(wide.batch_workspace_size());
+    MorphBatchJob bj;
+    bj.rig = &wide;
+    bj.count = 9;
+    bj.weights = {weights.data(), weights.size()};
+    bj.shear_weights = {shears.data(), shears.size()};
+    bj.workspace = {workspace.data(), workspace.size()};
+    bj.positions = {batch.data(), batch.size()};
+    REQUIRE(bj.Run());
+    for (int c = 0; c < 9; ++c) CHECK(std::memcmp(batch.data() + c * 2 * V, out[0].data(), 2 * V * sizeof(double)) == 0);
   }
 }

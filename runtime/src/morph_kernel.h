@@ -57,8 +57,8 @@ POSEMORPH_LANES_INLINE Lanes Zero<Lanes>() { return Broadcast(0.0); }
 // four interleaved partial sums: one running sum would chain every
 // subtraction behind the previous one's latency, which is what bounded the
 // solve (about 15 nonzeros per row).
-template <typename T>
-POSEMORPH_LANES_INLINE void GatherSubtract(const double* l, const std::uint32_t* idx2, std::uint32_t begin,
+template <typename T, typename I>
+POSEMORPH_LANES_INLINE void GatherSubtract(const double* l, const I* idx2, std::uint32_t begin,
                                            std::uint32_t end, const T* v, T* sx, T* sy) {
   T x0 = *sx, y0 = *sy, x1 = Zero<T>(), y1 = x1, x2 = x1, y2 = x1, x3 = x1, y3 = x1;
   std::uint32_t p = begin;
@@ -94,21 +94,28 @@ POSEMORPH_LANES_INLINE void AddToRhs<double>(const std::uint32_t* tri, const dou
 // read only in the forward pass, x written only in the backward one.
 // Forward: z_i = b'_i - sum_j L_ij z_j over row i (gather, from the CSR copy).
 // Backward: x_j = z_j / d_j - sum_i L_ij x_i over column j (gather, CSC).
-template <typename T>
-POSEMORPH_LANES_INLINE void SolvePinnedKernel(const Factor& f, const T* bf, T* y, T* xf) {
+template <typename T, typename I>
+POSEMORPH_LANES_INLINE void SolvePinnedWith(const Factor& f, const I* row_col2, const I* col_row2, const T* bf, T* y,
+                                            T* xf) {
   const std::uint32_t n = f.n;
   const std::uint32_t* order = f.order.data;
   for (std::uint32_t i = 0; i < n; ++i) {
     T sx = bf[2 * order[i]], sy = bf[2 * order[i] + 1];
-    GatherSubtract(f.row_value.data, f.row_col2.data, f.row_start[i], f.row_start[i + 1], y, &sx, &sy);
+    GatherSubtract(f.row_value.data, row_col2, f.row_start[i], f.row_start[i + 1], y, &sx, &sy);
     y[2 * i] = sx, y[2 * i + 1] = sy;
   }
   for (std::uint32_t j = n; j-- > 0;) {
     T sx = y[2 * j] * f.inv_diagonal[j], sy = y[2 * j + 1] * f.inv_diagonal[j];
-    GatherSubtract(f.value.data, f.col_row2.data, f.col_start[j], f.col_start[j + 1], y, &sx, &sy);
+    GatherSubtract(f.value.data, col_row2, f.col_start[j], f.col_start[j + 1], y, &sx, &sy);
     y[2 * j] = sx, y[2 * j + 1] = sy;
     xf[2 * order[j]] = sx, xf[2 * order[j] + 1] = sy;
   }
+}
+
+template <typename T>
+POSEMORPH_LANES_INLINE void SolvePinnedKernel(const Factor& f, const T* bf, T* y, T* xf) {
+  if (f.row_col2_16.size) SolvePinnedWith(f, f.row_col2_16.data, f.col_row2_16.data, bf, y, xf);
+  else SolvePinnedWith(f, f.row_col2.data, f.col_row2.data, bf, y, xf);
 }
 
 // Moves the mass-weighted centroid of x (2V) to sum_i w_i c_i.

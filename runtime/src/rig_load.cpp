@@ -314,8 +314,12 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
     const Span<const double> keys = CopyInto<double>(arena, pkeys, key_total * 3);
     unsigned char* seen = arena.Take<unsigned char>(n);  // scratch for the permutation check
     std::uint32_t* row_start = arena.Take<std::uint32_t>(n + 1);
-    std::uint32_t* row_col2 = arena.Take<std::uint32_t>(nnz);
-    std::uint32_t* col_row2 = arena.Take<std::uint32_t>(nnz);
+    // Index arrays for the solve: 16 bits wide when they fit, else 32.
+    const bool narrow = 2 * n < 65536 && !options.wide_solve_indices;
+    std::uint32_t* row_col2 = arena.Take<std::uint32_t>(narrow ? 0 : nnz);
+    std::uint32_t* col_row2 = arena.Take<std::uint32_t>(narrow ? 0 : nnz);
+    std::uint16_t* row_col2_16 = arena.Take<std::uint16_t>(narrow ? nnz : 0);
+    std::uint16_t* col_row2_16 = arena.Take<std::uint16_t>(narrow ? nnz : 0);
     double* row_value = arena.Take<double>(nnz);
     std::uint32_t* row_fill = arena.Take<std::uint32_t>(n);  // scratch for the transpose
     const std::uint64_t blocks = (T + 7) / 8;
@@ -393,9 +397,14 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
     for (std::uint64_t j = 0; j < n; ++j)
       for (std::uint32_t q = col[j]; q < col[j + 1]; ++q) {
         const std::uint32_t at = row_fill[rig.factor_.row[q]]++;
-        row_col2[at] = 2 * std::uint32_t(j);
         row_value[at] = rig.factor_.value[q];
-        col_row2[q] = 2 * rig.factor_.row[q];  // < 2n < 2^23: no overflow
+        if (narrow) {
+          row_col2_16[at] = std::uint16_t(2 * j);
+          col_row2_16[q] = std::uint16_t(2 * rig.factor_.row[q]);
+        } else {
+          row_col2[at] = 2 * std::uint32_t(j);
+          col_row2[q] = 2 * rig.factor_.row[q];  // < 2n < 2^23: no overflow
+        }
       }
     // Blend blocks: [block][pose][alpha, s11, s12, s22][lane]; spare lanes of
     // the last block are zero.
@@ -410,9 +419,14 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
       }
     rig.blend_blocks_ = {blend, blocks * 4 * N * 8};
     rig.factor_.row_start = {row_start, n + 1};
-    rig.factor_.row_col2 = {row_col2, nnz};
-    rig.factor_.col_row2 = {col_row2, nnz};
     rig.factor_.row_value = {row_value, nnz};
+    if (narrow) {
+      rig.factor_.row_col2_16 = {row_col2_16, nnz};
+      rig.factor_.col_row2_16 = {col_row2_16, nnz};
+    } else {
+      rig.factor_.row_col2 = {row_col2, nnz};
+      rig.factor_.col_row2 = {col_row2, nnz};
+    }
     for (std::uint64_t j = 0; j < n; ++j)
       if (!(rig.factor_.inv_diagonal[j] > 0) || !std::isfinite(rig.factor_.inv_diagonal[j]))
         return Fail(err, ErrorCode::kBadValue, "factor diagonal %llu is not positive and finite", (unsigned long long)j);

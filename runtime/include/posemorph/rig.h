@@ -46,15 +46,21 @@ struct Factor {
   // triangle by rows (forward), and indices pre-doubled to address the
   // interleaved x, y pairs directly.
   Span<const std::uint32_t> row_start;   // n + 1
-  Span<const std::uint32_t> row_col2;    // nnz: 2 x column, row by row
+  Span<const std::uint32_t> row_col2;    // nnz: 2 x column, row by row (when the 16-bit copy is empty)
   Span<const double> row_value;          // nnz
   Span<const std::uint32_t> col_row2;    // nnz: 2 x row, column by column (as `row`)
+  // The same two index arrays in 16 bits when 2n < 65536 (most rigs), in
+  // place of the 32-bit ones: the solve streams fewer bytes. Empty otherwise.
+  Span<const std::uint16_t> row_col2_16, col_row2_16;
 };
 
 struct LoadOptions {
   // Tests turn this off to prove the structural checks alone keep corrupted
   // bytes from crashing the loader; applications leave it on.
   bool verify_checksum = true;
+  // Tests turn this on to run the solve with 32-bit indices (what rigs of
+  // 32,768 vertices or more use) on a small rig.
+  bool wide_solve_indices = false;
 };
 
 class Rig {
