@@ -14,6 +14,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <memory>
 #include <sstream>
 
@@ -86,6 +87,7 @@ class Viewer {
   void EditInput(const View& view, std::int32_t x0, std::uint32_t w, std::uint32_t h);
   bool EditScene(View* view, std::uint32_t* count);
   void SavePose();
+  void ChangeDescription(const char* what, const std::function<std::string(nlohmann::json&)>& change);
 
   const Rig& rig_;
   const Drawings& drawings_;
@@ -117,6 +119,13 @@ class Viewer {
   std::uint32_t smoke_frame_ = 0;
   Edit edit_;
 };
+
+bake::Triangles RigTriangles(const Rig& rig) {
+  bake::Triangles tris;
+  for (std::uint32_t t = 0; t < rig.triangle_count(); ++t)
+    tris.push_back({rig.triangles().data[3 * t], rig.triangles().data[3 * t + 1], rig.triangles().data[3 * t + 2]});
+  return tris;
+}
 
 // The same mapping as RigRenderer::Record: rig space <-> window pixels.
 struct ViewMap {
@@ -286,31 +295,47 @@ void Viewer::Pad() {
   }
 }
 
-void Viewer::SaveGesture() {
+// Reads the rig description, lets `change` add to it (returning what it
+// added), and writes it back through a temporary file and a rename.
+void Viewer::ChangeDescription(const char* what, const std::function<std::string(nlohmann::json&)>& change) {
   if (options_.description.empty()) {
-    status_ = "start with --description RIG.json to save gestures";
+    status_ = std::string("start with --description RIG.json to save ") + what;
     return;
   }
   try {
     std::ifstream in(options_.description);
     if (!in) throw std::runtime_error("cannot open " + options_.description);
     nlohmann::json d = nlohmann::json::parse(in);
-    std::string name;
-    do name = "gesture-" + std::to_string(++saved_gestures_);
-    while (d.contains("paths") && std::any_of(d["paths"].begin(), d["paths"].end(),
-                                               [&](const nlohmann::json& p) { return p.value("name", "") == name; }));
+    const std::string added = change(d);
+    const std::string tmp = options_.description + ".tmp";
+    std::ofstream(tmp) << d.dump(2) << "\n";
+    if (std::rename(tmp.c_str(), options_.description.c_str()) != 0) throw std::runtime_error("cannot write " + tmp);
+    status_ = "saved " + added + " into " + options_.description + " (bake again to use it)";
+  } catch (const std::exception& e) {
+    status_ = std::string("cannot save: ") + e.what();
+  }
+}
+
+// A name "<stem>-K" that no entry of d[list] has yet.
+std::string FreshName(const nlohmann::json& d, const char* list, const std::string& stem, int* counter) {
+  std::string name;
+  do name = stem + "-" + std::to_string(++*counter);
+  while (d.contains(list) && std::any_of(d[list].begin(), d[list].end(), [&](const nlohmann::json& e) {
+           return e.value("name", "") == name;
+         }));
+  return name;
+}
+
+void Viewer::SaveGesture() {
+  ChangeDescription("gestures", [&](nlohmann::json& d) {
+    const std::string name = FreshName(d, "paths", "gesture", &saved_gestures_);
     nlohmann::json keys = nlohmann::json::array();
     double last = -1;
     for (const auto& k : gesture_.keys)
       if (k[0] > last + 1e-3) keys.push_back({k[0], k[1], k[2]}), last = k[0];
     d["paths"].push_back({{"name", name}, {"loop", true}, {"interpolation", "linear"}, {"keys", keys}});
-    const std::string tmp = options_.description + ".tmp";
-    std::ofstream(tmp) << d.dump(2) << "\n";
-    std::rename(tmp.c_str(), options_.description.c_str());
-    status_ = "saved path \"" + name + "\" into " + options_.description + " (bake again to use it)";
-  } catch (const std::exception& e) {
-    status_ = std::string("cannot save: ") + e.what();
-  }
+    return "path \"" + name + "\"";
+  });
 }
 
 void Viewer::EditUi() {
@@ -354,10 +379,7 @@ void Viewer::EditInput(const View& view, std::int32_t x0, std::uint32_t w, std::
     if (edit_.dragging < 0) {
       // A new handle on the vertex under the click (as the description's "at" handles pick it).
       std::uint32_t vertex = 0;
-      bake::Triangles tris;
-      for (std::uint32_t t = 0; t < rig_.triangle_count(); ++t)
-        tris.push_back({rig_.triangles().data[3 * t], rig_.triangles().data[3 * t + 1], rig_.triangles().data[3 * t + 2]});
-      if (bake::HandleVertex(edit_.current, tris, map.ToRig(io.MousePos), 6 / map.s, &vertex) &&
+      if (bake::HandleVertex(edit_.current, RigTriangles(rig_), map.ToRig(io.MousePos), 6 / map.s, &vertex) &&
           std::find(edit_.handles.begin(), edit_.handles.end(), vertex) == edit_.handles.end()) {
         edit_.handles.push_back(vertex);
         edit_.targets.push_back(edit_.current[vertex]);
@@ -378,12 +400,7 @@ bool Viewer::EditScene(View* view, std::uint32_t* count) {
   edit_.current = edit_.rest;
   if (edit_.handles.size() >= 2) {
     try {
-      if (!edit_.deformer) {
-        bake::Triangles tris;
-        for (std::uint32_t t = 0; t < rig_.triangle_count(); ++t)
-          tris.push_back({rig_.triangles().data[3 * t], rig_.triangles().data[3 * t + 1], rig_.triangles().data[3 * t + 2]});
-        edit_.deformer = std::make_unique<bake::ArapDeformer>(edit_.rest, tris, edit_.handles);
-      }
+      if (!edit_.deformer) edit_.deformer = std::make_unique<bake::ArapDeformer>(edit_.rest, RigTriangles(rig_), edit_.handles);
       edit_.deformer->Deform(edit_.targets, &edit_.current);
     } catch (const bake::BakeError& e) {
       status_ = e.what();
@@ -401,21 +418,8 @@ bool Viewer::EditScene(View* view, std::uint32_t* count) {
 }
 
 void Viewer::SavePose() {
-  if (options_.description.empty()) {
-    status_ = "start with --description RIG.json to save poses";
-    return;
-  }
-  try {
-    std::ifstream in(options_.description);
-    if (!in) throw std::runtime_error("cannot open " + options_.description);
-    nlohmann::json d = nlohmann::json::parse(in);
-    std::string name;
-    auto taken = [&](const std::string& n) {
-      return std::any_of(d["poses"].begin(), d["poses"].end(),
-                         [&](const nlohmann::json& p) { return p.value("name", "") == n; });
-    };
-    do name = "edit-" + std::to_string(++edit_.saved);
-    while (taken(name));
+  ChangeDescription("poses", [&](nlohmann::json& d) {
+    const std::string name = FreshName(d, "poses", "edit", &edit_.saved);
     const StringView from = rig_.pose_name(std::uint32_t(edit_.pose));
     nlohmann::json handles = nlohmann::json::array();
     for (std::size_t k = 0; k < edit_.handles.size(); ++k)
@@ -423,13 +427,8 @@ void Viewer::SavePose() {
     d["poses"].push_back({{"name", name},
                           {"point", {scene_.x, scene_.y}},
                           {"deform", {{"from", std::string(from.data, from.size)}, {"handles", handles}}}});
-    const std::string tmp = options_.description + ".tmp";
-    std::ofstream(tmp) << d.dump(2) << "\n";
-    std::rename(tmp.c_str(), options_.description.c_str());
-    status_ = "saved pose \"" + name + "\" at the pad's point into " + options_.description + " (bake again to use it)";
-  } catch (const std::exception& e) {
-    status_ = std::string("cannot save: ") + e.what();
-  }
+    return "pose \"" + name + "\" at the pad's point";
+  });
 }
 
 void Viewer::BuildUi() {
@@ -718,6 +717,9 @@ int Viewer::Run() {
       const float a = float(smoke_frame_) / float(options_.smoke_frames) * 6.2831853f;
       io.MousePos = ImVec2(cx + 0.3f * size * std::cos(a), cy + 0.3f * size * std::sin(a));
       io.MouseDown[0] = smoke_frame_ > 0 && smoke_frame_ + 1 < options_.smoke_frames;
+      // The drag is recorded as a gesture for the first half.
+      if (smoke_frame_ == 1) gesture_ = Gesture{}, gesture_.recording = true, gesture_.start = clock_;
+      if (smoke_frame_ == options_.smoke_frames / 2) gesture_.recording = false;
       if (smoke_frame_ == options_.smoke_frames * 3 / 4 && rig_.vertex_count() > 2) {
         // Then edit mode: pin vertex 0, drag the vertex farthest from it.
         edit_.on = true;
@@ -740,6 +742,13 @@ int Viewer::Run() {
                 sc_.extent.height);
     ImGui::Render();
     const bool last_frame = smoke && smoke_frame_ + 1 >= options_.smoke_frames;
+    if (last_frame && !options_.description.empty()) {
+      // The smoke test saves what it authored: the gesture and the edited pose.
+      SaveGesture();
+      std::printf("%s\n", status_.c_str());
+      SavePose();
+      std::printf("%s\n", status_.c_str());
+    }
     Frame(last_frame);
     if (smoke && smoke_frame_ == 10) timing_start = std::chrono::steady_clock::now();
     // Half-way, the smoke test resizes the window: the swapchain is rebuilt under validation.
