@@ -18,8 +18,10 @@ packages=(
   mesa-vulkan-drivers       # viewer: lavapipe, Vulkan on the CPU
   vulkan-validationlayers   # viewer tests: the Khronos validation layer
   libglfw3-dev              # viewer: the window
+  libxrandr2 libxcursor1 libxinerama1 libxi6   # viewer: X11 libraries GLFW loads at run time
   libimgui-dev              # viewer: the panel (Dear ImGui with its GLFW and Vulkan backends)
-  xvfb                      # viewer tests: a display for the window smoke test
+  pkg-config                # viewer build: finds Dear ImGui (imgui.pc)
+  xvfb xauth                # viewer tests: a display for the window smoke test (xvfb-run needs xauth)
 )
 
 missing=()
