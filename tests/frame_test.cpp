@@ -56,7 +56,8 @@ std::vector<unsigned char> Render(const Scene& scene, const View* override_view 
   REQUIRE_MESSAGE(renderer.Init(f.gpu, f.rig, f.drawings, OffscreenTarget::kFormat, scene.crowd, &problem), problem);
   View view;
   std::uint32_t count = 0;
-  REQUIRE_MESSAGE(PrepareScene(f.rig, scene, renderer, &view, &count, &problem), problem);
+  SceneScratch scratch;
+  REQUIRE_MESSAGE(PrepareScene(f.rig, scene, renderer, scratch, &view, &count, &problem), problem);
   if (override_view) view = *override_view;
   OffscreenTarget target;
   target.Init(f.gpu, kSize, kSize);

@@ -132,12 +132,21 @@ Gpu::~Gpu() {
   if (instance_) vkDestroyInstance(instance_, nullptr);
 }
 
-std::uint32_t Gpu::MemoryType(std::uint32_t bits, VkMemoryPropertyFlags flags) const {
+// Memory of the first type that fits `req` and has `flags`.
+VkDeviceMemory Gpu::Allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags, const void* next) const {
   VkPhysicalDeviceMemoryProperties mp;
   vkGetPhysicalDeviceMemoryProperties(physical_, &mp);
+  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  mai.pNext = next;
+  mai.allocationSize = req.size;
   for (std::uint32_t i = 0; i < mp.memoryTypeCount; ++i)
-    if ((bits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & flags) == flags) return i;
-  return 0;
+    if ((req.memoryTypeBits & (1u << i)) && (mp.memoryTypes[i].propertyFlags & flags) == flags) {
+      mai.memoryTypeIndex = i;
+      break;
+    }
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  vkAllocateMemory(device_, &mai, nullptr, &memory);
+  return memory;
 }
 
 Buffer Gpu::CreateBuffer(VkDeviceSize size, VkBufferUsageFlags usage) {
@@ -151,11 +160,8 @@ Buffer Gpu::CreateBuffer(VkDeviceSize size, VkBufferUsageFlags usage) {
   vkGetBufferMemoryRequirements(device_, b.buffer, &req);
   VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
   flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
-  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  mai.allocationSize = req.size;
-  mai.memoryTypeIndex = MemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  if (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) mai.pNext = &flags;
-  vkAllocateMemory(device_, &mai, nullptr, &b.memory);
+  b.memory = Allocate(req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                      (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) ? &flags : nullptr);
   vkBindBufferMemory(device_, b.buffer, b.memory, 0);
   vkMapMemory(device_, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped);
   if (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) {
@@ -188,10 +194,7 @@ Image Gpu::CreateImage(VkFormat format, std::uint32_t width, std::uint32_t heigh
   vkCreateImage(device_, &ici, nullptr, &im.image);
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(device_, im.image, &req);
-  VkMemoryAllocateInfo mai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  mai.allocationSize = req.size;
-  mai.memoryTypeIndex = MemoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  vkAllocateMemory(device_, &mai, nullptr, &im.memory);
+  im.memory = Allocate(req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, nullptr);
   vkBindImageMemory(device_, im.image, im.memory, 0);
   VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vci.image = im.image;

@@ -60,7 +60,7 @@ class Gpu {
   int validation_messages() const { return messages_; }
 
  private:
-  std::uint32_t MemoryType(std::uint32_t bits, VkMemoryPropertyFlags flags) const;
+  VkDeviceMemory Allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags, const void* next) const;
   static VKAPI_ATTR VkBool32 VKAPI_CALL OnMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                   VkDebugUtilsMessageTypeFlagsEXT type,
                                                   const VkDebugUtilsMessengerCallbackDataEXT* data, void* self);

@@ -114,6 +114,7 @@ int main(int argc, char** argv) {
   target.Init(gpu, width, height);
   const float background[4] = {0.93f, 0.94f, 0.95f, 1.0f};
 
+  SceneScratch scratch;
   std::vector<std::string> outputs;
   std::vector<double> times;
   if (frames > 0) {
@@ -137,7 +138,7 @@ int main(int argc, char** argv) {
     scene.time = times[f];
     View view;
     std::uint32_t count = 0;
-    if (!PrepareScene(rig, scene, renderer, &view, &count, &problem)) return Fail(problem);
+    if (!PrepareScene(rig, scene, renderer, scratch, &view, &count, &problem)) return Fail(problem);
     target.Render([&](VkCommandBuffer cmd) { renderer.Record(cmd, count, view, width, height, scene.wireframe); },
                   background);
     if (!WritePng(outputs[f], target.pixels(), width, height, &problem)) return Fail(problem);

@@ -140,9 +140,9 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
 
   // The drawings as one texture array.
   const std::size_t layer_bytes = std::size_t(drawings.width) * drawings.height * 4;
-  staging_ = gpu.CreateBuffer(layer_bytes * N, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  Buffer staging = gpu.CreateBuffer(layer_bytes * N, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   for (std::uint32_t i = 0; i < N; ++i)
-    std::memcpy(static_cast<char*>(staging_.mapped) + layer_bytes * i, drawings.rgba[i].data(), layer_bytes);
+    std::memcpy(static_cast<char*>(staging.mapped) + layer_bytes * i, drawings.rgba[i].data(), layer_bytes);
   drawings_ = gpu.CreateImage(VK_FORMAT_R8G8B8A8_UNORM, drawings.width, drawings.height, N,
                               VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT);
   gpu.RunOnce([&](VkCommandBuffer cmd) {
@@ -150,10 +150,10 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
     VkBufferImageCopy copy{};
     copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, N};
     copy.imageExtent = {drawings.width, drawings.height, 1};
-    vkCmdCopyBufferToImage(cmd, staging_.buffer, drawings_.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
+    vkCmdCopyBufferToImage(cmd, staging.buffer, drawings_.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &copy);
     Transition(cmd, drawings_.image, N, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   });
-  gpu.Destroy(staging_);
+  gpu.Destroy(staging);
 
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
@@ -269,7 +269,7 @@ RigRenderer::~RigRenderer() {
   if (set_layout_) vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
   if (sampler_) vkDestroySampler(dev, sampler_, nullptr);
   gpu_->Destroy(drawings_);
-  for (Buffer* b : {&indices_, &uvs_, &positions_, &instances_, &staging_}) gpu_->Destroy(*b);
+  for (Buffer* b : {&indices_, &uvs_, &positions_, &instances_}) gpu_->Destroy(*b);
 }
 
 void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const View& view, std::uint32_t width,

@@ -59,7 +59,7 @@ class RigRenderer {
  private:
   Gpu* gpu_ = nullptr;
   std::uint32_t vertex_count_ = 0, index_count_ = 0, max_instances_ = 0;
-  Buffer indices_, uvs_, positions_, instances_, staging_;
+  Buffer indices_, uvs_, positions_, instances_;
   Image drawings_;
   VkSampler sampler_ = VK_NULL_HANDLE;
   VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;

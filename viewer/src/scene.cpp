@@ -27,8 +27,8 @@ std::uint32_t SceneCharacters(const Rig& rig, const Scene& scene) {
   return std::max<std::uint32_t>(scene.crowd, 1);
 }
 
-bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, View* view, std::uint32_t* count,
-                  std::string* error) {
+bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, SceneScratch& scratch, View* view,
+                  std::uint32_t* count, std::string* error) {
   const std::uint32_t N = rig.pose_count(), V = rig.vertex_count(), K = SceneCharacters(rig, scene);
   if (K > renderer.max_instances()) {
     *error = "a scene of " + std::to_string(K) + " characters is more than the renderer holds (" +
@@ -50,10 +50,12 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Vie
   const std::uint32_t rows = (K + columns - 1) / columns;
   const double sigma = scene.sigma < 0 ? rig.default_sigma() : scene.sigma;
 
-  std::vector<double> raw(N), shear(N), texture(N), positions(2 * V), workspace(rig.morph_workspace_size());
+  // Weights for every character, then its drawings and its place on the grid.
+  scratch.raw.resize(std::size_t(K) * N);
+  scratch.shear.resize(std::size_t(K) * N);
+  scratch.texture.resize(N);
   for (std::uint32_t k = 0; k < K; ++k) {
     double x = scene.x, y = scene.y;
-    bool linear = scene.linear;
     if (scene.show_bases) {
       x = rig.pose_points().data[2 * k], y = rig.pose_points().data[2 * k + 1];
     } else if (path >= 0) {
@@ -62,36 +64,58 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Vie
       const double t = scene.time + (scene.compare_linear ? 0.0 : (t1 - t0) * double(k) / double(K));
       SamplePath(p, t, &x, &y);
     }
-    if (scene.compare_linear) linear = k == 1;
     WeightsJob wj;
     wj.rig = &rig;
     wj.x = x, wj.y = y;
     wj.sigma = sigma;
     wj.shear_limit = scene.shear_limit;
-    wj.raw = {raw.data(), N};
-    wj.shear = {shear.data(), N};
-    wj.texture = {texture.data(), N};
+    wj.raw = {scratch.raw.data() + std::size_t(k) * N, N};
+    wj.shear = {scratch.shear.data() + std::size_t(k) * N, N};
+    wj.texture = {scratch.texture.data(), N};
     if (!wj.Run()) {
       *error = "weights failed";
       return false;
     }
-    MorphJob mj;
-    mj.rig = &rig;
-    mj.weights = {raw.data(), N};
-    mj.shear_weights = {shear.data(), N};
-    mj.interpolation = linear ? Interpolation::kLinear : Interpolation::kRigid;
-    mj.workspace = {workspace.data(), workspace.size()};
-    mj.positions = {positions.data(), positions.size()};
-    mj.positions_f32 = {renderer.positions() + std::size_t(k) * 2 * V, 2 * std::size_t(V)};
-    if (!mj.Run()) {
-      *error = "morph failed";
-      return false;
-    }
     InstanceData& inst = renderer.instances()[k];
-    PickDrawings(texture.data(), N, &inst);
+    PickDrawings(scratch.texture.data(), N, &inst);
     inst.scale = 1;
     inst.offset[0] = float(cw * double(k % columns));
     inst.offset[1] = float(-ch * double(k / columns));
+  }
+
+  // Positions straight into the renderer's buffer (floats, character after character).
+  const bool any_linear = scene.linear || scene.compare_linear;
+  if (!any_linear) {
+    scratch.workspace.resize(rig.batch_workspace_size());
+    MorphBatchJob bj;
+    bj.rig = &rig;
+    bj.count = K;
+    bj.weights = {scratch.raw.data(), scratch.raw.size()};
+    bj.shear_weights = {scratch.shear.data(), scratch.shear.size()};
+    bj.workspace = {scratch.workspace.data(), scratch.workspace.size()};
+    bj.positions_f32 = {renderer.positions(), std::size_t(K) * 2 * V};
+    if (!bj.Run()) {
+      *error = "morph failed";
+      return false;
+    }
+  } else {
+    scratch.workspace.resize(rig.morph_workspace_size());
+    scratch.positions.resize(2 * std::size_t(V));
+    for (std::uint32_t k = 0; k < K; ++k) {
+      const bool linear = scene.compare_linear ? k == 1 : scene.linear;
+      MorphJob mj;
+      mj.rig = &rig;
+      mj.weights = {scratch.raw.data() + std::size_t(k) * N, N};
+      mj.shear_weights = {scratch.shear.data() + std::size_t(k) * N, N};
+      mj.interpolation = linear ? Interpolation::kLinear : Interpolation::kRigid;
+      mj.workspace = {scratch.workspace.data(), scratch.workspace.size()};
+      mj.positions = {scratch.positions.data(), scratch.positions.size()};
+      mj.positions_f32 = {renderer.positions() + std::size_t(k) * 2 * V, 2 * std::size_t(V)};
+      if (!mj.Run()) {
+        *error = "morph failed";
+        return false;
+      }
+    }
   }
   *view = {one.x0, one.y0 - ch * (rows - 1), one.x1 + cw * (columns - 1), one.y1};
   *count = K;

@@ -25,11 +25,18 @@ struct Scene {
 // How many characters the scene draws.
 std::uint32_t SceneCharacters(const Rig& rig, const Scene& scene);
 
-// Evaluates the characters of a scene with the runtime into the renderer's
+// The CPU buffers a scene's evaluation reuses from frame to frame.
+struct SceneScratch {
+  std::vector<double> raw, shear, texture;  // K x N weights
+  std::vector<double> workspace, positions;
+};
+
+// Evaluates the characters of a scene with the runtime (one MorphBatchJob
+// for rigid characters, MorphJob for linear ones) into the renderer's
 // buffers and returns the view that frames them. False with a message for
-// an unknown path or a crowd larger than the renderer holds.
-bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, View* view, std::uint32_t* count,
-                  std::string* error);
+// an unknown path or more characters than the renderer holds.
+bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, SceneScratch& scratch, View* view,
+                  std::uint32_t* count, std::string* error);
 
 // The rectangle of rig space that holds every pose of one character.
 View CharacterBounds(const Rig& rig);

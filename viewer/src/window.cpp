@@ -102,7 +102,8 @@ class Viewer {
   VkCommandBuffer cmd_ = VK_NULL_HANDLE;
   VkFence fence_ = VK_NULL_HANDLE;
   VkSemaphore acquired_ = VK_NULL_HANDLE;
-  RigRenderer renderer_;
+  std::unique_ptr<RigRenderer> renderer_;  // released before the device goes
+  SceneScratch scratch_;
   Buffer shot_;
   bool resized_ = false;
   // Pad and playback state.
@@ -407,9 +408,9 @@ bool Viewer::EditScene(View* view, std::uint32_t* count) {
       edit_.current = edit_.rest;
     }
   }
-  float* out = renderer_.positions();
+  float* out = renderer_->positions();
   for (std::uint32_t v = 0; v < V; ++v) out[2 * v] = float(edit_.current[v].x()), out[2 * v + 1] = float(edit_.current[v].y());
-  InstanceData& inst = renderer_.instances()[0];
+  InstanceData& inst = renderer_->instances()[0];
   inst = InstanceData{};
   for (std::uint32_t k = 0; k < kDrawingsPerCharacter; ++k) inst.layers[k] = edit_.pose;
   *view = CharacterBounds(rig_);
@@ -529,7 +530,7 @@ void Viewer::Frame(bool screenshot) {
   std::string problem;
   const auto t0 = std::chrono::steady_clock::now();
   const bool prepared =
-      edit_.on ? EditScene(&view, &count) : PrepareScene(rig_, shown, renderer_, &view, &count, &problem);
+      edit_.on ? EditScene(&view, &count) : PrepareScene(rig_, shown, *renderer_, scratch_, &view, &count, &problem);
   eval_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (!prepared) status_ = problem, count = 0;
 
@@ -553,7 +554,7 @@ void Viewer::Frame(bool screenshot) {
   vkCmdBeginRendering(cmd_, &ri);
   const std::int32_t x0 = std::int32_t(kPanelWidth);
   if (count > 0 && sc_.extent.width > kPanelWidth + 8)
-    renderer_.Record(cmd_, count, view, sc_.extent.width - std::uint32_t(x0), sc_.extent.height, shown.wireframe, x0, 0);
+    renderer_->Record(cmd_, count, view, sc_.extent.width - std::uint32_t(x0), sc_.extent.height, shown.wireframe, x0, 0);
   vkCmdEndRendering(cmd_);
   VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   rp.renderPass = ui_pass_;
@@ -631,7 +632,8 @@ int Viewer::Run() {
     std::fprintf(stderr, "posemorph-view: error: the device cannot present to this window\n");
     return 1;
   }
-  if (!renderer_.Init(gpu_, rig_, drawings_, sc_.format, kMaxCharacters, &problem)) {
+  renderer_ = std::make_unique<RigRenderer>();
+  if (!renderer_->Init(gpu_, rig_, drawings_, sc_.format, kMaxCharacters, &problem)) {
     std::fprintf(stderr, "posemorph-view: error: %s\n", problem.c_str());
     return 1;
   }
@@ -791,8 +793,7 @@ int Viewer::Run() {
   vkDestroyFence(gpu_.device(), fence_, nullptr);
   DestroySwapchain();
   vkDestroyRenderPass(gpu_.device(), ui_pass_, nullptr);
-  renderer_.~RigRenderer();
-  new (&renderer_) RigRenderer();
+  renderer_.reset();
   vkDestroySurfaceKHR(gpu_.instance(), surface_, nullptr);
   glfwDestroyWindow(window_);
   glfwTerminate();
