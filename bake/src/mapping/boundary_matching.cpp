@@ -11,12 +11,6 @@
 namespace posemorph::bake::mapping {
 namespace {
 
-std::vector<double> Cumulative(const Polygon& p) {
-  std::vector<double> c(p.size() + 1, 0);
-  for (std::size_t i = 0; i < p.size(); ++i) c[i + 1] = c[i] + (p[(i + 1) % p.size()] - p[i]).norm();
-  return c;
-}
-
 double WrapAngle(double a) {
   while (a > M_PI) a -= 2 * M_PI;
   while (a < -M_PI) a += 2 * M_PI;
@@ -27,7 +21,7 @@ double WrapAngle(double a) {
 struct ArcLength {
   const Polygon& p;
   std::vector<double> c;
-  explicit ArcLength(const Polygon& outline) : p(outline), c(Cumulative(outline)) {}
+  explicit ArcLength(const Polygon& outline) : p(outline), c(CumulativeArcLength(outline)) {}
   Point At(double s) const {
     const double P = c.back();
     s = std::fmod(s, P);
@@ -61,10 +55,16 @@ void MakeStrictlyIncreasing(std::vector<double>& u) {
 
 }  // namespace
 
+std::vector<double> CumulativeArcLength(const Polygon& p) {
+  std::vector<double> c(p.size() + 1, 0);
+  for (std::size_t i = 0; i < p.size(); ++i) c[i + 1] = c[i] + (p[(i + 1) % p.size()] - p[i]).norm();
+  return c;
+}
+
 Point PointAtArcLength(const Polygon& outline, double s) { return ArcLength(outline).At(s); }
 
 double NearestArcLength(const Polygon& outline, const Point& q, double* distance) {
-  const std::vector<double> c = Cumulative(outline);
+  const std::vector<double> c = CumulativeArcLength(outline);
   double best = std::numeric_limits<double>::infinity(), at = 0;
   for (std::size_t i = 0; i < outline.size(); ++i) {
     const Point a = outline[i], b = outline[(i + 1) % outline.size()];
@@ -85,7 +85,7 @@ CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
   std::vector<std::vector<double>> s(N, std::vector<double>(L));  // landmark arc lengths, unwrapped increasing
   std::vector<double> perimeter(N);
   for (std::size_t i = 0; i < N; ++i) {
-    perimeter[i] = Cumulative(outlines[i]).back();
+    perimeter[i] = CumulativeArcLength(outlines[i]).back();
     for (std::size_t k = 0; k < L; ++k) {
       s[i][k] = NearestArcLength(outlines[i], landmarks[i][k], nullptr);
       while (k > 0 && s[i][k] <= s[i][k - 1]) s[i][k] += perimeter[i];

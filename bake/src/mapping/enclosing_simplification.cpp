@@ -143,9 +143,7 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
   for (std::size_t i = 0; i < N; ++i) {
     PoseState& s = st[i];
     s.outline = &outlines[i];
-    s.cumulative.assign(outlines[i].size() + 1, 0);
-    for (std::size_t k = 0; k < outlines[i].size(); ++k)
-      s.cumulative[k + 1] = s.cumulative[k] + (outlines[i][(k + 1) % outlines[i].size()] - outlines[i][k]).norm();
+    s.cumulative = CumulativeArcLength(outlines[i]);
     s.perimeter = s.cumulative.back();
     s.at = boundary.at[i];
     const Polygon& q = boundary.points[i];

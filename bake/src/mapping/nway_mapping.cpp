@@ -108,9 +108,7 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines, const std::v
       on.push_back(PointAtArcLength(st.outlines[k], s));
       at.push_back(s);
     }
-    double perimeter = 0;
-    for (std::size_t i = 0; i < st.outlines[k].size(); ++i)
-      perimeter += (st.outlines[k][(i + 1) % st.outlines[k].size()] - st.outlines[k][i]).norm();
+    const double perimeter = CumulativeArcLength(st.outlines[k]).back();
     double previous = 0;
     for (std::size_t l = 1; l < at.size(); ++l) {
       double rel = std::fmod(at[l] - at[0], perimeter);

@@ -82,6 +82,8 @@ struct CorrespondedBoundary {
 CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
                                      const std::vector<std::vector<Point>>& landmarks,
                                      const MatchingParameters& parameters);
+// Arc length from vertex 0 at each vertex, closing edge included (size n + 1; the last is the perimeter).
+std::vector<double> CumulativeArcLength(const Polygon& outline);
 // Where on `outline` (arc length from vertex 0) the point nearest q lies, and how far it is.
 double NearestArcLength(const Polygon& outline, const Point& q, double* distance);
 Point PointAtArcLength(const Polygon& outline, double s);
