@@ -93,7 +93,7 @@ void BM_Solve(benchmark::State& state) {
   const std::size_t n = rig.factor().n;
   std::vector<double> b(2 * n, 0.5), scratch(2 * n), x(2 * n);
   for (auto _ : state) {
-    detail::SolvePinned(rig.factor(), b.data(), scratch.data(), x.data());
+    detail::SolvePinned(rig, b.data(), scratch.data(), x.data());
     benchmark::DoNotOptimize(x.data());
   }
   Label(state, rig);

@@ -10,7 +10,9 @@
 #include <chrono>
 #include <map>
 #include <thread>
+#include <tuple>
 
+#include "../runtime/src/kernels/kernel_table.h"
 #include "../runtime/src/ldlt_solve.h"
 #include "posemorph/bake/arap_system.h"
 #include "posemorph/bake/bake.h"
@@ -51,6 +53,7 @@ bake::RigDescription PlateRig(int across, int poses) {
 const int kAcross[] = {15, 22, 31, 44};  // 496, 1035, 2016, 4005 vertices
 
 struct Case {
+  std::vector<unsigned char> bytes;
   Rig rig;
   Eigen::SparseMatrix<double> K;  // the same pinned matrix the bake factored
   Eigen::MatrixXd rhs;            // two right-hand sides (x and y)
@@ -61,17 +64,30 @@ const Case& GetCase(int size, int poses) {
   auto [it, inserted] = cases.try_emplace({size, poses});
   if (inserted) {
     bake::RigDescription desc = PlateRig(kAcross[size], poses);
-    const std::vector<unsigned char> bytes = bake::BakeRig(desc);
-    LoadRig(bytes.data(), bytes.size(), &it->second.rig, nullptr);
+    it->second.bytes = bake::BakeRig(desc);
+    LoadRig(it->second.bytes.data(), it->second.bytes.size(), &it->second.rig, nullptr);
     it->second.K = bake::BuildArapSystem(desc.poses[0].vertices, desc.triangles, "").K;
     it->second.rhs = Eigen::MatrixXd::Random(it->second.K.rows(), 2);
   }
   return it->second;
 }
 
+// The same rig loaded with a forced kernel path; null when this CPU lacks it.
+const Rig* RigOnPath(int size, int poses, Isa isa) {
+  static std::map<std::tuple<int, int, Isa>, Rig> rigs;
+  auto [it, inserted] = rigs.try_emplace({size, poses, isa});
+  if (inserted) {
+    const Case& c = GetCase(size, poses);
+    LoadOptions options;
+    options.isa = isa;
+    if (!LoadRig(c.bytes.data(), c.bytes.size(), &it->second, nullptr, options)) return nullptr;
+  }
+  return it->second.loaded() ? &it->second : nullptr;
+}
+
 void Label(benchmark::State& state, const Rig& rig) {
   state.SetLabel("V=" + std::to_string(rig.vertex_count()) + " N=" + std::to_string(rig.pose_count()) +
-                 " nnz(L)=" + std::to_string(rig.factor().value.size + rig.factor().n));
+                 " nnz(L)=" + std::to_string(rig.factor().value.size + rig.factor().n) + " path=" + IsaName(rig.isa()));
 }
 
 struct EigenSolver {
@@ -115,7 +131,7 @@ struct RuntimeSolver {
   explicit RuntimeSolver(const Case& c) : b(2 * c.rig.factor().n), scratch(b.size()), x(b.size()) {
     for (std::size_t k = 0; k < c.rig.factor().n; ++k) b[2 * k] = c.rhs(k, 0), b[2 * k + 1] = c.rhs(k, 1);
   }
-  void Solve(const Case& c) { detail::SolvePinned(c.rig.factor(), b.data(), scratch.data(), x.data()); }
+  void Solve(const Case& c) { detail::SolvePinned(c.rig, b.data(), scratch.data(), x.data()); }
 };
 
 struct RuntimeFrame {
@@ -277,40 +293,151 @@ class Pool {
   void* arg_ = nullptr;
 };
 
+// Characters [begin, end) of a crowd of one rig: each one's weights, then
+// the batched morph (float output, what a game hands the GPU).
+struct CrowdBuffers {
+  std::vector<double> w, ws;
+  std::vector<float> x;
+  CrowdBuffers(const Rig& rig, std::size_t count)
+      : w(count * rig.pose_count()), ws(w.size()), x(count * 2 * std::size_t(rig.vertex_count())) {}
+};
+
+void CrowdPart(const Rig& rig, double time, std::size_t begin, std::size_t end, CrowdBuffers& b,
+               std::vector<double>& work) {
+  const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
+  for (std::size_t k = begin; k < end; ++k) {
+    WeightsJob wj;
+    wj.rig = &rig, wj.x = std::cos(time + 0.1 * k), wj.y = std::sin(1.3 * time + 0.2 * k);
+    wj.raw = {b.w.data() + k * N, N}, wj.shear = {b.ws.data() + k * N, N};
+    wj.Run();
+  }
+  MorphBatchJob job;
+  job.rig = &rig, job.count = end - begin;
+  job.weights = {b.w.data() + begin * N, job.count * N}, job.shear_weights = {b.ws.data() + begin * N, job.count * N};
+  job.workspace = MakeSpan(work), job.positions_f32 = {b.x.data() + begin * v2, job.count * v2};
+  job.Run();
+}
+
 // K characters of one rig per frame: each one's weights, then the batched morph.
 void BM_Crowd(benchmark::State& state) {
   const Rig& rig = GetCase(1, 8).rig;  // ~1000 vertices, N = 8
   const std::size_t count = std::size_t(state.range(0));
   const int threads = int(state.range(1));
-  const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
-  std::vector<double> w(count * N), ws(count * N);
-  std::vector<float> x(count * v2);  // what a game hands the GPU
+  CrowdBuffers buffers(rig, count);
   std::vector<std::vector<double>> work(threads, std::vector<double>(rig.batch_workspace_size()));
   Pool pool(threads);
   double time = 0;
-  auto part = [&](int t, int n) {
-    const std::size_t begin = count * t / n, end = count * (t + 1) / n;
-    for (std::size_t k = begin; k < end; ++k) {
-      WeightsJob wj;
-      wj.rig = &rig, wj.x = std::cos(time + 0.1 * k), wj.y = std::sin(1.3 * time + 0.2 * k);
-      wj.raw = {w.data() + k * N, N}, wj.shear = {ws.data() + k * N, N};
-      wj.Run();
-    }
-    MorphBatchJob job;
-    job.rig = &rig, job.count = end - begin;
-    job.weights = {w.data() + begin * N, job.count * N}, job.shear_weights = {ws.data() + begin * N, job.count * N};
-    job.workspace = MakeSpan(work[t]), job.positions_f32 = {x.data() + begin * v2, job.count * v2};
-    job.Run();
-  };
+  auto part = [&](int t, int n) { CrowdPart(rig, time, count * t / n, count * (t + 1) / n, buffers, work[t]); };
   for (auto _ : state) {
     pool.Run(part);
     time += 1.0 / 60;
-    benchmark::DoNotOptimize(x.data());
+    benchmark::DoNotOptimize(buffers.x.data());
   }
   state.counters["us_per_character"] =
       benchmark::Counter(double(count), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert,
                          benchmark::Counter::kIs1000);
   Label(state, rig);
+}
+
+// Each kernel path against the fastest this CPU runs, measured in pairs as
+// BM_PairedRatios does (bursts back to back, order rotating): a single frame
+// and a 1000-character crowd (one thread) of the 1035-vertex, N = 8 plate;
+// and the path's solve against Eigen's and CHOLMOD's. Argument: Isa value.
+void BM_PathRatios(benchmark::State& state) {
+  const Isa isa = Isa(state.range(0));
+  const Case& c = GetCase(1, 8);
+  const Rig* rig = RigOnPath(1, 8, isa);
+  const Rig* best = RigOnPath(1, 8, BestIsa());
+  if (!rig || !best) {
+    state.SkipWithError("this CPU does not run this path");
+    return;
+  }
+  const std::size_t count = 1000;
+  RuntimeFrame frame(*rig), best_frame(*best);
+  CrowdBuffers crowd(*rig, count), best_crowd(*best, count);
+  std::vector<double> work(rig->batch_workspace_size());
+  RuntimeSolver solver(c);
+  EigenSolver eigen(c);
+  CholmodSolver cholmod(c);
+  using Clock = std::chrono::steady_clock;
+  auto burst = [](int reps, auto&& f) {
+    const auto start = Clock::now();
+    for (int k = 0; k < reps; ++k) f();
+    return std::chrono::duration<double>(Clock::now() - start).count();
+  };
+  std::vector<double> frame_ratio, crowd_ratio, vs_eigen, vs_cholmod;
+  int round = 0;
+  double time = 0;
+  for (auto _ : state) {
+    double t[7] = {};
+    for (int k = 0; k < 7; ++k) {
+      const int which = (k + round) % 7;
+      switch (which) {
+        case 0: t[0] = burst(8, [&] { frame.Run(*rig); }); break;
+        case 1: t[1] = burst(8, [&] { best_frame.Run(*best); }); break;
+        case 2: t[2] = burst(1, [&] { CrowdPart(*rig, time, 0, count, crowd, work); }); break;
+        case 3: t[3] = burst(1, [&] { CrowdPart(*best, time, 0, count, best_crowd, work); }); break;
+        case 4: t[4] = burst(8, [&] { detail::SolvePinned(*rig, solver.b.data(), solver.scratch.data(), solver.x.data()); }); break;
+        case 5: t[5] = burst(8, [&] { eigen.Solve(c); }); break;
+        default: t[6] = burst(8, [&] { cholmod.Solve(); }); break;
+      }
+    }
+    ++round;
+    time += 1.0 / 60;
+    frame_ratio.push_back(t[0] / t[1]), crowd_ratio.push_back(t[2] / t[3]);
+    vs_eigen.push_back(t[4] / t[5]), vs_cholmod.push_back(t[4] / t[6]);
+  }
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  state.counters["frame_vs_best"] = median(frame_ratio);
+  state.counters["crowd_vs_best"] = median(crowd_ratio);
+  state.counters["solve_vs_eigen"] = median(vs_eigen);
+  state.counters["solve_vs_cholmod"] = median(vs_cholmod);
+  state.SetLabel(std::string("path=") + IsaName(isa) + " best=" + IsaName(BestIsa()));
+}
+
+// Absolute times per path: one frame, and a crowd of 1000 on 1 or 2 threads.
+void BM_PathFrame(benchmark::State& state) {
+  const Rig* rig = RigOnPath(1, 8, Isa(state.range(0)));
+  if (!rig) return state.SkipWithError("this CPU does not run this path");
+  RuntimeFrame frame(*rig);
+  for (auto _ : state) {
+    frame.Run(*rig);
+    benchmark::DoNotOptimize(frame.x.data());
+  }
+  Label(state, *rig);
+}
+
+void BM_PathCrowd(benchmark::State& state) {
+  const Rig* rig = RigOnPath(1, 8, Isa(state.range(0)));
+  if (!rig) return state.SkipWithError("this CPU does not run this path");
+  const std::size_t count = 1000;
+  const int threads = int(state.range(1));
+  CrowdBuffers buffers(*rig, count);
+  std::vector<std::vector<double>> work(threads, std::vector<double>(rig->batch_workspace_size()));
+  Pool pool(threads);
+  double time = 0;
+  auto part = [&](int t, int n) { CrowdPart(*rig, time, count * t / n, count * (t + 1) / n, buffers, work[t]); };
+  for (auto _ : state) {
+    pool.Run(part);
+    time += 1.0 / 60;
+    benchmark::DoNotOptimize(buffers.x.data());
+  }
+  Label(state, *rig);
+}
+
+// The paths this build has, by Isa value.
+const Isa kAllPaths[] = {Isa::kAvx512, Isa::kAvx2, Isa::kSse2, Isa::kScalar, Isa::kNeon, Isa::kWasmSimd};
+void Paths(benchmark::internal::Benchmark* b) {
+  for (Isa isa : kAllPaths)
+    if (detail::CompiledKernels(isa)) b->Arg(int(isa));
+}
+void PathsAndThreads(benchmark::internal::Benchmark* b) {
+  for (Isa isa : kAllPaths)
+    if (detail::CompiledKernels(isa))
+      for (int threads : {1, 2}) b->Args({int(isa), threads});
 }
 
 void SizesAndPoses(benchmark::internal::Benchmark* b) {
@@ -327,3 +454,6 @@ BENCHMARK(BM_CholmodSolve)->Apply(SizesAndPoses);
 BENCHMARK(BM_EigenRefactorEveryFrame)->Apply(SizesAndPoses);
 BENCHMARK(BM_PairedRatios)->Apply(SizesAndPoses)->MinTime(1.0);
 BENCHMARK(BM_Crowd)->ArgsProduct({{1, 4, 8, 64, 1000}, {1, 2}})->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PathRatios)->Apply(Paths)->MinTime(2.0);
+BENCHMARK(BM_PathFrame)->Apply(Paths)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PathCrowd)->Apply(PathsAndThreads)->UseRealTime()->Unit(benchmark::kMillisecond);

@@ -180,7 +180,11 @@ int Info(const std::vector<std::string>& a, std::size_t from, std::ostream& out)
       << " (fill " << double(l_strict + V - 1) / double(k_lower) << "x)\n"
       << "  weight grid: " << g.cells_x << " x " << g.cells_y << " cells of " << g.cell << ", origin (" << g.origin_x
       << ", " << g.origin_y << ")\n"
-      << "  rig size " << rig.size() << ", default sigma " << rig.default_sigma() << "\n";
+      << "  rig size " << rig.size() << ", default sigma " << rig.default_sigma() << "\n"
+      << "  kernel path " << IsaName(rig.isa()) << " (this build and CPU run:";
+  for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512, Isa::kNeon, Isa::kWasmSimd})
+    if (IsaAvailable(isa)) out << ' ' << IsaName(isa);
+  out << "; POSEMORPH_ISA chooses)\n";
   // Where the bytes go (the loader has validated the table already).
   std::uint32_t sections = 0;
   std::memcpy(&sections, bytes.data() + format::kOffSectionCount, 4);

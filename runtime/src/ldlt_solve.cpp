@@ -1,13 +1,13 @@
+// SPDX-License-Identifier: MIT
 #include "ldlt_solve.h"
 
-#include "morph_kernel.h"
+#include "kernels/kernel_table.h"
 
 namespace posemorph::detail {
 
-// Cloned like the frame kernels, so that it measures what a frame runs.
-__attribute__((target_clones("avx512f", "avx2", "default")))
-void SolvePinned(const Factor& factor, const double* b, double* scratch, double* x) {
-  SolvePinnedKernel<double>(factor, b, scratch, x);
+// Through the rig's kernel path, so that it measures what a frame runs.
+void SolvePinned(const Rig& rig, const double* b, double* scratch, double* x) {
+  rig.kernels()->solve(rig.factor(), b, scratch, x);
 }
 
 }  // namespace posemorph::detail

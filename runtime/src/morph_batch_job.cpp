@@ -1,22 +1,20 @@
-// MorphBatchJob: MorphJob's rigid path over kLanes characters at a time.
+// SPDX-License-Identifier: MIT
+// MorphBatchJob: MorphJob's rigid path over a vector's width of characters at
+// a time (8 on AVX-512, 4 on AVX2, 2 on SSE2/NEON/WebAssembly, 1 scalar).
 #include <cmath>
 #include <cstdint>
 
-#include "morph_kernel.h"
+#include "kernels/kernel_table.h"
 #include "posemorph/jobs.h"
 
 namespace posemorph {
 
-using detail::kLanes;
-using detail::Lanes;
-
-// Groups with fewer characters than this are evaluated one by one.
-constexpr std::size_t kMinLanes = 3;
+using detail::kMaxLanes;
 
 std::size_t Rig::batch_workspace_size() const {
   // b/x (2V lanes) and y (2n lanes), plus slack to align to the lane size;
   // also enough for MorphJob, which a small last group falls back to.
-  return (4 * std::size_t(vertex_count_) + 1) * kLanes;
+  return (4 * std::size_t(vertex_count_) + 1) * kMaxLanes;
 }
 
 bool MorphBatchJob::Validate() const {
@@ -34,48 +32,26 @@ bool MorphBatchJob::Validate() const {
   return true;
 }
 
-namespace {
-
-// One group: W and WS hold N lanes of weights; x (2V lanes) receives the
-// positions, y is scratch (2n lanes).
-__attribute__((target_clones("avx512f", "avx2", "default")))
-void RunGroup(const Rig& rig, const Lanes* W, const Lanes* WS, Lanes* x, Lanes* y) {
-  const std::uint32_t V = rig.vertex_count(), T = rig.triangle_count(), N = rig.pose_count();
-  const Lanes zero = detail::Broadcast(0.0);
-  for (std::size_t k = 0; k < 2 * std::size_t(V); ++k) x[k] = zero;
-  const std::uint32_t* tri = rig.triangles().data;
-  const double* grad = rig.gradients().data;
-  const double* angle = rig.angles().data;
-  const double* shear = rig.shears().data;
-  for (std::size_t t = 0; t < T; ++t) {
-    Lanes alpha, s11, s12, s22, s, c, a11, a12, a21, a22;
-    detail::BlendTriangle<Lanes>(angle + t * N, shear + 3 * t * N, W, WS, N, &alpha, &s11, &s12, &s22);
-    detail::SinCos(alpha, &s, &c);
-    detail::TargetMatrix(c, s, s11, s12, s22, &a11, &a12, &a21, &a22);
-    detail::AddToRhs<Lanes>(tri + 3 * t, grad + 6 * t, a11, a12, a21, a22, x);
-  }
-  detail::SolvePinnedKernel<Lanes>(rig.factor(), x + 2, y, x + 2);
-  x[0] = x[1] = zero;
-  detail::PlaceCentroid<Lanes>(rig, W, x);
-}
-
-}  // namespace
 
 bool MorphBatchJob::Run() const {
   if (!Validate()) return false;
   const Rig& r = *rig;
   const std::uint32_t N = r.pose_count();
   const std::size_t v2 = 2 * std::size_t(r.vertex_count());
+  const detail::KernelTable& kernels = *r.kernels();
+  const std::size_t width = std::size_t(kernels.lanes);
+  // A group costs about (3 + width) / 4 single evaluations on AVX-512 and
+  // less on narrower paths; a last group below 3/8 of the width (3 of 8,
+  // 2 of 4) goes one by one instead (the same arithmetic, so the same bits).
+  const std::size_t min_lanes = (3 * width + 7) / 8;
   const std::uintptr_t base = reinterpret_cast<std::uintptr_t>(workspace.data);
-  const std::uintptr_t aligned = (base + sizeof(Lanes) - 1) / sizeof(Lanes) * sizeof(Lanes);
-  Lanes* x = reinterpret_cast<Lanes*>(aligned);
-  Lanes* y = x + v2;
-  alignas(sizeof(Lanes)) Lanes W[64], WS[64];  // N <= 64, the format's limit
-  for (std::size_t g = 0; g < count; g += kLanes) {
-    const std::size_t lanes = count - g < std::size_t(kLanes) ? count - g : std::size_t(kLanes);
-    if (lanes < kMinLanes) {
-      // A group costs about four single evaluations; below that, evaluate
-      // one by one (the same arithmetic, so the same bits).
+  const std::uintptr_t aligned = (base + 63) / 64 * 64;
+  double* x = reinterpret_cast<double*>(aligned);  // 2V x width
+  double* y = x + v2 * width;                      // 2(V-1) x width
+  alignas(64) double W[64 * kMaxLanes], WS[64 * kMaxLanes];  // N <= 64, the format's limit
+  for (std::size_t g = 0; g < count; g += width) {
+    const std::size_t lanes = count - g < width ? count - g : width;
+    if (lanes < min_lanes) {
       // Doubles go to the caller's array, or to the spare half of the workspace.
       for (std::size_t k = g; k < count; ++k) {
         MorphJob one;
@@ -92,22 +68,22 @@ bool MorphBatchJob::Run() const {
     }
     // A short last group repeats its last character in the spare lanes.
     for (std::uint32_t i = 0; i < N; ++i)
-      for (int l = 0; l < kLanes; ++l) {
-        const std::size_t ch = g + (std::size_t(l) < lanes ? std::size_t(l) : lanes - 1);
-        W[i][l] = weights[ch * N + i];
-        WS[i][l] = shear_weights[ch * N + i];
+      for (std::size_t l = 0; l < width; ++l) {
+        const std::size_t ch = g + (l < lanes ? l : lanes - 1);
+        W[i * width + l] = weights[ch * N + i];
+        WS[i * width + l] = shear_weights[ch * N + i];
       }
-    RunGroup(r, W, WS, x, y);
+    kernels.group(r, W, WS, x, y);
     // One pass over the lanes, writing each character's array in order.
     if (positions.size) {
       double* out = positions.data + g * v2;
       for (std::size_t k = 0; k < v2; ++k)
-        for (std::size_t l = 0; l < lanes; ++l) out[l * v2 + k] = x[k][l];
+        for (std::size_t l = 0; l < lanes; ++l) out[l * v2 + k] = x[k * width + l];
     }
     if (positions_f32.size) {
       float* out32 = positions_f32.data + g * v2;
       for (std::size_t k = 0; k < v2; ++k)
-        for (std::size_t l = 0; l < lanes; ++l) out32[l * v2 + k] = float(x[k][l]);
+        for (std::size_t l = 0; l < lanes; ++l) out32[l * v2 + k] = float(x[k * width + l]);
     }
   }
   return true;

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <new>
 
+#include "isa_select.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
 
@@ -112,6 +113,8 @@ Rig::~Rig() = default;
 Rig::Rig(Rig&&) noexcept = default;
 Rig& Rig::operator=(Rig&&) noexcept = default;
 
+Isa Rig::isa() const { return kernels_ ? kernels_->isa : Isa::kAuto; }
+
 Span<const double> Rig::pose_positions(std::uint32_t pose) const {
   if (pose >= pose_count_) return {};
   return {pose_positions_.data + std::size_t(pose) * 2 * vertex_count_, 2 * std::size_t(vertex_count_)};
@@ -145,6 +148,8 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
   if (!out) return Fail(err, ErrorCode::kInvalidArgument, "no output rig given");
   *out = Rig();
   if (!data && size) return Fail(err, ErrorCode::kInvalidArgument, "null data");
+  const detail::KernelTable* kernels = nullptr;
+  if (!detail::SelectKernels(options.isa, &kernels, err)) return false;
   const auto* bytes = static_cast<const unsigned char*>(data);
 
   // Header.
@@ -454,6 +459,7 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
   rig.factor_.n = meta.vertex_count - 1;
   rig.default_sigma_ = meta.default_sigma;
   rig.rig_size_ = meta.rig_size;
+  rig.kernels_ = kernels;
   *out = std::move(rig);
   return true;
 }
@@ -470,6 +476,7 @@ const char* ErrorCodeName(ErrorCode code) {
     case ErrorCode::kBadValue: return "bad value";
     case ErrorCode::kTooLarge: return "too large";
     case ErrorCode::kOutOfMemory: return "out of memory";
+    case ErrorCode::kUnsupportedIsa: return "unsupported code path";
   }
   return "unknown";
 }

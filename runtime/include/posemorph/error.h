@@ -15,6 +15,7 @@ enum class ErrorCode : int {
   kBadValue = 7,         // non-finite number, out-of-range index, inconsistent count
   kTooLarge = 8,         // counts above the runtime's limits
   kOutOfMemory = 9,      // the one arena allocation at load failed
+  kUnsupportedIsa = 10,  // the requested kernel path is not in this build or not run by this CPU
 };
 
 struct Error {

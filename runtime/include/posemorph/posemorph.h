@@ -22,7 +22,8 @@ enum {
   PM_ERROR_BAD_LAYOUT = 6,
   PM_ERROR_BAD_VALUE = 7,
   PM_ERROR_TOO_LARGE = 8,
-  PM_ERROR_OUT_OF_MEMORY = 9
+  PM_ERROR_OUT_OF_MEMORY = 9,
+  PM_ERROR_UNSUPPORTED_ISA = 10 /* POSEMORPH_ISA names a path this build or CPU cannot run */
 };
 
 typedef struct pm_rig pm_rig;

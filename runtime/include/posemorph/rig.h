@@ -6,9 +6,14 @@
 #include <memory>
 
 #include "posemorph/error.h"
+#include "posemorph/isa.h"
 #include "posemorph/span.h"
 
 namespace posemorph {
+
+namespace detail {
+struct KernelTable;
+}
 
 enum class PathInterpolation : std::uint8_t { kLinear = 0, kCatmullRom = 1 };
 
@@ -61,6 +66,11 @@ struct LoadOptions {
   // Tests turn this on to run the solve with 32-bit indices (what rigs of
   // 32,768 vertices or more use) on a small rig.
   bool wide_solve_indices = false;
+  // The kernel path every job on this rig runs (all give the same bits).
+  // kAuto takes the environment variable POSEMORPH_ISA when it is set, else
+  // the fastest path the CPU runs. A path this build lacks or this CPU
+  // cannot run fails the load with ErrorCode::kUnsupportedIsa.
+  Isa isa = Isa::kAuto;
 };
 
 class Rig {
@@ -106,6 +116,10 @@ class Rig {
   // Doubles a MorphBatchJob needs as workspace, whatever its character count.
   std::size_t batch_workspace_size() const;
   std::size_t arena_bytes() const { return arena_size_; }
+  // The kernel path chosen at load (never kAuto once loaded).
+  Isa isa() const;
+  // Internal: the chosen path's kernels, for the jobs.
+  const detail::KernelTable* kernels() const { return kernels_; }
 
  private:
   friend bool LoadRig(const void*, std::size_t, Rig*, Error*, const LoadOptions&);
@@ -123,6 +137,7 @@ class Rig {
   PoseSpaceGrid grid_;
   Factor factor_;
   double default_sigma_ = 0, rig_size_ = 0;
+  const detail::KernelTable* kernels_ = nullptr;
 };
 
 // Validates every byte and builds a Rig. On failure returns false, fills err

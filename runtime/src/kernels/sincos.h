@@ -1,16 +1,16 @@
+// SPDX-License-Identifier: MIT
 // sin and cos of the blended rotation angles, written once for a double and
-// for vector lanes (see simd.h) so that single and batched evaluation agree
-// bit for bit. Angles are reduced by pi/2 in two parts (the first with 33
+// for vector lanes (see vec.h) so that single and batched evaluation, and
+// every instruction set, agree bit for bit: no libm, whose results differ
+// between C libraries. Angles are reduced by pi/2 in two parts (the first with 33
 // significant bits, so k * part is exact for |k| < 2^20, i.e. |x| < 1.6e6),
 // then Taylor series to degree 15 (sin) and 16 (cos) on [-pi/4, pi/4]: the
 // truncation error is below (pi/4)^17/17! = 4.6e-17.
-#pragma once
-#include "simd.h"
-
-namespace posemorph::detail {
+// No include guard: included once per kernel translation unit, inside its
+// namespace, after vec.h.
 
 template <typename T>
-POSEMORPH_LANES_INLINE void SinCos(T x, T* sin_out, T* cos_out) {
+POSEMORPH_KERNEL_INLINE void SinCos(T x, T* sin_out, T* cos_out) {
   const double kTwoOverPi = 0.63661977236758134308;
   const double kRound = 6755399441055744.0;               // 1.5 * 2^52: adding it rounds to an integer
   const double kHalfPiHigh = 1.57079632673412561417e+00;  // pi/2 to 33 bits
@@ -49,5 +49,3 @@ POSEMORPH_LANES_INLINE void SinCos(T x, T* sin_out, T* cos_out) {
   *sin_out = (1.0 - 2.0 * h) * (odd * c + even * s);
   *cos_out = (1.0 - 2.0 * flip * flip) * (odd * s + even * c);
 }
-
-}  // namespace posemorph::detail

@@ -1,22 +1,16 @@
+// SPDX-License-Identifier: MIT
 // The arithmetic of one frame, written once over T = double (one character)
-// or T = Lanes (kLanes characters sharing a rig). Every lane performs exactly
-// the operations a single evaluation performs, in the same order, so batched
-// results equal single ones bit for bit.
-#pragma once
-#include <cstdint>
-#include <cstring>
-
-#include "posemorph/rig.h"
-#include "simd.h"
-#include "sincos.h"
-
-namespace posemorph::detail {
+// or T = Vec (kWidth characters sharing a rig, one per lane). Every lane
+// performs exactly the operations a single evaluation performs, in the same
+// order, so batched results equal single ones bit for bit, on every path.
+// No include guard: included once per kernel translation unit, inside its
+// namespace, after vec.h.
 
 // Blended angle and stretch of one triangle: alpha with the raw weights w,
 // S with the shear-limited weights ws (DESIGN.md section 3).
 template <typename T>
-POSEMORPH_LANES_INLINE void BlendTriangle(const double* angle, const double* shear, const T* w, const T* ws, std::uint32_t N,
-                          T* alpha, T* s11, T* s12, T* s22) {
+POSEMORPH_KERNEL_INLINE void BlendTriangle(const double* angle, const double* shear, const T* w, const T* ws,
+                                           std::uint32_t N, T* alpha, T* s11, T* s12, T* s22) {
   T a = w[0] * angle[0], b = ws[0] * shear[0], c = ws[0] * shear[1], d = ws[0] * shear[2];
   for (std::uint32_t i = 1; i < N; ++i) {
     a += w[i] * angle[i];
@@ -29,7 +23,7 @@ POSEMORPH_LANES_INLINE void BlendTriangle(const double* angle, const double* she
 
 // A = R(alpha) S.
 template <typename T>
-POSEMORPH_LANES_INLINE void TargetMatrix(T c, T s, T s11, T s12, T s22, T* a11, T* a12, T* a21, T* a22) {
+POSEMORPH_KERNEL_INLINE void TargetMatrix(T c, T s, T s11, T s12, T s22, T* a11, T* a12, T* a21, T* a22) {
   *a11 = c * s11 - s * s12;
   *a12 = c * s12 - s * s22;
   *a21 = s * s11 + c * s12;
@@ -38,7 +32,8 @@ POSEMORPH_LANES_INLINE void TargetMatrix(T c, T s, T s11, T s12, T s22, T* a11, 
 
 // Row k of a triangle's gradient operator pulls vertex k by A's rows.
 template <typename T>
-POSEMORPH_LANES_INLINE void AddToRhs(const std::uint32_t* tri, const double* grad, T a11, T a12, T a21, T a22, T* b) {
+POSEMORPH_KERNEL_INLINE void AddToRhs(const std::uint32_t* tri, const double* grad, T a11, T a12, T a21, T a22,
+                                      T* b) {
   for (int k = 0; k < 3; ++k) {
     const double g0 = grad[2 * k], g1 = grad[2 * k + 1];
     b[2 * tri[k]] += g0 * a11 + g1 * a12;
@@ -46,21 +41,32 @@ POSEMORPH_LANES_INLINE void AddToRhs(const std::uint32_t* tri, const double* gra
   }
 }
 
-template <typename T>
-POSEMORPH_LANES_INLINE T Zero();
+#if POSEMORPH_KERNEL_WIDTH > 1
+// One character: the x and y rows as the two lanes of a pair, the same
+// per-lane operations as the generic version.
 template <>
-POSEMORPH_LANES_INLINE double Zero<double>() { return 0.0; }
-template <>
-POSEMORPH_LANES_INLINE Lanes Zero<Lanes>() { return Broadcast(0.0); }
+POSEMORPH_KERNEL_INLINE void AddToRhs<double>(const std::uint32_t* tri, const double* grad, double a11, double a12,
+                                              double a21, double a22, double* b) {
+  typedef double Pair __attribute__((vector_size(16)));
+  const Pair c0 = {a11, a21}, c1 = {a12, a22};
+  for (int k = 0; k < 3; ++k) {
+    const Pair g0 = {grad[2 * k], grad[2 * k]}, g1 = {grad[2 * k + 1], grad[2 * k + 1]};
+    Pair v;
+    std::memcpy(&v, b + 2 * tri[k], sizeof(v));
+    v += g0 * c0 + g1 * c1;
+    std::memcpy(b + 2 * tri[k], &v, sizeof(v));
+  }
+}
+#endif
 
 // s - sum_p l[p] * v[idx2[p] + d] for d = 0, 1 over p in [begin, end), in
 // four interleaved partial sums: one running sum would chain every
 // subtraction behind the previous one's latency, which is what bounded the
 // solve (about 15 nonzeros per row).
 template <typename T, typename I>
-POSEMORPH_LANES_INLINE void GatherSubtract(const double* l, const I* idx2, std::uint32_t begin,
-                                           std::uint32_t end, const T* v, T* sx, T* sy) {
-  T x0 = *sx, y0 = *sy, x1 = Zero<T>(), y1 = x1, x2 = x1, y2 = x1, x3 = x1, y3 = x1;
+POSEMORPH_KERNEL_INLINE void GatherSubtract(const double* l, const I* idx2, std::uint32_t begin, std::uint32_t end,
+                                            const T* v, T* sx, T* sy) {
+  T x0 = *sx, y0 = *sy, x1 = T{}, y1 = x1, x2 = x1, y2 = x1, x3 = x1, y3 = x1;
   std::uint32_t p = begin;
   for (; p + 4 <= end; p += 4) {
     x0 -= l[p] * v[idx2[p]], y0 -= l[p] * v[idx2[p] + 1];
@@ -73,30 +79,14 @@ POSEMORPH_LANES_INLINE void GatherSubtract(const double* l, const I* idx2, std::
   *sy = (y0 + y1) + (y2 + y3);
 }
 
-// One character: the x and y rows as the two lanes of a pair, the same
-// per-lane operations as the generic version.
-template <>
-POSEMORPH_LANES_INLINE void AddToRhs<double>(const std::uint32_t* tri, const double* grad, double a11, double a12,
-                                             double a21, double a22, double* b) {
-  typedef double Pair __attribute__((vector_size(16)));
-  const Pair c0 = {a11, a21}, c1 = {a12, a22};
-  for (int k = 0; k < 3; ++k) {
-    const Pair g0 = {grad[2 * k], grad[2 * k]}, g1 = {grad[2 * k + 1], grad[2 * k + 1]};
-    Pair v;
-    std::memcpy(&v, b + 2 * tri[k], sizeof(v));
-    v += g0 * c0 + g1 * c1;
-    std::memcpy(b + 2 * tri[k], &v, sizeof(v));
-  }
-}
-
 // K x = b for the n free unknowns (unknown k is vertex k + 1), both
 // coordinates interleaved. y: 2n scratch. b and x may be the same array: b is
 // read only in the forward pass, x written only in the backward one.
 // Forward: z_i = b'_i - sum_j L_ij z_j over row i (gather, from the CSR copy).
 // Backward: x_j = z_j / d_j - sum_i L_ij x_i over column j (gather, CSC).
 template <typename T, typename I>
-POSEMORPH_LANES_INLINE void SolvePinnedWith(const Factor& f, const I* row_col2, const I* col_row2, const T* bf, T* y,
-                                            T* xf) {
+POSEMORPH_KERNEL_INLINE void SolvePinnedWith(const Factor& f, const I* row_col2, const I* col_row2, const T* bf, T* y,
+                                             T* xf) {
   const std::uint32_t n = f.n;
   const std::uint32_t* order = f.order.data;
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -113,19 +103,19 @@ POSEMORPH_LANES_INLINE void SolvePinnedWith(const Factor& f, const I* row_col2, 
 }
 
 template <typename T>
-POSEMORPH_LANES_INLINE void SolvePinnedKernel(const Factor& f, const T* bf, T* y, T* xf) {
+POSEMORPH_KERNEL_INLINE void SolvePinnedKernel(const Factor& f, const T* bf, T* y, T* xf) {
   if (f.row_col2_16.size) SolvePinnedWith(f, f.row_col2_16.data, f.col_row2_16.data, bf, y, xf);
   else SolvePinnedWith(f, f.row_col2.data, f.col_row2.data, bf, y, xf);
 }
 
 // Moves the mass-weighted centroid of x (2V) to sum_i w_i c_i.
 template <typename T>
-POSEMORPH_LANES_INLINE void PlaceCentroid(const Rig& rig, const T* w, T* x) {
+POSEMORPH_KERNEL_INLINE void PlaceCentroid(const Rig& rig, const T* w, T* x) {
   const std::uint32_t V = rig.vertex_count(), N = rig.pose_count();
   const double* m = rig.vertex_masses().data;
   const double* c = rig.pose_centroids().data;
   // Four partial sums, for the same latency reason as GatherSubtract.
-  T cx[4] = {Zero<T>(), Zero<T>(), Zero<T>(), Zero<T>()}, cy[4] = {cx[0], cx[0], cx[0], cx[0]};
+  T cx[4] = {T{}, T{}, T{}, T{}}, cy[4] = {T{}, T{}, T{}, T{}};
   for (std::uint32_t v = 0; v < V; ++v) {
     cx[v % 4] += m[v] * x[2 * v];
     cy[v % 4] += m[v] * x[2 * v + 1];
@@ -141,5 +131,3 @@ POSEMORPH_LANES_INLINE void PlaceCentroid(const Rig& rig, const T* w, T* x) {
     x[2 * v + 1] += dy;
   }
 }
-
-}  // namespace posemorph::detail
