@@ -60,13 +60,15 @@ struct SectionTable {
 };
 
 // Bump allocator over the arena; the first pass (base == nullptr) only sizes.
+// Sizes are counted in 64 bits, so that a 32-bit target (WebAssembly) can
+// refuse an arena larger than its address space instead of wrapping around.
 struct ArenaLayout {
   unsigned char* base = nullptr;
-  std::size_t used = 0;
+  std::uint64_t used = 0;
   template <typename T>
-  T* Take(std::size_t count) {
-    used = (used + alignof(std::max_align_t) - 1) & ~(alignof(std::max_align_t) - 1);
-    T* p = base ? reinterpret_cast<T*>(base + used) : nullptr;
+  T* Take(std::uint64_t count) {
+    used = (used + alignof(std::max_align_t) - 1) & ~std::uint64_t(alignof(std::max_align_t) - 1);
+    T* p = base ? reinterpret_cast<T*>(base + std::size_t(used)) : nullptr;
     used += count * sizeof(T);
     return p;
   }
@@ -93,10 +95,10 @@ struct Parser {
 };
 
 template <typename T>
-Span<const T> CopyInto(ArenaLayout& arena, const unsigned char* src, std::size_t count) {
+Span<const T> CopyInto(ArenaLayout& arena, const unsigned char* src, std::uint64_t count) {
   T* dst = arena.Take<T>(count);
-  if (dst && count) std::memcpy(dst, src, count * sizeof(T));
-  return {dst, count};
+  if (dst && count) std::memcpy(dst, src, std::size_t(count) * sizeof(T));
+  return {dst, std::size_t(count)};
 }
 
 bool CheckFinite(Span<const double> values, const char* what, Error* err) {
@@ -330,7 +332,10 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
     const std::uint64_t blocks = (T + 7) / 8;
     double* blend = arena.Take<double>(blocks * 4 * N * 8);
     if (pass == 0) {
-      rig.arena_size_ = arena.used;
+      if (arena.used > std::uint64_t(SIZE_MAX / 2))
+        return Fail(err, ErrorCode::kTooLarge, "the rig needs %llu bytes in memory, more than this target addresses",
+                    (unsigned long long)arena.used);
+      rig.arena_size_ = std::size_t(arena.used);
       continue;
     }
 
@@ -345,7 +350,7 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
       at += len;
     }
     if (at != chars.size) return Fail(err, ErrorCode::kBadValue, "string table has trailing bytes");
-    rig.strings_ = {strings, string_count};
+    rig.strings_ = {strings, std::size_t(string_count)};
 
     // Paths: finite keys, strictly increasing times.
     std::uint64_t key_at = 0;
@@ -364,7 +369,7 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
           return Fail(err, ErrorCode::kBadValue, "path %llu: key times not strictly increasing at key %u",
                       (unsigned long long)i, k);
     }
-    rig.paths_ = {path_views, P};
+    rig.paths_ = {path_views, std::size_t(P)};
 
     // Indices.
     for (std::uint64_t t = 0; t < T; ++t) {
@@ -422,15 +427,15 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
         at[16] = rig.shears_[(t * N + i) * 3 + 1];
         at[24] = rig.shears_[(t * N + i) * 3 + 2];
       }
-    rig.blend_blocks_ = {blend, blocks * 4 * N * 8};
-    rig.factor_.row_start = {row_start, n + 1};
-    rig.factor_.row_value = {row_value, nnz};
+    rig.blend_blocks_ = {blend, std::size_t(blocks * 4 * N * 8)};
+    rig.factor_.row_start = {row_start, std::size_t(n + 1)};
+    rig.factor_.row_value = {row_value, std::size_t(nnz)};
     if (narrow) {
-      rig.factor_.row_col2_16 = {row_col2_16, nnz};
-      rig.factor_.col_row2_16 = {col_row2_16, nnz};
+      rig.factor_.row_col2_16 = {row_col2_16, std::size_t(nnz)};
+      rig.factor_.col_row2_16 = {col_row2_16, std::size_t(nnz)};
     } else {
-      rig.factor_.row_col2 = {row_col2, nnz};
-      rig.factor_.col_row2 = {col_row2, nnz};
+      rig.factor_.row_col2 = {row_col2, std::size_t(nnz)};
+      rig.factor_.col_row2 = {col_row2, std::size_t(nnz)};
     }
     for (std::uint64_t j = 0; j < n; ++j)
       if (!(rig.factor_.inv_diagonal[j] > 0) || !std::isfinite(rig.factor_.inv_diagonal[j]))

@@ -1,11 +1,11 @@
+// SPDX-License-Identifier: MIT
 // Batched evaluation equals single evaluation bit for bit, whatever the
 // group boundaries or the split across threads.
 #include <cstring>
 #include <random>
 #include <thread>
 
-#include "gingerbread_rig.h"
-#include "test_support.h"
+#include "runtime_support.h"
 
 using namespace posemorph;
 using namespace posemorph::test;
@@ -54,8 +54,8 @@ bool SameBits(const double* a, const double* b, std::size_t n) { return std::mem
 }  // namespace
 
 TEST_CASE("a batch gives each character exactly what MorphJob gives it") {
-  for (bake::RigDescription desc : {samples::SnakeRig(), samples::GingerbreadRig()}) {
-    const Rig rig = Bake(desc);
+  for (const char* name : {"snake", "gingerbread"}) {
+    const Rig rig = LoadTestRig(name);
     const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
     for (std::size_t count : {1u, 3u, 8u, 13u, 64u}) {
       const Crowd crowd = RandomCrowd(rig, count, unsigned(count));
@@ -75,15 +75,15 @@ TEST_CASE("a batch gives each character exactly what MorphJob gives it") {
 }
 
 TEST_CASE("splitting a crowd across threads changes no bit") {
-  const Rig rig = Bake(samples::SnakeRig());
+  const Rig rig = LoadTestRig("snake");
   const std::size_t count = 100, v2 = 2 * std::size_t(rig.vertex_count());
   const Crowd crowd = RandomCrowd(rig, count, 42);
   const std::vector<double> whole = RunBatch(rig, crowd, 0, count);
   for (std::size_t threads : {2u, 3u, 7u}) {
     std::vector<std::vector<double>> parts(threads);
     std::vector<std::thread> pool;
-    for (std::size_t t = 0; t < threads; ++t)
-      pool.emplace_back([&, t] {
+    for (std::size_t t = 0; t < threads; ++t) {
+      auto part = [&, t] {
         const std::size_t begin = count * t / threads, end = count * (t + 1) / threads;
         std::vector<double> work(rig.batch_workspace_size()), x((end - begin) * v2);
         MorphBatchJob job;
@@ -93,7 +93,13 @@ TEST_CASE("splitting a crowd across threads changes no bit") {
         job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
         job.Run();
         parts[t] = std::move(x);
-      });
+      };
+#if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
+      part();  // WebAssembly built without threads: the same ranges, one after another
+#else
+      pool.emplace_back(part);
+#endif
+    }
     for (auto& th : pool) th.join();
     std::vector<double> joined;
     for (const auto& p : parts) joined.insert(joined.end(), p.begin(), p.end());
@@ -104,7 +110,7 @@ TEST_CASE("splitting a crowd across threads changes no bit") {
 }
 
 TEST_CASE("a batch can write only the single-precision copy") {
-  const Rig rig = Bake(samples::SnakeRig());
+  const Rig rig = LoadTestRig("snake");
   for (std::size_t count : {2u, 11u}) {  // the one-by-one fallback and a group
     const Crowd crowd = RandomCrowd(rig, count, 9);
     std::vector<float> with_doubles;
@@ -121,7 +127,7 @@ TEST_CASE("a batch can write only the single-precision copy") {
 }
 
 TEST_CASE("a batch refuses inputs that do not fit") {
-  const Rig rig = Bake(samples::SnakeRig());
+  const Rig rig = LoadTestRig("snake");
   const Crowd crowd = RandomCrowd(rig, 4, 1);
   std::vector<double> work(rig.batch_workspace_size()), x(4 * 2 * rig.vertex_count());
   MorphBatchJob job;

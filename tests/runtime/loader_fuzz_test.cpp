@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Hostile bytes: every truncation and every single-byte change of a small
 // valid rig must be rejected or load to a rig the jobs evaluate safely. Run
 // under the debug preset, AddressSanitizer and UBSan watch every access.
@@ -5,30 +6,15 @@
 
 #include "posemorph/path.h"
 #include "posemorph/rig_format.h"
-#include "test_support.h"
+#include "runtime_support.h"
 
 using namespace posemorph;
 using namespace posemorph::test;
 
 namespace {
 
-std::vector<unsigned char> SmallRigBytes() {
-  bake::RigDescription d;
-  d.file = "small";
-  d.triangles = {{0, 1, 2}, {0, 2, 3}};
-  bake::PoseDescription a, b;
-  a.name = "a", b.name = "b";
-  a.point = {0, 0}, b.point = {1, 0.5};
-  a.vertices = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  b.vertices = {{0, 0}, {1, 0.2}, {0.9, 1.1}, {-0.1, 0.9}};
-  a.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-  b.uvs = a.uvs;
-  a.image = "a.png";
-  d.poses = {a, b};
-  d.parameters.grid_resolution = 4;
-  d.paths.push_back({"p", true, true, {{0, 0, 0}, {1, 1, 0.5}, {2, 0, 0}}});
-  return bake::BakeRig(d);
-}
+// tests/runtime/rigs/small.json, baked: 4 vertices, 2 poses, uvs, a path.
+std::vector<unsigned char> SmallRigBytes() { return TestRigBytes("small"); }
 
 // Loads, and when that works, evaluates a few frames: whatever loads must be safe to run.
 bool LoadAndUse(const std::vector<unsigned char>& bytes, bool checksum) {
@@ -107,7 +93,7 @@ TEST_CASE("every single-byte change is rejected by the checksum, and safe withou
 TEST_CASE("oversized counts are rejected before anything is allocated") {
   const auto bytes = SmallRigBytes();
   // Find META through the section table and overwrite each count with huge values.
-  std::size_t meta = 0;
+  std::uint64_t meta = 0;
   std::uint32_t sections;
   std::memcpy(&sections, bytes.data() + format::kOffSectionCount, 4);
   for (std::uint32_t s = 0; s < sections; ++s) {

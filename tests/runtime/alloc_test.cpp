@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Evaluating a frame allocates nothing: every global operator new and malloc
 // is counted while frames run.
 #include <atomic>
@@ -7,7 +8,7 @@
 #include "posemorph/path.h"
 #include "posemorph/posemorph.h"
 #include "posemorph/quantize.h"
-#include "test_support.h"
+#include "runtime_support.h"
 
 // GCC cannot see that these replacements pair malloc with free on purpose.
 #pragma GCC diagnostic ignored "-Wmismatched-new-delete"
@@ -33,18 +34,21 @@ void operator delete[](void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
-// malloc itself, for code that would bypass operator new.
+// malloc itself, for code that would bypass operator new (glibc lets a
+// program replace it; elsewhere operator new is what is counted).
+#if defined(__GLIBC__)
 extern "C" void* __libc_malloc(std::size_t);
 extern "C" void* malloc(std::size_t n) {
   if (g_counting) ++g_allocations;
   return __libc_malloc(n);
 }
+#endif
 
 using namespace posemorph;
 using namespace posemorph::test;
 
 TEST_CASE("a frame performs zero heap allocations") {
-  const Rig rig = Bake(samples::SnakeRig());
+  const Rig rig = LoadTestRig("snake");
   const std::uint32_t N = rig.pose_count();
   std::vector<double> raw(N), shear(N), tex(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
   std::vector<float> xf(x.size());
@@ -90,8 +94,7 @@ TEST_CASE("a frame performs zero heap allocations") {
 }
 
 TEST_CASE("the C API evaluates frames without allocating either") {
-  bake::RigDescription desc = samples::WormLineRig();
-  const std::vector<unsigned char> bytes = bake::BakeRig(desc);
+  const std::vector<unsigned char> bytes = TestRigBytes("worm-line");
   pm_rig* rig = nullptr;
   pm_error err;
   REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &rig, &err) == PM_OK);

@@ -1,0 +1,174 @@
+// SPDX-License-Identifier: MIT
+// Frames are the same bits on every kernel path, compiler and target: for
+// each sample rig, weights and positions (double and float) at fixed
+// pose-space points and path times hash to the values committed in
+// tests/goldens/frame-hashes.txt. This is what lets network peers in
+// lockstep compute the same vertices from the same 4 bytes. The same test
+// runs natively (GCC, Clang, every x86-64 path), under qemu-aarch64, wine
+// and node (.ci/run). POSEMORPH_BLESS=1 rewrites the file.
+#include <cstdint>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "posemorph/path.h"
+#include "runtime_support.h"
+
+using namespace posemorph;
+using namespace posemorph::test;
+
+namespace {
+
+const char* const kSampleRigs[] = {"snake", "worm-line", "gingerbread", "pip", "sprout"};
+
+// FNV-1a, 64 bits, over the bytes of every value in order.
+struct Fnv64 {
+  std::uint64_t h = 0xcbf29ce484222325ull;
+  void Add(const void* data, std::size_t size) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
+  }
+  template <typename T>
+  void Add(const std::vector<T>& v) { Add(v.data(), v.size() * sizeof(T)); }
+};
+
+std::string Hex(std::uint64_t v) {
+  char s[17];
+  std::snprintf(s, sizeof(s), "%016llx", static_cast<unsigned long long>(v));
+  return s;
+}
+
+// Pose-space points: every pose point, the midpoints of consecutive ones,
+// points beyond the grid (extrapolation, clamping), a few irregular inner
+// points, and each path at fixed times (also past its end).
+std::vector<std::pair<double, double>> FramePoints(const Rig& rig) {
+  std::vector<std::pair<double, double>> pts;
+  const std::uint32_t N = rig.pose_count();
+  const Span<const double> p = rig.pose_points();
+  for (std::uint32_t i = 0; i < N; ++i) {
+    pts.push_back({p[2 * i], p[2 * i + 1]});
+    const std::uint32_t j = (i + 1) % N;
+    pts.push_back({0.5 * (p[2 * i] + p[2 * j]), 0.5 * (p[2 * i + 1] + p[2 * j + 1])});
+  }
+  const PoseSpaceGrid& g = rig.grid();
+  const double w = g.cell * g.cells_x, h = g.cell * g.cells_y;
+  for (double fx : {-0.3, 0.137, 0.5, 0.71, 1.4})
+    for (double fy : {-0.2, 0.29, 0.618, 1.25}) pts.push_back({g.origin_x + fx * w, g.origin_y + fy * h});
+  for (std::uint32_t path = 0; path < rig.path_count(); ++path)
+    for (int k = 0; k < 9; ++k) {
+      double x = 0, y = 0;
+      REQUIRE(SamplePath(rig, path, 0.37 * k, &x, &y));
+      pts.push_back({x, y});
+    }
+  return pts;
+}
+
+struct FrameHashes {
+  std::string weights, positions, positions_f32;
+};
+
+// Single evaluations for every point, then all of them as one batch, which
+// must give the same bits.
+FrameHashes HashFrames(const Rig& rig) {
+  const auto pts = FramePoints(rig);
+  const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
+  Fnv64 hw, hx, hf;
+  std::vector<double> all_w, all_ws, singles;
+  std::vector<float> singles_f32;
+  for (const auto& pt : pts) {
+    const Weights w = WeightsAt(rig, pt.first, pt.second, 0.5);
+    hw.Add(w.raw), hw.Add(w.shear), hw.Add(w.texture);
+    std::vector<double> work(rig.morph_workspace_size()), x(v2);
+    std::vector<float> xf(v2);
+    MorphJob job;
+    job.rig = &rig, job.weights = MakeSpan(w.raw), job.shear_weights = MakeSpan(w.shear);
+    job.workspace = MakeSpan(work), job.positions = MakeSpan(x), job.positions_f32 = MakeSpan(xf);
+    REQUIRE(job.Run());
+    hx.Add(x), hf.Add(xf);
+    all_w.insert(all_w.end(), w.raw.begin(), w.raw.end());
+    all_ws.insert(all_ws.end(), w.shear.begin(), w.shear.end());
+    singles.insert(singles.end(), x.begin(), x.end());
+    singles_f32.insert(singles_f32.end(), xf.begin(), xf.end());
+  }
+  std::vector<double> work(rig.batch_workspace_size()), batch(pts.size() * v2);
+  std::vector<float> batch_f32(batch.size());
+  MorphBatchJob job;
+  job.rig = &rig, job.count = pts.size();
+  job.weights = MakeSpan(all_w), job.shear_weights = MakeSpan(all_ws);
+  job.workspace = MakeSpan(work), job.positions = MakeSpan(batch), job.positions_f32 = MakeSpan(batch_f32);
+  REQUIRE(job.Run());
+  CHECK(std::memcmp(batch.data(), singles.data(), batch.size() * sizeof(double)) == 0);
+  CHECK(std::memcmp(batch_f32.data(), singles_f32.data(), batch_f32.size() * sizeof(float)) == 0);
+  (void)N;
+  return {Hex(hw.h), Hex(hx.h), Hex(hf.h)};
+}
+
+std::string GoldenPath() {
+  if (const char* env = std::getenv("POSEMORPH_GOLDENS")) return std::string(env) + "/frame-hashes.txt";
+#ifdef POSEMORPH_SOURCE_DIR
+  return std::string(POSEMORPH_SOURCE_DIR) + "/tests/goldens/frame-hashes.txt";
+#else
+  return "frame-hashes.txt";
+#endif
+}
+
+std::map<std::string, FrameHashes> ReadGoldens() {
+  std::map<std::string, FrameHashes> goldens;
+  std::ifstream in(GoldenPath());
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream fields(line);
+    std::string rig;
+    FrameHashes h;
+    if (fields >> rig >> h.weights >> h.positions >> h.positions_f32) goldens[rig] = h;
+  }
+  return goldens;
+}
+
+const Isa kEveryPath[] = {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512, Isa::kNeon, Isa::kWasmSimd};
+
+}  // namespace
+
+TEST_CASE("frames hash to the committed values on every kernel path") {
+  const bool bless = std::getenv("POSEMORPH_BLESS") != nullptr;
+  const std::map<std::string, FrameHashes> goldens = ReadGoldens();
+  if (!bless) REQUIRE_MESSAGE(!goldens.empty(), "cannot read " << GoldenPath());
+  std::ostringstream blessed;
+  blessed << "# Frame hashes (FNV-1a 64) per sample rig: weights (raw, limited, texture), positions (double),\n"
+             "# positions (float), at the points of tests/runtime/frame_hash_test.cpp. POSEMORPH_BLESS=1 rewrites.\n";
+  int paths_run = 0;
+  for (const char* name : kSampleRigs) {
+    const Rig rig = LoadTestRig(name);  // the default path (POSEMORPH_ISA when set)
+    const FrameHashes h = HashFrames(rig);
+    blessed << name << ' ' << h.weights << ' ' << h.positions << ' ' << h.positions_f32 << '\n';
+    const std::string rig_name = name;
+    CAPTURE(rig_name);
+    const std::string path = IsaName(rig.isa());
+    CAPTURE(path);
+    if (!bless) {
+      REQUIRE_MESSAGE(goldens.count(name), "no golden for " << name);
+      const FrameHashes& g = goldens.at(name);
+      CHECK(h.weights == g.weights);
+      CHECK(h.positions == g.positions);
+      CHECK(h.positions_f32 == g.positions_f32);
+    }
+    // Every other path this build and CPU run gives the same bits.
+    for (Isa isa : kEveryPath) {
+      if (!IsaAvailable(isa) || isa == rig.isa()) continue;
+      const std::string other_path = IsaName(isa);
+      CAPTURE(other_path);
+      const FrameHashes other = HashFrames(LoadTestRig(name, isa));
+      CHECK(other.weights == h.weights);
+      CHECK(other.positions == h.positions);
+      CHECK(other.positions_f32 == h.positions_f32);
+      ++paths_run;
+    }
+  }
+  MESSAGE("default path " << std::string(IsaName(BestIsa())) << "; " << paths_run << " other path runs compared");
+  if (bless) {
+    std::ofstream(GoldenPath()) << blessed.str();
+    MESSAGE("wrote " << GoldenPath());
+  }
+}

@@ -1,0 +1,108 @@
+// SPDX-License-Identifier: MIT
+// Helpers for tests that need the runtime alone (no bake, no Eigen), so they
+// build for every target: aarch64, Windows, WebAssembly. Rigs come from files
+// baked by the native build into build/<preset>/rigs/ (POSEMORPH_TEST_RIGS
+// overrides the folder, as the cross-target runs in .ci/run do).
+#pragma once
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "posemorph/jobs.h"
+#include "posemorph/rig.h"
+
+namespace posemorph::test {
+
+inline std::string TestRigFolder() {
+  if (const char* env = std::getenv("POSEMORPH_TEST_RIGS")) return env;
+#ifdef POSEMORPH_TEST_RIGS
+  return POSEMORPH_TEST_RIGS;
+#else
+  return "rigs";
+#endif
+}
+
+inline std::vector<unsigned char> ReadFileBytes(const std::string& path) {
+  std::vector<unsigned char> bytes;
+  if (std::FILE* f = std::fopen(path.c_str(), "rb")) {
+    unsigned char buffer[65536];
+    std::size_t n;
+    while ((n = std::fread(buffer, 1, sizeof(buffer), f)) > 0) bytes.insert(bytes.end(), buffer, buffer + n);
+    std::fclose(f);
+  }
+  return bytes;
+}
+
+// The bytes of a baked test rig (snake, worm-line, gingerbread, pip, sprout, small).
+inline std::vector<unsigned char> TestRigBytes(const std::string& name) {
+  const std::string path = TestRigFolder() + "/" + name + ".pmrig";
+  std::vector<unsigned char> bytes = ReadFileBytes(path);
+  REQUIRE_MESSAGE(!bytes.empty(), "cannot read " << path << " (set POSEMORPH_TEST_RIGS)");
+  return bytes;
+}
+
+inline Rig LoadTestRig(const std::string& name, Isa isa = Isa::kAuto) {
+  const std::vector<unsigned char> bytes = TestRigBytes(name);
+  Rig rig;
+  Error err;
+  LoadOptions options;
+  options.isa = isa;
+  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err, options), name << ": " << err.message);
+  return rig;
+}
+
+struct Weights {
+  std::vector<double> raw, shear, texture;
+};
+
+inline Weights WeightsAt(const Rig& rig, double x, double y, double sigma = 0, bool shear_limit = true) {
+  Weights w;
+  w.raw.resize(rig.pose_count());
+  w.shear.resize(rig.pose_count());
+  w.texture.resize(rig.pose_count());
+  WeightsJob job;
+  job.rig = &rig;
+  job.x = x, job.y = y, job.sigma = sigma, job.shear_limit = shear_limit;
+  job.raw = MakeSpan(w.raw), job.shear = MakeSpan(w.shear), job.texture = MakeSpan(w.texture);
+  REQUIRE(job.Run());
+  return w;
+}
+
+inline std::vector<double> Morph(const Rig& rig, const std::vector<double>& w, const std::vector<double>& ws,
+                                 Interpolation mode = Interpolation::kRigid) {
+  std::vector<double> work(rig.morph_workspace_size()), x(2 * std::size_t(rig.vertex_count()));
+  MorphJob job;
+  job.rig = &rig;
+  job.weights = MakeSpan(w), job.shear_weights = MakeSpan(ws);
+  job.interpolation = mode;
+  job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
+  REQUIRE(job.Run());
+  return x;
+}
+
+inline std::vector<double> MorphAt(const Rig& rig, double px, double py, bool shear_limit = true) {
+  const Weights w = WeightsAt(rig, px, py, 0, shear_limit);
+  return Morph(rig, w.raw, w.shear);
+}
+
+// Smallest signed triangle area of positions x, relative to the same triangle at rest.
+inline double MinAreaRatio(const Rig& rig, const std::vector<double>& x) {
+  const auto t = rig.triangles();
+  const double* r = rig.pose_positions(0).data;
+  double worst = 1e300;
+  auto area = [&](const double* p, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    return 0.5 * ((p[2 * b] - p[2 * a]) * (p[2 * c + 1] - p[2 * a + 1]) - (p[2 * c] - p[2 * a]) * (p[2 * b + 1] - p[2 * a + 1]));
+  };
+  for (std::uint32_t k = 0; k < rig.triangle_count(); ++k) {
+    const std::uint32_t a = t[3 * k], b = t[3 * k + 1], c = t[3 * k + 2];
+    worst = std::min(worst, area(x.data(), a, b, c) / area(r, a, b, c));
+  }
+  return worst;
+}
+
+}  // namespace posemorph::test
