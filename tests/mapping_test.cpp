@@ -158,7 +158,8 @@ TEST_CASE("mapping: robustness corpus triangulates compatibly") {
   corpus["deep C"] = {DeepC(0.6), DeepC(0.08), DeepC(1.2)};
   corpus["spiral vs S"] = {Spiral(1.5, 8), SShape(50, 8)};
   for (auto& [name, shapes] : corpus) {
-    CAPTURE(name);
+    const std::string case_name = name;  // Clang 14 cannot capture a structured binding
+    CAPTURE(case_name);
     pb::RigDescription rig = OutlineRig(shapes);
     REQUIRE_NOTHROW(pb::MapDrawings(rig));
     const pb::MappingReport& r = rig.mapping_report;
