@@ -22,6 +22,10 @@ packages=(
   libimgui-dev              # viewer: the panel (Dear ImGui with its GLFW and Vulkan backends)
   pkg-config                # viewer build: finds Dear ImGui (imgui.pc)
   xvfb xauth                # viewer tests: a display for the window smoke test (xvfb-run needs xauth)
+  clang libclang-rt-14-dev  # tests: the Clang build, and ThreadSanitizer's runtime
+  g++-aarch64-linux-gnu qemu-user   # tests: the runtime for aarch64, run under qemu
+  g++-mingw-w64-x86-64 wine64       # tests: the runtime for Windows, run under wine
+  emscripten node-acorn nodejs      # tests: the runtime for WebAssembly, run under node (emcc needs acorn)
 )
 
 missing=()
