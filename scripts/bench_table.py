@@ -4,7 +4,36 @@ import re
 import sys
 
 
-def main(path):
+PATH_NAMES = {1: "scalar", 2: "sse2", 3: "avx2", 4: "avx512", 5: "neon", 6: "wasm-simd"}
+
+
+def print_paths(median, data):
+    """The kernel paths (BM_PathRatios, BM_PathFrame, BM_PathCrowd), when they ran."""
+    ratios = {}
+    for b in data["benchmarks"]:
+        if b.get("aggregate_name") == "median" and b["run_name"].startswith("BM_PathRatios/"):
+            ratios[int(b["run_name"].split("/")[1])] = b
+    if not ratios:
+        return
+    best = re.search(r"best=(\S+)", next(iter(ratios.values())).get("label", ""))
+    best = best.group(1) if best else "?"
+    print(f"\nKernel paths, forced on this CPU (1035-vertex, N = 8 plate; ratios to the {best} path "
+          f"and to Eigen/CHOLMOD measured in back-to-back bursts, BM_PathRatios):\n")
+    print("| path | frame | frame / " + best + " | crowd of 1000, 1 thread | 2 threads | crowd / " + best +
+          " | solve / Eigen | solve / CHOLMOD |")
+    print("|---|---|---|---|---|---|---|---|")
+    for isa in sorted(ratios, key=lambda i: -i if i <= 4 else -i - 10):
+        r = ratios[isa]
+        frame = median.get(f"BM_PathFrame/{isa}")
+        crowd1 = median.get(f"BM_PathCrowd/{isa}/1/real_time")
+        crowd2 = median.get(f"BM_PathCrowd/{isa}/2/real_time")
+        cell = lambda v, unit, scale: f"{v / scale:.1f} {unit}" if v is not None else "-"
+        print(f"| {PATH_NAMES.get(isa, isa)} | {cell(frame, 'us', 1)} | {r['frame_vs_best']:.2f} | "
+              f"{cell(crowd1, 'ms', 1e3)} | {cell(crowd2, 'ms', 1e3)} | {r['crowd_vs_best']:.2f} | "
+              f"{r['solve_vs_eigen']:.2f} | {r['solve_vs_cholmod']:.2f} |")
+
+
+def main(path, paths_only=False):
     with open(path) as f:
         data = json.load(f)
     median = {}
@@ -21,6 +50,9 @@ def main(path):
     ctx = data["context"]
     print(f"{ctx.get('num_cpus')} x {ctx.get('mhz_per_cpu')} MHz, {ctx.get('date')}; medians of "
           f"{data['benchmarks'][0].get('repetitions', '?')} interleaved repetitions, microseconds\n")
+    if paths_only:
+        print_paths(median, data)
+        return
 
     print("Times are medians; the last three columns are medians of ratios measured in back-to-back bursts (BM_PairedRatios).\n")
     print("| vertices | N | nnz(L) | frame | solve | Eigen solve | CHOLMOD solve | refactor+solve | solve/Eigen | solve/CHOLMOD | frame/Eigen solve |")
@@ -48,6 +80,8 @@ def main(path):
         t = median[name]
         print(f"| {count} | {threads} | {t:.0f} us | {t / count:.1f} us |")
 
+    print_paths(median, data)
+
     print("\nSamples (single character):\n")
     print("| benchmark | median |")
     print("|---|---|")
@@ -62,4 +96,4 @@ def main(path):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1])
+    main(sys.argv[1], "--paths-only" in sys.argv[2:])
