@@ -12,7 +12,9 @@
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
 
-#if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#if defined(_MSC_VER) && !defined(__clang__)
+// MSVC targets (x86, x64, ARM64) are little-endian.
+#elif !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "posemorph's loader maps the little-endian format directly; port ReadU32/ReadF64 first"
 #endif
 
