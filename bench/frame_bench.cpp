@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Per-frame cost of the runtime on the bundled samples (and a larger strip),
 // plus load and bake time. Run: build/release/bin/posemorph-bench
 #include <benchmark/benchmark.h>

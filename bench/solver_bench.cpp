@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The runtime against the general-purpose sparse solvers on the same matrix,
 // and batched crowds. Rigs: plates of about 500..4000 vertices bent into N = 4
 // or 8 poses, generated here. Run through scripts/bench.sh for the table.

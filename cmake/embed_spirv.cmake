@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # Turns a SPIR-V file into a C++ header with a uint32_t array, so the viewer
 # carries its shaders inside the binary. -DSPV=in.spv -DHEADER=out.h -DNAME=kName
 file(READ ${SPV} hex HEX)

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Runs the benchmark suite and prints medians and ratios. All benchmarks run
 # in one process with their repetitions randomly interleaved, so ratios hold
 # on a noisy machine even when absolute times drift.

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 """Prints posemorph-bench's JSON output (medians) as the README's tables."""
 import json
 import re

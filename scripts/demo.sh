@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Quick start, command 1: install what is missing, build, bake the drawn
 # character Pip from its five drawings (N-way mapping: outlines, matching,
 # simplification, compatible triangulation) and write a contact sheet of its

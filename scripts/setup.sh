@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Installs the Debian 12 packages posemorph needs. Idempotent: packages that
 # are already installed are skipped, and apt is not touched when none is missing.
 set -euo pipefail

@@ -1,4 +1,5 @@
 #!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
 # Quick start, command 2: install what is missing, then build and run every
 # test: the full suite with GCC (release) and with Clang, each on every
 # kernel path this CPU runs (POSEMORPH_ISA = the fastest by default, then

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #version 460
 // Cross-fades a character's drawings: each pose's own drawing sampled
 // through that pose's uvs, weighted by the texture weights w''

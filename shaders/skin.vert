@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #version 460
 // GPU skinning: the runtime's vertex positions for every character arrive in
 // one buffer; this shader picks its vertex by gl_VertexIndex and its

@@ -1,3 +1,4 @@
+# SPDX-License-Identifier: MIT
 # The real process: a flipped triangle gives exit status 1, one message on
 # stderr naming the file, pose and triangle, and no output file.
 file(REMOVE_RECURSE ${WORK})

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Bad input to posemorph-bake: one clear message naming the file and the
 // problem, a non-zero exit, and no output file (an existing one untouched).
 #include <png.h>

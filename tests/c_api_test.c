@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 /* The C API from C99: load a baked rig from a file, evaluate at each pose
  * point and check the pose comes back, play a path, quantise, and reject a
  * truncated copy. Usage: c_api_test RIG.pmrig */

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // ARAP shape manipulation: rigid motions stay rigid, handles land exactly,
 // the scale adjustment keeps areas better than the similarity step alone,
 // and rigs mixing drawn and deformed poses bake and reproduce every pose.

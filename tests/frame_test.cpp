@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Frames drawn by the viewer on lavapipe, compared with goldens in
 // tests/goldens/: exact bytes first; on a mismatch a tolerant comparison
 // decides (a driver or CPU with other rounding), and the actual frame and a

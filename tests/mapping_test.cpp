@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // N-way mapping: outlines, correspondence, enclosing simplification and
 // compatible triangulation, on shapes generated here and on the drawn samples.
 #include <doctest/doctest.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Properties of the morph: poses reproduced, Alexa's closed form for N = 2,
 // rigid motions stay rigid, unwrapped angles keep bent strips intact.
 #include <Eigen/Dense>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Path playback and the 4-byte network encoding of a pose-space point.
 #include <random>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The bundled samples: committed files match their generator, and bakes are deterministic.
 #include <fstream>
 #include <sstream>

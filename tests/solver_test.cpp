@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The runtime's triangular solves against Eigen on a cotangent matrix the test
 // assembles itself from the rest mesh.
 #include <Eigen/SparseCholesky>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The pose-space weight field and the weight maps on top of it.
 #include "test_support.h"
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The gingerbread figure: one drawn pose (a mesh of grid cells inside a
 // head + body + arms + legs mask) and four poses made from it by dragging
 // handles, as in the paper's section 3.2.

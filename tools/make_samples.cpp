@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Writes the procedural sample rig descriptions in assets/ (run by hand when
 // the generator changes; a test checks the committed files match it).
 #include <fstream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A RigDescription as rig-description JSON (the inverse of ParseRigDescription).
 #pragma once
 #include <string>

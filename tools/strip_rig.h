@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Procedural strip-shaped characters (snakes, worms) for the bundled samples
 // and the tests: a band of quads along a centreline whose curvature is a
 // function of arclength, so each pose is "the same body, bent differently".

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // posemorph-bake's commands, callable in-process (the tests do) or from main.
 #pragma once
 #include <ostream>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Writing morphed meshes where a person can look at them: SVG (single frames,
 // film strips, the pose-space contact sheet), JSON and OBJ.
 #pragma once

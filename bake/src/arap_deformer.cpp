@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "posemorph/bake/arap_deformer.h"
 
 #include <Eigen/SparseCholesky>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "posemorph/bake/arap_system.h"
 
 #include <Eigen/OrderingMethods>

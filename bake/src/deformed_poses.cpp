@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Poses made by dragging handles on another pose's mesh: they share its
 // connectivity by construction, and its drawing and uvs.
 #include <cmath>

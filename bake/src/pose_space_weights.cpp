@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "posemorph/bake/pose_space_weights.h"
 
 #include <Eigen/SparseCore>

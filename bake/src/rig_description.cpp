@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Reading a rig description (JSON). Every problem names the file and the
 // JSON path of the offending value.
 #include "posemorph/bake/rig_description.h"

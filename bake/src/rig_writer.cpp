@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rig_writer.h"
 
 #include "posemorph/rig_format.h"

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Serialising sections into the runtime's binary layout (runtime/FORMAT.md).
 #pragma once
 #include <cstdint>

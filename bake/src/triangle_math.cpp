@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "posemorph/bake/triangle_math.h"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Everything the math needs from the input, checked before any of it runs.
 #include <algorithm>
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The C surface: thin wrappers over the C++ jobs, nothing more.
 #include <cstring>
 #include <new>

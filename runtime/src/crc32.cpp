@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // CRC-32 (IEEE 802.3, reflected, polynomial 0xEDB88320), as in PNG and zip.
 // It detects every burst error of up to 32 bits, so every single-byte change.
 // Eight bytes per step ("slicing by 8"): table[k][b] is the CRC register

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Pose-space animation paths: piecewise linear, or cubic Hermite with
 // Catmull-Rom tangents scaled for uneven key spacing in time.
 #include <cmath>

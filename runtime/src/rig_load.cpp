@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // LoadRig: every byte is hostile. Each count is bounded before it sizes
 // anything, each section's size must equal what the counts imply, each index
 // is range-checked and each number must be finite, so that a Rig that loads is

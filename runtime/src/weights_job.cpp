@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Pose-space weights: barycentric interpolation in the baked grid (DESIGN.md
 // section 3), then the paper's shear limiting and texture sharpening.
 #include <cmath>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A Vulkan 1.3 device for drawing rigs: instance (optionally with the
 // Khronos validation layer, whose messages are counted), one graphics queue,
 // buffers with device addresses, one-shot command submission.

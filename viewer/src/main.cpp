@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // posemorph-view: preview a baked rig. With --headless it renders offscreen
 // (no window system needed) and writes PNG frames; otherwise it opens a
 // window (when built with GLFW and a display is there).

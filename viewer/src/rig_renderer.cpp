@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 #include "rig_renderer.h"
 
 #include <png.h>

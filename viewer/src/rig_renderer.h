@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Draws characters of one baked rig: the runtime's positions for K
 // characters go into one buffer that the vertex shader reads (GPU skinning,
 // one instanced draw for the crowd); the fragment shader cross-fades the

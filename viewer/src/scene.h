@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // What a frame shows: one character at a pose-space point (or a path time),
 // or a crowd walking a path at staggered phases. Used by the headless
 // capture, the window and the frame-hash tests alike.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The interactive viewer: a GLFW window with a Vulkan swapchain. The rig is
 // drawn with dynamic rendering, then Dear ImGui (its 1.86 Vulkan backend
 // wants a render pass) draws the panel on top: the pose-space pad, gestures,

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The interactive viewer window (GLFW + Vulkan swapchain + Dear ImGui).
 #pragma once
 #include <cstdint>

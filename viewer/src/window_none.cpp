@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Built when GLFW or Dear ImGui is not available: the viewer is headless only.
 #include <cstdio>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Boundary correspondence (paper section 3.1, after Baxter et al. 2009): every
 // outline i > 0 is matched to pose 0's between consecutive user landmarks by
 // dynamic programming over bending (difference of turning angles) and

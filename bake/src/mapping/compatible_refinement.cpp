@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Compatible refinement of N triangle meshes with one connectivity: midpoint
 // splits (all poses at once), flips that are legal in all N meshes and raise
 // the smallest angle over all of them, and angle-based smoothing (Zhou and

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Compatible triangulation of N polygons with corresponding vertices (paper
 // section 3.1, extending Baxter et al. 2009 to N shapes). Each piece is split
 // along one chord valid in every pose, found in the paper's order:

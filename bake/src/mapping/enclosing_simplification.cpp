@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Compatible enclosing simplification (paper section 3.1; Baxter et al.
 // 2009). Starts from the M corresponding points, pushed just outward so each
 // polygon encloses its outline, then removes the N-tuple whose removal costs

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Exact predicates on grid coordinates (integers held in doubles, |x| < 2^26)
 // and the segment and polygon tests every mapping stage shares.
 #pragma once

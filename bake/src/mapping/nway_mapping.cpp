@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The N-way mapping driver: drawn poses of a rig description -> one shared
 // triangle list and per-pose vertices and uvs (DESIGN.md section 4).
 #include <algorithm>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Drawing (PNG with alpha) -> outline. The shape is the largest 4-connected
 // set of pixels with alpha >= threshold, holes filled, and every diagonal
 // pinch closed (two pixels touching only at a corner), so its border is one

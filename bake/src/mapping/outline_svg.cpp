@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Drawing (SVG) -> outline: one <path> or <polygon>, curves flattened.
 // The XML is read with tinyxml2; only the path-data grammar is parsed here.
 #include <tinyxml2.h>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Exact polygon tests on the integer grid.
 #include <algorithm>
 

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Errors the runtime reports. The runtime never throws across its API: every
 // fallible call returns false and fills an Error.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Per-frame work, ozz-animation style: a plain struct of inputs and
 // caller-owned output spans; Validate() checks them, Run() does the work.
 // Neither allocates nor throws. Run() returns false (and does nothing) when

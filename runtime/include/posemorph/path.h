@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Sampling a stored pose-space animation path.
 #pragma once
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 /* posemorph C API: load a baked rig, evaluate poses. C99, no allocation
  * after pm_rig_load, nothing thrown. Every function returning int returns
  * PM_OK (0) on success. Thread-safety: a loaded pm_rig is immutable and may

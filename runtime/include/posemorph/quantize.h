@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A pose-space point in 2 x 16 bits: what a networked avatar sends per frame.
 // The range is the rig's weight grid (the runtime clamps to it anyway), so the
 // step is grid extent / 65535 per axis.

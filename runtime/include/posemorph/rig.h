@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A baked rig: immutable after loading, safe to share between threads and
 // characters. All arrays live in one arena allocated by LoadRig.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The baked rig's binary layout, shared by the loader and by the bake's
 // writer. The authoritative description is runtime/FORMAT.md.
 #pragma once

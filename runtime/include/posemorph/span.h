@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // A pointer and a count: how the runtime takes caller-owned memory (C++17 has
 // no std::span). Never owns, never allocates.
 #pragma once

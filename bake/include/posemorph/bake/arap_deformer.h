@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // As-rigid-as-possible shape manipulation (Igarashi, Moscovich, Hughes 2005):
 // drag handle vertices of a triangle mesh and get the other vertices back,
 // in two least-squares steps whose matrices depend only on the mesh and on

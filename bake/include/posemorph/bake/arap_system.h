@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The as-rigid-as-possible normal equations of DESIGN.md section 3: per
 // triangle the area-weighted gradient operator, the cotangent matrix K with
 // vertex 0 pinned, ordered (AMD) and factored (LDL^T) once.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The whole bake: description in, rig bytes out (DESIGN.md section 2).
 #pragma once
 #include <cstdint>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The bake's one error type: which file, and what is wrong with it.
 #pragma once
 #include <stdexcept>

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The biharmonic pose-space weight field of the paper's section 4.1 on a
 // regular grid: minimise sum over edge-adjacent grid triangles of
 // ||grad W_j - grad W_k||^2 + eps' sum_j area_j ||grad W_j||^2 with W(p_i) = e_i.

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // The raw input of a bake: N poses of one triangle mesh, their points in pose
 // space, optional drawings, bake parameters, animation paths. Schema:
 // bake/RIG_DESCRIPTION.md.

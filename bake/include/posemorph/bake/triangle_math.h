@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // Per-triangle geometry of DESIGN.md section 3: edge matrices, the polar split
 // A = R(alpha) S, triangle adjacency and angle unwrapping.
 #pragma once

@@ -1,3 +1,4 @@
+// SPDX-License-Identifier: MIT
 // N-way mapping (DESIGN.md section 4, paper section 3.1): N drawings of one
 // character in, N compatible triangle meshes out. Stages, one file each:
 //   outline_image.cpp / outline_svg.cpp   drawing -> simple CCW polygon
