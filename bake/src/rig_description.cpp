@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "posemorph/bake/error.h"
+#include "posemorph/rig_format.h"
 
 namespace posemorph::bake {
 namespace {
@@ -253,6 +254,9 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
         const std::string wk = w + ".keys[" + std::to_string(k) + "]";
         if (!keys[k].is_array() || keys[k].size() != 3) r.Fail(wk, "expected [time, x, y]");
         path.keys.push_back({r.Number(keys[k][0], wk), r.Number(keys[k][1], wk), r.Number(keys[k][2], wk)});
+        for (double v : path.keys[k])
+          if (!(std::fabs(v) <= format::kMaxPathValue))
+            r.Fail(wk, "times and coordinates must lie within +-1e12 (the runtime's limit)");
         if (k > 0 && !(path.keys[k][0] > path.keys[k - 1][0])) r.Fail(wk, "key times must increase strictly");
       }
       for (const PathDescription& other : rig.paths)

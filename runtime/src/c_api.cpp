@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The C surface: thin wrappers over the C++ jobs, nothing more.
+#include <cstdio>
 #include <cstring>
 #include <new>
 
@@ -26,9 +27,23 @@ int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err)
     }
     return PM_ERROR_INVALID_ARGUMENT;
   }
-  *out_rig = nullptr;
+  if (*out_rig) {
+    // Loading over a live rig would leak it: the caller frees it first.
+    if (err) {
+      err->code = PM_ERROR_INVALID_ARGUMENT;
+      std::strncpy(err->message, "*out_rig is not NULL: free the rig it holds first (pm_rig_free), then set it to NULL",
+                   sizeof(err->message) - 1);
+    }
+    return PM_ERROR_INVALID_ARGUMENT;
+  }
   pm_rig* rig = new (std::nothrow) pm_rig;
-  if (!rig) return PM_ERROR_OUT_OF_MEMORY;
+  if (!rig) {
+    if (err) {
+      err->code = PM_ERROR_OUT_OF_MEMORY;
+      std::snprintf(err->message, sizeof(err->message), "cannot allocate the %zu-byte rig handle", sizeof(pm_rig));
+    }
+    return PM_ERROR_OUT_OF_MEMORY;
+  }
   if (!posemorph::LoadRig(bytes, size, &rig->rig, &e)) {
     delete rig;
     if (err) {

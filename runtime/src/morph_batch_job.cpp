@@ -28,13 +28,14 @@ bool MorphBatchJob::Validate() const {
   if (positions.size != 0 && (!positions.data || positions.size < count * v2)) return false;
   if (positions_f32.size != 0 && (!positions_f32.data || positions_f32.size < count * v2)) return false;
   for (std::size_t k = 0; k < count * n; ++k)
-    if (!std::isfinite(weights[k]) || !std::isfinite(shear_weights[k])) return false;
+    if (!(std::fabs(weights[k]) <= kMaxJobWeight) || !(std::fabs(shear_weights[k]) <= kMaxJobWeight)) return false;
   return true;
 }
 
 
 bool MorphBatchJob::Run() const {
   if (!Validate()) return false;
+  if (count == 0) return true;  // nothing to do: the spans may all be empty
   const Rig& r = *rig;
   const std::uint32_t N = r.pose_count();
   const std::size_t v2 = 2 * std::size_t(r.vertex_count());

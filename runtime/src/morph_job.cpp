@@ -20,7 +20,7 @@ bool MorphJob::Validate() const {
   if (positions_f32.size != 0 && (!positions_f32.data || positions_f32.size < v2)) return false;
   if (interpolation != Interpolation::kRigid && interpolation != Interpolation::kLinear) return false;
   for (std::size_t i = 0; i < n; ++i)
-    if (!std::isfinite(weights[i]) || !std::isfinite(shear_weights[i])) return false;
+    if (!(std::fabs(weights[i]) <= kMaxJobWeight) || !(std::fabs(shear_weights[i]) <= kMaxJobWeight)) return false;
   return true;
 }
 

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <new>
+#include <utility>
 
 #include "isa_select.h"
 #include "posemorph/rig.h"
@@ -104,10 +105,17 @@ Span<const T> CopyInto(ArenaLayout& arena, const unsigned char* src, std::uint64
   return {dst, std::size_t(count)};
 }
 
-bool CheckFinite(Span<const double> values, const char* what, Error* err) {
-  for (std::size_t i = 0; i < values.size; ++i)
+// Finite, and at most `limit` in magnitude. The limits (rig_format.h) keep
+// every evaluation finite for every pose-space point and every weight a job
+// accepts: finite but huge values (an angle of 1e53) used to load and give
+// NaN positions.
+bool CheckFinite(Span<const double> values, const char* what, Error* err, double limit = format::kMaxMagnitude) {
+  for (std::size_t i = 0; i < values.size; ++i) {
     if (!std::isfinite(values[i]))
       return Fail(err, ErrorCode::kBadValue, "%s[%zu] is not a finite number", what, i);
+    if (!(std::fabs(values[i]) <= limit))
+      return Fail(err, ErrorCode::kBadValue, "%s[%zu] is %g, beyond the limit of %g", what, i, values[i], limit);
+  }
   return true;
 }
 
@@ -115,8 +123,37 @@ bool CheckFinite(Span<const double> values, const char* what, Error* err) {
 
 Rig::Rig() = default;
 Rig::~Rig() = default;
-Rig::Rig(Rig&&) noexcept = default;
-Rig& Rig::operator=(Rig&&) noexcept = default;
+// A moved-from rig is empty (loaded() false, every span empty), never a
+// view into the arena its new owner holds.
+Rig::Rig(Rig&& other) noexcept { *this = std::move(other); }
+
+Rig& Rig::operator=(Rig&& other) noexcept {
+  if (this == &other) return *this;
+  arena_ = std::move(other.arena_);
+  arena_size_ = std::exchange(other.arena_size_, 0);
+  vertex_count_ = std::exchange(other.vertex_count_, 0);
+  triangle_count_ = std::exchange(other.triangle_count_, 0);
+  pose_count_ = std::exchange(other.pose_count_, 0);
+  path_count_ = std::exchange(other.path_count_, 0);
+  triangles_ = std::exchange(other.triangles_, {});
+  pose_positions_ = std::exchange(other.pose_positions_, {});
+  pose_points_ = std::exchange(other.pose_points_, {});
+  pose_centroids_ = std::exchange(other.pose_centroids_, {});
+  vertex_masses_ = std::exchange(other.vertex_masses_, {});
+  gradients_ = std::exchange(other.gradients_, {});
+  angles_ = std::exchange(other.angles_, {});
+  shears_ = std::exchange(other.shears_, {});
+  blend_blocks_ = std::exchange(other.blend_blocks_, {});
+  uvs_ = std::exchange(other.uvs_, {});
+  strings_ = std::exchange(other.strings_, {});
+  paths_ = std::exchange(other.paths_, {});
+  grid_ = std::exchange(other.grid_, {});
+  factor_ = std::exchange(other.factor_, {});
+  default_sigma_ = std::exchange(other.default_sigma_, 0);
+  rig_size_ = std::exchange(other.rig_size_, 0);
+  kernels_ = std::exchange(other.kernels_, nullptr);
+  return *this;
+}
 
 Isa Rig::isa() const { return kernels_ ? kernels_->isa : Isa::kAuto; }
 
@@ -366,7 +403,7 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
       view.interpolation = PathInterpolation(flags >> fmt::kPathInterpolationShift);
       view.keys = {keys.data + key_at * 3, std::size_t(count) * 3};
       key_at += count;
-      if (!CheckFinite(view.keys, "path key", err)) return false;
+      if (!CheckFinite(view.keys, "path key", err, fmt::kMaxPathValue)) return false;
       for (std::uint32_t k = 1; k < count; ++k)
         if (!(view.keys[3 * k] > view.keys[3 * (k - 1)]))
           return Fail(err, ErrorCode::kBadValue, "path %llu: key times not strictly increasing at key %u",
@@ -447,9 +484,11 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
     // Numbers.
     if (!CheckFinite(rig.pose_positions_, "pose positions", err) || !CheckFinite(rig.pose_points_, "pose points", err) ||
         !CheckFinite(rig.pose_centroids_, "pose centroids", err) || !CheckFinite(rig.vertex_masses_, "vertex masses", err) ||
-        !CheckFinite(rig.gradients_, "gradients", err) || !CheckFinite(rig.angles_, "angles", err) ||
-        !CheckFinite(rig.shears_, "shears", err) || !CheckFinite(rig.factor_.value, "factor values", err) ||
-        !CheckFinite(rig.grid_.weights, "weight grid", err))
+        !CheckFinite(rig.gradients_, "gradients", err) ||
+        !CheckFinite(rig.angles_, "angles", err, fmt::kMaxAngle) ||
+        !CheckFinite(rig.shears_, "stretches", err, fmt::kMaxStretch) ||
+        !CheckFinite(rig.factor_.value, "factor values", err) ||
+        !CheckFinite(rig.grid_.weights, "weight grid", err, fmt::kMaxGridWeight))
       return false;
     for (std::size_t i = 0; i < rig.uvs_.size; ++i)
       if (!std::isfinite(rig.uvs_[i])) return Fail(err, ErrorCode::kBadValue, "uv[%zu] is not finite", i);

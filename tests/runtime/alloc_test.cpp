@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdlib>
 #include <new>
+#include <string>
 
 #include "posemorph/path.h"
 #include "posemorph/posemorph.h"
@@ -16,6 +17,8 @@
 namespace {
 std::atomic<long> g_allocations{0};
 std::atomic<bool> g_counting{false};
+// When >= 0: the number of nothrow allocations to let through before one fails.
+std::atomic<int> g_fail_nothrow_after{-1};
 }  // namespace
 
 void* operator new(std::size_t n) {
@@ -26,6 +29,7 @@ void* operator new(std::size_t n) {
 void* operator new[](std::size_t n) { return operator new(n); }
 void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
   if (g_counting) ++g_allocations;
+  if (g_fail_nothrow_after.load() >= 0 && g_fail_nothrow_after.fetch_sub(1) == 0) return nullptr;
   return std::malloc(n ? n : 1);
 }
 void* operator new[](std::size_t n, const std::nothrow_t& t) noexcept { return operator new(n, t); }
@@ -112,5 +116,26 @@ TEST_CASE("the C API evaluates frames without allocating either") {
   g_counting = false;
   CHECK(status == PM_OK);
   CHECK(g_allocations.load() == 0);
+  pm_rig_free(rig);
+}
+
+TEST_CASE("the C API reports a failed allocation with a message, whichever allocation fails") {
+  const std::vector<unsigned char> bytes = TestRigBytes("small");
+  const char* expected[] = {"rig handle", "cannot allocate"};  // the handle, then the rig's arena
+  for (int after = 0; after < 2; ++after) {
+    CAPTURE(after);
+    pm_rig* rig = nullptr;
+    pm_error err;
+    g_fail_nothrow_after = after;
+    const int status = pm_rig_load(bytes.data(), bytes.size(), &rig, &err);
+    g_fail_nothrow_after = -1;
+    CHECK(status == PM_ERROR_OUT_OF_MEMORY);
+    CHECK(err.code == PM_ERROR_OUT_OF_MEMORY);
+    CHECK(std::string(err.message).find(expected[after]) != std::string::npos);
+    CHECK(rig == nullptr);
+  }
+  // And with memory to spare it loads.
+  pm_rig* rig = nullptr;
+  REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &rig, nullptr) == PM_OK);
   pm_rig_free(rig);
 }

@@ -27,6 +27,12 @@ struct WeightsJob {
   bool Run() const;
 };
 
+// MorphJob and MorphBatchJob refuse weights that are not finite or larger
+// than this in magnitude (WeightsJob gives at most the rig's largest grid
+// weight, kMaxGridWeight): with the loader's limits on stored values, every
+// accepted input gives finite positions.
+constexpr double kMaxJobWeight = 1e6;
+
 enum class Interpolation : std::uint8_t {
   kRigid = 0,   // as-rigid-as-possible (the method)
   kLinear = 1,  // vertex positions blended linearly, for comparison

@@ -44,7 +44,9 @@ typedef struct pm_rig_info {
 } pm_rig_info;
 
 /* Validates the bytes and makes a rig, copying what it needs into one
- * allocation: the caller may free the bytes afterwards. err may be NULL. */
+ * allocation: the caller may free the bytes afterwards. err may be NULL.
+ * *out_rig must be NULL on entry (PM_ERROR_INVALID_ARGUMENT otherwise: a
+ * rig it held would leak); it is set only on success. */
 int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err);
 void pm_rig_free(pm_rig* rig);
 void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info);

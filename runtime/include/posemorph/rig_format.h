@@ -83,6 +83,13 @@ constexpr std::uint32_t kMaxPaths = 1024;
 constexpr std::uint32_t kMaxPathKeys = 1u << 20;  // all paths together
 constexpr std::uint32_t kMaxFactorNonzeros = 1u << 28;
 constexpr std::uint32_t kMaxStringBytes = 1u << 20;
+// Magnitude limits on stored numbers, so that every evaluation of a rig that
+// loads stays finite (with the weight limit of the jobs, jobs.h).
+constexpr double kMaxAngle = 1e4;          // radians (about 1,600 turns)
+constexpr double kMaxStretch = 1e4;        // entries of the symmetric stretch S
+constexpr double kMaxGridWeight = 1e4;     // baked pose-space weights
+constexpr double kMaxPathValue = 1e12;     // path key times and coordinates
+constexpr double kMaxMagnitude = 1e15;     // everything else (positions, gradients, factor, ...)
 
 std::uint32_t Crc32(const unsigned char* data, std::uint64_t size, std::uint32_t crc = 0);
 

@@ -1,0 +1,160 @@
+// SPDX-License-Identifier: MIT
+// What a hostile or careless caller finds: moved-from rigs, empty batches,
+// numbers that are finite but huge, a C handle loaded twice. Every misuse
+// gets an error, never undefined behaviour (the debug preset runs this under
+// ASan + UBSan), and a rig that loads gives finite positions for every
+// input a job accepts.
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "posemorph/path.h"
+#include "posemorph/posemorph.h"
+#include "posemorph/rig_format.h"
+#include "runtime_support.h"
+
+using namespace posemorph;
+using namespace posemorph::test;
+
+namespace {
+
+// Offset of section `tag` in a rig's bytes (0 if absent).
+std::size_t SectionOffset(const std::vector<unsigned char>& bytes, std::uint32_t tag) {
+  std::uint32_t sections = 0;
+  std::memcpy(&sections, bytes.data() + format::kOffSectionCount, 4);
+  for (std::uint32_t s = 0; s < sections; ++s) {
+    const unsigned char* e = bytes.data() + format::kHeaderSize + std::size_t(s) * format::kSectionEntrySize;
+    std::uint32_t t;
+    std::memcpy(&t, e, 4);
+    if (t == tag) {
+      std::uint64_t offset;
+      std::memcpy(&offset, e + 8, 8);
+      return std::size_t(offset);
+    }
+  }
+  return 0;
+}
+
+// Writes a double at `offset` and recomputes the checksum, so that only the
+// loader's value checks stand between the number and the jobs.
+std::vector<unsigned char> WithDouble(std::vector<unsigned char> bytes, std::size_t offset, double value) {
+  std::memcpy(bytes.data() + offset, &value, 8);
+  const std::uint32_t crc = format::Crc32(bytes.data() + format::kHeaderSize, bytes.size() - format::kHeaderSize);
+  std::memcpy(bytes.data() + format::kOffChecksum, &crc, 4);
+  return bytes;
+}
+
+bool AllFinite(const std::vector<double>& v) {
+  for (double x : v)
+    if (!std::isfinite(x)) return false;
+  return true;
+}
+
+}  // namespace
+
+TEST_CASE("a moved-from rig is empty, not a view into its new owner's memory") {
+  Rig a = LoadTestRig("snake");
+  Rig b = std::move(a);
+  CHECK_FALSE(a.loaded());
+  CHECK(a.triangles().empty());
+  CHECK(a.pose_positions(0).empty());
+  CHECK(a.grid().weights.empty());
+  CHECK(a.factor().value.empty());
+  CHECK(a.arena_bytes() == 0);
+  CHECK(b.loaded());
+  {
+    Rig c;
+    c = std::move(b);  // move assignment, then the new owner dies
+    CHECK(c.loaded());
+  }
+  CHECK_FALSE(b.loaded());
+  // Jobs refuse the emptied rigs instead of reading freed memory.
+  std::vector<double> w(5, 0.2), work(4 * 205), x(2 * 205);
+  MorphJob job;
+  job.rig = &b, job.weights = MakeSpan(w), job.shear_weights = MakeSpan(w);
+  job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
+  CHECK_FALSE(job.Run());
+  WeightsJob wj;
+  wj.rig = &a, wj.raw = MakeSpan(w);
+  CHECK_FALSE(wj.Run());
+  double px, py;
+  CHECK_FALSE(SamplePath(a, 0, 0.5, &px, &py));
+}
+
+TEST_CASE("an empty batch does nothing, whatever its spans") {
+  const Rig rig = LoadTestRig("snake");
+  MorphBatchJob job;
+  job.rig = &rig;
+  job.count = 0;  // no weights, no workspace, no output: nothing to touch
+  CHECK(job.Validate());
+  CHECK(job.Run());
+}
+
+TEST_CASE("finite but huge stored numbers are refused at load, naming the section") {
+  const std::vector<unsigned char> bytes = TestRigBytes("small");
+  struct Case {
+    std::uint32_t tag;
+    double value;
+    const char* expect;
+  };
+  const Case cases[] = {
+      {format::kAngles, 1e53, "angles[0]"},
+      {format::kShears, -1e30, "stretches[0]"},
+      {format::kWeightGrid, 1e20, "weight grid[0]"},
+      {format::kPathKeys, 1e308, "path key[0]"},
+      {format::kGradients, 1e200, "gradients[0]"},
+  };
+  for (const Case& c : cases) {
+    const std::size_t at = SectionOffset(bytes, c.tag);
+    REQUIRE(at != 0);
+    const std::vector<unsigned char> bad = WithDouble(bytes, at, c.value);
+    Rig rig;
+    Error err;
+    CAPTURE(std::string(c.expect));
+    CHECK_FALSE(LoadRig(bad.data(), bad.size(), &rig, &err));
+    CHECK(err.code == ErrorCode::kBadValue);
+    CHECK(std::string(err.message).find(c.expect) != std::string::npos);
+    CHECK(std::string(err.message).find("beyond the limit") != std::string::npos);
+  }
+  // At the limits themselves the rig loads, and still evaluates to finite positions.
+  std::vector<unsigned char> edge = WithDouble(bytes, SectionOffset(bytes, format::kAngles), format::kMaxAngle);
+  edge = WithDouble(edge, SectionOffset(edge, format::kWeightGrid), -format::kMaxGridWeight);
+  Rig rig;
+  Error err;
+  REQUIRE_MESSAGE(LoadRig(edge.data(), edge.size(), &rig, &err), err.message);
+  for (double px : {-1e300, -3.0, 0.0, 0.01, 0.5, 7.0, 1e300}) {
+    const Weights w = WeightsAt(rig, px, 0.25);
+    CHECK(AllFinite(Morph(rig, w.raw, w.shear)));
+  }
+}
+
+TEST_CASE("jobs take weights up to kMaxJobWeight and give finite positions; larger ones are refused") {
+  const Rig rig = LoadTestRig("snake");
+  const std::size_t N = rig.pose_count();
+  std::vector<double> w(N, 0.0), ws(N, 0.0);
+  w[1] = kMaxJobWeight, w[3] = -kMaxJobWeight, ws[2] = kMaxJobWeight;
+  CHECK(AllFinite(Morph(rig, w, ws)));
+  std::vector<double> work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
+  MorphJob job;
+  job.rig = &rig, job.shear_weights = MakeSpan(ws), job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
+  w[1] = 2 * kMaxJobWeight;
+  job.weights = MakeSpan(w);
+  CHECK_FALSE(job.Validate());
+  w[1] = std::nan("");
+  CHECK_FALSE(job.Validate());
+}
+
+TEST_CASE("the C API refuses to load over a live handle instead of leaking it") {
+  const std::vector<unsigned char> bytes = TestRigBytes("small");
+  pm_rig* rig = nullptr;
+  pm_error err;
+  REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &rig, &err) == PM_OK);
+  pm_rig* const first = rig;
+  CHECK(pm_rig_load(bytes.data(), bytes.size(), &rig, &err) == PM_ERROR_INVALID_ARGUMENT);
+  CHECK(std::string(err.message).find("not NULL") != std::string::npos);
+  CHECK(rig == first);  // untouched, still usable
+  pm_rig_info info;
+  pm_rig_get_info(rig, &info);
+  CHECK(info.vertex_count == 4);
+  pm_rig_free(rig);
+}
