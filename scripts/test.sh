@@ -4,8 +4,11 @@
 # test: the full suite with GCC (release) and with Clang, each on every
 # kernel path this CPU runs (POSEMORPH_ISA = the fastest by default, then
 # avx2, sse2, scalar), under AddressSanitizer + UBSan (debug), the runtime's
-# threads under ThreadSanitizer (tsan), and the runtime's own tests built for
-# aarch64 (qemu), Windows (wine) and WebAssembly (node): scripts/cross-test.sh.
+# threads under ThreadSanitizer (tsan), the ways a game consumes the library
+# (install + find_package, pkg-config from C, add_subdirectory without the
+# bake's dependencies, a shared library: scripts/consumer-test.sh), and the
+# runtime's own tests built for aarch64 (qemu), Windows (wine) and
+# WebAssembly (node): scripts/cross-test.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
@@ -34,6 +37,7 @@ for preset in release clang; do
     POSEMORPH_ISA=$isa ctest --preset "$preset" -j"$jobs"
   done
 done
+scripts/consumer-test.sh
 for preset in tsan debug; do
   build "$preset"
   echo "== $preset"

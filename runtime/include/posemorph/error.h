@@ -2,6 +2,7 @@
 // Errors the runtime reports. The runtime never throws across its API: every
 // fallible call returns false and fills an Error.
 #pragma once
+#include "posemorph/export.h"
 
 namespace posemorph {
 
@@ -24,6 +25,6 @@ struct Error {
   char message[256] = {0};
 };
 
-const char* ErrorCodeName(ErrorCode code);
+PM_API const char* ErrorCodeName(ErrorCode code);
 
 }  // namespace posemorph

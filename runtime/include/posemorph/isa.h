@@ -3,6 +3,7 @@
 // the same IEEE operations in the same order (no FMA contraction, no
 // fast-math), so every path gives the same bits; they differ only in speed.
 #pragma once
+#include "posemorph/export.h"
 
 namespace posemorph {
 
@@ -17,12 +18,12 @@ enum class Isa : int {
 };
 
 // "auto", "scalar", "sse2", "avx2", "avx512", "neon", "wasm-simd".
-const char* IsaName(Isa isa);
+PM_API const char* IsaName(Isa isa);
 // The path named `name` (as IsaName writes it); false for an unknown name.
-bool ParseIsa(const char* name, Isa* out);
+PM_API bool ParseIsa(const char* name, Isa* out);
 // True when this build contains the path and this CPU can run it.
-bool IsaAvailable(Isa isa);
+PM_API bool IsaAvailable(Isa isa);
 // The path kAuto resolves to, ignoring POSEMORPH_ISA.
-Isa BestIsa();
+PM_API Isa BestIsa();
 
 }  // namespace posemorph

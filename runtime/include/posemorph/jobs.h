@@ -4,6 +4,7 @@
 // Neither allocates nor throws. Run() returns false (and does nothing) when
 // Validate() would.
 #pragma once
+#include "posemorph/export.h"
 #include <cstdint>
 
 #include "posemorph/rig.h"
@@ -14,7 +15,7 @@ namespace posemorph {
 // Weights at a pose-space point. The point is clamped to the baked grid (the
 // field is constant beyond it); a NaN coordinate is replaced by pose 0's
 // coordinate, so any input gives a finite, defined result.
-struct WeightsJob {
+struct PM_API WeightsJob {
   const Rig* rig = nullptr;
   double x = 0, y = 0;
   double sigma = 0;           // texture sharpening in [0, 1] (clamped)
@@ -39,7 +40,7 @@ enum class Interpolation : std::uint8_t {
 };
 
 // Vertex positions for given weights.
-struct MorphJob {
+struct PM_API MorphJob {
   const Rig* rig = nullptr;
   Span<const double> weights;        // N raw weights (rotation angles, centroid)
   Span<const double> shear_weights;  // N (shear/scale); pass weights again for no limiting
@@ -57,7 +58,7 @@ struct MorphJob {
 // once per group; every result equals what MorphJob gives for that character,
 // bit for bit. To use several threads, run one job per thread over disjoint
 // ranges of characters, each with its own workspace.
-struct MorphBatchJob {
+struct PM_API MorphBatchJob {
   const Rig* rig = nullptr;
   std::size_t count = 0;             // characters
   Span<const double> weights;        // count x N raw weights, character after character
@@ -71,7 +72,7 @@ struct MorphBatchJob {
 };
 
 // The scalar maps behind WeightsJob, exposed for tests and renderers.
-double ShearLimit(double w);  // smoothstep clamped to [0, 1]
-void TextureWeights(Span<const double> shear_weights, double sigma, Span<double> out);
+PM_API double ShearLimit(double w);  // smoothstep clamped to [0, 1]
+PM_API void TextureWeights(Span<const double> shear_weights, double sigma, Span<double> out);
 
 }  // namespace posemorph

@@ -9,6 +9,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "posemorph/export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -47,25 +49,25 @@ typedef struct pm_rig_info {
  * allocation: the caller may free the bytes afterwards. err may be NULL.
  * *out_rig must be NULL on entry (PM_ERROR_INVALID_ARGUMENT otherwise: a
  * rig it held would leak); it is set only on success. */
-int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err);
-void pm_rig_free(pm_rig* rig);
-void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info);
-const uint32_t* pm_rig_triangles(const pm_rig* rig);            /* 3 x triangle_count */
-const float* pm_rig_uvs(const pm_rig* rig, uint32_t pose);     /* 2 x vertex_count, or NULL */
-const double* pm_rig_pose_positions(const pm_rig* rig, uint32_t pose); /* 2 x vertex_count, or NULL */
-int pm_rig_pose_point(const pm_rig* rig, uint32_t pose, double* x, double* y);
+PM_API int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err);
+PM_API void pm_rig_free(pm_rig* rig);
+PM_API void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info);
+PM_API const uint32_t* pm_rig_triangles(const pm_rig* rig);            /* 3 x triangle_count */
+PM_API const float* pm_rig_uvs(const pm_rig* rig, uint32_t pose);     /* 2 x vertex_count, or NULL */
+PM_API const double* pm_rig_pose_positions(const pm_rig* rig, uint32_t pose); /* 2 x vertex_count, or NULL */
+PM_API int pm_rig_pose_point(const pm_rig* rig, uint32_t pose, double* x, double* y);
 
 /* Weights at a pose-space point. raw is required (pose_count doubles);
  * shear and texture may be NULL. sigma in [0,1] sharpens the texture blend. */
-int pm_weights(const pm_rig* rig, double x, double y, double sigma, int shear_limit,
+PM_API int pm_weights(const pm_rig* rig, double x, double y, double sigma, int shear_limit,
                double* raw, double* shear, double* texture);
 
 /* Doubles of workspace pm_morph needs. */
-size_t pm_morph_workspace_size(const pm_rig* rig);
+PM_API size_t pm_morph_workspace_size(const pm_rig* rig);
 
 /* Vertex positions (2 x vertex_count, interleaved) for raw and shear weights.
  * positions_f32 may be NULL. linear != 0 blends vertex positions linearly. */
-int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weights, int linear,
+PM_API int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weights, int linear,
              double* workspace, double* positions, float* positions_f32);
 
 /* Many characters sharing one rig: `count` sets of pose_count weights (raw,
@@ -73,17 +75,17 @@ int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weigh
  * not both). Equal to pm_morph per character, bit for bit. To use several
  * threads, call it per thread on disjoint ranges, each with its own
  * workspace of pm_batch_workspace_size() doubles. */
-size_t pm_batch_workspace_size(const pm_rig* rig);
-int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const double* shear_weights,
+PM_API size_t pm_batch_workspace_size(const pm_rig* rig);
+PM_API int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const double* shear_weights,
                    double* workspace, double* positions, float* positions_f32);
 
 /* Index of the named path or -1; point on a path at a time in seconds. */
-int pm_path_find(const pm_rig* rig, const char* name);
-int pm_path_sample(const pm_rig* rig, uint32_t path, double time, double* x, double* y);
+PM_API int pm_path_find(const pm_rig* rig, const char* name);
+PM_API int pm_path_sample(const pm_rig* rig, uint32_t path, double time, double* x, double* y);
 
 /* A pose-space point in 4 bytes (x in the low 16 bits, y in the high 16). */
-uint32_t pm_quantize_point(const pm_rig* rig, double x, double y);
-void pm_dequantize_point(const pm_rig* rig, uint32_t packed, double* x, double* y);
+PM_API uint32_t pm_quantize_point(const pm_rig* rig, double x, double y);
+PM_API void pm_dequantize_point(const pm_rig* rig, uint32_t packed, double* x, double* y);
 
 #ifdef __cplusplus
 }

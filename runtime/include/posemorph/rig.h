@@ -2,6 +2,7 @@
 // A baked rig: immutable after loading, safe to share between threads and
 // characters. All arrays live in one arena allocated by LoadRig.
 #pragma once
+#include "posemorph/export.h"
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -74,7 +75,7 @@ struct LoadOptions {
   Isa isa = Isa::kAuto;
 };
 
-class Rig {
+class PM_API Rig {
  public:
   Rig();
   ~Rig();
@@ -144,7 +145,7 @@ class Rig {
 // Validates every byte and builds a Rig. On failure returns false, fills err
 // (if given) and leaves *out empty. Never throws; the only allocation is the
 // rig's arena.
-bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err,
+PM_API bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err,
              const LoadOptions& options = LoadOptions());
 
 }  // namespace posemorph

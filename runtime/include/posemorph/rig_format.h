@@ -2,6 +2,7 @@
 // The baked rig's binary layout, shared by the loader and by the bake's
 // writer. The authoritative description is runtime/FORMAT.md.
 #pragma once
+#include "posemorph/export.h"
 #include <cstdint>
 
 namespace posemorph::format {
@@ -91,6 +92,6 @@ constexpr double kMaxGridWeight = 1e4;     // baked pose-space weights
 constexpr double kMaxPathValue = 1e12;     // path key times and coordinates
 constexpr double kMaxMagnitude = 1e15;     // everything else (positions, gradients, factor, ...)
 
-std::uint32_t Crc32(const unsigned char* data, std::uint64_t size, std::uint32_t crc = 0);
+PM_API std::uint32_t Crc32(const unsigned char* data, std::uint64_t size, std::uint32_t crc = 0);
 
 }  // namespace posemorph::format

@@ -3,6 +3,7 @@
 // no std::span). Never owns, never allocates.
 #pragma once
 #include <cstddef>
+#include <type_traits>
 
 namespace posemorph {
 
