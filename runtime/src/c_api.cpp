@@ -2,6 +2,7 @@
 // The C surface: thin wrappers over the C++ jobs, nothing more.
 #include <cstdio>
 #include <cstring>
+#include <cstdint>
 #include <new>
 
 #include "posemorph/jobs.h"
@@ -11,7 +12,25 @@
 
 struct pm_rig {
   posemorph::Rig rig;
+  bool in_place = false;  // the handle and the rig's arrays live in the caller's memory
 };
+
+namespace {
+// An in-place handle sits at the start of the caller's memory, the rig's
+// arrays after it.
+constexpr std::size_t kHandleBytes =
+    (sizeof(pm_rig) + posemorph::kRigMemoryAlignment - 1) / posemorph::kRigMemoryAlignment *
+    posemorph::kRigMemoryAlignment;
+static_assert(PM_RIG_MEMORY_ALIGNMENT == posemorph::kRigMemoryAlignment, "published alignment");
+
+int Report(pm_error* err, const posemorph::Error& e) {
+  if (err) {
+    err->code = int(e.code);
+    std::memcpy(err->message, e.message, sizeof(err->message));
+  }
+  return int(e.code);
+}
+}  // namespace
 
 using posemorph::Span;
 
@@ -56,7 +75,48 @@ int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err)
   return PM_OK;
 }
 
-void pm_rig_free(pm_rig* rig) { delete rig; }
+int pm_rig_memory_size(const void* bytes, size_t size, size_t* needed, pm_error* err) {
+  posemorph::Error e;
+  if (err) *err = pm_error{};
+  std::size_t arena = 0;
+  if (!posemorph::RigMemorySize(bytes, size, &arena, &e)) return Report(err, e);
+  if (needed) *needed = kHandleBytes + arena;
+  return PM_OK;
+}
+
+int pm_rig_load_in_place(const void* bytes, size_t size, void* memory, size_t memory_size, pm_rig** out_rig,
+                         pm_error* err) {
+  posemorph::Error e;
+  if (err) *err = pm_error{};
+  auto fail = [&](const char* message) {
+    if (err) {
+      err->code = PM_ERROR_INVALID_ARGUMENT;
+      std::snprintf(err->message, sizeof(err->message), "%s", message);
+    }
+    return PM_ERROR_INVALID_ARGUMENT;
+  };
+  if (!out_rig) return fail("no output pointer given");
+  if (*out_rig) return fail("*out_rig is not NULL: free the rig it holds first (pm_rig_free), then set it to NULL");
+  if (!memory) return fail("no memory given (pm_rig_memory_size says how much)");
+  if (reinterpret_cast<std::uintptr_t>(memory) % PM_RIG_MEMORY_ALIGNMENT != 0)
+    return fail("memory is not aligned to PM_RIG_MEMORY_ALIGNMENT (16) bytes");
+  if (memory_size < kHandleBytes) return fail("memory is smaller than pm_rig_memory_size says");
+  pm_rig* rig = new (memory) pm_rig;
+  rig->in_place = true;
+  if (!posemorph::LoadRigInPlace(bytes, size, static_cast<unsigned char*>(memory) + kHandleBytes,
+                                 memory_size - kHandleBytes, &rig->rig, &e)) {
+    rig->~pm_rig();
+    return Report(err, e);
+  }
+  *out_rig = rig;
+  return PM_OK;
+}
+
+void pm_rig_free(pm_rig* rig) {
+  if (!rig) return;
+  if (rig->in_place) rig->~pm_rig();  // the memory is the caller's
+  else delete rig;
+}
 
 void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info) {
   if (!rig || !info) return;

@@ -71,7 +71,7 @@ struct ArenaLayout {
   std::uint64_t used = 0;
   template <typename T>
   T* Take(std::uint64_t count) {
-    used = (used + alignof(std::max_align_t) - 1) & ~std::uint64_t(alignof(std::max_align_t) - 1);
+    used = (used + kRigMemoryAlignment - 1) & ~std::uint64_t(kRigMemoryAlignment - 1);
     T* p = base ? reinterpret_cast<T*>(base + std::size_t(used)) : nullptr;
     used += count * sizeof(T);
     return p;
@@ -185,7 +185,51 @@ int Rig::FindPath(const char* name) const {
   return -1;
 }
 
+namespace {
+
+// Where the arena comes from: one allocation (LoadRig), the caller's memory
+// (LoadRigInPlace), or nowhere, when only its size is wanted (RigMemorySize).
+struct ArenaSource {
+  enum Kind { kAllocate, kCaller, kSizeOnly } kind = kAllocate;
+  void* memory = nullptr;
+  std::size_t memory_size = 0;
+  std::size_t* needed = nullptr;
+};
+
+}  // namespace
+
+// The one loader behind LoadRig, RigMemorySize and LoadRigInPlace (a friend of Rig).
+struct RigLoader {
+  static bool Load(const void* data, std::size_t size, Rig* out, Error* err, const LoadOptions& options,
+                   const ArenaSource& source);
+};
+
 bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const LoadOptions& options) {
+  return RigLoader::Load(data, size, out, err, options, ArenaSource{});
+}
+
+bool RigMemorySize(const void* data, std::size_t size, std::size_t* needed, Error* err, const LoadOptions& options) {
+  if (err) *err = Error{};
+  if (!needed) return Fail(err, ErrorCode::kInvalidArgument, "no output size given");
+  *needed = 0;
+  Rig scratch;
+  ArenaSource source;
+  source.kind = ArenaSource::kSizeOnly;
+  source.needed = needed;
+  return RigLoader::Load(data, size, &scratch, err, options, source);
+}
+
+bool LoadRigInPlace(const void* data, std::size_t size, void* memory, std::size_t memory_size, Rig* out, Error* err,
+                    const LoadOptions& options) {
+  ArenaSource source;
+  source.kind = ArenaSource::kCaller;
+  source.memory = memory;
+  source.memory_size = memory_size;
+  return RigLoader::Load(data, size, out, err, options, source);
+}
+
+bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, const LoadOptions& options,
+                     const ArenaSource& source) {
   if (err) *err = Error{};
   if (!out) return Fail(err, ErrorCode::kInvalidArgument, "no output rig given");
   *out = Rig();
@@ -335,10 +379,20 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
   Rig rig;
   for (int pass = 0; pass < 2; ++pass) {
     ArenaLayout arena;
-    if (pass == 1) {
+    if (pass == 1 && source.kind == ArenaSource::kAllocate) {
       rig.arena_.reset(new (std::nothrow) unsigned char[rig.arena_size_]);
       if (!rig.arena_) return Fail(err, ErrorCode::kOutOfMemory, "cannot allocate %zu bytes", rig.arena_size_);
       arena.base = rig.arena_.get();
+    } else if (pass == 1) {
+      if (!source.memory)
+        return Fail(err, ErrorCode::kInvalidArgument, "no memory given (the rig needs %zu bytes)", rig.arena_size_);
+      if (reinterpret_cast<std::uintptr_t>(source.memory) % kRigMemoryAlignment != 0)
+        return Fail(err, ErrorCode::kInvalidArgument, "memory is not aligned to %zu bytes",
+                    std::size_t(kRigMemoryAlignment));
+      if (source.memory_size < rig.arena_size_)
+        return Fail(err, ErrorCode::kInvalidArgument, "%zu bytes of memory given, the rig needs %zu",
+                    source.memory_size, rig.arena_size_);
+      arena.base = static_cast<unsigned char*>(source.memory);
     }
     rig.triangles_ = CopyInto<std::uint32_t>(arena, tris, T * 3);
     rig.pose_positions_ = CopyInto<double>(arena, poses, N * V * 2);
@@ -376,6 +430,10 @@ bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const Loa
         return Fail(err, ErrorCode::kTooLarge, "the rig needs %llu bytes in memory, more than this target addresses",
                     (unsigned long long)arena.used);
       rig.arena_size_ = std::size_t(arena.used);
+      if (source.kind == ArenaSource::kSizeOnly) {
+        *source.needed = rig.arena_size_;
+        return true;
+      }
       continue;
     }
 

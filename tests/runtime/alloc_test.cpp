@@ -2,6 +2,7 @@
 // Evaluating a frame allocates nothing: every global operator new and malloc
 // is counted while frames run.
 #include <atomic>
+#include <cstdint>
 #include <cstdlib>
 #include <new>
 #include <string>
@@ -138,4 +139,32 @@ TEST_CASE("the C API reports a failed allocation with a message, whichever alloc
   pm_rig* rig = nullptr;
   REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &rig, nullptr) == PM_OK);
   pm_rig_free(rig);
+}
+
+TEST_CASE("loading in place allocates nothing at all, in C++ and through the C API") {
+  const std::vector<unsigned char> bytes = TestRigBytes("snake");
+  std::size_t needed = 0, c_needed = 0;
+  REQUIRE(RigMemorySize(bytes.data(), bytes.size(), &needed, nullptr));
+  REQUIRE(pm_rig_memory_size(bytes.data(), bytes.size(), &c_needed, nullptr) == PM_OK);
+  std::vector<unsigned char> memory_block(needed + kRigMemoryAlignment), c_memory_block(c_needed + kRigMemoryAlignment);
+  auto align = [](std::vector<unsigned char>& v) {
+    const std::uintptr_t p = reinterpret_cast<std::uintptr_t>(v.data());
+    return v.data() + (kRigMemoryAlignment - p % kRigMemoryAlignment) % kRigMemoryAlignment;
+  };
+  unsigned char* memory = align(memory_block);
+  unsigned char* c_memory = align(c_memory_block);
+  Rig rig;
+  pm_rig* c_rig = nullptr;
+  g_allocations = 0;
+  g_counting = true;
+  std::size_t again = 0;
+  const bool sized = RigMemorySize(bytes.data(), bytes.size(), &again, nullptr);
+  const bool loaded = LoadRigInPlace(bytes.data(), bytes.size(), memory, needed, &rig, nullptr);
+  const int c_status = pm_rig_load_in_place(bytes.data(), bytes.size(), c_memory, c_needed, &c_rig, nullptr);
+  g_counting = false;
+  CHECK(sized);
+  CHECK(loaded);
+  CHECK(c_status == PM_OK);
+  CHECK(g_allocations.load() == 0);
+  pm_rig_free(c_rig);
 }

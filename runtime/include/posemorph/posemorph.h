@@ -50,7 +50,18 @@ typedef struct pm_rig_info {
  * *out_rig must be NULL on entry (PM_ERROR_INVALID_ARGUMENT otherwise: a
  * rig it held would leak); it is set only on success. */
 PM_API int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err);
+/* Frees a rig from pm_rig_load; for a rig loaded in place it only ends its
+ * use (the memory stays the caller's). NULL is allowed. */
 PM_API void pm_rig_free(pm_rig* rig);
+
+/* Caller-owned memory (no allocation at all on this path): pm_rig_memory_size
+ * gives the bytes a rig needs, pm_rig_load_in_place builds the rig (and its
+ * handle) inside `memory`, which must be aligned to PM_RIG_MEMORY_ALIGNMENT
+ * and outlive the rig. The bytes may be released after loading. */
+#define PM_RIG_MEMORY_ALIGNMENT 16
+PM_API int pm_rig_memory_size(const void* bytes, size_t size, size_t* needed, pm_error* err);
+PM_API int pm_rig_load_in_place(const void* bytes, size_t size, void* memory, size_t memory_size, pm_rig** out_rig,
+                                pm_error* err);
 PM_API void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info);
 PM_API const uint32_t* pm_rig_triangles(const pm_rig* rig);            /* 3 x triangle_count */
 PM_API const float* pm_rig_uvs(const pm_rig* rig, uint32_t pose);     /* 2 x vertex_count, or NULL */

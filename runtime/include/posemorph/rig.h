@@ -124,7 +124,7 @@ class PM_API Rig {
   const detail::KernelTable* kernels() const { return kernels_; }
 
  private:
-  friend bool LoadRig(const void*, std::size_t, Rig*, Error*, const LoadOptions&);
+  friend struct RigLoader;
   friend struct RigBuilderAccess;
 
   std::unique_ptr<unsigned char[]> arena_;
@@ -146,6 +146,21 @@ class PM_API Rig {
 // (if given) and leaves *out empty. Never throws; the only allocation is the
 // rig's arena.
 PM_API bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err,
-             const LoadOptions& options = LoadOptions());
+                    const LoadOptions& options = LoadOptions());
+
+// Caller-owned memory, as Cubism Core does it: ask for the size, then load
+// into memory you provide (aligned to kRigMemoryAlignment). Nothing is
+// allocated; the rig's arrays live in `memory`, which must outlive the rig
+// and every use of it (the Rig object itself owns nothing then). The bytes
+// may be released after loading, as with LoadRig.
+constexpr std::size_t kRigMemoryAlignment = 16;
+// The bytes of memory LoadRigInPlace needs for this rig (the header, section
+// table and counts are validated; the values only when loading).
+PM_API bool RigMemorySize(const void* data, std::size_t size, std::size_t* needed, Error* err,
+                          const LoadOptions& options = LoadOptions());
+// LoadRig into `memory`: fails with kInvalidArgument when memory is null,
+// misaligned or smaller than RigMemorySize says.
+PM_API bool LoadRigInPlace(const void* data, std::size_t size, void* memory, std::size_t memory_size, Rig* out,
+                           Error* err, const LoadOptions& options = LoadOptions());
 
 }  // namespace posemorph
