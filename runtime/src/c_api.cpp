@@ -23,6 +23,20 @@ constexpr std::size_t kHandleBytes =
     posemorph::kRigMemoryAlignment;
 static_assert(PM_RIG_MEMORY_ALIGNMENT == posemorph::kRigMemoryAlignment, "published alignment");
 
+template <typename T>
+bool Aligned(const T* p) {
+  return reinterpret_cast<std::uintptr_t>(p) % alignof(T) == 0;
+}
+
+int CopyString(posemorph::StringView v, bool valid, char* out, size_t capacity, size_t* length) {
+  if (!valid) return PM_ERROR_INVALID_ARGUMENT;
+  if (length) *length = v.size;
+  if (!out || capacity < v.size + 1) return PM_ERROR_BUFFER_TOO_SMALL;
+  if (v.size) std::memcpy(out, v.data, v.size);
+  out[v.size] = 0;
+  return PM_OK;
+}
+
 int Report(pm_error* err, const posemorph::Error& e) {
   if (err) {
     err->code = int(e.code);
@@ -132,6 +146,108 @@ const double* pm_rig_pose_positions(const pm_rig* rig, uint32_t pose) {
   return rig ? rig->rig.pose_positions(pose).data : nullptr;
 }
 
+const char* pm_version(void) {
+#define PM_STRINGIFY2(x) #x
+#define PM_STRINGIFY(x) PM_STRINGIFY2(x)
+  return PM_STRINGIFY(PM_VERSION_MAJOR) "." PM_STRINGIFY(PM_VERSION_MINOR) "." PM_STRINGIFY(PM_VERSION_PATCH);
+}
+
+int pm_rig_pose_name(const pm_rig* rig, uint32_t pose, char* out, size_t capacity, size_t* length) {
+  return CopyString(rig ? rig->rig.pose_name(pose) : posemorph::StringView{}, rig && pose < rig->rig.pose_count(), out,
+                    capacity, length);
+}
+
+int pm_rig_pose_image(const pm_rig* rig, uint32_t pose, char* out, size_t capacity, size_t* length) {
+  return CopyString(rig ? rig->rig.pose_image(pose) : posemorph::StringView{}, rig && pose < rig->rig.pose_count(), out,
+                    capacity, length);
+}
+
+int pm_rig_path_name(const pm_rig* rig, uint32_t path, char* out, size_t capacity, size_t* length) {
+  return CopyString(rig ? rig->rig.path(path).name : posemorph::StringView{}, rig && path < rig->rig.path_count(), out,
+                    capacity, length);
+}
+
+int pm_rig_grid(const pm_rig* rig, pm_grid_info* out) {
+  if (!rig || !out || !rig->rig.loaded()) return PM_ERROR_INVALID_ARGUMENT;
+  const posemorph::PoseSpaceGrid& g = rig->rig.grid();
+  *out = pm_grid_info{g.origin_x, g.origin_y, g.origin_x + g.cell * g.cells_x, g.origin_y + g.cell * g.cells_y,
+                      g.cell, g.cells_x, g.cells_y};
+  return PM_OK;
+}
+
+namespace {
+void Extend(pm_bounds* b, const double* xy, std::size_t vertices) {
+  for (std::size_t v = 0; v < vertices; ++v) {
+    b->min_x = xy[2 * v] < b->min_x ? xy[2 * v] : b->min_x;
+    b->max_x = xy[2 * v] > b->max_x ? xy[2 * v] : b->max_x;
+    b->min_y = xy[2 * v + 1] < b->min_y ? xy[2 * v + 1] : b->min_y;
+    b->max_y = xy[2 * v + 1] > b->max_y ? xy[2 * v + 1] : b->max_y;
+  }
+}
+constexpr pm_bounds kEmptyBounds = {1e308, 1e308, -1e308, -1e308};
+}  // namespace
+
+int pm_rig_pose_bounds(const pm_rig* rig, uint32_t pose, pm_bounds* out) {
+  if (!rig || !out || pose >= rig->rig.pose_count()) return PM_ERROR_INVALID_ARGUMENT;
+  *out = kEmptyBounds;
+  Extend(out, rig->rig.pose_positions(pose).data, rig->rig.vertex_count());
+  return PM_OK;
+}
+
+size_t pm_hull_bounds_workspace_size(const pm_rig* rig) {
+  if (!rig) return 0;
+  const posemorph::Rig& r = rig->rig;
+  return r.morph_workspace_size() + 2 * std::size_t(r.vertex_count()) + 2 * std::size_t(r.pose_count());
+}
+
+int pm_rig_hull_bounds(const pm_rig* rig, uint32_t samples, double* workspace, size_t workspace_capacity,
+                       pm_bounds* out) {
+  if (!rig || !out || !workspace || !Aligned(workspace) || samples < 2 || samples > 256 || !rig->rig.loaded())
+    return PM_ERROR_INVALID_ARGUMENT;
+  if (workspace_capacity < pm_hull_bounds_workspace_size(rig)) return PM_ERROR_BUFFER_TOO_SMALL;
+  const posemorph::Rig& r = rig->rig;
+  const std::size_t N = r.pose_count(), V = r.vertex_count();
+  double* work = workspace;
+  double* x = work + r.morph_workspace_size();
+  double* w = x + 2 * V;
+  double* ws = w + N;
+  *out = kEmptyBounds;
+  for (std::uint32_t i = 0; i < N; ++i) Extend(out, r.pose_positions(i).data, V);
+  // Frames at points of the hull: every triangle (p_0, p_a, p_b) of pose
+  // points covers the hull, so barycentric samples of each cover it too.
+  const posemorph::Span<const double> p = r.pose_points();
+  for (std::uint32_t a = 1; a < N; ++a)
+    for (std::uint32_t b = a; b < N; ++b)
+      for (std::uint32_t i = 0; i <= samples; ++i)
+        for (std::uint32_t j = 0; i + j <= samples; ++j) {
+          const double u = double(i) / samples, v = double(j) / samples, t = 1 - u - v;
+          posemorph::WeightsJob wj;
+          wj.rig = &r;
+          wj.x = t * p[0] + u * p[2 * a] + v * p[2 * b];
+          wj.y = t * p[1] + u * p[2 * a + 1] + v * p[2 * b + 1];
+          wj.raw = {w, N}, wj.shear = {ws, N};
+          posemorph::MorphJob mj;
+          mj.rig = &r, mj.weights = {w, N}, mj.shear_weights = {ws, N};
+          mj.workspace = {work, r.morph_workspace_size()}, mj.positions = {x, 2 * V};
+          if (!wj.Run() || !mj.Run()) return PM_ERROR_INVALID_ARGUMENT;
+          Extend(out, x, V);
+        }
+  return PM_OK;
+}
+
+int pm_rig_checksum(const pm_rig* rig, uint32_t* crc) {
+  if (!rig || !crc || !rig->rig.loaded()) return PM_ERROR_INVALID_ARGUMENT;
+  *crc = rig->rig.checksum();
+  return PM_OK;
+}
+
+int pm_rig_format_version(const pm_rig* rig, uint32_t* major, uint32_t* minor) {
+  if (!rig || !major || !minor || !rig->rig.loaded()) return PM_ERROR_INVALID_ARGUMENT;
+  *major = rig->rig.format_major();
+  *minor = rig->rig.format_minor();
+  return PM_OK;
+}
+
 int pm_rig_pose_point(const pm_rig* rig, uint32_t pose, double* x, double* y) {
   if (!rig || !x || !y || pose >= rig->rig.pose_count()) return PM_ERROR_INVALID_ARGUMENT;
   *x = rig->rig.pose_points()[2 * pose];
@@ -140,16 +256,17 @@ int pm_rig_pose_point(const pm_rig* rig, uint32_t pose, double* x, double* y) {
 }
 
 int pm_weights(const pm_rig* rig, double x, double y, double sigma, int shear_limit, double* raw, double* shear,
-               double* texture) {
-  if (!rig) return PM_ERROR_INVALID_ARGUMENT;
+               double* texture, size_t capacity) {
+  if (!rig || !raw || !Aligned(raw) || !Aligned(shear) || !Aligned(texture)) return PM_ERROR_INVALID_ARGUMENT;
   const std::size_t n = rig->rig.pose_count();
+  if (capacity < n) return PM_ERROR_BUFFER_TOO_SMALL;
   posemorph::WeightsJob job;
   job.rig = &rig->rig;
   job.x = x;
   job.y = y;
   job.sigma = sigma;
   job.shear_limit = shear_limit != 0;
-  job.raw = {raw, raw ? n : 0};
+  job.raw = {raw, n};
   job.shear = {shear, shear ? n : 0};
   job.texture = {texture, texture ? n : 0};
   return job.Run() ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
@@ -158,10 +275,12 @@ int pm_weights(const pm_rig* rig, double x, double y, double sigma, int shear_li
 size_t pm_morph_workspace_size(const pm_rig* rig) { return rig ? rig->rig.morph_workspace_size() : 0; }
 
 int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weights, int linear, double* workspace,
-             double* positions, float* positions_f32) {
-  if (!rig) return PM_ERROR_INVALID_ARGUMENT;
+             size_t workspace_capacity, double* positions, float* positions_f32, size_t positions_capacity) {
+  if (!rig || !Aligned(workspace) || !Aligned(positions) || !Aligned(positions_f32)) return PM_ERROR_INVALID_ARGUMENT;
   const posemorph::Rig& r = rig->rig;
   const std::size_t n = r.pose_count(), v2 = 2 * std::size_t(r.vertex_count());
+  if ((workspace && workspace_capacity < r.morph_workspace_size()) || positions_capacity < v2)
+    return PM_ERROR_BUFFER_TOO_SMALL;
   posemorph::MorphJob job;
   job.rig = &r;
   job.weights = {weights, n};
@@ -176,11 +295,15 @@ int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weigh
 size_t pm_batch_workspace_size(const pm_rig* rig) { return rig ? rig->rig.batch_workspace_size() : 0; }
 
 int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const double* shear_weights,
-                   double* workspace, double* positions, float* positions_f32) {
-  if (!rig) return PM_ERROR_INVALID_ARGUMENT;
+                   double* workspace, size_t workspace_capacity, double* positions, float* positions_f32,
+                   size_t positions_capacity) {
+  if (!rig || !Aligned(workspace) || !Aligned(positions) || !Aligned(positions_f32)) return PM_ERROR_INVALID_ARGUMENT;
   const posemorph::Rig& r = rig->rig;
   const std::size_t n = r.pose_count(), v2 = 2 * std::size_t(r.vertex_count());
   if (count > (std::size_t(-1) / 2) / (v2 + n)) return PM_ERROR_INVALID_ARGUMENT;
+  if (count && ((workspace && workspace_capacity < r.batch_workspace_size()) ||
+                ((positions || positions_f32) && positions_capacity < count * v2)))
+    return PM_ERROR_BUFFER_TOO_SMALL;
   posemorph::MorphBatchJob job;
   job.rig = &r;
   job.count = count;

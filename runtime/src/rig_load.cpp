@@ -152,6 +152,9 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   default_sigma_ = std::exchange(other.default_sigma_, 0);
   rig_size_ = std::exchange(other.rig_size_, 0);
   kernels_ = std::exchange(other.kernels_, nullptr);
+  checksum_ = std::exchange(other.checksum_, 0);
+  format_major_ = std::exchange(other.format_major_, 0);
+  format_minor_ = std::exchange(other.format_minor_, 0);
   return *this;
 }
 
@@ -565,6 +568,9 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   rig.default_sigma_ = meta.default_sigma;
   rig.rig_size_ = meta.rig_size;
   rig.kernels_ = kernels;
+  rig.checksum_ = ReadU32(bytes + fmt::kOffChecksum);
+  rig.format_major_ = major;
+  rig.format_minor_ = ReadU16(bytes + fmt::kOffVersionMinor);
   *out = std::move(rig);
   return true;
 }

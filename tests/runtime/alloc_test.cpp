@@ -111,8 +111,8 @@ TEST_CASE("the C API evaluates frames without allocating either") {
   g_counting = true;
   int status = 0;
   for (int frame = 0; frame < 200; ++frame) {
-    status |= pm_weights(rig, -1.5 + frame * 0.015, 0.1, 0.5, 1, raw.data(), shear.data(), nullptr);
-    status |= pm_morph(rig, raw.data(), shear.data(), 0, work.data(), x.data(), nullptr);
+    status |= pm_weights(rig, -1.5 + frame * 0.015, 0.1, 0.5, 1, raw.data(), shear.data(), nullptr, raw.size());
+    status |= pm_morph(rig, raw.data(), shear.data(), 0, work.data(), work.size(), x.data(), nullptr, x.size());
   }
   g_counting = false;
   CHECK(status == PM_OK);

@@ -91,8 +91,8 @@ TEST_CASE("the C API loads in place too: handle and arrays in the caller's memor
   pm_rig_info info;
   pm_rig_get_info(rig, &info);
   std::vector<double> w(info.pose_count), ws(info.pose_count), work(pm_morph_workspace_size(rig)), x(2 * info.vertex_count);
-  CHECK(pm_weights(rig, 0.3, -0.2, 0, 1, w.data(), ws.data(), nullptr) == PM_OK);
-  CHECK(pm_morph(rig, w.data(), ws.data(), 0, work.data(), x.data(), nullptr) == PM_OK);
+  CHECK(pm_weights(rig, 0.3, -0.2, 0, 1, w.data(), ws.data(), nullptr, w.size()) == PM_OK);
+  CHECK(pm_morph(rig, w.data(), ws.data(), 0, work.data(), work.size(), x.data(), nullptr, x.size()) == PM_OK);
   const Rig owned = LoadTestRig("snake");
   const Weights ow = WeightsAt(owned, 0.3, -0.2);
   const std::vector<double> ox = Morph(owned, ow.raw, ow.shear);

@@ -1,8 +1,20 @@
 // SPDX-License-Identifier: MIT
 /* posemorph C API: load a baked rig, evaluate poses. C99, no allocation
- * after pm_rig_load, nothing thrown. Every function returning int returns
- * PM_OK (0) on success. Thread-safety: a loaded pm_rig is immutable and may
- * be evaluated from many threads at once, each with its own workspace. */
+ * after pm_rig_load (none at all with pm_rig_load_in_place), nothing thrown.
+ * Every function returning int returns PM_OK (0) on success. Every function
+ * that writes into a caller's buffer takes its capacity (in elements) and
+ * refuses a buffer that is too short (PM_ERROR_BUFFER_TOO_SMALL) or
+ * misaligned for its type (PM_ERROR_INVALID_ARGUMENT), writing nothing.
+ * Thread-safety: a loaded pm_rig is immutable and may be evaluated from many
+ * threads at once, each with its own workspace.
+ *
+ * Conventions. Positions are in rig units: the units of the rig description
+ * (for poses made from drawings, drawing pixels), x to the right and y up,
+ * interleaved x0, y0, x1, y1, ... Triangles are counter-clockwise in pose 0.
+ * uvs index pose i's own drawing (pm_rig_pose_image): u to the right, v down,
+ * both 0..1 over the drawing's canvas. The renderer blends the drawings of
+ * the poses with the texture weights in premultiplied alpha:
+ * colour = sum_i texture[i] * premultiplied(drawing_i(uv_i)). */
 #ifndef POSEMORPH_H
 #define POSEMORPH_H
 
@@ -26,8 +38,15 @@ enum {
   PM_ERROR_BAD_VALUE = 7,
   PM_ERROR_TOO_LARGE = 8,
   PM_ERROR_OUT_OF_MEMORY = 9,
-  PM_ERROR_UNSUPPORTED_ISA = 10 /* POSEMORPH_ISA names a path this build or CPU cannot run */
+  PM_ERROR_UNSUPPORTED_ISA = 10, /* POSEMORPH_ISA names a path this build or CPU cannot run */
+  PM_ERROR_BUFFER_TOO_SMALL = 11 /* a caller's buffer is shorter than the rig needs */
 };
+
+#define PM_VERSION_MAJOR 0
+#define PM_VERSION_MINOR 2
+#define PM_VERSION_PATCH 0
+/* "MAJOR.MINOR.PATCH" of the library actually linked. */
+PM_API const char* pm_version(void);
 
 typedef struct pm_rig pm_rig;
 
@@ -63,32 +82,78 @@ PM_API int pm_rig_memory_size(const void* bytes, size_t size, size_t* needed, pm
 PM_API int pm_rig_load_in_place(const void* bytes, size_t size, void* memory, size_t memory_size, pm_rig** out_rig,
                                 pm_error* err);
 PM_API void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info);
+/* The rig's own arrays, read-only, valid while the rig is. */
 PM_API const uint32_t* pm_rig_triangles(const pm_rig* rig);            /* 3 x triangle_count */
 PM_API const float* pm_rig_uvs(const pm_rig* rig, uint32_t pose);     /* 2 x vertex_count, or NULL */
 PM_API const double* pm_rig_pose_positions(const pm_rig* rig, uint32_t pose); /* 2 x vertex_count, or NULL */
 PM_API int pm_rig_pose_point(const pm_rig* rig, uint32_t pose, double* x, double* y);
 
-/* Weights at a pose-space point. raw is required (pose_count doubles);
- * shear and texture may be NULL. sigma in [0,1] sharpens the texture blend. */
+/* A pose's name, its drawing reference (as the bake wrote it; may be empty),
+ * a path's name: copied with a terminating NUL into out (capacity bytes).
+ * *length (if given) receives the length without the NUL, also when the
+ * buffer is too small, so a caller can size it. */
+PM_API int pm_rig_pose_name(const pm_rig* rig, uint32_t pose, char* out, size_t capacity, size_t* length);
+PM_API int pm_rig_pose_image(const pm_rig* rig, uint32_t pose, char* out, size_t capacity, size_t* length);
+PM_API int pm_rig_path_name(const pm_rig* rig, uint32_t path, char* out, size_t capacity, size_t* length);
+
+/* The pose-space grid the weights are baked on: a UI maps its pad to
+ * [min_x, max_x] x [min_y, max_y]; points beyond are clamped to it. */
+typedef struct pm_grid_info {
+  double min_x, min_y, max_x, max_y;
+  double cell;                 /* square cell edge */
+  uint32_t cells_x, cells_y;
+} pm_grid_info;
+PM_API int pm_rig_grid(const pm_rig* rig, pm_grid_info* out);
+
+/* Axis-aligned bounds in rig units. */
+typedef struct pm_bounds {
+  double min_x, min_y, max_x, max_y;
+} pm_bounds;
+/* The bounds of one base pose. */
+PM_API int pm_rig_pose_bounds(const pm_rig* rig, uint32_t pose, pm_bounds* out);
+/* The bounds of the frames over the pose hull (the convex hull of the pose
+ * points): the base poses and frames at samples^2 points spread over the
+ * hull (samples in 2..256; in-betweens between samples may reach a little
+ * further: add a margin). Evaluates frames: workspace holds
+ * pm_hull_bounds_workspace_size() doubles. */
+PM_API size_t pm_hull_bounds_workspace_size(const pm_rig* rig);
+PM_API int pm_rig_hull_bounds(const pm_rig* rig, uint32_t samples, double* workspace, size_t workspace_capacity,
+                              pm_bounds* out);
+
+/* The CRC-32 of the file and its format version: network peers compare
+ * them (after a handshake) to know they hold the same rig. */
+PM_API int pm_rig_checksum(const pm_rig* rig, uint32_t* crc);
+PM_API int pm_rig_format_version(const pm_rig* rig, uint32_t* major, uint32_t* minor);
+
+/* Weights at a pose-space point. raw is required; shear and texture may be
+ * NULL; each given array holds `capacity` doubles, at least pose_count.
+ * sigma in [0,1] sharpens the texture blend. */
 PM_API int pm_weights(const pm_rig* rig, double x, double y, double sigma, int shear_limit,
-               double* raw, double* shear, double* texture);
+               double* raw, double* shear, double* texture, size_t capacity);
 
 /* Doubles of workspace pm_morph needs. */
 PM_API size_t pm_morph_workspace_size(const pm_rig* rig);
 
-/* Vertex positions (2 x vertex_count, interleaved) for raw and shear weights.
- * positions_f32 may be NULL. linear != 0 blends vertex positions linearly. */
+/* Vertex positions (2 x vertex_count, interleaved) for raw and shear weights
+ * (pose_count each). workspace: workspace_capacity doubles, at least
+ * pm_morph_workspace_size. positions (required) and positions_f32 (may be
+ * NULL) hold positions_capacity elements each, at least 2 x vertex_count.
+ * linear != 0 blends vertex positions linearly. */
 PM_API int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weights, int linear,
-             double* workspace, double* positions, float* positions_f32);
+                    double* workspace, size_t workspace_capacity, double* positions, float* positions_f32,
+                    size_t positions_capacity);
 
 /* Many characters sharing one rig: `count` sets of pose_count weights (raw,
  * and shear-limited) in, `count` position arrays out (either may be NULL,
  * not both). Equal to pm_morph per character, bit for bit. To use several
  * threads, call it per thread on disjoint ranges, each with its own
- * workspace of pm_batch_workspace_size() doubles. */
+ * workspace (workspace_capacity doubles, at least pm_batch_workspace_size).
+ * Each given position array holds positions_capacity elements, at least
+ * count x 2 x vertex_count. */
 PM_API size_t pm_batch_workspace_size(const pm_rig* rig);
 PM_API int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const double* shear_weights,
-                   double* workspace, double* positions, float* positions_f32);
+                   double* workspace, size_t workspace_capacity, double* positions, float* positions_f32,
+                   size_t positions_capacity);
 
 /* Index of the named path or -1; point on a path at a time in seconds. */
 PM_API int pm_path_find(const pm_rig* rig, const char* name);

@@ -118,6 +118,11 @@ class PM_API Rig {
   // Doubles a MorphBatchJob needs as workspace, whatever its character count.
   std::size_t batch_workspace_size() const;
   std::size_t arena_bytes() const { return arena_size_; }
+  // The CRC-32 stored in the file and its format version: two network peers
+  // compare them to know they hold the same rig.
+  std::uint32_t checksum() const { return checksum_; }
+  std::uint16_t format_major() const { return format_major_; }
+  std::uint16_t format_minor() const { return format_minor_; }
   // The kernel path chosen at load (never kAuto once loaded).
   Isa isa() const;
   // Internal: the chosen path's kernels, for the jobs.
@@ -140,6 +145,8 @@ class PM_API Rig {
   Factor factor_;
   double default_sigma_ = 0, rig_size_ = 0;
   const detail::KernelTable* kernels_ = nullptr;
+  std::uint32_t checksum_ = 0;
+  std::uint16_t format_major_ = 0, format_minor_ = 0;
 };
 
 // Validates every byte and builds a Rig. On failure returns false, fills err
