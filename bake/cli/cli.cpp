@@ -201,6 +201,10 @@ int Info(const std::vector<std::string>& a, std::size_t from, std::ostream& out)
     out << "  pose " << i << " '" << std::string(rig.pose_name(i).data, rig.pose_name(i).size) << "' at ("
         << rig.pose_points()[2 * i] << ", " << rig.pose_points()[2 * i + 1] << ")";
     if (rig.pose_image(i).size) out << " image " << std::string(rig.pose_image(i).data, rig.pose_image(i).size);
+    const DrawingCanvas canvas = rig.pose_canvas(i);
+    if (canvas.width > 0)
+      out << " canvas " << canvas.width << " x " << canvas.height << " origin at (" << canvas.pivot_x << ", "
+          << canvas.pivot_y << ")";
     out << "\n";
   }
   for (std::uint32_t p = 0; p < rig.path_count(); ++p) {

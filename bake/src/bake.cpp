@@ -152,6 +152,13 @@ std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
   w.Add(fmt::kPaths, path_table);
   w.AddArray(fmt::kPathKeys, keys);
   if (has_uvs) w.AddArray(fmt::kUVs, uvs);
+  std::vector<double> canvases;
+  bool any_canvas = false;
+  for (const auto& p : rig.poses) {
+    canvases.insert(canvases.end(), {p.canvas_size.x(), p.canvas_size.y(), p.canvas_pivot.x(), p.canvas_pivot.y()});
+    any_canvas |= p.canvas_size.x() > 0;
+  }
+  if (any_canvas) w.AddArray(fmt::kCanvases, canvases);
   std::vector<unsigned char> bytes = w.Finish();
 
   // Check what we wrote with the runtime that will read it: it loads, and

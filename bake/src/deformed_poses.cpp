@@ -88,6 +88,8 @@ void ResolveDeformedPoses(RigDescription& rig) {
       }
       pose.image = from.image;
       pose.uvs = from.uvs;
+      pose.canvas_size = from.canvas_size;
+      pose.canvas_pivot = from.canvas_pivot;
       done[i] = 1;
       --remaining;
       progress = true;

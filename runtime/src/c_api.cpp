@@ -235,6 +235,13 @@ int pm_rig_hull_bounds(const pm_rig* rig, uint32_t samples, double* workspace, s
   return PM_OK;
 }
 
+int pm_rig_pose_canvas(const pm_rig* rig, uint32_t pose, pm_canvas* out) {
+  if (!rig || !out || pose >= rig->rig.pose_count()) return PM_ERROR_INVALID_ARGUMENT;
+  const posemorph::DrawingCanvas c = rig->rig.pose_canvas(pose);
+  *out = pm_canvas{c.width, c.height, c.pivot_x, c.pivot_y};
+  return PM_OK;
+}
+
 int pm_rig_checksum(const pm_rig* rig, uint32_t* crc) {
   if (!rig || !crc || !rig->rig.loaded()) return PM_ERROR_INVALID_ARGUMENT;
   *crc = rig->rig.checksum();

@@ -145,6 +145,7 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   shears_ = std::exchange(other.shears_, {});
   blend_blocks_ = std::exchange(other.blend_blocks_, {});
   uvs_ = std::exchange(other.uvs_, {});
+  canvases_ = std::exchange(other.canvases_, {});
   strings_ = std::exchange(other.strings_, {});
   paths_ = std::exchange(other.paths_, {});
   grid_ = std::exchange(other.grid_, {});
@@ -176,6 +177,12 @@ StringView Rig::pose_name(std::uint32_t pose) const {
 
 StringView Rig::pose_image(std::uint32_t pose) const {
   return pose < pose_count_ ? strings_[pose_count_ + pose] : StringView{};
+}
+
+DrawingCanvas Rig::pose_canvas(std::uint32_t pose) const {
+  if (pose >= pose_count_ || canvases_.empty()) return {};
+  const double* c = canvases_.data + 4 * std::size_t(pose);
+  return {c[0], c[1], c[2], c[3]};
 }
 
 PathView Rig::path(std::uint32_t index) const { return index < path_count_ ? paths_[index] : PathView{}; }
@@ -356,6 +363,8 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
       !parser.Get(fmt::kPaths, P * fmt::kPathEntrySize, &paths))
     return false;
   if (has_uvs && !parser.Get(fmt::kUVs, N * V * 8, &uvs)) return false;
+  const unsigned char* canvases = nullptr;
+  if (parser.table.Find(fmt::kCanvases) && !parser.Get(fmt::kCanvases, N * 32, &canvases)) return false;
   if (!has_uvs && parser.table.Find(fmt::kUVs))
     return Fail(err, ErrorCode::kBadLayout, "UVS section present but META says none");
   std::uint64_t key_total = 0;
@@ -412,6 +421,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
     rig.factor_.inv_diagonal = CopyInto<double>(arena, dinv, n);
     rig.grid_.weights = CopyInto<double>(arena, wgrid, grid_vertices * N);
     if (has_uvs) rig.uvs_ = CopyInto<float>(arena, uvs, N * V * 2);
+    if (canvases) rig.canvases_ = CopyInto<double>(arena, canvases, N * 4);
     const Span<const char> chars = CopyInto<char>(arena, strs, strings_section->size);
     StringView* strings = arena.Take<StringView>(string_count);
     PathView* path_views = arena.Take<PathView>(P);
@@ -549,8 +559,12 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
         !CheckFinite(rig.angles_, "angles", err, fmt::kMaxAngle) ||
         !CheckFinite(rig.shears_, "stretches", err, fmt::kMaxStretch) ||
         !CheckFinite(rig.factor_.value, "factor values", err) ||
-        !CheckFinite(rig.grid_.weights, "weight grid", err, fmt::kMaxGridWeight))
+        !CheckFinite(rig.grid_.weights, "weight grid", err, fmt::kMaxGridWeight) ||
+        !CheckFinite(rig.canvases_, "canvases", err))
       return false;
+    for (std::size_t i = 0; i < rig.canvases_.size; i += 4)
+      if (rig.canvases_[i] < 0 || rig.canvases_[i + 1] < 0)
+        return Fail(err, ErrorCode::kBadValue, "canvas of pose %zu has a negative size", i / 4);
     for (std::size_t i = 0; i < rig.uvs_.size; ++i)
       if (!std::isfinite(rig.uvs_[i])) return Fail(err, ErrorCode::kBadValue, "uv[%zu] is not finite", i);
   }

@@ -158,3 +158,30 @@ TEST_CASE("the C API refuses to load over a live handle instead of leaking it") 
   CHECK(info.vertex_count == 4);
   pm_rig_free(rig);
 }
+
+TEST_CASE("drawn rigs carry each pose's canvas; a negative canvas is refused") {
+  const Rig pip = LoadTestRig("pip");
+  for (std::uint32_t i = 0; i < pip.pose_count(); ++i) {
+    const DrawingCanvas c = pip.pose_canvas(i);
+    CHECK(c.width == 256);  // the PNGs rasterised from Pip's SVGs
+    CHECK(c.height == 256);
+    CHECK(c.pivot_x == 0);  // rig units are PNG pixels, y up, from its corner
+    CHECK(c.pivot_y == 0);
+  }
+  // The uvs follow: u = (x + pivot_x) / width, v = (pivot_y - y) / height.
+  const Span<const float> uv = pip.uvs(0);
+  const Span<const double> xy = pip.pose_positions(0);
+  CHECK(std::fabs(uv[0] - float(xy[0] / 256)) < 1e-6);
+  CHECK(std::fabs(uv[1] - float(-xy[1] / 256)) < 1e-6);
+  const Rig snake = LoadTestRig("snake");  // a mesh rig: no drawings
+  CHECK(snake.pose_canvas(0).width == 0);
+
+  std::vector<unsigned char> bytes = TestRigBytes("pip");
+  const std::size_t at = SectionOffset(bytes, format::kCanvases);
+  REQUIRE(at != 0);
+  bytes = WithDouble(bytes, at + 8, -1);  // pose 0's height
+  Rig rig;
+  Error err;
+  CHECK_FALSE(LoadRig(bytes.data(), bytes.size(), &rig, &err));
+  CHECK(std::string(err.message).find("canvas of pose 0") != std::string::npos);
+}

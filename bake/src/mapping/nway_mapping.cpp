@@ -246,6 +246,12 @@ void MapDrawings(RigDescription& rig) {
       pose.uvs.push_back(uv.cast<float>());
     }
     if (pose.image.empty()) pose.image = pose.drawing;
+    if (d.from_drawing) {
+      // Rig coordinates are drawing units with y flipped: the rig origin is
+      // the drawing's (0, 0), at -origin on the canvas.
+      pose.canvas_size = d.size;
+      pose.canvas_pivot = Eigen::Vector2d(0.0 - d.origin.x(), 0.0 - d.origin.y());  // no -0
+    }
   }
   report.mapped = true;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

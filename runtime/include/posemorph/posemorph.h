@@ -120,6 +120,15 @@ PM_API size_t pm_hull_bounds_workspace_size(const pm_rig* rig);
 PM_API int pm_rig_hull_bounds(const pm_rig* rig, uint32_t samples, double* workspace, size_t workspace_capacity,
                               pm_bounds* out);
 
+/* Pose i's drawing: canvas size and where the rig origin sits on it (x
+ * right, y down), in drawing units (PNG pixels); all zero when the pose has
+ * no drawing or the rig predates format 1.1. One rig unit is one drawing
+ * unit, y up. */
+typedef struct pm_canvas {
+  double width, height, pivot_x, pivot_y;
+} pm_canvas;
+PM_API int pm_rig_pose_canvas(const pm_rig* rig, uint32_t pose, pm_canvas* out);
+
 /* The CRC-32 of the file and its format version: network peers compare
  * them (after a handshake) to know they hold the same rig. */
 PM_API int pm_rig_checksum(const pm_rig* rig, uint32_t* crc);

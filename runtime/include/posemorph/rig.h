@@ -61,6 +61,15 @@ struct Factor {
   Span<const std::uint16_t> row_col2_16, col_row2_16;
 };
 
+// A pose's drawing: its canvas size and where the rig origin (0, 0) sits on
+// the canvas (x right, y down), in drawing units (pixels for a PNG). A rig
+// unit is a drawing unit, y up. All zero when the pose has no drawing or the
+// rig predates format 1.1.
+struct DrawingCanvas {
+  double width = 0, height = 0;
+  double pivot_x = 0, pivot_y = 0;
+};
+
 struct LoadOptions {
   // Tests turn this off to prove the structural checks alone keep corrupted
   // bytes from crashing the loader; applications leave it on.
@@ -104,6 +113,7 @@ class PM_API Rig {
   Span<const float> uvs(std::uint32_t pose) const;                // 2 x V, or empty
   StringView pose_name(std::uint32_t pose) const;
   StringView pose_image(std::uint32_t pose) const;  // reference as written by the bake; may be empty
+  DrawingCanvas pose_canvas(std::uint32_t pose) const;
   PathView path(std::uint32_t index) const;
   // Index of the path with this name, or -1.
   int FindPath(const char* name) const;
@@ -139,6 +149,7 @@ class PM_API Rig {
   Span<const double> pose_positions_, pose_points_, pose_centroids_, vertex_masses_;
   Span<const double> gradients_, angles_, shears_, blend_blocks_;
   Span<const float> uvs_;
+  Span<const double> canvases_;  // 4N, or empty
   Span<const StringView> strings_;  // N names, N images, P path names
   Span<const PathView> paths_;
   PoseSpaceGrid grid_;

@@ -9,7 +9,7 @@ namespace posemorph::format {
 
 constexpr unsigned char kMagic[8] = {'P', 'M', 'R', 'I', 'G', '\r', '\n', 0x1a};
 constexpr std::uint16_t kVersionMajor = 1;
-constexpr std::uint16_t kVersionMinor = 0;
+constexpr std::uint16_t kVersionMinor = 1;  // 1.1 added the optional CANV section
 constexpr std::uint32_t kHeaderSize = 64;
 constexpr std::uint32_t kSectionEntrySize = 24;
 constexpr std::uint32_t kSectionAlignment = 16;
@@ -49,6 +49,10 @@ constexpr std::uint32_t kStrings = Tag('S', 'T', 'R', 'S');
 constexpr std::uint32_t kPaths = Tag('P', 'A', 'T', 'H');
 constexpr std::uint32_t kPathKeys = Tag('P', 'K', 'E', 'Y');
 constexpr std::uint32_t kUVs = Tag('U', 'V', 'S', ' ');
+// Optional (format 1.1): per pose the drawing's canvas width and height and
+// the rig origin's place on it (x, y down), in drawing units; zeros when the
+// pose has no drawing. N x 4 doubles.
+constexpr std::uint32_t kCanvases = Tag('C', 'A', 'N', 'V');
 
 // META section: 8 x u32 then 5 x f64, 72 bytes.
 struct Meta {

@@ -42,6 +42,9 @@ struct PoseDescription {
   std::string drawing_path;                 // resolved against the description's folder
   std::vector<Eigen::Vector2d> outline;     // given directly (rig coordinates, y up)
   std::vector<Eigen::Vector2d> landmarks;   // corresponding boundary points; the first is the start point
+  // The drawing's canvas in drawing units, and where the rig origin sits on
+  // it (canvas-relative, y down), set by MapDrawings; zero when unknown.
+  Eigen::Vector2d canvas_size = Eigen::Vector2d::Zero(), canvas_pivot = Eigen::Vector2d::Zero();
 };
 
 // How drawings become meshes (bake/RIG_DESCRIPTION.md, "mapping").
