@@ -5,7 +5,8 @@
 #   1. cmake --install, then a separate CMake project with find_package
 #   2. a C99 program built with pkg-config --static against the same install
 #   3. a project that add_subdirectory()s the source tree with Eigen out of
-#      reach (-DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON) and no build type
+#      reach (-DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON) and no build type, and
+#      one that fetches the last commit with FetchContent
 #   4. BUILD_SHARED_LIBS=ON: the runtime tests against the shared library,
 #      its SONAME, what it exports, and the C and C++ consumers linked to it
 # Each consumer evaluates the same frame of the snake; all must print the
@@ -56,6 +57,12 @@ echo "  posemorph targets in the consumer's build: $targets (the runtime, nothin
 [ -f "$work/subdirectory/posemorph/runtime/libposemorph.a" ] || { echo "consumer-test: no runtime library built" >&2; exit 1; }
 if find "$work/subdirectory" -name 'libposemorph_bake*' | grep -q .; then echo "consumer-test: the bake was built" >&2; exit 1; fi
 check_frame add_subdirectory "$work/subdirectory/frame"
+
+echo "== FetchContent from this repository's last commit"
+quiet cmake -S tests/consumers/fetchcontent -B "$work/fetchcontent" -DPOSEMORPH_GIT="$root" \
+  -DPOSEMORPH_GIT_TAG="$(git rev-parse HEAD)" -DCMAKE_BUILD_TYPE=Release -DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON
+quiet cmake --build "$work/fetchcontent" -j"$jobs"
+check_frame FetchContent "$work/fetchcontent/frame"
 
 echo "== shared library"
 quiet cmake -S . -B "$work/shared" -DBUILD_SHARED_LIBS=ON -DPOSEMORPH_RUNTIME_ONLY=ON -DPOSEMORPH_BUILD_TESTS=ON \

@@ -185,3 +185,15 @@ TEST_CASE("drawn rigs carry each pose's canvas; a negative canvas is refused") {
   CHECK_FALSE(LoadRig(bytes.data(), bytes.size(), &rig, &err));
   CHECK(std::string(err.message).find("canvas of pose 0") != std::string::npos);
 }
+
+TEST_CASE("a format 1.0 rig (no CANV section) still loads") {
+  std::vector<unsigned char> bytes = TestRigBytes("snake");  // a mesh rig: written without CANV
+  REQUIRE(SectionOffset(bytes, format::kCanvases) == 0);
+  const std::uint16_t minor_zero = 0;
+  std::memcpy(bytes.data() + format::kOffVersionMinor, &minor_zero, 2);  // the header is outside the checksum
+  Rig rig;
+  Error err;
+  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
+  CHECK(rig.format_minor() == 0);
+  CHECK(rig.pose_canvas(0).width == 0);
+}
