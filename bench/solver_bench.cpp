@@ -212,6 +212,11 @@ void BM_CholmodSolve(benchmark::State& state) {
   Label(state, c.rig);
 }
 
+double Median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
 // Ratios measured in pairs: each iteration times a short burst of every
 // contender back to back, and the counters are the medians of the per-burst
 // ratios, so a machine that speeds up or slows down between bursts moves
@@ -244,13 +249,9 @@ void BM_PairedRatios(benchmark::State& state) {
     ++round;
     vs_eigen.push_back(t[0] / t[1]), vs_cholmod.push_back(t[0] / t[2]), frame_vs_eigen.push_back(t[3] / t[1]);
   }
-  auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  };
-  state.counters["solve_vs_eigen"] = median(vs_eigen);
-  state.counters["solve_vs_cholmod"] = median(vs_cholmod);
-  state.counters["frame_vs_eigen_solve"] = median(frame_vs_eigen);
+  state.counters["solve_vs_eigen"] = Median(vs_eigen);
+  state.counters["solve_vs_cholmod"] = Median(vs_cholmod);
+  state.counters["frame_vs_eigen_solve"] = Median(frame_vs_eigen);
   Label(state, c.rig);
 }
 
@@ -394,14 +395,10 @@ void BM_PathRatios(benchmark::State& state) {
     frame_ratio.push_back(t[0] / t[1]), crowd_ratio.push_back(t[2] / t[3]);
     vs_eigen.push_back(t[4] / t[5]), vs_cholmod.push_back(t[4] / t[6]);
   }
-  auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  };
-  state.counters["frame_vs_best"] = median(frame_ratio);
-  state.counters["crowd_vs_best"] = median(crowd_ratio);
-  state.counters["solve_vs_eigen"] = median(vs_eigen);
-  state.counters["solve_vs_cholmod"] = median(vs_cholmod);
+  state.counters["frame_vs_best"] = Median(frame_ratio);
+  state.counters["crowd_vs_best"] = Median(crowd_ratio);
+  state.counters["solve_vs_eigen"] = Median(vs_eigen);
+  state.counters["solve_vs_cholmod"] = Median(vs_cholmod);
   state.SetLabel(std::string("path=") + IsaName(isa) + " best=" + IsaName(BestIsa()));
 }
 
