@@ -30,7 +30,11 @@ void AnalysePoses(const RigDescription& rig, std::vector<double>& angles, std::v
   angles.assign(T * N, 0);
   shears.assign(T * N * 3, 0);
   std::vector<Eigen::Matrix2d> rest_inverse(T);
-  for (std::size_t t = 0; t < T; ++t) rest_inverse[t] = EdgeMatrix(rig.poses[0].vertices, rig.triangles[t]).inverse();
+  std::vector<double> rest_areas(T);
+  for (std::size_t t = 0; t < T; ++t) {
+    rest_inverse[t] = EdgeMatrix(rig.poses[0].vertices, rig.triangles[t]).inverse();
+    rest_areas[t] = std::abs(SignedArea(rig.poses[0].vertices, rig.triangles[t]));
+  }
   std::vector<double> pose_angles(T);
   for (std::size_t i = 0; i < N; ++i) {
     std::vector<Eigen::Matrix2d> S(T);
@@ -40,7 +44,7 @@ void AnalysePoses(const RigDescription& rig, std::vector<double>& angles, std::v
       pose_angles[t] = split.alpha;
       S[t] = split.S;
     }
-    UnwrapAngles(neighbours, pose_angles);
+    UnwrapAngles(neighbours, rest_areas, pose_angles);
     for (std::size_t t = 0; t < T; ++t) {
       angles[t * N + i] = pose_angles[t];
       shears[(t * N + i) * 3 + 0] = S[t](0, 0);

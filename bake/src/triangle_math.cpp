@@ -45,17 +45,24 @@ std::vector<std::vector<std::uint32_t>> EdgeNeighbours(const Triangles& triangle
   return out;
 }
 
-void UnwrapAngles(const std::vector<std::vector<std::uint32_t>>& neighbours, std::vector<double>& angles) {
+void UnwrapAngles(const std::vector<std::vector<std::uint32_t>>& neighbours, const std::vector<double>& areas,
+                  std::vector<double>& angles) {
   const double two_pi = 2 * M_PI;
   std::vector<char> visited(angles.size(), 0);
+  std::vector<std::uint32_t> part;
   std::deque<std::uint32_t> queue;
   for (std::uint32_t seed = 0; seed < angles.size(); ++seed) {
     if (visited[seed]) continue;
+    // Relative unwrapping over one edge-connected part: any walk gives the
+    // same angles up to one 2 pi k for the part (neighbours differ by less
+    // than pi in any pose without a fold).
     visited[seed] = 1;
     queue.push_back(seed);
+    part.clear();
     while (!queue.empty()) {
       const std::uint32_t t = queue.front();
       queue.pop_front();
+      part.push_back(t);
       for (std::uint32_t u : neighbours[t]) {
         if (visited[u]) continue;
         visited[u] = 1;
@@ -63,6 +70,14 @@ void UnwrapAngles(const std::vector<std::vector<std::uint32_t>>& neighbours, std
         queue.push_back(u);
       }
     }
+    // The part's 2 pi k: its area-weighted mean angle lands in (-pi, pi].
+    // Nothing here depends on which triangle the walk started from, so the
+    // in-betweens do not change when the triangle list is reordered.
+    double area = 0, sum = 0;
+    for (std::uint32_t t : part) area += areas[t], sum += areas[t] * angles[t];
+    const double mean = sum / area;
+    const double shift = -two_pi * std::ceil((mean - M_PI) / two_pi);
+    for (std::uint32_t t : part) angles[t] += shift;
   }
 }
 

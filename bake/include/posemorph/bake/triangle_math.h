@@ -29,8 +29,12 @@ PolarSplit PolarDecompose(const Eigen::Matrix2d& A);
 std::vector<std::vector<std::uint32_t>> EdgeNeighbours(const Triangles& triangles);
 
 // Adds 2 pi k to each angle so that it is closest to the angle of the
-// already-visited neighbour it was reached from (breadth-first from the lowest
-// triangle of each edge-connected part). Angles come in from atan2.
-void UnwrapAngles(const std::vector<std::vector<std::uint32_t>>& neighbours, std::vector<double>& angles);
+// already-visited neighbour it was reached from (breadth-first over each
+// edge-connected part), then one 2 pi k per part so that the part's mean
+// angle, weighted by `areas` (rest areas, positive), lies in (-pi, pi]: the
+// result does not depend on the order of the triangles (DESIGN.md section 3).
+// Angles come in from atan2.
+void UnwrapAngles(const std::vector<std::vector<std::uint32_t>>& neighbours, const std::vector<double>& areas,
+                  std::vector<double>& angles);
 
 }  // namespace posemorph::bake
