@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "posemorph/jobs.h"
+#include "posemorph/rig_format.h"
 
 namespace posemorph {
 namespace {
@@ -25,10 +26,8 @@ double ShearLimit(double w) { return Smoothstep(0.0, 1.0, w); }
 void TextureWeights(Span<const double> shear, double sigma, Span<double> out) {
   const std::size_t n = shear.size;
   sigma = std::isfinite(sigma) ? Clamp(sigma, 0, 1) : 0;
-  // The dominant pose, found before `out` (which may alias `shear`) is written.
-  std::size_t dominant = 0;
-  for (std::size_t i = 1; i < n; ++i)
-    if (shear[i] > shear[dominant]) dominant = i;
+  double input_sum = 0;
+  for (std::size_t i = 0; i < n; ++i) input_sum += shear[i];
   double sum = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const double w = shear[i];
@@ -38,8 +37,11 @@ void TextureWeights(Span<const double> shear, double sigma, Span<double> out) {
   if (sum > 1e-12) {
     for (std::size_t i = 0; i < n; ++i) out[i] /= sum;
   } else {
-    // Only at sigma = 1 with no weight above 1/2: the cut goes to the dominant pose.
-    for (std::size_t i = 0; i < n; ++i) out[i] = i == dominant ? 1.0 : 0.0;
+    // Only at (or within 1e-12 of) sigma = 1 with no weight above 1/2, where
+    // the formula is 0/0. Its limit as sigma -> 1 is the input itself (the
+    // sharpened term is 0 once sigma/2 passes every weight), so w'' stays
+    // continuous in sigma. `out` may alias `shear`: each entry reads its own.
+    for (std::size_t i = 0; i < n; ++i) out[i] = input_sum > 0 ? shear[i] / input_sum : 1.0 / double(n);
   }
 }
 
@@ -75,19 +77,20 @@ bool WeightsJob::Run() const {
     for (std::uint32_t k = 0; k < n; ++k) raw[k] = (1 - fy) * w00[k] + (fy - fx) * w01[k] + fx * w11[k];
   }
 
-  Span<double> limited = shear.size ? shear : texture;
-  if (limited.size) {
+  // phi(w) renormalised: always a convex combination. The shear output is
+  // these, or the raw weights when limiting is off; the texture weights are
+  // built from these either way, never from raw weights (which extrapolate
+  // below 0 and above 1).
+  if (shear.size || texture.size) {
+    double limited[format::kMaxPoses];
     double sum = 0;
-    for (std::uint32_t k = 0; k < n; ++k) {
-      limited[k] = shear_limit ? ShearLimit(raw[k]) : raw[k];
-      sum += limited[k];
-    }
-    if (shear_limit) {
-      // sum(raw) = 1 puts some raw weight at >= 1/N, so sum > 0 for any baked grid.
-      for (std::uint32_t k = 0; k < n; ++k) limited[k] = sum > 0 ? limited[k] / sum : 1.0 / n;
-    }
+    for (std::uint32_t k = 0; k < n; ++k) sum += (limited[k] = ShearLimit(raw[k]));
+    // sum(raw) = 1 puts some raw weight at >= 1/N, so sum > 0 for any baked grid.
+    for (std::uint32_t k = 0; k < n; ++k) limited[k] = sum > 0 ? limited[k] / sum : 1.0 / n;
+    if (shear.size)
+      for (std::uint32_t k = 0; k < n; ++k) shear[k] = shear_limit ? limited[k] : raw[k];
+    if (texture.size) TextureWeights(Span<const double>(limited, n), sigma, Span<double>(texture.data, n));
   }
-  if (texture.size) TextureWeights(Span<const double>(limited.data, n), sigma, Span<double>(texture.data, n));
   return true;
 }
 

@@ -22,7 +22,10 @@ struct PM_API WeightsJob {
   bool shear_limit = true;    // false: shear = raw
   Span<double> raw;           // N: sum 1, may be negative or > 1
   Span<double> shear;         // N, optional: phi(w) renormalised (phi = clamped smoothstep)
-  Span<double> texture;       // N, optional: sharpened cross-fade weights w''
+  // N, optional: sharpened cross-fade weights w'', always a convex
+  // combination (from phi(w), also when shear_limit is off) and continuous
+  // in sigma up to and including 1.
+  Span<double> texture;
 
   bool Validate() const;
   bool Run() const;
