@@ -3,7 +3,7 @@
 // plus load and bake time. Run: build/release/bin/posemorph-bench
 #include <benchmark/benchmark.h>
 
-#include "../runtime/src/ldlt_solve.h"
+#include "ldlt_solve.h"
 #include "posemorph/bake/bake.h"
 #include "posemorph/jobs.h"
 #include "posemorph/path.h"

@@ -14,8 +14,8 @@
 #include <thread>
 #include <tuple>
 
-#include "../runtime/src/kernels/kernel_table.h"
-#include "../runtime/src/ldlt_solve.h"
+#include "kernels/kernel_table.h"
+#include "ldlt_solve.h"
 #include "posemorph/bake/arap_system.h"
 #include "posemorph/bake/bake.h"
 #include "posemorph/jobs.h"

@@ -16,7 +16,7 @@ jobs=$(nproc)
 targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=(aarch64 windows wasm)
 
-common=(-DPOSEMORPH_RUNTIME_ONLY=ON -DCMAKE_BUILD_TYPE=Release -DPOSEMORPH_TEST_RIG_FOLDER="$rigs")
+common=(-DPOSEMORPH_RUNTIME_ONLY=ON -DCMAKE_BUILD_TYPE=Release -DPOSEMORPH_TEST_RIG_FOLDER="$rigs" -DPOSEMORPH_WERROR=ON)
 for target in "${targets[@]}"; do
   echo "== $target"
   dir=build/cross-$target

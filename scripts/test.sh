@@ -24,7 +24,7 @@ fi
 
 build() {
   echo "== $1: build"
-  cmake --preset "$1" >/dev/null
+  cmake --preset "$1" -DPOSEMORPH_WERROR=ON >/dev/null  # warnings fail CI
   cmake --build --preset "$1" -j"$jobs"
 }
 

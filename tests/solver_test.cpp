@@ -5,7 +5,7 @@
 #include <cstring>
 #include <random>
 
-#include "../runtime/src/ldlt_solve.h"
+#include "ldlt_solve.h"
 #include "test_support.h"
 
 using namespace posemorph;

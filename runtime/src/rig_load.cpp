@@ -517,13 +517,13 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
     std::memcpy(row_fill, row_start, n * sizeof(std::uint32_t));
     for (std::uint64_t j = 0; j < n; ++j)
       for (std::uint32_t q = col[j]; q < col[j + 1]; ++q) {
-        const std::uint32_t at = row_fill[rig.factor_.row[q]]++;
-        row_value[at] = rig.factor_.value[q];
+        const std::uint32_t slot = row_fill[rig.factor_.row[q]]++;
+        row_value[slot] = rig.factor_.value[q];
         if (narrow) {
-          row_col2_16[at] = std::uint16_t(2 * j);
+          row_col2_16[slot] = std::uint16_t(2 * j);
           col_row2_16[q] = std::uint16_t(2 * rig.factor_.row[q]);
         } else {
-          row_col2[at] = 2 * std::uint32_t(j);
+          row_col2[slot] = 2 * std::uint32_t(j);
           col_row2[q] = 2 * rig.factor_.row[q];  // < 2n < 2^23: no overflow
         }
       }
@@ -532,11 +532,11 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
     std::memset(blend, 0, blocks * 4 * N * 8 * sizeof(double));
     for (std::uint64_t t = 0; t < T; ++t)
       for (std::uint64_t i = 0; i < N; ++i) {
-        double* at = blend + ((t / 8) * N + i) * 32 + t % 8;
-        at[0] = rig.angles_[t * N + i];
-        at[8] = rig.shears_[(t * N + i) * 3];
-        at[16] = rig.shears_[(t * N + i) * 3 + 1];
-        at[24] = rig.shears_[(t * N + i) * 3 + 2];
+        double* lane = blend + ((t / 8) * N + i) * 32 + t % 8;
+        lane[0] = rig.angles_[t * N + i];
+        lane[8] = rig.shears_[(t * N + i) * 3];
+        lane[16] = rig.shears_[(t * N + i) * 3 + 1];
+        lane[24] = rig.shears_[(t * N + i) * 3 + 2];
       }
     rig.blend_blocks_ = {blend, std::size_t(blocks * 4 * N * 8)};
     rig.factor_.row_start = {row_start, std::size_t(n + 1)};
