@@ -37,6 +37,24 @@ int CopyString(posemorph::StringView v, bool valid, char* out, size_t capacity, 
   return PM_OK;
 }
 
+int Fail(pm_error* err, int code, const char* message) {
+  if (err) {
+    err->code = code;
+    std::snprintf(err->message, sizeof(err->message), "%s", message);
+  }
+  return code;
+}
+
+// The output handle of a load: given, and not holding a rig (which the load
+// would leak).
+int CheckOutput(pm_rig** out_rig, pm_error* err) {
+  if (!out_rig) return Fail(err, PM_ERROR_INVALID_ARGUMENT, "no output pointer given");
+  if (*out_rig)
+    return Fail(err, PM_ERROR_INVALID_ARGUMENT,
+                "*out_rig is not NULL: free the rig it holds first (pm_rig_free), then set it to NULL");
+  return PM_OK;
+}
+
 int Report(pm_error* err, const posemorph::Error& e) {
   if (err) {
     err->code = int(e.code);
@@ -53,37 +71,12 @@ extern "C" {
 int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err) {
   posemorph::Error e;
   if (err) *err = pm_error{};
-  if (!out_rig) {
-    if (err) {
-      err->code = PM_ERROR_INVALID_ARGUMENT;
-      std::strncpy(err->message, "no output pointer given", sizeof(err->message) - 1);
-    }
-    return PM_ERROR_INVALID_ARGUMENT;
-  }
-  if (*out_rig) {
-    // Loading over a live rig would leak it: the caller frees it first.
-    if (err) {
-      err->code = PM_ERROR_INVALID_ARGUMENT;
-      std::strncpy(err->message, "*out_rig is not NULL: free the rig it holds first (pm_rig_free), then set it to NULL",
-                   sizeof(err->message) - 1);
-    }
-    return PM_ERROR_INVALID_ARGUMENT;
-  }
+  if (const int status = CheckOutput(out_rig, err)) return status;
   pm_rig* rig = new (std::nothrow) pm_rig;
-  if (!rig) {
-    if (err) {
-      err->code = PM_ERROR_OUT_OF_MEMORY;
-      std::snprintf(err->message, sizeof(err->message), "cannot allocate the %zu-byte rig handle", sizeof(pm_rig));
-    }
-    return PM_ERROR_OUT_OF_MEMORY;
-  }
+  if (!rig) return Fail(err, PM_ERROR_OUT_OF_MEMORY, "cannot allocate the rig handle");
   if (!posemorph::LoadRig(bytes, size, &rig->rig, &e)) {
     delete rig;
-    if (err) {
-      err->code = int(e.code);
-      std::memcpy(err->message, e.message, sizeof(err->message));
-    }
-    return int(e.code);
+    return Report(err, e);
   }
   *out_rig = rig;
   return PM_OK;
@@ -102,19 +95,12 @@ int pm_rig_load_in_place(const void* bytes, size_t size, void* memory, size_t me
                          pm_error* err) {
   posemorph::Error e;
   if (err) *err = pm_error{};
-  auto fail = [&](const char* message) {
-    if (err) {
-      err->code = PM_ERROR_INVALID_ARGUMENT;
-      std::snprintf(err->message, sizeof(err->message), "%s", message);
-    }
-    return PM_ERROR_INVALID_ARGUMENT;
-  };
-  if (!out_rig) return fail("no output pointer given");
-  if (*out_rig) return fail("*out_rig is not NULL: free the rig it holds first (pm_rig_free), then set it to NULL");
-  if (!memory) return fail("no memory given (pm_rig_memory_size says how much)");
+  if (const int status = CheckOutput(out_rig, err)) return status;
+  if (!memory) return Fail(err, PM_ERROR_INVALID_ARGUMENT, "no memory given (pm_rig_memory_size says how much)");
   if (reinterpret_cast<std::uintptr_t>(memory) % PM_RIG_MEMORY_ALIGNMENT != 0)
-    return fail("memory is not aligned to PM_RIG_MEMORY_ALIGNMENT (16) bytes");
-  if (memory_size < kHandleBytes) return fail("memory is smaller than pm_rig_memory_size says");
+    return Fail(err, PM_ERROR_INVALID_ARGUMENT, "memory is not aligned to PM_RIG_MEMORY_ALIGNMENT (16) bytes");
+  if (memory_size < kHandleBytes)
+    return Fail(err, PM_ERROR_INVALID_ARGUMENT, "memory is smaller than pm_rig_memory_size says");
   pm_rig* rig = new (memory) pm_rig;
   rig->in_place = true;
   if (!posemorph::LoadRigInPlace(bytes, size, static_cast<unsigned char*>(memory) + kHandleBytes,
