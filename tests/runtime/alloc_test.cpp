@@ -10,6 +10,7 @@
 #include "posemorph/path.h"
 #include "posemorph/posemorph.h"
 #include "posemorph/quantize.h"
+#include "posemorph/draw_list.h"
 #include "runtime_support.h"
 
 // GCC cannot see that these replacements pair malloc with free on purpose.
@@ -96,6 +97,46 @@ TEST_CASE("a frame performs zero heap allocations") {
   g_counting = false;
   CHECK(ok);
   CHECK(g_allocations.load() == 0);
+}
+
+TEST_CASE("draw lists for a crowd allocate nothing, in C++ and through the C API") {
+  const Rig rig = LoadTestRig("snake");
+  constexpr std::size_t kCount = 12;
+  const CharacterBuffers sizes = CharacterBuffers::For(rig, kCount);
+  std::vector<double> block(sizes.bytes / sizeof(double) + 1);
+  DrawListJob job;
+  REQUIRE(sizes.Bind(rig, block.data(), block.size() * sizeof(double), &job));
+  std::vector<double> points(2 * kCount);
+  std::vector<Transform2D> place(kCount);
+  job.points = MakeSpan(points);
+  job.transforms = MakeSpan(place);
+  const std::vector<unsigned char> bytes = TestRigBytes("snake");
+  pm_rig* crig = nullptr;
+  pm_error err;
+  REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &crig, &err) == PM_OK);
+  std::size_t cw = 0, cp = 0;
+  REQUIRE(pm_draw_list_buffers(crig, kCount, &cw, &cp) == PM_OK);
+  std::vector<double> cwork(cw);
+  std::vector<float> cpos(cp);
+  std::vector<pm_draw_list> clists(kCount);
+  g_allocations = 0;
+  g_counting = true;
+  bool ok = true;
+  for (int frame = 0; frame < 50; ++frame) {
+    for (std::size_t k = 0; k < kCount; ++k) {
+      points[2 * k] = -1 + 0.02 * double(frame + k), points[2 * k + 1] = 0.3;
+      place[k] = Transform2D::Make(double(k), 0, 0.1, 1, 1, k % 2 == 1);
+    }
+    job.max_drawings = 1 + std::uint32_t(frame % 8);
+    job.interpolation = frame % 5 ? Interpolation::kRigid : Interpolation::kLinear;
+    ok &= job.Run();
+    ok &= pm_draw_lists(crig, nullptr, kCount, points.data(), nullptr, cwork.data(), cwork.size(), cpos.data(),
+                        cpos.size(), clists.data(), clists.size()) == PM_OK;
+  }
+  g_counting = false;
+  CHECK(ok);
+  CHECK(g_allocations.load() == 0);
+  pm_rig_free(crig);
 }
 
 TEST_CASE("the C API evaluates frames without allocating either") {

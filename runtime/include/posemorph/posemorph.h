@@ -164,6 +164,55 @@ PM_API int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights
                    double* workspace, size_t workspace_capacity, double* positions, float* positions_f32,
                    size_t positions_capacity);
 
+/* Draw lists: everything a renderer needs for `count` characters of one
+ * rig at their pose-space points (posemorph/draw_list.h has the C++ form
+ * and how to draw one). A transform places a character in the world:
+ *   x' = a x + c y + tx,  y' = b x + d y + ty   (rig units -> world)
+ * The renderer applies it; positions stay in rig units. */
+typedef struct pm_transform {
+  float a, b, c, d, tx, ty;
+} pm_transform;
+/* Scale (sx, sy), flip horizontally if flip_x, rotate counter-clockwise by
+ * `radians`, move to (x, y). Non-finite inputs give the identity. */
+PM_API void pm_transform_make(double x, double y, double radians, double scale_x, double scale_y, int flip_x,
+                              pm_transform* out);
+#define PM_MAX_BLEND_DRAWINGS 8
+typedef struct pm_blended_drawing {
+  uint32_t pose;     /* whose drawing (pm_rig_pose_image) */
+  float weight;      /* the picked drawings' weights sum to 1 */
+  const float* uvs;  /* that pose's uvs (2 x vertex_count), or NULL */
+} pm_blended_drawing;
+typedef struct pm_draw_list {
+  const float* positions;   /* 2 x vertex_count floats, rig units: a slice of the caller's positions */
+  const uint32_t* indices;  /* 3 x triangle_count (counter-clockwise in pose 0) */
+  uint32_t vertex_count, index_count;
+  uint32_t drawing_count;   /* 1..max_drawings */
+  pm_blended_drawing drawings[PM_MAX_BLEND_DRAWINGS];
+  pm_transform transform;
+  int mirrored;             /* the transform mirrors: triangles are clockwise in the world */
+} pm_draw_list;
+typedef struct pm_draw_options {
+  double sigma;           /* texture sharpening in [0, 1]; < 0: the rig's default */
+  int shear_limit;        /* 1 (default): the paper's shear limiting */
+  int linear;             /* 1: linear vertex blending (for comparison) */
+  uint32_t max_drawings;  /* K in 1..8: drawings the renderer blends per character */
+} pm_draw_options;
+/* sigma -1, shear_limit 1, linear 0, max_drawings 8. */
+PM_API void pm_draw_options_default(pm_draw_options* out);
+/* The buffers pm_draw_lists needs for `count` characters: workspace
+ * (doubles) and positions (floats). */
+PM_API int pm_draw_list_buffers(const pm_rig* rig, size_t count, size_t* workspace_doubles, size_t* position_floats);
+/* points: 2 x count doubles; transforms: count, or NULL for the identity;
+ * options NULL: the defaults; out: count lists. Rigid characters equal
+ * pm_morph_batch (one character: pm_morph) bit for bit. */
+PM_API int pm_draw_lists(const pm_rig* rig, const pm_draw_options* options, size_t count, const double* points,
+                         const pm_transform* transforms, double* workspace, size_t workspace_capacity,
+                         float* positions, size_t positions_capacity, pm_draw_list* out, size_t out_capacity);
+/* The max_drawings (1..8) largest of pose_count texture weights, largest
+ * first, renormalised (as pm_draw_lists picks them; uvs NULL). Returns the
+ * number written to out (capacity entries). */
+PM_API uint32_t pm_pick_drawings(const double* texture_weights, uint32_t pose_count, uint32_t max_drawings,
+                                 pm_blended_drawing* out, uint32_t capacity);
 /* Index of the named path or -1; point on a path at a time in seconds. */
 PM_API int pm_path_find(const pm_rig* rig, const char* name);
 PM_API int pm_path_sample(const pm_rig* rig, uint32_t path, double time, double* x, double* y);

@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: MIT
+// What a renderer needs to draw characters, computed in one job: positions
+// (floats, rig units), the triangles, the drawings to blend with their
+// weights and uvs, and where the character stands (a 2D transform). The
+// runtime never draws: a renderer turns each DrawList into its own draw
+// calls (see "Drawing a DrawList" below and README "Using posemorph in your
+// game"). No allocation and nothing thrown, like every job.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+
+#include "posemorph/export.h"
+#include "posemorph/jobs.h"
+#include "posemorph/rig.h"
+#include "posemorph/span.h"
+
+namespace posemorph {
+
+// At most this many drawings per character (a renderer's K is 1..8).
+constexpr std::uint32_t kMaxBlendDrawings = 8;
+
+// A 2D affine transform from rig units to the renderer's world units:
+//   x' = a x + c y + tx,  y' = b x + d y + ty
+// i.e. the columns (a, b) and (c, d) of a 2x2 matrix (column-major, as
+// glm::mat2 and GLSL mat2 store it) and a translation. Floats: the renderer
+// applies it (on the GPU); the runtime's positions stay in rig units, so a
+// transform never changes the bits lockstep peers compare.
+struct Transform2D {
+  float a = 1, b = 0, c = 0, d = 1;
+  float tx = 0, ty = 0;
+
+  // Scale (sx, sy), then flip horizontally (facing left: x -> -x) when
+  // flip_x, then rotate counter-clockwise by `radians` (y up), then move to
+  // (x, y). Non-finite inputs give the identity.
+  static PM_API Transform2D Make(double x, double y, double radians = 0, double scale_x = 1, double scale_y = 1,
+                                 bool flip_x = false);
+  // A mirrored transform (negative determinant) turns counter-clockwise
+  // triangles clockwise: a renderer that culls must cull the other face.
+  bool mirrors() const { return double(a) * d - double(b) * c < 0; }
+  void Apply(double x, double y, double* out_x, double* out_y) const {
+    *out_x = double(a) * x + double(c) * y + tx;
+    *out_y = double(b) * x + double(d) * y + ty;
+  }
+};
+// outer * inner: first inner, then outer (a camera after a character's place).
+PM_API Transform2D Compose(const Transform2D& outer, const Transform2D& inner);
+
+// One drawing of a character's cross-fade.
+struct BlendedDrawing {
+  std::uint32_t pose = 0;      // whose drawing: rig.pose_image(pose)
+  float weight = 0;            // renormalised over the picked drawings: they sum to 1
+  const float* uvs = nullptr;  // rig.uvs(pose).data (2 x V), or null when the rig has none
+};
+
+// The `max_drawings` (1..8) largest texture weights, largest first (ties to
+// the lower pose), clamped at 0 and renormalised to sum 1; all N drawings
+// when N <= max_drawings. When every weight is 0 the first picked drawing
+// gets weight 1. Writes min(N, max_drawings, out.size) entries (uvs left
+// null) and returns that count; 0 for empty input.
+PM_API std::uint32_t PickDrawings(Span<const double> texture_weights, std::uint32_t max_drawings,
+                                  Span<BlendedDrawing> out);
+
+// One character's frame, ready to draw.
+struct DrawList {
+  Span<const float> positions;        // 2 x V, interleaved x, y, rig units (y up): a slice of the job's positions
+  Span<const std::uint32_t> indices;  // 3 x T, the rig's triangles (counter-clockwise in pose 0)
+  std::uint32_t drawing_count = 0;    // 1..max_drawings
+  BlendedDrawing drawings[kMaxBlendDrawings];
+  Transform2D transform;              // rig units -> world
+  bool mirrored = false;              // transform.mirrors(): triangles are clockwise in the world
+};
+
+// Draw lists for `count` characters sharing one rig, each at its own
+// pose-space point. Rigid characters are evaluated as MorphBatchJob does (one
+// character as MorphJob): the positions equal theirs bit for bit.
+//
+// Validate() fails (and Run() does nothing) when: rig is null or not
+// loaded; count is 0; points holds fewer than 2 x count values;
+// transforms is neither empty nor count long; max_drawings is not in
+// 1..kMaxBlendDrawings; workspace is shorter than DrawListWorkspaceSize;
+// positions holds fewer than count x 2V floats; output holds fewer than
+// count lists. Points are treated as WeightsJob treats them (clamped to the
+// grid, NaN replaced), so any values give a finite frame.
+struct PM_API DrawListJob {
+  const Rig* rig = nullptr;
+  std::size_t count = 1;                // characters
+  Span<const double> points;            // count x (x, y), pose space
+  Span<const Transform2D> transforms;   // count, or empty: identity for all
+  double sigma = -1;                    // texture sharpening in [0, 1]; < 0 or NaN: the rig's default
+  bool shear_limit = true;
+  Interpolation interpolation = Interpolation::kRigid;
+  std::uint32_t max_drawings = kMaxBlendDrawings;  // K: drawings a renderer blends per character
+  Span<double> workspace;               // DrawListWorkspaceSize(*rig, count) doubles
+  Span<float> positions;                // count x 2V floats
+  Span<DrawList> output;                // count
+
+  bool Validate() const;
+  bool Run() const;
+};
+
+// Doubles of workspace a DrawListJob of `count` characters needs.
+PM_API std::size_t DrawListWorkspaceSize(const Rig& rig, std::size_t count);
+
+// Every per-character buffer a DrawListJob needs, sized from the rig in this
+// one place. Owns nothing: Bind() carves the job's spans out of one block
+// the caller provides (a stack array, an arena, a GPU staging buffer).
+struct PM_API CharacterBuffers {
+  std::size_t count = 0;       // characters
+  std::size_t workspace = 0;   // doubles
+  std::size_t positions = 0;   // floats (count x 2V): what a renderer uploads
+  std::size_t draw_lists = 0;  // DrawList entries (count)
+  std::size_t bytes = 0;       // one block holding all three, in that order
+  static constexpr std::size_t kAlignment = alignof(double) > alignof(DrawList) ? alignof(double) : alignof(DrawList);
+
+  static CharacterBuffers For(const Rig& rig, std::size_t count);
+  // Points job->workspace, positions and output into `block` (at least
+  // `bytes` long, aligned to kAlignment) and sets job->rig and job->count.
+  // False, changing nothing, when the block is too short or misaligned.
+  bool Bind(const Rig& rig, void* block, std::size_t block_bytes, DrawListJob* job) const;
+};
+
+// Drawing a DrawList (what posemorph-view, the examples and the C API's
+// users do). For each character:
+//  1. Upload positions (or apply the transform on the CPU) and indices.
+//  2. Exact cross-fade: draw the mesh once into a premultiplied-alpha
+//     target with a fragment shader that sums, over the picked drawings,
+//     weight x premultiplied(drawing_pose(uv_pose)), where uv_pose comes
+//     from that drawing's own uvs at the same vertex; then composite the
+//     result "over" the scene (ONE, ONE_MINUS_SRC_ALPHA). Because the sum is
+//     formed before compositing, a pixel every drawing covers stays opaque.
+//     A shader that reads all K drawings at once needs no offscreen target.
+//  3. Cheaper, approximate: (a) the dominant drawing only (K = 1): no blend,
+//     pops when the order of weights changes; (b) K sequential "over" draws
+//     with alpha adjusted so their weights hold (drawing k at
+//     w_k / (w_0 + ... + w_k), back to front): correct where every drawing
+//     is opaque, lets the background through where silhouettes differ.
+//  README "Drawing a character" gives their measured cost on Pip.
+
+}  // namespace posemorph

@@ -1,0 +1,75 @@
+// SPDX-License-Identifier: MIT
+// The draw-list evaluation shared by DrawListJob (C++) and pm_draw_lists
+// (C): weights per character, positions for all (one batch for rigid
+// characters), then each character's list handed to `emit` (the C++ job
+// stores a DrawList, the C API converts it to its own struct).
+#pragma once
+#include <cmath>
+
+#include "posemorph/draw_list.h"
+
+namespace posemorph::detail {
+
+// Expects job.Validate(). Returns false only when a morph job refuses its
+// input, which Validate() and WeightsJob's bounds rule out.
+// transform_at(k) gives character k's transform (the job's own span is not
+// read: the C API passes its pm_transform array this way).
+template <typename TransformAt, typename Emit>
+bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emit) {
+  const Rig& rig = *job.rig;
+  const std::size_t n = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count()), count = job.count;
+  double* raw = job.workspace.data;
+  double* shear = raw + count * n;
+  double* texture = shear + count * n;
+  double* rest = texture + n;
+  const std::size_t rest_size = job.workspace.size - (2 * count * n + n);
+  const double sigma = job.sigma >= 0 ? job.sigma : rig.default_sigma();  // NaN: the default too
+
+  for (std::size_t k = 0; k < count; ++k) {
+    WeightsJob wj;
+    wj.rig = &rig;
+    wj.x = job.points[2 * k], wj.y = job.points[2 * k + 1];
+    wj.sigma = sigma;
+    wj.shear_limit = job.shear_limit;
+    wj.raw = {raw + k * n, n};
+    wj.shear = {shear + k * n, n};
+    wj.texture = {texture, n};
+    if (!wj.Run()) return false;
+    DrawList list;
+    list.positions = {job.positions.data + k * v2, v2};
+    list.indices = rig.triangles();
+    list.drawing_count = PickDrawings({texture, n}, job.max_drawings, {list.drawings, kMaxBlendDrawings});
+    for (std::uint32_t d = 0; d < list.drawing_count; ++d) {
+      const Span<const float> uv = rig.uvs(list.drawings[d].pose);
+      list.drawings[d].uvs = uv.size ? uv.data : nullptr;
+    }
+    list.transform = transform_at(k);
+    list.mirrored = list.transform.mirrors();
+    emit(k, list);
+  }
+
+  if (job.interpolation == Interpolation::kRigid && count > 1) {
+    MorphBatchJob bj;
+    bj.rig = &rig;
+    bj.count = count;
+    bj.weights = {raw, count * n};
+    bj.shear_weights = {shear, count * n};
+    bj.workspace = {rest, rest_size};
+    bj.positions_f32 = {job.positions.data, count * v2};
+    return bj.Run();
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    MorphJob mj;
+    mj.rig = &rig;
+    mj.weights = {raw + k * n, n};
+    mj.shear_weights = {shear + k * n, n};
+    mj.interpolation = job.interpolation;
+    mj.workspace = {rest, rig.morph_workspace_size()};
+    mj.positions = {rest + rig.morph_workspace_size(), v2};
+    mj.positions_f32 = {job.positions.data + k * v2, v2};
+    if (!mj.Run()) return false;
+  }
+  return true;
+}
+
+}  // namespace posemorph::detail

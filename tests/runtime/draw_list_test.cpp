@@ -1,0 +1,295 @@
+// SPDX-License-Identifier: MIT
+// Draw lists: the drawings picked, the positions (bit for bit what the morph
+// jobs give), transforms, every failure case of DrawListJob::Validate, the
+// buffers bundle, and the C API's form of the same.
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <limits>
+
+#include "posemorph/draw_list.h"
+#include "posemorph/path.h"
+#include "posemorph/posemorph.h"
+#include "runtime_support.h"
+
+using namespace posemorph;
+using namespace posemorph::test;
+
+namespace {
+
+std::vector<double> PointsOnPath(const Rig& rig, std::size_t count) {
+  std::vector<double> p(2 * count);
+  const PathView path = rig.path(0);
+  const double t0 = path.keys.data[0], t1 = path.keys.data[path.keys.size - 3];
+  for (std::size_t k = 0; k < count; ++k) SamplePath(path, t0 + (t1 - t0) * double(k) / double(count), &p[2 * k], &p[2 * k + 1]);
+  return p;
+}
+
+struct Lists {
+  std::vector<double> workspace;
+  std::vector<float> positions;
+  std::vector<DrawList> out;
+  DrawListJob job;
+  Lists(const Rig& rig, const std::vector<double>& points, std::uint32_t k = kMaxBlendDrawings) {
+    const std::size_t count = points.size() / 2;
+    workspace.resize(DrawListWorkspaceSize(rig, count));
+    positions.resize(count * 2 * rig.vertex_count());
+    out.resize(count);
+    job.rig = &rig;
+    job.count = count;
+    job.points = MakeSpan(points);
+    job.max_drawings = k;
+    job.workspace = MakeSpan(workspace);
+    job.positions = MakeSpan(positions);
+    job.output = MakeSpan(out);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("draw lists: all drawings up to K, else the K most weighted, renormalised") {
+  const double five[5] = {0.1, 0.4, 0.0, 0.3, 0.2};
+  BlendedDrawing d[kMaxBlendDrawings];
+  REQUIRE(PickDrawings(five, 8, d) == 5);
+  double sum = 0;
+  for (int k = 0; k < 5; ++k) sum += d[k].weight;
+  CHECK(sum == doctest::Approx(1.0));
+  CHECK(d[0].pose == 1);
+  CHECK(d[0].weight == doctest::Approx(0.4));
+  CHECK(d[3].pose == 0);
+  CHECK(d[3].weight == doctest::Approx(0.1));
+  CHECK(d[4].pose == 2);  // ties and zeros keep pose order after the larger ones
+
+  double ten[10];
+  for (int i = 0; i < 10; ++i) ten[i] = (i + 1) / 55.0;  // 1..10, sum 1
+  REQUIRE(PickDrawings(ten, 8, d) == 8);
+  CHECK(d[0].pose == 9);
+  CHECK(d[7].pose == 2);
+  CHECK(d[0].weight == doctest::Approx(10.0 / 52.0));  // poses 0 and 1 (weights 1, 2) dropped
+
+  REQUIRE(PickDrawings(ten, 2, d) == 2);  // K = 2
+  CHECK(d[0].pose == 9);
+  CHECK(d[1].pose == 8);
+  CHECK(d[0].weight == doctest::Approx(10.0 / 19.0));
+  REQUIRE(PickDrawings(ten, 1, d) == 1);  // the dominant drawing only
+  CHECK(d[0].pose == 9);
+  CHECK(d[0].weight == 1.0f);
+
+  const double ties[3] = {0.5, 0.5, 0.0};
+  REQUIRE(PickDrawings(ties, 1, d) == 1);
+  CHECK(d[0].pose == 0);  // ties to the lower pose
+
+  const double nothing[3] = {0, -1, std::numeric_limits<double>::quiet_NaN()};
+  REQUIRE(PickDrawings(nothing, 8, d) == 3);
+  CHECK(d[0].weight == 1.0f);
+  CHECK(d[1].weight == 0.0f);
+  CHECK(d[2].weight == 0.0f);
+  CHECK(PickDrawings(Span<const double>(), 8, d) == 0);
+  CHECK(PickDrawings(five, 0, d) == 0);
+  CHECK(PickDrawings(five, 8, Span<BlendedDrawing>(d, 2)) == 2);  // never past the output
+}
+
+TEST_CASE("draw lists: positions bit for bit as the morph jobs give them, drawings as WeightsJob's texture weights") {
+  for (const char* name : {"snake", "gingerbread"}) {
+    CAPTURE(name);
+    const Rig rig = LoadTestRig(name);
+    const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
+    for (std::size_t count : {1u, 5u, 19u}) {
+      CAPTURE(count);
+      const std::vector<double> points = PointsOnPath(rig, count);
+      Lists l(rig, points, 3);
+      l.job.sigma = 0.3;
+      REQUIRE(l.job.Validate());
+      REQUIRE(l.job.Run());
+      for (std::size_t k = 0; k < count; ++k) {
+        const Weights w = WeightsAt(rig, points[2 * k], points[2 * k + 1], 0.3);
+        const std::vector<double> x = Morph(rig, w.raw, w.shear);
+        std::vector<float> xf(v2);
+        for (std::size_t i = 0; i < v2; ++i) xf[i] = float(x[i]);
+        const DrawList& d = l.out[k];
+        REQUIRE(d.positions.size == v2);
+        CHECK(d.positions.data == l.positions.data() + k * v2);
+        CHECK(std::memcmp(d.positions.data, xf.data(), v2 * sizeof(float)) == 0);
+        CHECK(d.indices.data == rig.triangles().data);
+        CHECK(d.indices.size == rig.triangles().size);
+        BlendedDrawing expected[kMaxBlendDrawings];
+        const std::uint32_t n = PickDrawings(MakeSpan(w.texture), 3, expected);
+        REQUIRE(d.drawing_count == n);
+        CHECK(n == std::min<std::size_t>(3, N));
+        for (std::uint32_t i = 0; i < n; ++i) {
+          CHECK(d.drawings[i].pose == expected[i].pose);
+          CHECK(d.drawings[i].weight == expected[i].weight);
+          const Span<const float> uv = rig.uvs(d.drawings[i].pose);
+          CHECK(d.drawings[i].uvs == (uv.size ? uv.data : nullptr));
+        }
+        CHECK(!d.mirrored);
+      }
+    }
+  }
+}
+
+TEST_CASE("draw lists: linear interpolation and the rig's default sigma") {
+  const Rig rig = LoadTestRig("gingerbread");
+  const std::vector<double> points = PointsOnPath(rig, 3);
+  Lists l(rig, points);
+  l.job.interpolation = Interpolation::kLinear;
+  REQUIRE(l.job.Run());
+  const std::size_t v2 = 2 * std::size_t(rig.vertex_count());
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Weights w = WeightsAt(rig, points[2 * k], points[2 * k + 1], rig.default_sigma());
+    const std::vector<double> x = Morph(rig, w.raw, w.shear, Interpolation::kLinear);
+    for (std::size_t i = 0; i < v2; ++i) CHECK(l.positions[k * v2 + i] == float(x[i]));
+    BlendedDrawing expected[kMaxBlendDrawings];
+    PickDrawings(MakeSpan(w.texture), 8, expected);
+    CHECK(l.out[k].drawings[0].weight == expected[0].weight);  // sigma -1: the rig's default
+  }
+}
+
+TEST_CASE("draw lists: transforms pass through; a mirrored one is flagged") {
+  const Rig rig = LoadTestRig("snake");
+  const std::vector<double> points = PointsOnPath(rig, 3);
+  Lists l(rig, points);
+  const Transform2D t[3] = {Transform2D::Make(10, 20), Transform2D::Make(0, 0, 0.5, 2, 2, true),
+                            Transform2D::Make(-5, 1, 1.0, 1, -1)};
+  l.job.transforms = t;
+  REQUIRE(l.job.Run());
+  CHECK(!l.out[0].mirrored);
+  CHECK(l.out[1].mirrored);
+  CHECK(l.out[2].mirrored);  // a negative y scale mirrors too
+  for (int k = 0; k < 3; ++k) CHECK(std::memcmp(&l.out[k].transform, &t[k], sizeof(Transform2D)) == 0);
+}
+
+TEST_CASE("transforms: scale, flip, rotate, move, in that order; composition") {
+  const Transform2D t = Transform2D::Make(5, -3, 3.14159265358979323846 / 2, 2, 3, true);
+  double x = 0, y = 0;
+  t.Apply(1, 0, &x, &y);  // (1,0) -scale-> (2,0) -flip-> (-2,0) -rotate 90-> (0,-2) -move-> (5,-5)
+  CHECK(x == doctest::Approx(5));
+  CHECK(y == doctest::Approx(-5));
+  t.Apply(0, 1, &x, &y);  // (0,3) -> (0,3) -> (-3,0) -> (2,-3)
+  CHECK(x == doctest::Approx(2));
+  CHECK(y == doctest::Approx(-3));
+  CHECK(t.mirrors());
+  const Transform2D camera = Transform2D::Make(100, 0, 0, 0.5, 0.5);
+  const Transform2D both = Compose(camera, t);
+  both.Apply(1, 0, &x, &y);
+  CHECK(x == doctest::Approx(100 + 2.5));
+  CHECK(y == doctest::Approx(-2.5));
+  const Transform2D bad = Transform2D::Make(std::numeric_limits<double>::infinity(), 0);
+  CHECK(bad.a == 1.0f);
+  CHECK(bad.tx == 0.0f);  // non-finite: the identity
+}
+
+TEST_CASE("DrawListJob::Validate refuses each listed failure case, and Run then does nothing") {
+  const Rig rig = LoadTestRig("snake");
+  const std::vector<double> points = PointsOnPath(rig, 4);
+  Lists good(rig, points);
+  REQUIRE(good.job.Validate());
+  const Transform2D three[3];
+  Rig empty;
+  struct Case {
+    const char* what;
+    std::function<void(DrawListJob&)> spoil;
+  } cases[] = {
+      {"no rig", [](DrawListJob& j) { j.rig = nullptr; }},
+      {"a rig not loaded", [&](DrawListJob& j) { j.rig = &empty; }},
+      {"count 0", [](DrawListJob& j) { j.count = 0; }},
+      {"too few points", [](DrawListJob& j) { j.points.size = 7; }},
+      {"transforms neither empty nor count long", [&](DrawListJob& j) { j.transforms = three; }},
+      {"max_drawings 0", [](DrawListJob& j) { j.max_drawings = 0; }},
+      {"max_drawings 9", [](DrawListJob& j) { j.max_drawings = 9; }},
+      {"short workspace", [](DrawListJob& j) { j.workspace.size -= 1; }},
+      {"short positions", [](DrawListJob& j) { j.positions.size -= 1; }},
+      {"bad interpolation", [](DrawListJob& j) { j.interpolation = Interpolation(7); }},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.what);
+    Lists l(rig, points);
+    c.spoil(l.job);
+    CHECK(!l.job.Validate());
+    const std::vector<float> before = l.positions;
+    CHECK(!l.job.Run());
+    CHECK(l.positions == before);
+  }
+  Lists short_output(rig, points);
+  short_output.job.output.size = 3;
+  CHECK(short_output.job.Validate());  // Validate checks the evaluation's inputs,
+  CHECK(!short_output.job.Run());      // Run its output too
+  // Any point gives a finite frame.
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double> wild = {inf, -inf, nan, nan, 1e308, -1e308, 0, 0};
+  Lists w(rig, wild);
+  REQUIRE(w.job.Run());
+  for (float v : w.positions) CHECK(std::isfinite(v));
+}
+
+TEST_CASE("CharacterBuffers: every size from the rig, one block bound to a job") {
+  const Rig rig = LoadTestRig("gingerbread");
+  const CharacterBuffers b = CharacterBuffers::For(rig, 6);
+  CHECK(b.workspace == DrawListWorkspaceSize(rig, 6));
+  CHECK(b.positions == 6 * 2 * std::size_t(rig.vertex_count()));
+  CHECK(b.draw_lists == 6);
+  std::vector<double> block((b.bytes + sizeof(double) - 1) / sizeof(double) + 1);
+  DrawListJob job;
+  CHECK(!b.Bind(rig, block.data(), b.bytes - 1, &job));  // too short
+  CHECK(!b.Bind(rig, reinterpret_cast<unsigned char*>(block.data()) + 4, b.bytes, &job));  // misaligned
+  CHECK(!b.Bind(LoadTestRig("snake"), block.data(), b.bytes, &job));  // sized for another rig
+  REQUIRE(b.Bind(rig, block.data(), block.size() * sizeof(double), &job));
+  const std::vector<double> points = PointsOnPath(rig, 6);
+  job.points = MakeSpan(points);
+  REQUIRE(job.Run());
+  Lists reference(rig, points);
+  REQUIRE(reference.job.Run());
+  CHECK(std::memcmp(job.positions.data, reference.positions.data(), b.positions * sizeof(float)) == 0);
+  CHECK(job.output[5].drawings[0].pose == reference.out[5].drawings[0].pose);
+}
+
+TEST_CASE("C API: pm_draw_lists gives what DrawListJob gives") {
+  const std::vector<unsigned char> bytes = TestRigBytes("gingerbread");
+  pm_rig* rig = nullptr;
+  pm_error err;
+  REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &rig, &err) == PM_OK);
+  const Rig cpp = LoadTestRig("gingerbread");
+  const std::vector<double> points = PointsOnPath(cpp, 5);
+  std::size_t work_size = 0, position_size = 0;
+  REQUIRE(pm_draw_list_buffers(rig, 5, &work_size, &position_size) == PM_OK);
+  std::vector<double> work(work_size);
+  std::vector<float> positions(position_size);
+  pm_draw_list out[5];
+  pm_transform t[5];
+  for (int k = 0; k < 5; ++k) pm_transform_make(k * 10.0, 0, 0.1 * k, 1, 1, k % 2, &t[k]);
+  pm_draw_options o;
+  pm_draw_options_default(&o);
+  o.max_drawings = 4;
+  CHECK(pm_draw_lists(rig, &o, 5, points.data(), t, work.data(), work.size() - 1, positions.data(), positions.size(),
+                      out, 5) == PM_ERROR_BUFFER_TOO_SMALL);
+  CHECK(pm_draw_lists(rig, &o, 5, points.data(), t, work.data(), work.size(), positions.data(), positions.size(), out,
+                      4) == PM_ERROR_BUFFER_TOO_SMALL);
+  o.max_drawings = 9;
+  CHECK(pm_draw_lists(rig, &o, 5, points.data(), t, work.data(), work.size(), positions.data(), positions.size(), out,
+                      5) == PM_ERROR_INVALID_ARGUMENT);
+  o.max_drawings = 4;
+  REQUIRE(pm_draw_lists(rig, &o, 5, points.data(), t, work.data(), work.size(), positions.data(), positions.size(),
+                        out, 5) == PM_OK);
+  Lists l(cpp, points, 4);
+  REQUIRE(l.job.Run());
+  CHECK(positions == l.positions);
+  for (int k = 0; k < 5; ++k) {
+    CHECK(out[k].vertex_count == cpp.vertex_count());
+    CHECK(out[k].index_count == 3 * cpp.triangle_count());
+    CHECK(out[k].positions == positions.data() + k * 2 * cpp.vertex_count());
+    REQUIRE(out[k].drawing_count == l.out[k].drawing_count);
+    for (std::uint32_t i = 0; i < out[k].drawing_count; ++i) {
+      CHECK(out[k].drawings[i].pose == l.out[k].drawings[i].pose);
+      CHECK(out[k].drawings[i].weight == l.out[k].drawings[i].weight);
+      CHECK(out[k].drawings[i].uvs == l.out[k].drawings[i].uvs);
+    }
+    CHECK(out[k].mirrored == k % 2);
+    CHECK(out[k].transform.tx == float(k * 10.0));
+  }
+  double tex[8] = {0.1, 0.5, 0.4};
+  pm_blended_drawing picked[8];
+  CHECK(pm_pick_drawings(tex, 3, 2, picked, 8) == 2);
+  CHECK(picked[0].pose == 1);
+  CHECK(picked[1].pose == 2);
+  pm_rig_free(rig);
+}
