@@ -2,18 +2,17 @@
 #version 460
 // Cross-fades a character's drawings: each pose's own drawing sampled
 // through that pose's uvs, weighted by the texture weights w''
-// (premultiplied alpha, so the sum is a premultiplied colour too).
+// (premultiplied alpha, so the sum is a premultiplied colour too). With
+// only_slot = s >= 0 it draws one drawing instead, at opacity
+// w_s / (w_0 + ... + w_s): drawn for s = 0, 1, ... each "over" the last,
+// this is the sequential approximation a renderer that samples one texture
+// per draw would use (exact where every drawing is opaque).
 #extension GL_EXT_scalar_block_layout : require
+#extension GL_GOOGLE_include_directive : require
+#include "shared_layout.h"
 
 layout(set = 0, binding = 0) uniform sampler2DArray drawings;
-
-layout(push_constant, scalar) uniform Push {
-  uvec2 positions, uvs, instances;  // addresses, used by the vertex stage
-  vec2 view_scale;
-  vec2 view_offset;
-  uint vertex_count;
-  uint flat_colour;
-} pc;
+layout(push_constant, scalar) uniform Push { PushData pc; };
 
 layout(location = 0) in vec4 uv01;
 layout(location = 1) in vec4 uv23;
@@ -32,6 +31,18 @@ vec4 Drawing(float w, vec2 uv, int layer) {
 void main() {
   if (pc.flat_colour != 0u) {
     colour = vec4(0.06, 0.06, 0.06, 0.6);
+    return;
+  }
+  if (pc.only_slot >= 0) {
+    const int s = pc.only_slot;
+    const vec2 uv = s == 0 ? uv01.xy : s == 1 ? uv01.zw : s == 2 ? uv23.xy : s == 3 ? uv23.zw :
+                    s == 4 ? uv45.xy : s == 5 ? uv45.zw : s == 6 ? uv67.xy : uv67.zw;
+    const int layer = s < 4 ? layers0[s] : layers1[s - 4];
+    const float w[8] = float[8](weights0.x, weights0.y, weights0.z, weights0.w, weights1.x, weights1.y, weights1.z,
+                                weights1.w);
+    float sum = 0.0;
+    for (int k = 0; k <= s; ++k) sum += w[k];
+    colour = sum > 0.0 ? Drawing(w[s] / sum, uv, layer) : vec4(0.0);
     return;
   }
   colour = Drawing(weights0.x, uv01.xy, layers0.x) + Drawing(weights0.y, uv01.zw, layers0.y) +

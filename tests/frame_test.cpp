@@ -6,7 +6,10 @@
 // the goldens. The Vulkan validation layer is on; any message fails.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -50,22 +53,58 @@ Fixture& Shared() {
   return *f;
 }
 
-std::vector<unsigned char> Render(const Scene& scene, const View* override_view = nullptr) {
+// Renders a scene; the camera fits it unless one is given.
+std::vector<unsigned char> Render(const Scene& scene, const Camera* camera = nullptr, Blend blend = Blend::kExact) {
   Fixture& f = Shared();
   RigRenderer renderer;
   std::string problem;
-  REQUIRE_MESSAGE(renderer.Init(f.gpu, f.rig, f.drawings, OffscreenTarget::kFormat, scene.crowd, &problem), problem);
-  View view;
+  REQUIRE_MESSAGE(renderer.Init(f.gpu, f.rig, f.drawings, OffscreenTarget::kFormat, SceneCharacters(f.rig, scene),
+                                &problem),
+                  problem);
+  SceneBounds bounds;
   std::uint32_t count = 0;
   SceneScratch scratch;
-  REQUIRE_MESSAGE(PrepareScene(f.rig, scene, renderer, scratch, &view, &count, &problem), problem);
-  if (override_view) view = *override_view;
+  REQUIRE_MESSAGE(PrepareScene(f.rig, scene, renderer, scratch, &bounds, &count, &problem), problem);
+  const Camera cam = camera ? *camera : FitCamera(bounds.all, kSize, kSize);
   OffscreenTarget target;
   target.Init(f.gpu, kSize, kSize);
-  target.Render([&](VkCommandBuffer cmd) { renderer.Record(cmd, count, view, kSize, kSize, scene.wireframe); },
-                kBackground);
+  target.Render(
+      [&](VkCommandBuffer cmd) { renderer.Record(cmd, count, cam, kSize, kSize, scene.wireframe, 0, 0, blend); },
+      kBackground);
   CHECK(f.gpu.validation_messages() == 0);
   return std::vector<unsigned char>(target.pixels(), target.pixels() + 4 * kSize * kSize);
+}
+
+// The tolerant comparison: pixels with a channel off by more than 3, and the largest difference.
+struct Difference {
+  std::size_t differing = 0;
+  int worst = 0;
+  double share() const { return double(differing) / (kSize * kSize); }
+};
+Difference Compare(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b,
+                   std::vector<unsigned char>* diff = nullptr) {
+  Difference r;
+  if (diff) diff->assign(a.size(), 255);
+  for (std::size_t p = 0; p < a.size(); p += 4) {
+    int d = 0;
+    for (int c = 0; c < 4; ++c) d = std::max(d, std::abs(int(a[p + c]) - int(b[p + c])));
+    r.worst = std::max(r.worst, d);
+    if (d > 3) ++r.differing;
+    if (diff) {
+      const unsigned char v = (unsigned char)std::min(255, d * 8);
+      (*diff)[p + 1] = (unsigned char)(255 - v), (*diff)[p + 2] = (unsigned char)(255 - v);
+    }
+  }
+  return r;
+}
+
+std::vector<unsigned char> MirrorRows(const std::vector<unsigned char>& frame) {
+  std::vector<unsigned char> out(frame.size());
+  for (std::uint32_t y = 0; y < kSize; ++y)
+    for (std::uint32_t x = 0; x < kSize; ++x)
+      for (int c = 0; c < 4; ++c)
+        out[(std::size_t(y) * kSize + x) * 4 + c] = frame[(std::size_t(y) * kSize + (kSize - 1 - x)) * 4 + c];
+  return out;
 }
 
 void CompareWithGolden(const std::string& name, const std::vector<unsigned char>& actual) {
@@ -85,22 +124,15 @@ void CompareWithGolden(const std::string& name, const std::vector<unsigned char>
   if (expected == actual) return;  // the exact hash matches
 
   // Tolerant: a pixel differs when a channel is off by more than 3; allow 0.5% of them.
-  std::size_t differing = 0;
-  int worst = 0;
-  std::vector<unsigned char> diff(actual.size(), 255);
-  for (std::size_t p = 0; p < actual.size(); p += 4) {
-    int d = 0;
-    for (int c = 0; c < 4; ++c) d = std::max(d, std::abs(int(actual[p + c]) - int(expected[p + c])));
-    worst = std::max(worst, d);
-    if (d > 3) ++differing;
-    const unsigned char v = (unsigned char)std::min(255, d * 8);
-    diff[p] = 255, diff[p + 1] = (unsigned char)(255 - v), diff[p + 2] = (unsigned char)(255 - v);
-  }
+  std::vector<unsigned char> diff;
+  const Difference d = Compare(actual, expected, &diff);
+  const std::size_t differing = d.differing;
+  const int worst = d.worst;
   const fs::path out = fs::path(POSEMORPH_FRAME_OUTPUT);
   fs::create_directories(out);
   WritePng((out / (name + "-actual.png")).string(), actual.data(), kSize, kSize, &problem);
   WritePng((out / (name + "-diff.png")).string(), diff.data(), kSize, kSize, &problem);
-  const double share = double(differing) / (kSize * kSize);
+  const double share = d.share();
   MESSAGE(name << ": not bit-identical to its golden; " << differing << " pixels (" << share * 100
                << "%) differ by more than 3, worst " << worst << "; actual and diff in " << out.string());
   CHECK(share <= 0.005);
@@ -137,11 +169,90 @@ TEST_CASE("frames: texture sharpening sigma 0 and 0.8") {
   CHECK(soft != sharp);
 }
 
-TEST_CASE("frames: a crowd of 9 on a path, one instanced draw") {
+TEST_CASE("frames: a mixed crowd of 12 on a ground line, back to front, one instanced draw") {
   Scene s;
   s.path = "hello";
-  s.crowd = 9;
-  CompareWithGolden("pip-crowd9", Render(s));
+  s.crowd = 12;
+  s.seed = 7;
+  const auto crowd = Render(s);
+  CompareWithGolden("pip-crowd-mixed", crowd);
+  s.seed = 8;
+  CHECK(Compare(Render(s), crowd).share() > 0.05);  // the seed moves them
+}
+
+TEST_CASE("frames: the crowd layout is seeded, sorted back to front, and mixes sizes and facings") {
+  Fixture& f = Shared();
+  constexpr std::uint32_t K = 40;
+  std::vector<Transform2D> t(K), again(K);
+  std::vector<double> phase(K), phase_again(K);
+  CrowdLayout(f.rig, K, 3, t.data(), phase.data());
+  CrowdLayout(f.rig, K, 3, again.data(), phase_again.data());
+  CHECK(std::memcmp(t.data(), again.data(), K * sizeof(Transform2D)) == 0);
+  std::uint32_t mirrored = 0;
+  double smallest = 1e9, largest = 0;
+  std::vector<bool> phase_seen(K, false);
+  for (std::uint32_t k = 0; k < K; ++k) {
+    const double scale = std::sqrt(std::fabs(double(t[k].a) * t[k].d - double(t[k].b) * t[k].c));
+    smallest = std::min(smallest, scale), largest = std::max(largest, scale);
+    mirrored += t[k].mirrors();
+    // Back to front: farther characters (smaller, standing higher) come first.
+    if (k > 0) CHECK(scale >= std::sqrt(std::fabs(double(t[k - 1].a) * t[k - 1].d - double(t[k - 1].b) * t[k - 1].c)) - 1e-6);
+    if (k > 0) CHECK(t[k].ty <= t[k - 1].ty + 1e-3f);
+    const auto index = std::uint32_t(std::lround(phase[k] * K));
+    REQUIRE(index < K);
+    phase_seen[index] = true;
+  }
+  CHECK(mirrored > K / 4);
+  CHECK(mirrored < 3 * K / 4);
+  CHECK(largest / smallest > 1.5);
+  CHECK(std::count(phase_seen.begin(), phase_seen.end(), true) == K);  // every phase once
+}
+
+TEST_CASE("frames: a mirrored character is the unmirrored frame flipped") {
+  Scene s;
+  s.x = 0.5, s.y = 0.5;
+  const auto plain = Render(s);
+  s.transform = Transform2D::Make(0, 0, 0, 1, 1, true);
+  const auto mirrored = Render(s);
+  CompareWithGolden("pip-mirrored", mirrored);
+  const Difference d = Compare(mirrored, MirrorRows(plain));
+  MESSAGE("mirrored vs flipped: " << d.differing << " pixels differ by more than 3 (worst " << d.worst << ")");
+  CHECK(d.share() <= 0.005);
+  CHECK(Compare(mirrored, plain).share() > 0.05);  // and it is not the same frame
+}
+
+TEST_CASE("frames: a rotated, non-uniformly scaled character, and a zoomed camera") {
+  Scene s;
+  s.x = 0.5, s.y = 0.5;
+  s.transform = Transform2D::Make(40, -10, 30 * 3.14159265358979323846 / 180, 1.5, 0.8);
+  CompareWithGolden("pip-rotated-scaled", Render(s));
+
+  Scene plain;
+  Fixture& f = Shared();
+  const View one = CharacterBounds(f.rig);
+  Camera zoomed = FitCamera(one, kSize, kSize);
+  zoomed.zoom *= 2.5;
+  zoomed.centre.y += 0.02 * (one.y1 - one.y0);  // the face
+  CompareWithGolden("pip-zoomed", Render(plain, &zoomed));
+}
+
+TEST_CASE("frames: sequential over equals the exact blend where one drawing shows, and differs mid-way") {
+  Fixture& f = Shared();
+  Scene base;
+  base.x = f.rig.pose_points().data[2], base.y = f.rig.pose_points().data[3];
+  base.sigma = 1;
+  CHECK(Render(base) == Render(base, nullptr, Blend::kSequentialOver));
+  Scene mid;
+  mid.x = 0.5, mid.y = 0.5;
+  const auto exact = Render(mid);
+  const Difference over = Compare(Render(mid, nullptr, Blend::kSequentialOver), exact);
+  mid.max_drawings = 1;
+  const Difference dominant = Compare(Render(mid), exact);
+  MESSAGE("at (0.5, 0.5) against the exact blend: sequential over " << over.differing << " pixels (worst "
+          << over.worst << "), dominant drawing only " << dominant.differing << " pixels (worst " << dominant.worst
+          << ")");
+  CHECK(over.differing > 0);
+  CHECK(dominant.differing > 0);
 }
 
 TEST_CASE("frames: the rendered base pose is its own drawing where the mesh covers it") {
@@ -149,7 +260,9 @@ TEST_CASE("frames: the rendered base pose is its own drawing where the mesh cove
   // maps output pixel (x, y) onto drawing pixel (x, y).
   Fixture& f = Shared();
   REQUIRE(f.drawings.width == kSize);
-  const View pixels{0, -double(kSize), double(kSize), 0};
+  Camera pixels;
+  pixels.centre = {kSize / 2.0, -(kSize / 2.0)};
+  pixels.zoom = 1;
   for (std::uint32_t pose = 0; pose < f.rig.pose_count(); ++pose) {
     CAPTURE(pose);
     Scene s;
@@ -168,24 +281,4 @@ TEST_CASE("frames: the rendered base pose is its own drawing where the mesh cove
     CHECK(compared > 10000);
     CHECK(double(off) / double(compared) < 0.002);
   }
-}
-
-TEST_CASE("frames: a character shows all its drawings up to 8, else the 8 most weighted") {
-  const double five[5] = {0.1, 0.4, 0.0, 0.3, 0.2};
-  InstanceData inst;
-  PickDrawings(five, 5, &inst);
-  double sum = 0;
-  for (std::uint32_t k = 0; k < kDrawingsPerCharacter; ++k) sum += inst.weights[k];
-  CHECK(sum == doctest::Approx(1.0));
-  CHECK(inst.layers[0] == 1);
-  CHECK(inst.weights[0] == doctest::Approx(0.4));
-  CHECK(inst.layers[3] == 0);
-  CHECK(inst.weights[3] == doctest::Approx(0.1));
-
-  double ten[10];
-  for (int i = 0; i < 10; ++i) ten[i] = (i + 1) / 55.0;  // 1..10, sum 1
-  PickDrawings(ten, 10, &inst);
-  CHECK(inst.layers[0] == 9);
-  CHECK(inst.layers[7] == 2);
-  CHECK(inst.weights[0] == doctest::Approx(10.0 / 52.0));  // poses 0 and 1 (weights 1, 2) dropped
 }

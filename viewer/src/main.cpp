@@ -3,6 +3,7 @@
 // (no window system needed) and writes PNG frames; otherwise it opens a
 // window (when built with GLFW and a display is there).
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -24,9 +25,19 @@ const char* kUsage =
     "usage: posemorph-view RIG.pmrig [--images DIR] [--headless -o OUT.png] [--size WxH]\n"
     "         [--at X,Y | --path NAME [--time T] [--frames K]] [--crowd K] [--sigma S]\n"
     "         [--no-shear-limit] [--linear] [--compare] [--bases] [--wireframe] [--validation]\n"
+    "         [--camera X,Y,ZOOM | --camera 1:1] [--transform T] [--seed S] [--drawings K] [--blend B]\n"
     "         [--smoke-test SHOT.png [--frames K]] [--description RIG.json]\n"
     "  --images DIR  where the rig's drawings are (default: the rig's folder)\n"
     "  --frames K    with --path: K frames over the path's duration, OUT-000.png ...\n"
+    "  --crowd K     K characters on a ground line: seeded random places, sizes and facings\n"
+    "  --seed S      the crowd's layout (default 1)\n"
+    "  --camera      headless: world point X,Y at the centre, ZOOM pixels per world unit (a whole\n"
+    "                ZOOM also aligns drawing pixels with screen pixels); 1:1 = fit's centre at zoom 1,\n"
+    "                pixel-aligned. Default: fit the character (or the crowd)\n"
+    "  --transform T one character's place, comma-separated: move=X:Y rotate=DEGREES scale=S|SX:SY flip\n"
+    "                (applied as scale, flip, rotate, move; e.g. --transform rotate=30,scale=1.5,flip)\n"
+    "  --drawings K  blend the K (1..8) most weighted drawings per character (default 8)\n"
+    "  --blend B     exact (one pass, weighted sum; default) or over (sequential passes, approximate)\n"
     "  --compare     rigid (left) and linear (right) interpolation side by side\n"
     "  --bases       the N base poses in a row\n"
     "  --validation  enable the Vulkan validation layer; any message fails (exit 3)\n"
@@ -37,6 +48,49 @@ const char* kUsage =
 int Usage(const std::string& problem) {
   std::fprintf(stderr, "posemorph-view: %s\n%s", problem.c_str(), kUsage);
   return 2;
+}
+
+// "move=X:Y,rotate=DEG,scale=S|SX:SY,flip" -> a transform. False on anything else.
+bool ParseTransform(const std::string& text, Transform2D* out) {
+  double x = 0, y = 0, degrees = 0, sx = 1, sy = 1;
+  bool flip = false;
+  std::size_t at = 0;
+  while (at <= text.size()) {
+    const std::size_t end = std::min(text.find(',', at), text.size());
+    const std::string item = text.substr(at, end - at);
+    char tail = 0;
+    if (item == "flip") flip = true;
+    else if (std::sscanf(item.c_str(), "move=%lf:%lf%c", &x, &y, &tail) == 2) {
+    } else if (std::sscanf(item.c_str(), "rotate=%lf%c", &degrees, &tail) == 1) {
+    } else if (std::sscanf(item.c_str(), "scale=%lf:%lf%c", &sx, &sy, &tail) == 2) {
+    } else if (std::sscanf(item.c_str(), "scale=%lf%c", &sx, &tail) == 1) sy = sx;
+    else return false;
+    at = end + 1;
+  }
+  const double limit = 1e6;
+  for (double v : {x, y, degrees, sx, sy})
+    if (!std::isfinite(v) || std::fabs(v) > limit) return false;
+  if (sx == 0 || sy == 0) return false;
+  *out = Transform2D::Make(x, y, degrees * 3.14159265358979323846 / 180, sx, sy, flip);
+  return true;
+}
+
+// A finite number in [lo, hi], nothing after it.
+bool ParseNumber(const char* text, double lo, double hi, double* out) {
+  char* end = nullptr;
+  const double v = std::strtod(text, &end);
+  if (end == text || *end != 0 || !(v >= lo && v <= hi)) return false;
+  *out = v;
+  return true;
+}
+
+// A whole number in [lo, hi], nothing after it.
+bool ParseCount(const char* text, long lo, long hi, std::uint32_t* out) {
+  char* end = nullptr;
+  const long v = std::strtol(text, &end, 10);
+  if (end == text || *end != 0 || v < lo || v > hi) return false;
+  *out = std::uint32_t(v);
+  return true;
 }
 
 int Fail(const std::string& problem) {
@@ -52,6 +106,9 @@ int main(int argc, char** argv) {
   bool headless = false, validation = false;
   std::uint32_t width = 640, height = 640, frames = 0;
   Scene scene;
+  enum class CameraMode { kFit, kOneToOne, kGiven } camera_mode = CameraMode::kFit;
+  Camera given_camera;
+  Blend blend = Blend::kExact;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
@@ -68,10 +125,36 @@ int main(int argc, char** argv) {
     else if (a == "--description" && (v = value())) window.description = v;
     else if (a == "--images" && (v = value())) images = v;
     else if (a == "--path" && (v = value())) scene.path = v;
-    else if (a == "--time" && (v = value())) scene.time = std::atof(v);
-    else if (a == "--sigma" && (v = value())) scene.sigma = std::atof(v);
-    else if (a == "--frames" && (v = value())) frames = std::uint32_t(std::atoi(v));
-    else if (a == "--crowd" && (v = value())) scene.crowd = std::uint32_t(std::max(1, std::atoi(v)));
+    else if (a == "--time" && (v = value())) {
+      if (!ParseNumber(v, -1e9, 1e9, &scene.time)) return Usage("--time wants seconds, a finite number");
+    } else if (a == "--sigma" && (v = value())) {
+      if (!ParseNumber(v, 0, 1, &scene.sigma)) return Usage("--sigma wants a number in 0..1");
+    } else if (a == "--frames" && (v = value())) {
+      if (!ParseCount(v, 1, 100000, &frames)) return Usage("--frames wants a count in 1..100000");
+    }
+    else if (a == "--crowd" && (v = value())) {
+      if (!ParseCount(v, 1, 100000, &scene.crowd)) return Usage("--crowd wants a count in 1..100000");
+    } else if (a == "--seed" && (v = value())) {
+      if (!ParseCount(v, 0, 0x7fffffff, &scene.seed)) return Usage("--seed wants a whole number >= 0");
+    } else if (a == "--drawings" && (v = value())) {
+      if (!ParseCount(v, 1, kDrawingsPerCharacter, &scene.max_drawings)) return Usage("--drawings wants 1..8");
+    } else if (a == "--blend" && (v = value())) {
+      if (std::strcmp(v, "exact") == 0) blend = Blend::kExact;
+      else if (std::strcmp(v, "over") == 0) blend = Blend::kSequentialOver;
+      else return Usage("--blend wants exact or over");
+    } else if (a == "--transform" && (v = value())) {
+      if (!ParseTransform(v, &scene.transform))
+        return Usage("--transform wants move=X:Y,rotate=DEGREES,scale=S|SX:SY,flip (any of them, finite, scale not 0)");
+    } else if (a == "--camera" && (v = value())) {
+      char tail = 0;
+      if (std::strcmp(v, "1:1") == 0) camera_mode = CameraMode::kOneToOne;
+      else if (std::sscanf(v, "%lf,%lf,%lf%c", &given_camera.centre.x, &given_camera.centre.y, &given_camera.zoom,
+                           &tail) == 3 &&
+               std::isfinite(given_camera.centre.x) && std::isfinite(given_camera.centre.y) &&
+               given_camera.zoom >= Camera::kMinZoom && given_camera.zoom <= Camera::kMaxZoom)
+        camera_mode = CameraMode::kGiven;
+      else return Usage("--camera wants X,Y,ZOOM (ZOOM pixels per world unit, 1/256..256) or 1:1");
+    }
     else if (a == "--size" && (v = value())) {
       if (std::sscanf(v, "%ux%u", &width, &height) != 2 || width == 0 || height == 0 || width > 8192 || height > 8192)
         return Usage("--size wants WxH, each 1..8192");
@@ -137,11 +220,18 @@ int main(int argc, char** argv) {
   }
   for (std::size_t f = 0; f < outputs.size(); ++f) {
     scene.time = times[f];
-    View view;
+    SceneBounds bounds;
     std::uint32_t count = 0;
-    if (!PrepareScene(rig, scene, renderer, scratch, &view, &count, &problem)) return Fail(problem);
-    target.Render([&](VkCommandBuffer cmd) { renderer.Record(cmd, count, view, width, height, scene.wireframe); },
-                  background);
+    if (!PrepareScene(rig, scene, renderer, scratch, &bounds, &count, &problem)) return Fail(problem);
+    Camera camera = FitCamera(bounds.all, width, height);
+    if (camera_mode == CameraMode::kOneToOne) camera.zoom = 1, camera = PixelExact(camera, width, height);
+    if (camera_mode == CameraMode::kGiven) {
+      camera = given_camera;
+      if (camera.zoom == std::round(camera.zoom)) camera = PixelExact(camera, width, height);
+    }
+    target.Render(
+        [&](VkCommandBuffer cmd) { renderer.Record(cmd, count, camera, width, height, scene.wireframe, 0, 0, blend); },
+        background);
     if (!WritePng(outputs[f], target.pixels(), width, height, &problem)) return Fail(problem);
   }
   std::printf("wrote %s%s (%ux%u, %s)\n", outputs[0].c_str(), outputs.size() > 1 ? " ..." : "", width, height,

@@ -81,35 +81,23 @@ bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::st
   return true;
 }
 
-void PickDrawings(const double* w, std::uint32_t N, InstanceData* out) {
-  constexpr std::uint32_t K = kDrawingsPerCharacter;
-  std::int32_t best[K] = {};
-  double weight[K] = {};
-  std::uint32_t count = 0;
-  for (std::uint32_t i = 0; i < N; ++i) {  // insertion into a short sorted list
-    std::uint32_t at = count;
-    while (at > 0 && weight[at - 1] < w[i]) --at;
-    if (at >= K) continue;
-    for (std::uint32_t k = std::min(count, K - 1); k > at; --k) best[k] = best[k - 1], weight[k] = weight[k - 1];
-    best[at] = std::int32_t(i), weight[at] = w[i];
-    count = std::min(count + 1, K);
+Instance ToInstance(const DrawList& list) {
+  Instance inst{};
+  const Transform2D& t = list.transform;
+  inst.linear = gpu::mat2(t.a, t.b, t.c, t.d);  // column-major: (a, b), (c, d)
+  inst.translation = gpu::vec2(t.tx, t.ty);
+  for (std::uint32_t k = 0; k < kDrawingsPerCharacter; ++k) {
+    const bool used = k < list.drawing_count;
+    const std::int32_t layer = std::int32_t(list.drawings[used ? k : 0].pose);
+    inst.layers[k / 4][int(k % 4)] = layer;
+    inst.weights[k / 4][int(k % 4)] = used ? list.drawings[k].weight : 0.0f;
   }
-  double sum = 0;
-  for (std::uint32_t k = 0; k < count; ++k) sum += std::max(weight[k], 0.0);
-  for (std::uint32_t k = 0; k < K; ++k) {
-    out->layers[k] = k < count ? best[k] : best[0];
-    out->weights[k] = k < count && sum > 0 ? float(std::max(weight[k], 0.0) / sum) : 0.0f;
-  }
-  if (sum <= 0) out->weights[0] = 1;
+  return inst;
 }
 
 namespace {
 
-struct Push {  // matches the push constants of both shaders (scalar layout)
-  VkDeviceAddress positions, uvs, instances;
-  float view_scale[2], view_offset[2];
-  std::uint32_t vertex_count, flat_colour;
-};
+using Push = gpu::PushData;
 
 VkShaderModule Module(VkDevice device, const std::uint32_t* code, std::size_t bytes) {
   VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
@@ -137,7 +125,7 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   uvs_ = gpu.CreateBuffer(8ull * V * N, storage);
   for (std::uint32_t i = 0; i < N; ++i) std::memcpy(static_cast<char*>(uvs_.mapped) + 8ull * V * i, rig.uvs(i).data, 8ull * V);
   positions_ = gpu.CreateBuffer(8ull * V * max_instances, storage);
-  instances_ = gpu.CreateBuffer(sizeof(InstanceData) * max_instances, storage);
+  instances_ = gpu.CreateBuffer(sizeof(Instance) * max_instances, storage);
 
   // The drawings as one texture array.
   const std::size_t layer_bytes = std::size_t(drawings.width) * drawings.height * 4;
@@ -273,33 +261,38 @@ RigRenderer::~RigRenderer() {
   for (Buffer* b : {&indices_, &uvs_, &positions_, &instances_}) gpu_->Destroy(*b);
 }
 
-void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const View& view, std::uint32_t width,
-                         std::uint32_t height, bool wireframe, std::int32_t x, std::int32_t y) const {
+void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const Camera& camera, std::uint32_t width,
+                         std::uint32_t height, bool wireframe, std::int32_t x, std::int32_t y, Blend blend) const {
   VkViewport viewport{float(x), float(y), float(width), float(height), 0, 1};
   VkRect2D scissor{{x, y}, {width, height}};
   vkCmdSetViewport(cmd, 0, 1, &viewport);
   vkCmdSetScissor(cmd, 0, 1, &scissor);
-  // Rig space is y up; clip space is y down. Keep the aspect ratio: fit the view rectangle.
-  const double w = view.x1 - view.x0, h = view.y1 - view.y0;
-  const double s = std::min(2.0 * width / w, 2.0 * height / h);
   Push push{};
-  push.positions = positions_.address;
-  push.uvs = uvs_.address;
-  push.instances = instances_.address;
-  push.view_scale[0] = float(s / width);
-  push.view_scale[1] = float(-s / height);
-  push.view_offset[0] = float(-(view.x0 + view.x1) / 2 * s / width);
-  push.view_offset[1] = float((view.y0 + view.y1) / 2 * s / height);
+  push.positions = gpu::Address(positions_.address);
+  push.uvs = gpu::Address(uvs_.address);
+  push.instances = gpu::Address(instances_.address);
+  ClipTransform(camera, width, height, &push.view_scale, &push.view_offset);
   push.vertex_count = vertex_count_;
+  push.only_slot = -1;
+  const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, fill_);
-  vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
-  vkCmdDrawIndexed(cmd, index_count_, count, 0, 0, 0);
+  if (blend == Blend::kExact) {
+    vkCmdPushConstants(cmd, layout_, stages, 0, sizeof push, &push);
+    vkCmdDrawIndexed(cmd, index_count_, count, 0, 0, 0);
+  } else {
+    for (std::int32_t slot = 0; slot < std::int32_t(kDrawingsPerCharacter); ++slot) {
+      push.only_slot = slot;
+      vkCmdPushConstants(cmd, layout_, stages, 0, sizeof push, &push);
+      vkCmdDrawIndexed(cmd, index_count_, count, 0, 0, 0);
+    }
+    push.only_slot = -1;
+  }
   if (wireframe && lines_) {
     push.flat_colour = 1;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lines_);
-    vkCmdPushConstants(cmd, layout_, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof push, &push);
+    vkCmdPushConstants(cmd, layout_, stages, 0, sizeof push, &push);
     vkCmdDrawIndexed(cmd, index_count_, count, 0, 0, 0);
   }
 }

@@ -8,7 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "camera.h"
 #include "gpu.h"
+#include "gpu_layout.h"
+#include "posemorph/draw_list.h"
 #include "posemorph/rig.h"
 
 namespace posemorph::viewer {
@@ -22,21 +25,16 @@ struct Drawings {
 // naming the file when one is missing or unreadable, or the rig has no uvs.
 bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::string* error);
 
-constexpr std::uint32_t kDrawingsPerCharacter = 8;
+constexpr std::uint32_t kDrawingsPerCharacter = kMaxBlendDrawings;
+using gpu::Instance;
+// The GPU form of a character's draw list: its transform and drawings
+// (unused slots repeat the first drawing at weight 0).
+Instance ToInstance(const DrawList& list);
 
-struct InstanceData {  // matches `Instance` in shaders/skin.vert (scalar layout)
-  float offset[2] = {0, 0};
-  float scale = 1;
-  float pad = 0;
-  std::int32_t layers[kDrawingsPerCharacter] = {};
-  float weights[kDrawingsPerCharacter] = {1};
-};
-// The drawings a character shows: all N with their texture weights when
-// N <= 8; otherwise the 8 largest, renormalised (ties to the lower pose).
-void PickDrawings(const double* texture_weights, std::uint32_t pose_count, InstanceData* out);
-
-struct View {  // which rectangle of rig space fills the target
-  double x0 = -1, y0 = -1, x1 = 1, y1 = 1;
+// How the drawings of a character are combined (README "Drawing a character").
+enum class Blend {
+  kExact,           // one pass, the weighted sum of every drawing shown (blend.frag)
+  kSequentialOver,  // one pass per drawing, each "over" the last at w_k / (w_0 + ... + w_k)
 };
 
 class RigRenderer {
@@ -50,12 +48,14 @@ class RigRenderer {
             std::string* error);
   // Written by the caller before Record: instance-major float x, y per vertex.
   float* positions() { return static_cast<float*>(positions_.mapped); }
-  InstanceData* instances() { return static_cast<InstanceData*>(instances_.mapped); }
+  Instance* instances() { return static_cast<Instance*>(instances_.mapped); }
   std::uint32_t max_instances() const { return max_instances_; }
-  // Inside dynamic rendering on a target of the format given to Init.
-  // The view fills the viewport of `width` x `height` pixels at (x, y) of the target.
-  void Record(VkCommandBuffer cmd, std::uint32_t instance_count, const View& view, std::uint32_t width,
-              std::uint32_t height, bool wireframe, std::int32_t x = 0, std::int32_t y = 0) const;
+  // Inside dynamic rendering on a target of the format given to Init: the
+  // camera looks at the world through the viewport of `width` x `height`
+  // pixels at (x, y) of the target.
+  void Record(VkCommandBuffer cmd, std::uint32_t instance_count, const Camera& camera, std::uint32_t width,
+              std::uint32_t height, bool wireframe, std::int32_t x = 0, std::int32_t y = 0,
+              Blend blend = Blend::kExact) const;
 
  private:
   Gpu* gpu_ = nullptr;

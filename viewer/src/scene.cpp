@@ -3,8 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
-#include "posemorph/jobs.h"
+#include "posemorph/draw_list.h"
 #include "posemorph/path.h"
 
 namespace posemorph::viewer {
@@ -22,15 +23,74 @@ View CharacterBounds(const Rig& rig) {
   return {v.x0 - margin, v.y0 - margin, v.x1 + margin, v.y1 + margin};
 }
 
+View TransformBounds(const Transform2D& t, const View& r) {
+  View out{1e300, 1e300, -1e300, -1e300};
+  const double corners[4][2] = {{r.x0, r.y0}, {r.x1, r.y0}, {r.x0, r.y1}, {r.x1, r.y1}};
+  for (const auto& c : corners) {
+    double x = 0, y = 0;
+    t.Apply(c[0], c[1], &x, &y);
+    out.x0 = std::min(out.x0, x), out.x1 = std::max(out.x1, x);
+    out.y0 = std::min(out.y0, y), out.y1 = std::max(out.y1, y);
+  }
+  return out;
+}
+
 std::uint32_t SceneCharacters(const Rig& rig, const Scene& scene) {
   if (scene.show_bases) return rig.pose_count();
   if (scene.compare_linear) return 2;
   return std::max<std::uint32_t>(scene.crowd, 1);
 }
 
-bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, SceneScratch& scratch, View* view,
-                  std::uint32_t* count, std::string* error) {
-  const std::uint32_t N = rig.pose_count(), V = rig.vertex_count(), K = SceneCharacters(rig, scene);
+namespace {
+
+// SplitMix64: a few lines, the same sequence everywhere (std::
+// distributions are not specified bit for bit across standard libraries).
+struct Random {
+  std::uint64_t state;
+  double Next() {  // uniform in [0, 1)
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return double((z ^ (z >> 31)) >> 11) * (1.0 / 9007199254740992.0);
+  }
+};
+
+}  // namespace
+
+void CrowdLayout(const Rig& rig, std::uint32_t count, std::uint32_t seed, Transform2D* transforms, double* phases) {
+  const View one = CharacterBounds(rig);
+  const double cw = one.x1 - one.x0, ch = one.y1 - one.y0;
+  struct Member {
+    double depth, x;
+    bool flip;
+    std::uint32_t index;
+  };
+  std::vector<Member> members(count);
+  Random random{seed};
+  const double ground = cw * std::max(2.0, 1.2 * std::sqrt(double(count)));
+  for (std::uint32_t k = 0; k < count; ++k) {
+    members[k].depth = random.Next();
+    members[k].x = (random.Next() - 0.5) * ground;
+    members[k].flip = random.Next() < 0.5;
+    members[k].index = k;
+  }
+  std::stable_sort(members.begin(), members.end(),
+                   [](const Member& a, const Member& b) { return a.depth > b.depth; });  // far first
+  // Each character's feet (the bottom middle of its bounds) stand on the ground line.
+  Transform2D feet;
+  feet.tx = float(-(one.x0 + one.x1) / 2), feet.ty = float(-one.y0);
+  for (std::uint32_t i = 0; i < count; ++i) {
+    const Member& m = members[i];
+    const double scale = 1 - 0.55 * m.depth;
+    const Transform2D place = Transform2D::Make(m.x, m.depth * 0.8 * ch, 0, scale, scale, m.flip);
+    transforms[i] = Compose(place, feet);
+    phases[i] = double(m.index) / count;
+  }
+}
+
+bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, SceneScratch& scratch,
+                  SceneBounds* bounds, std::uint32_t* count, std::string* error) {
+  const std::uint32_t V = rig.vertex_count(), K = SceneCharacters(rig, scene);
   if (K > renderer.max_instances()) {
     *error = "a scene of " + std::to_string(K) + " characters is more than the renderer holds (" +
              std::to_string(renderer.max_instances()) + ")";
@@ -45,16 +105,19 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
     }
   }
   const View one = CharacterBounds(rig);
-  const double cw = one.x1 - one.x0, ch = one.y1 - one.y0;
-  const std::uint32_t columns =
-      scene.show_bases || scene.compare_linear ? K : std::uint32_t(std::ceil(std::sqrt(double(K))));
-  const std::uint32_t rows = (K + columns - 1) / columns;
-  const double sigma = scene.sigma < 0 ? rig.default_sigma() : scene.sigma;
+  const double cw = one.x1 - one.x0;
 
-  // Weights for every character, then its drawings and its place on the grid.
-  scratch.raw.resize(std::size_t(K) * N);
-  scratch.shear.resize(std::size_t(K) * N);
-  scratch.texture.resize(N);
+  // Where each character stands, in draw order, and its pose-space point.
+  scratch.points.resize(2 * std::size_t(K));
+  scratch.transforms.resize(K);
+  scratch.phases.assign(K, 0.0);
+  if (K > 1 && !scene.show_bases && !scene.compare_linear) {
+    CrowdLayout(rig, K, scene.seed, scratch.transforms.data(), scratch.phases.data());
+  } else if (K == 1) {
+    scratch.transforms[0] = scene.transform;
+  } else {
+    for (std::uint32_t k = 0; k < K; ++k) scratch.transforms[k] = Transform2D::Make(cw * k, 0);  // in a row
+  }
   for (std::uint32_t k = 0; k < K; ++k) {
     double x = scene.x, y = scene.y;
     if (scene.show_bases) {
@@ -62,63 +125,45 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
     } else if (path >= 0) {
       const PathView p = rig.path(std::uint32_t(path));
       const double t0 = p.keys.data[0], t1 = p.keys.data[p.keys.size - 3];
-      const double t = scene.time + (scene.compare_linear ? 0.0 : (t1 - t0) * double(k) / double(K));
-      SamplePath(p, t, &x, &y);
+      SamplePath(p, scene.time + (t1 - t0) * scratch.phases[k], &x, &y);
     }
-    WeightsJob wj;
-    wj.rig = &rig;
-    wj.x = x, wj.y = y;
-    wj.sigma = sigma;
-    wj.shear_limit = scene.shear_limit;
-    wj.raw = {scratch.raw.data() + std::size_t(k) * N, N};
-    wj.shear = {scratch.shear.data() + std::size_t(k) * N, N};
-    wj.texture = {scratch.texture.data(), N};
-    if (!wj.Run()) {
-      *error = "weights failed";
-      return false;
-    }
-    InstanceData& inst = renderer.instances()[k];
-    PickDrawings(scratch.texture.data(), N, &inst);
-    inst.scale = 1;
-    inst.offset[0] = float(cw * double(k % columns));
-    inst.offset[1] = float(-ch * double(k / columns));
+    scratch.points[2 * k] = x, scratch.points[2 * k + 1] = y;
   }
 
-  // Positions straight into the renderer's buffer (floats, character after character).
-  const bool any_linear = scene.linear || scene.compare_linear;
-  if (!any_linear) {
-    scratch.workspace.resize(rig.batch_workspace_size());
-    MorphBatchJob bj;
-    bj.rig = &rig;
-    bj.count = K;
-    bj.weights = {scratch.raw.data(), scratch.raw.size()};
-    bj.shear_weights = {scratch.shear.data(), scratch.shear.size()};
-    bj.workspace = {scratch.workspace.data(), scratch.workspace.size()};
-    bj.positions_f32 = {renderer.positions(), std::size_t(K) * 2 * V};
-    if (!bj.Run()) {
-      *error = "morph failed";
-      return false;
-    }
-  } else {
-    scratch.workspace.resize(rig.morph_workspace_size());
-    scratch.positions.resize(2 * std::size_t(V));
-    for (std::uint32_t k = 0; k < K; ++k) {
-      const bool linear = scene.compare_linear ? k == 1 : scene.linear;
-      MorphJob mj;
-      mj.rig = &rig;
-      mj.weights = {scratch.raw.data() + std::size_t(k) * N, N};
-      mj.shear_weights = {scratch.shear.data() + std::size_t(k) * N, N};
-      mj.interpolation = linear ? Interpolation::kLinear : Interpolation::kRigid;
-      mj.workspace = {scratch.workspace.data(), scratch.workspace.size()};
-      mj.positions = {scratch.positions.data(), scratch.positions.size()};
-      mj.positions_f32 = {renderer.positions() + std::size_t(k) * 2 * V, 2 * std::size_t(V)};
-      if (!mj.Run()) {
-        *error = "morph failed";
-        return false;
-      }
-    }
+  // The runtime: one draw-list job (two for the rigid | linear comparison),
+  // positions straight into the renderer's buffer.
+  scratch.workspace.resize(DrawListWorkspaceSize(rig, K));
+  scratch.lists.resize(K);
+  const auto run = [&](std::uint32_t first, std::uint32_t n, Interpolation interpolation) {
+    DrawListJob job;
+    job.rig = &rig;
+    job.count = n;
+    job.points = {scratch.points.data() + 2 * std::size_t(first), 2 * std::size_t(n)};
+    job.transforms = {scratch.transforms.data() + first, n};
+    job.sigma = scene.sigma;
+    job.shear_limit = scene.shear_limit;
+    job.interpolation = interpolation;
+    job.max_drawings = std::clamp<std::uint32_t>(scene.max_drawings, 1, kDrawingsPerCharacter);
+    job.workspace = {scratch.workspace.data(), scratch.workspace.size()};
+    job.positions = {renderer.positions() + std::size_t(first) * 2 * V, std::size_t(n) * 2 * V};
+    job.output = {scratch.lists.data() + first, n};
+    return job.Run();
+  };
+  const bool ok = scene.compare_linear
+                      ? run(0, 1, Interpolation::kRigid) && run(1, 1, Interpolation::kLinear)
+                      : run(0, K, scene.linear ? Interpolation::kLinear : Interpolation::kRigid);
+  if (!ok) {
+    *error = "the draw-list job refused the scene";
+    return false;
   }
-  *view = {one.x0, one.y0 - ch * (rows - 1), one.x1 + cw * (columns - 1), one.y1};
+  View all{1e300, 1e300, -1e300, -1e300};
+  for (std::uint32_t k = 0; k < K; ++k) {
+    renderer.instances()[k] = ToInstance(scratch.lists[k]);
+    const View b = TransformBounds(scratch.transforms[k], one);
+    all = {std::min(all.x0, b.x0), std::min(all.y0, b.y0), std::max(all.x1, b.x1), std::max(all.y1, b.y1)};
+  }
+  bounds->all = all;
+  bounds->first = TransformBounds(scratch.transforms[0], one);
   *count = K;
   return true;
 }

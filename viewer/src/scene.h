@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
-// What a frame shows: one character at a pose-space point (or a path time),
-// or a crowd walking a path at staggered phases. Used by the headless
-// capture, the window and the frame-hash tests alike.
+// What a frame shows: one character at a pose-space point (or a path time)
+// placed by a transform, or a crowd on a ground line walking a path at
+// staggered phases. Used by the headless capture, the window and the frame
+// tests alike. Every character goes through the runtime's DrawListJob.
 #pragma once
 #include <string>
 #include <vector>
@@ -17,7 +18,10 @@ struct Scene {
   double sigma = -1;          // texture sharpening; < 0: the rig's default
   bool shear_limit = true;
   bool linear = false;        // linear vertex blending instead of rigid (the paper's comparison)
-  std::uint32_t crowd = 1;    // characters, laid out on a grid, phases spread over the path
+  std::uint32_t crowd = 1;    // characters: > 1 lays them out on a ground line (see CrowdLayout)
+  std::uint32_t seed = 1;     // the crowd layout's random positions, sizes and facings
+  Transform2D transform;      // a single character's place in the world
+  std::uint32_t max_drawings = kDrawingsPerCharacter;  // K drawings blended per character
   bool wireframe = false;
   bool compare_linear = false;  // two characters: rigid (left) and linear (right) at the same point
   bool show_bases = false;      // the N base poses in a row, each exactly at its point
@@ -28,18 +32,34 @@ std::uint32_t SceneCharacters(const Rig& rig, const Scene& scene);
 
 // The CPU buffers a scene's evaluation reuses from frame to frame.
 struct SceneScratch {
-  std::vector<double> raw, shear, texture;  // K x N weights
-  std::vector<double> workspace, positions;
+  std::vector<double> points, workspace;
+  std::vector<Transform2D> transforms;
+  std::vector<double> phases;  // crowd: each drawn character's share of the path
+  std::vector<DrawList> lists;
 };
 
-// Evaluates the characters of a scene with the runtime (one MorphBatchJob
-// for rigid characters, MorphJob for linear ones) into the renderer's
-// buffers and returns the view that frames them. False with a message for
-// an unknown path or more characters than the renderer holds.
-bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, SceneScratch& scratch, View* view,
-                  std::uint32_t* count, std::string* error);
+// Where a frame's characters are, in world units: a camera fits one of them.
+struct SceneBounds {
+  View all;    // every character (fit to crowd)
+  View first;  // the first character, or the single one (fit to character)
+};
 
-// The rectangle of rig space that holds every pose of one character.
+// A crowd of `count` on a ground line, random (seeded: the same on every
+// platform) positions, sizes and facings, sorted back to front (the draw
+// order). Characters farther back stand higher and smaller. phase[k] in
+// [0, 1) is drawn character k's offset along the path.
+void CrowdLayout(const Rig& rig, std::uint32_t count, std::uint32_t seed, Transform2D* transforms, double* phases);
+
+// Evaluates the characters of a scene with the runtime's DrawListJob into
+// the renderer's buffers (positions and instances, in draw order) and
+// returns where they are. False with a message for an unknown path or more
+// characters than the renderer holds.
+bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, SceneScratch& scratch,
+                  SceneBounds* bounds, std::uint32_t* count, std::string* error);
+
+// The rectangle of rig space that holds every pose of one character (with a 6% margin).
 View CharacterBounds(const Rig& rig);
+// The world rectangle holding `rect` after a transform.
+View TransformBounds(const Transform2D& t, const View& rect);
 
 }  // namespace posemorph::viewer

@@ -85,8 +85,10 @@ class Viewer {
   void Frame(bool screenshot);
   void SaveGesture();
   void EditUi();
-  void EditInput(const View& view, std::int32_t x0, std::uint32_t w, std::uint32_t h);
-  bool EditScene(View* view, std::uint32_t* count);
+  void EditInput(std::int32_t x0, std::uint32_t w, std::uint32_t h);
+  bool EditScene(SceneBounds* bounds, std::uint32_t* count);
+  void CameraUi();
+  void CameraInput(std::int32_t x0, std::uint32_t w, std::uint32_t h);
   void SavePose();
   void ChangeDescription(const char* what, const std::function<std::string(nlohmann::json&)>& change);
 
@@ -120,6 +122,11 @@ class Viewer {
   double eval_ms_ = 0;
   std::uint32_t smoke_frame_ = 0;
   Edit edit_;
+  // The camera: fitted to the scene every frame until the user zooms or pans.
+  enum class Fit { kAll, kCharacter, kNone } fit_ = Fit::kAll;
+  Camera camera_;
+  bool one_to_one_ = false;  // applied once the next frame's bounds are known
+  bool panning_ = false;
 };
 
 bake::Triangles RigTriangles(const Rig& rig) {
@@ -129,14 +136,21 @@ bake::Triangles RigTriangles(const Rig& rig) {
   return tris;
 }
 
-// The same mapping as RigRenderer::Record: rig space <-> window pixels.
+// The same mapping as RigRenderer::Record: world <-> window pixels, for a
+// viewport at x0 (the edited character stands at the identity transform).
 struct ViewMap {
-  double s, cx, cy, px, py;  // pixels per unit; view centre; viewport centre in pixels
-  ViewMap(const View& v, std::int32_t x0, std::uint32_t w, std::uint32_t h)
-      : s(std::min(w / (v.x1 - v.x0), h / (v.y1 - v.y0))), cx((v.x0 + v.x1) / 2), cy((v.y0 + v.y1) / 2),
-        px(x0 + w / 2.0), py(h / 2.0) {}
-  ImVec2 ToScreen(const Eigen::Vector2d& p) const { return ImVec2(float(px + (p.x() - cx) * s), float(py - (p.y() - cy) * s)); }
-  Eigen::Vector2d ToRig(const ImVec2& q) const { return {cx + (q.x - px) / s, cy - (q.y - py) / s}; }
+  Camera camera;
+  std::int32_t x0;
+  std::uint32_t w, h;
+  double s() const { return camera.zoom; }
+  ImVec2 ToScreen(const Eigen::Vector2d& p) const {
+    const glm::dvec2 q = viewer::ToScreen(camera, {p.x(), p.y()}, w, h);
+    return ImVec2(float(q.x + x0), float(q.y));
+  }
+  Eigen::Vector2d ToRig(const ImVec2& q) const {
+    const glm::dvec2 p = ToWorld(camera, {q.x - x0, q.y}, w, h);
+    return {p.x, p.y};
+  }
 };
 
 bool Viewer::CreateSwapchain() {
@@ -362,16 +376,16 @@ void Viewer::EditUi() {
   ImGui::Text("%zu handle(s): click the mesh to add, drag to move", edit_.handles.size());
 }
 
-void Viewer::EditInput(const View& view, std::int32_t x0, std::uint32_t w, std::uint32_t h) {
+void Viewer::EditInput(std::int32_t x0, std::uint32_t w, std::uint32_t h) {
   const ImGuiIO& io = ImGui::GetIO();
-  const ViewMap map(view, x0, w, h);
+  const ViewMap map{camera_, x0, w, h};
   ImDrawList* draw = ImGui::GetForegroundDrawList();
   for (std::size_t k = 0; k < edit_.handles.size(); ++k) {
     const ImVec2 p = map.ToScreen(edit_.targets[k]);
     draw->AddCircleFilled(p, 6, IM_COL32(230, 60, 40, 230));
     draw->AddCircle(p, 7, IM_COL32(20, 20, 20, 255), 0, 1.5f);
   }
-  if (io.WantCaptureMouse || io.MousePos.x < x0) return;
+  if (io.WantCaptureMouse || io.MousePos.x < x0 || panning_) return;
   if (io.MouseClicked[0]) {
     edit_.dragging = -1;
     for (std::size_t k = 0; k < edit_.handles.size(); ++k) {
@@ -381,7 +395,7 @@ void Viewer::EditInput(const View& view, std::int32_t x0, std::uint32_t w, std::
     if (edit_.dragging < 0) {
       // A new handle on the vertex under the click (as the description's "at" handles pick it).
       std::uint32_t vertex = 0;
-      if (bake::HandleVertex(edit_.current, RigTriangles(rig_), map.ToRig(io.MousePos), 6 / map.s, &vertex) &&
+      if (bake::HandleVertex(edit_.current, RigTriangles(rig_), map.ToRig(io.MousePos), 6 / map.s(), &vertex) &&
           std::find(edit_.handles.begin(), edit_.handles.end(), vertex) == edit_.handles.end()) {
         edit_.handles.push_back(vertex);
         edit_.targets.push_back(edit_.current[vertex]);
@@ -394,7 +408,7 @@ void Viewer::EditInput(const View& view, std::int32_t x0, std::uint32_t w, std::
   if (edit_.dragging >= 0) edit_.targets[std::size_t(edit_.dragging)] = map.ToRig(io.MousePos);
 }
 
-bool Viewer::EditScene(View* view, std::uint32_t* count) {
+bool Viewer::EditScene(SceneBounds* bounds, std::uint32_t* count) {
   const std::uint32_t V = rig_.vertex_count();
   const Span<const double> p = rig_.pose_positions(std::uint32_t(edit_.pose));
   edit_.rest.resize(V);
@@ -411,10 +425,12 @@ bool Viewer::EditScene(View* view, std::uint32_t* count) {
   }
   float* out = renderer_->positions();
   for (std::uint32_t v = 0; v < V; ++v) out[2 * v] = float(edit_.current[v].x()), out[2 * v + 1] = float(edit_.current[v].y());
-  InstanceData& inst = renderer_->instances()[0];
-  inst = InstanceData{};
-  for (std::uint32_t k = 0; k < kDrawingsPerCharacter; ++k) inst.layers[k] = edit_.pose;
-  *view = CharacterBounds(rig_);
+  DrawList list;  // the edited pose's own drawing, where the character stands unmoved
+  list.drawing_count = 1;
+  list.drawings[0].pose = std::uint32_t(edit_.pose);
+  list.drawings[0].weight = 1;
+  renderer_->instances()[0] = ToInstance(list);
+  bounds->all = bounds->first = CharacterBounds(rig_);
   *count = 1;
   return true;
 }
@@ -431,6 +447,40 @@ void Viewer::SavePose() {
                           {"deform", {{"from", std::string(from.data, from.size)}, {"handles", handles}}}});
     return "pose \"" + name + "\" at the pad's point";
   });
+}
+
+void Viewer::CameraUi() {
+  ImGui::Separator();
+  ImGui::TextUnformatted("Camera (wheel: zoom; middle/right or space + drag: pan)");
+  if (ImGui::Button("fit character")) fit_ = Fit::kCharacter;
+  ImGui::SameLine();
+  if (ImGui::Button("fit crowd")) fit_ = Fit::kAll;
+  ImGui::SameLine();
+  if (ImGui::Button("1:1")) fit_ = Fit::kNone, one_to_one_ = true;
+  ImGui::Text("zoom %.3g px per unit", camera_.zoom);
+}
+
+void Viewer::CameraInput(std::int32_t x0, std::uint32_t w, std::uint32_t h) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const glm::dvec2 cursor(io.MousePos.x - x0, io.MousePos.y);
+  const bool inside = io.MousePos.x >= float(x0) && cursor.y >= 0 && cursor.y < h && !io.WantCaptureMouse;
+  if (inside && io.MouseWheel != 0) {
+    camera_ = ZoomAbout(camera_, cursor, std::pow(1.15, double(io.MouseWheel)), w, h);
+    fit_ = Fit::kNone;
+  }
+  const bool space = window_ && glfwGetKey(window_, GLFW_KEY_SPACE) == GLFW_PRESS;
+  const bool pan_button = io.MouseDown[1] || io.MouseDown[2] || (space && io.MouseDown[0]);
+  if (!pan_button) panning_ = false;
+  else if (inside && !panning_ && (io.MouseClicked[1] || io.MouseClicked[2] || io.MouseClicked[0])) panning_ = true;
+  if (panning_ && (io.MouseDelta.x != 0 || io.MouseDelta.y != 0)) {
+    camera_ = Pan(camera_, {io.MouseDelta.x, io.MouseDelta.y});
+    fit_ = Fit::kNone;
+  }
+  if (!io.WantCaptureKeyboard) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_F)) fit_ = Fit::kCharacter;
+    if (ImGui::IsKeyPressed(GLFW_KEY_A)) fit_ = Fit::kAll;
+    if (ImGui::IsKeyPressed(GLFW_KEY_1)) fit_ = Fit::kNone, one_to_one_ = true;
+  }
 }
 
 void Viewer::BuildUi() {
@@ -485,6 +535,7 @@ void Viewer::BuildUi() {
   EditUi();
   int crowd = int(scene_.crowd);
   if (ImGui::SliderInt("crowd", &crowd, 1, int(kMaxCharacters))) scene_.crowd = std::uint32_t(crowd);
+  CameraUi();
   ImGui::Text("%.1f fps, CPU %.3f ms per frame for %u character(s)", ImGui::GetIO().Framerate, eval_ms_,
               SceneCharacters(rig_, scene_));
   ImGui::TextWrapped("%s", gpu_.device_name().c_str());
@@ -526,14 +577,19 @@ void Viewer::Frame(bool screenshot) {
     scene_.y = shown.y = a[2] + u * (b[2] - a[2]);
   }
   if (!shown.path.empty() && shown.crowd <= 1) shown.path.clear();  // one character sits at the sampled point
-  View view;
+  SceneBounds bounds;
   std::uint32_t count = 0;
   std::string problem;
   const auto t0 = std::chrono::steady_clock::now();
   const bool prepared =
-      edit_.on ? EditScene(&view, &count) : PrepareScene(rig_, shown, *renderer_, scratch_, &view, &count, &problem);
+      edit_.on ? EditScene(&bounds, &count) : PrepareScene(rig_, shown, *renderer_, scratch_, &bounds, &count, &problem);
   eval_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (!prepared) status_ = problem, count = 0;
+  const std::uint32_t view_w = sc_.extent.width > kPanelWidth ? sc_.extent.width - std::uint32_t(kPanelWidth) : 1;
+  if (prepared && (fit_ != Fit::kNone || one_to_one_)) {
+    camera_ = FitCamera(fit_ == Fit::kCharacter || edit_.on ? bounds.first : bounds.all, view_w, sc_.extent.height);
+    if (one_to_one_) camera_.zoom = 1, camera_ = PixelExact(camera_, view_w, sc_.extent.height), one_to_one_ = false;
+  }
 
   vkResetCommandBuffer(cmd_, 0);
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
@@ -555,7 +611,7 @@ void Viewer::Frame(bool screenshot) {
   vkCmdBeginRendering(cmd_, &ri);
   const std::int32_t x0 = std::int32_t(kPanelWidth);
   if (count > 0 && sc_.extent.width > kPanelWidth + 8)
-    renderer_->Record(cmd_, count, view, sc_.extent.width - std::uint32_t(x0), sc_.extent.height, shown.wireframe, x0, 0);
+    renderer_->Record(cmd_, count, camera_, view_w, sc_.extent.height, shown.wireframe, x0, 0);
   vkCmdEndRendering(cmd_);
   VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
   rp.renderPass = ui_pass_;
@@ -719,7 +775,15 @@ int Viewer::Run() {
       const float size = kPanelWidth - 24, cx = 8 + 12 + size / 2, cy = 40 + size / 2;
       const float a = float(smoke_frame_) / float(options_.smoke_frames) * 6.2831853f;
       io.MousePos = ImVec2(cx + 0.3f * size * std::cos(a), cy + 0.3f * size * std::sin(a));
-      io.MouseDown[0] = smoke_frame_ > 0 && smoke_frame_ + 1 < options_.smoke_frames;
+      io.MouseDown[0] = smoke_frame_ > 0 && smoke_frame_ < options_.smoke_frames / 2;
+      // The camera: three wheel steps in at the middle of the view, then a right drag of 4 x 10 px.
+      if (smoke_frame_ == options_.smoke_frames / 2 + 2)
+        io.MousePos = ImVec2(kPanelWidth + (sc_.extent.width - kPanelWidth) / 2.0f, sc_.extent.height / 2.0f);
+      const std::uint32_t drag = smoke_frame_ - options_.smoke_frames / 2;
+      if (smoke_frame_ >= options_.smoke_frames / 2 + 3 && drag <= 7) {
+        io.MousePos = ImVec2(kPanelWidth + 100.0f + 10.0f * float(drag - 3), 300.0f);
+        io.MouseDown[1] = drag < 7;
+      }
       // The drag is recorded as a gesture for the first half.
       if (smoke_frame_ == 1) gesture_ = Gesture{}, gesture_.recording = true, gesture_.start = clock_;
       if (smoke_frame_ == options_.smoke_frames / 2) gesture_.recording = false;
@@ -740,9 +804,14 @@ int Viewer::Run() {
     }
     ImGui::NewFrame();
     BuildUi();
-    if (edit_.on && sc_.extent.width > kPanelWidth + 8)
-      EditInput(CharacterBounds(rig_), std::int32_t(kPanelWidth), sc_.extent.width - std::uint32_t(kPanelWidth),
-                sc_.extent.height);
+    if (smoke && smoke_frame_ == options_.smoke_frames / 2 + 2) {
+      ImGui::GetIO().MouseWheel = 3;  // the cursor was put in the view before NewFrame
+    }
+    if (sc_.extent.width > kPanelWidth + 8) {
+      CameraInput(std::int32_t(kPanelWidth), sc_.extent.width - std::uint32_t(kPanelWidth), sc_.extent.height);
+      if (edit_.on)
+        EditInput(std::int32_t(kPanelWidth), sc_.extent.width - std::uint32_t(kPanelWidth), sc_.extent.height);
+    }
     ImGui::Render();
     const bool last_frame = smoke && smoke_frame_ + 1 >= options_.smoke_frames;
     if (last_frame && !options_.description.empty()) {
@@ -778,6 +847,8 @@ int Viewer::Run() {
           std::printf("wrote %s (%ux%u window, %u frames, pad dragged to (%.3f, %.3f), %u character(s), %.1f fps at %ux%u, %s)\n",
                       options_.smoke_test.c_str(), sc_.extent.width, sc_.extent.height, smoke_frame_, scene_.x,
                       scene_.y, SceneCharacters(rig_, scene_), fps, options_.width, options_.height, gpu_.device_name().c_str());
+          std::printf("camera: zoom %.4g pixels per unit at (%.2f, %.2f), %s\n", camera_.zoom, camera_.centre.x,
+                      camera_.centre.y, fit_ == Fit::kNone ? "zoomed and panned by the user" : "fitted");
         }
       }
       break;

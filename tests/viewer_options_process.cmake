@@ -1,0 +1,35 @@
+# SPDX-License-Identifier: MIT
+# posemorph-view's numeric and placement options: each bad value is refused
+# with exit status 2 and a message naming the option, before any rendering.
+foreach(case
+    "--transform;rotate=abc|--transform wants"
+    "--transform;scale=0|--transform wants"
+    "--transform;move=1e400:0|--transform wants"
+    "--transform;spin=3|--transform wants"
+    "--camera;0,0|--camera wants"
+    "--camera;0,0,1000|--camera wants"
+    "--camera;nan,0,1|--camera wants"
+    "--frames;-1|--frames wants"
+    "--sigma;abc|--sigma wants"
+    "--sigma;1.5|--sigma wants"
+    "--crowd;0|--crowd wants"
+    "--crowd;12x|--crowd wants"
+    "--drawings;9|--drawings wants"
+    "--blend;soft|--blend wants"
+    "--time;inf|--time wants")
+  string(REPLACE "|" ";" parts "${case}")
+  list(GET parts 0 option)
+  list(GET parts 1 value)
+  list(GET parts 2 expected)
+  execute_process(COMMAND ${VIEW} ${RIG} --headless -o ${WORK}/never.png ${option} ${value}
+                  RESULT_VARIABLE status ERROR_VARIABLE err OUTPUT_VARIABLE out)
+  if(NOT status EQUAL 2)
+    message(FATAL_ERROR "${option} ${value}: expected exit status 2, got '${status}' (${err})")
+  endif()
+  if(NOT err MATCHES "${expected}")
+    message(FATAL_ERROR "${option} ${value}: expected '${expected}' in: ${err}")
+  endif()
+  if(EXISTS ${WORK}/never.png)
+    message(FATAL_ERROR "${option} ${value}: a refused option still wrote a frame")
+  endif()
+endforeach()
