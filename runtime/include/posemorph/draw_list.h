@@ -3,8 +3,8 @@
 // (floats, rig units), the triangles, the drawings to blend with their
 // weights and uvs, and where the character stands (a 2D transform). The
 // runtime never draws: a renderer turns each DrawList into its own draw
-// calls (see "Drawing a DrawList" below and README "Using posemorph in your
-// game"). No allocation and nothing thrown, like every job.
+// calls (see "Drawing a DrawList" below). No allocation and nothing thrown,
+// like every job.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -130,10 +130,11 @@ struct PM_API CharacterBuffers {
 //     formed before compositing, a pixel every drawing covers stays opaque.
 //     A shader that reads all K drawings at once needs no offscreen target.
 //  3. Cheaper, approximate: (a) the dominant drawing only (K = 1): no blend,
-//     pops when the order of weights changes; (b) K sequential "over" draws
-//     with alpha adjusted so their weights hold (drawing k at
-//     w_k / (w_0 + ... + w_k), back to front): correct where every drawing
-//     is opaque, lets the background through where silhouettes differ.
-//  README "Drawing a character" gives their measured cost on Pip.
+//     pops when the largest weight changes hands; (b) K sequential "over"
+//     draws, drawing k (largest weight first) at opacity
+//     w_k / (w_0 + ... + w_k): exact where every drawing is opaque; along
+//     silhouettes that move between drawings the first shows at full
+//     strength.
+//  README "Drawing a character: draw lists" gives their measured cost on Pip.
 
 }  // namespace posemorph
