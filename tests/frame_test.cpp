@@ -282,3 +282,40 @@ TEST_CASE("frames: the rendered base pose is its own drawing where the mesh cove
     CHECK(double(off) / double(compared) < 0.002);
   }
 }
+
+TEST_CASE("camera: fit, zoom about the cursor, pan, pixel-exact") {
+  const View rect{-10, 20, 30, 60};  // 40 x 40
+  Camera c = FitCamera(rect, 200, 100);
+  CHECK(c.zoom == 2.5);  // the smaller of 200/40 and 100/40
+  CHECK(c.centre.x == 10);
+  CHECK(c.centre.y == 40);
+  const glm::dvec2 corner = ToScreen(c, {rect.x0, rect.y1}, 200, 100);  // top-left of the rectangle
+  CHECK(corner.x == doctest::Approx(50));
+  CHECK(corner.y == doctest::Approx(0));
+  // The world point under the cursor stays under it.
+  const glm::dvec2 cursor(37, 81);
+  const glm::dvec2 before = ToWorld(c, cursor, 200, 100);
+  const Camera z = ZoomAbout(c, cursor, 1.7, 200, 100);
+  CHECK(z.zoom == doctest::Approx(4.25));
+  const glm::dvec2 after = ToWorld(z, cursor, 200, 100);
+  CHECK(after.x == doctest::Approx(before.x));
+  CHECK(after.y == doctest::Approx(before.y));
+  CHECK(ZoomAbout(c, cursor, 1e9, 200, 100).zoom == Camera::kMaxZoom);
+  // A drag moves the world with the cursor.
+  const Camera p = Pan(c, {10, -4});
+  const glm::dvec2 moved = ToScreen(p, before, 200, 100);
+  CHECK(moved.x == doctest::Approx(cursor.x + 10));
+  CHECK(moved.y == doctest::Approx(cursor.y - 4));
+  // Pixel-exact: whole zoom, and whole world coordinates land on whole screen pixels.
+  for (std::uint32_t w : {200u, 201u}) {
+    Camera e = c;
+    e.centre = {10.37, 40.81};
+    e.zoom = 2.6;
+    e = PixelExact(e, w, 101);
+    CHECK(e.zoom == 3);
+    const glm::dvec2 q = ToScreen(e, {7, -5}, w, 101);
+    CHECK(q.x == doctest::Approx(std::round(q.x)).epsilon(1e-12));
+    CHECK(q.y == doctest::Approx(std::round(q.y)).epsilon(1e-12));
+    CHECK(std::fabs(e.centre.x - 10.37) <= 0.5 / 3 + 1e-12);  // moved by at most half a pixel
+  }
+}
