@@ -20,7 +20,8 @@ packages=(
   vulkan-validationlayers   # viewer tests: the Khronos validation layer
   libglfw3-dev              # viewer: the window
   libglm-dev                # viewer: the structs shared with the shaders, the camera (GLM)
-  libsdl2-dev               # examples/sdl2-opengl: SDL2 (OpenGL comes with Mesa, already here for lavapipe)
+  libsdl2-dev libgl1-mesa-dri   # examples/sdl2-opengl: SDL2, and Mesa's OpenGL (llvmpipe) under Xvfb
+  chromium python3          # examples/web: headless Chromium (WebGL2 on SwiftShader), a static server on 127.0.0.1
   libxrandr2 libxcursor1 libxinerama1 libxi6   # viewer: X11 libraries GLFW loads at run time
   libimgui-dev              # viewer: the panel (Dear ImGui with its GLFW and Vulkan backends)
   pkg-config                # viewer build: finds Dear ImGui (imgui.pc)

@@ -42,7 +42,7 @@ inline bool Is(const unsigned char* m, std::size_t n, const char tag[4]) { retur
 
 // FNV-1a over the bytes of the positions: equal hashes <=> (practically) equal bits.
 inline std::uint64_t Hash(const float* x, std::size_t n) {
-  std::uint64_t h = 1469598103934665603ull;
+  std::uint64_t h = 14695981039346656037ull;
   const unsigned char* b = reinterpret_cast<const unsigned char*>(x);
   for (std::size_t i = 0; i < n * sizeof(float); ++i) h = (h ^ b[i]) * 1099511628211ull;
   return h;

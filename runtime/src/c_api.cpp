@@ -322,7 +322,7 @@ void pm_draw_options_default(pm_draw_options* out) {
 }
 
 int pm_draw_list_buffers(const pm_rig* rig, size_t count, size_t* workspace_doubles, size_t* position_floats) {
-  if (!rig || count == 0 || count > (std::size_t(1) << 40) / (2 * std::size_t(rig->rig.vertex_count()) + 2 * rig->rig.pose_count()))
+  if (!rig || count == 0 || count > posemorph::MaxDrawListCount(rig->rig))
     return PM_ERROR_INVALID_ARGUMENT;
   const posemorph::CharacterBuffers b = posemorph::CharacterBuffers::For(rig->rig, count);
   if (workspace_doubles) *workspace_doubles = b.workspace;

@@ -62,8 +62,15 @@ std::uint32_t PickDrawings(Span<const double> w, std::uint32_t max_drawings, Spa
   return count;
 }
 
+std::size_t MaxDrawListCount(const Rig& rig) {
+  if (!rig.loaded()) return 0;
+  // Every buffer's bytes, count x (2V floats + 2N doubles) and the batch
+  // workspace, stay far inside size_t (32-bit targets included).
+  return (std::size_t(-1) / 64) / (2 * std::size_t(rig.vertex_count()) + 2 * std::size_t(rig.pose_count()) + 1);
+}
+
 std::size_t DrawListWorkspaceSize(const Rig& rig, std::size_t count) {
-  if (!rig.loaded() || count == 0) return 0;
+  if (!rig.loaded() || count == 0 || count > MaxDrawListCount(rig)) return 0;
   const std::size_t n = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
   const std::size_t single = rig.morph_workspace_size() + v2;  // MorphJob's workspace and double positions
   const std::size_t batch = count > 1 ? rig.batch_workspace_size() : 0;
@@ -72,7 +79,7 @@ std::size_t DrawListWorkspaceSize(const Rig& rig, std::size_t count) {
 
 bool DrawListJob::Validate() const {
   if (!rig || !rig->loaded() || count == 0) return false;
-  if (count > (std::size_t(1) << 40) / (2 * std::size_t(rig->vertex_count()) + 2 * rig->pose_count())) return false;
+  if (count > MaxDrawListCount(*rig)) return false;
   if (!points.data || points.size / 2 < count) return false;
   if (transforms.size != 0 && (!transforms.data || transforms.size != count)) return false;
   if (max_drawings < 1 || max_drawings > kMaxBlendDrawings) return false;
@@ -91,7 +98,7 @@ bool DrawListJob::Run() const {
 
 CharacterBuffers CharacterBuffers::For(const Rig& rig, std::size_t count) {
   CharacterBuffers b;
-  if (!rig.loaded() || count == 0) return b;
+  if (!rig.loaded() || count == 0 || count > MaxDrawListCount(rig)) return b;
   b.count = count;
   b.workspace = DrawListWorkspaceSize(rig, count);
   b.positions = count * 2 * std::size_t(rig.vertex_count());

@@ -193,6 +193,7 @@ TEST_CASE("DrawListJob::Validate refuses each listed failure case, and Run then 
       {"no rig", [](DrawListJob& j) { j.rig = nullptr; }},
       {"a rig not loaded", [&](DrawListJob& j) { j.rig = &empty; }},
       {"count 0", [](DrawListJob& j) { j.count = 0; }},
+      {"count above MaxDrawListCount", [&](DrawListJob& j) { j.count = MaxDrawListCount(rig) + 1; }},
       {"too few points", [](DrawListJob& j) { j.points.size = 7; }},
       {"transforms neither empty nor count long", [&](DrawListJob& j) { j.transforms = three; }},
       {"max_drawings 0", [](DrawListJob& j) { j.max_drawings = 0; }},

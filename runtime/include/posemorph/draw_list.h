@@ -75,7 +75,7 @@ struct DrawList {
 // character as MorphJob): the positions equal theirs bit for bit.
 //
 // Validate() fails (and Run() does nothing) when: rig is null or not
-// loaded; count is 0; points holds fewer than 2 x count values;
+// loaded; count is 0 or above MaxDrawListCount; points holds fewer than 2 x count values;
 // transforms is neither empty nor count long; max_drawings is not in
 // 1..kMaxBlendDrawings; workspace is shorter than DrawListWorkspaceSize;
 // positions holds fewer than count x 2V floats; output holds fewer than
@@ -98,7 +98,11 @@ struct PM_API DrawListJob {
   bool Run() const;
 };
 
-// Doubles of workspace a DrawListJob of `count` characters needs.
+// The most characters one DrawListJob takes (their buffers' sizes stay far
+// inside size_t, also on 32-bit targets); more than this fails Validate.
+PM_API std::size_t MaxDrawListCount(const Rig& rig);
+// Doubles of workspace a DrawListJob of `count` characters needs (0 when
+// count is 0 or above MaxDrawListCount).
 PM_API std::size_t DrawListWorkspaceSize(const Rig& rig, std::size_t count);
 
 // Every per-character buffer a DrawListJob needs, sized from the rig in this

@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The web example in headless Chromium (SwiftShader WebGL2), served from
+# 127.0.0.1: the page's vertex positions equal the native runtime's bit for
+# bit, its frame matches posemorph-view's, load errors show in the page, and
+# the runtime's time per frame in the browser is reported.
+# Usage: run_test.sh WASM-DIR RIG IMAGES VIEW COMPARE HASH WORK SHOTS
+set -euo pipefail
+wasm=$1 rig=$2 images=$3 view=$4 compare=$5 hash=$6 work=$7 shots=$8
+here=$(cd "$(dirname "$0")" && pwd)
+rm -rf "$work" && mkdir -p "$work/site/resized" "$shots"
+for d in "$work/site" "$work/site/resized"; do
+  cp "$here/index.html" "$here/main.js" "$here/posemorph.js" "$wasm/posemorph_wasm.js" "$wasm/posemorph_wasm.wasm" \
+     "$rig" "$images"/*.png "$d/"
+done
+cp "$here/../../docs/crowd.png" "$work/site/resized/rest.png"   # 960x320: not the size Pip was baked from
+head -c 1000 "$rig" > "$work/site/bad.pmrig"                    # truncated
+
+python3 -m http.server 0 --bind 127.0.0.1 --directory "$work/site" > "$work/server.log" 2>&1 &
+server=$!
+browser=""
+trap 'kill $server ${browser:-} 2>/dev/null || true' EXIT
+for _ in $(seq 50); do grep -q "port" "$work/server.log" && break; sleep 0.1; done
+port=$(grep -o 'port [0-9]*' "$work/server.log" | head -1 | cut -d' ' -f2)
+site="http://127.0.0.1:$port"
+chrome=(chromium --headless=new --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshader --hide-scrollbars)
+page() { timeout 60 "${chrome[@]}" --virtual-time-budget=30000 --dump-dom "$site/$1" 2>/dev/null | grep -o '<pre id="result">[^<]*' | cut -d'>' -f2; }
+
+# 1. The same vertices as the native runtime, bit for bit.
+got=$(page "index.html?at=0.5,0.5&size=256")
+echo "page: $got"
+want=$("$hash" "$rig" 0.5 0.5)
+case "$got" in *"$want"*) echo "native: $want (equal)";; *) echo "FAIL: the page's positions differ from the native $want"; exit 1;; esac
+
+# 2. The frame: a screenshot, against posemorph-view at the same point.
+timeout 60 "${chrome[@]}" --virtual-time-budget=30000 --window-size=256,256 --screenshot="$work/web.png" \
+  "$site/index.html?at=0.5,0.5&size=256" 2>/dev/null
+"$view" "$rig" --images "$images" --headless --at 0.5,0.5 --size 256x256 -o "$work/view.png" > /dev/null
+echo -n "web page against posemorph-view at (0.5, 0.5): "
+"$compare" "$work/web.png" "$work/view.png" 0.01
+cp "$work/web.png" "$shots/web.png"
+
+# 3. Load errors show in the page.
+expect() {
+  local text; text=$(page "$1")
+  case "$text" in *"$2"*) echo "page $1: $text";; *) echo "FAIL: page $1 says '$text', expected '$2'"; exit 1;; esac
+}
+expect "index.html?rig=missing.pmrig" "error: missing.pmrig: HTTP 404"
+expect "index.html?rig=bad.pmrig" "error: bad.pmrig: "
+expect "resized/index.html?at=0,0" "error: rest.png: the drawing is 960x320, the rig was baked from 256x256"
+
+# 4. Real time (virtual time stops the clock): the page's title, read over the debugging port.
+"${chrome[@]}" --remote-debugging-port=0 --user-data-dir="$work/profile" "$site/index.html?at=0.5,0.5&size=256" \
+  > /dev/null 2> "$work/browser.log" &
+browser=$!
+title=$(python3 - "$work/browser.log" <<'PY'
+import json, re, sys, time, urllib.request
+for _ in range(120):
+    m = re.search(r"DevTools listening on ws://127.0.0.1:(\d+)", open(sys.argv[1]).read())
+    if m:
+        try:
+            pages = json.load(urllib.request.urlopen(f"http://127.0.0.1:{m.group(1)}/json/list", timeout=2))
+            titles = [p["title"] for p in pages if p.get("title", "").startswith(("ready", "error"))]
+            if titles:
+                print(titles[0]); break
+        except OSError:
+            pass
+    time.sleep(0.5)
+PY
+)
+echo "timed in real time: $title"
+case "$title" in *"us per frame"*) ;; *) echo "FAIL: no timing from the page"; exit 1;; esac
