@@ -145,11 +145,15 @@ async function main() {
   }
 
   const list = draw();
+  const w = rig.weights(point[0], point[1]);
+  const strongest = w.texture.indexOf(Math.max(...w.texture));
   // What the test reads: the positions' hash, and the runtime's time per frame here.
   const frames = 2000, start = performance.now();
   for (let f = 0; f < frames; ++f) rig.drawLists(1, point);
   const perFrame = (performance.now() - start) / frames;
   result.textContent = `ready posemorph ${pm.version}: ${V} vertices, point ${point.join(',')}, ` +
+                       `strongest drawing ${rig.poseImage(strongest)}, ` +
+                       (N > 8 ? `${N} poses: each frame blends the 8 most weighted drawings, ` : '') +
                        `positions-fnv1a64=${hash(list.positions)}, evaluation ${(1000 * perFrame).toFixed(1)} us per frame`;
   document.title = result.textContent;  // what a test polling the browser can read
   if (!fixed) (function loop() { draw(); requestAnimationFrame(loop); })();

@@ -5,6 +5,7 @@
 //   const pm = await Posemorph.create(createPosemorphWasm);
 //   const rig = pm.loadRig(bytes, 'pip.pmrig');      // throws Error('pip.pmrig: ...') on bad bytes
 //   const lists = rig.drawLists(1, [x, y]);           // [{positions, indices, drawings: [{pose, weight, uvs}], ...}]
+//   const { raw, shear, texture } = rig.weights(x, y); // the pose-space weights alone
 //
 // Arrays returned are views into wasm memory, valid until the next call.
 
@@ -44,6 +45,7 @@ export class Rig {
     this.triangleCount = u[1];
     this.poseCount = u[2];
     this.pathCount = u[3];
+    this.defaultSigma = m.HEAPF64[(info + 16) >> 3];
     m._pm_rig_grid(this.handle, info);
     const g = m.HEAPF64.subarray(info >> 3);
     this.grid = { minX: g[0], minY: g[1], maxX: g[2], maxY: g[3] };
@@ -83,6 +85,16 @@ export class Rig {
     }
     m._free(b);
     return r;
+  }
+  // The weights at a pose-space point: raw (the blend), shear-limited, and texture (the cross-fade), N each.
+  weights(x, y, { sigma = -1, shearLimit = true } = {}) {
+    const m = this.wasm, n = this.poseCount, w = m._malloc(24 * n);
+    const status = m._pm_weights(this.handle, x, y, sigma < 0 ? this.defaultSigma : sigma, shearLimit ? 1 : 0, w,
+                                 w + 8 * n, w + 16 * n, n);
+    const all = Array.from(m.HEAPF64.subarray(w >> 3, (w >> 3) + 3 * n));
+    m._free(w);
+    if (status !== 0) throw new Error(`pm_weights failed (${status})`);
+    return { raw: all.slice(0, n), shear: all.slice(n, 2 * n), texture: all.slice(2 * n) };
   }
   // Draw lists for `count` characters at points [x0, y0, x1, y1, ...]; maxDrawings K in 1..8.
   drawLists(count, points, { sigma = -1, maxDrawings = 8 } = {}) {

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The README's table of examples: lines of code per example (not blank, not
+# only a comment) and, of those, lines of posemorph glue (lines that name a
+# posemorph function, type or field: pm_*, posemorph::, the draw-list and
+# rig accessors).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+glue='pm_|posemorph|DrawList|Transform2D|CharacterBuffers|BlendedDrawing|LoadRig|SamplePath|PathView|PoseSpaceGrid|Quantize|PackPoint|DequantizePoint|drawLists|loadRig|\brig[.>]|\.drawings|\.positions|\.indices|\.transform|drawing_count|job\.'
+count() { grep -hvE '^\s*(//|/\*|\*|#|<!--|$)' "$@" | wc -l; }
+glue_count() { grep -hvE '^\s*(//|/\*|\*|#|<!--|$)' "$@" | grep -cE "$glue"; }
+echo "| example | files | lines of code | of which posemorph glue |"
+echo "|---|---|---|---|"
+for e in c avatar-udp sdl2-opengl web; do
+  case $e in
+    c) files=(examples/c/play_path.c) ;;
+    avatar-udp) files=(examples/avatar-udp/sender.cpp examples/avatar-udp/receiver.cpp examples/avatar-udp/wire.h) ;;
+    sdl2-opengl) files=(examples/sdl2-opengl/main.cpp) ;;
+    web) files=(examples/web/main.js examples/web/posemorph.js examples/web/bindings.c examples/web/index.html) ;;
+  esac
+  echo "| \`examples/$e\` | $(printf '%s ' "${files[@]##*/}")| $(count "${files[@]}") | $(glue_count "${files[@]}") |"
+done
