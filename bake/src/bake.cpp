@@ -94,7 +94,7 @@ std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
   meta.grid_cells_y = grid.cells_y;
   meta.factor_nonzeros = std::uint32_t(sys.value.size());
   const bool has_uvs = !rig.poses[0].uvs.empty();
-  meta.flags = has_uvs ? fmt::kMetaFlagHasUVs : 0;
+  meta.flags = (has_uvs ? fmt::kMetaFlagHasUVs : 0) | (grid.centre_weights.empty() ? 0 : fmt::kMetaFlagGridCentres);
   meta.grid_origin_x = grid.origin_x;
   meta.grid_origin_y = grid.origin_y;
   meta.grid_cell_size = grid.cell;
@@ -151,7 +151,9 @@ std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
   w.AddArray(fmt::kFactorRows, sys.row);
   w.AddArray(fmt::kFactorValues, sys.value);
   w.AddArray(fmt::kFactorInvDiagonal, sys.inv_diagonal);
-  w.AddArray(fmt::kWeightGrid, grid.weights);
+  std::vector<double> grid_nodes = grid.weights;  // corners, then cell centres (format 1.2)
+  grid_nodes.insert(grid_nodes.end(), grid.centre_weights.begin(), grid.centre_weights.end());
+  w.AddArray(fmt::kWeightGrid, grid_nodes);
   w.Add(fmt::kStrings, strings);
   w.Add(fmt::kPaths, path_table);
   w.AddArray(fmt::kPathKeys, keys);

@@ -14,7 +14,9 @@ namespace {
 
 // Barycentric coordinates of a point in its grid triangle, with exactly the
 // arithmetic the runtime's WeightsJob uses, so that W(p_i) = e_i holds for the
-// values it computes, not just for the exact ones.
+// values it computes, not just for the exact ones. Each cell is four
+// triangles meeting at its centre; node indices run over the corners
+// ((cells_x+1)(cells_y+1), row-major), then the cell centres.
 struct GridLocation {
   std::uint32_t vertex[3];
   double lambda[3];
@@ -27,16 +29,19 @@ GridLocation Locate(const WeightGrid& g, const Eigen::Vector2d& p) {
   const std::uint32_t i = u >= g.cells_x ? g.cells_x - 1 : std::uint32_t(u);
   const std::uint32_t j = v >= g.cells_y ? g.cells_y - 1 : std::uint32_t(v);
   const double fx = std::clamp(u - i, 0.0, 1.0), fy = std::clamp(v - j, 0.0, 1.0);
-  const std::uint32_t row = g.cells_x + 1, v00 = j * row + i;
+  const std::uint32_t row = g.cells_x + 1, v00 = j * row + i, v10 = v00 + 1, v01 = v00 + row, v11 = v01 + 1;
   GridLocation loc;
   loc.cell = j * g.cells_x + i;
-  if (fx >= fy) {
-    loc.vertex[0] = v00, loc.vertex[1] = v00 + 1, loc.vertex[2] = v00 + row + 1;
-    loc.lambda[0] = 1 - fx, loc.lambda[1] = fx - fy, loc.lambda[2] = fy;
-  } else {
-    loc.vertex[0] = v00, loc.vertex[1] = v00 + row, loc.vertex[2] = v00 + row + 1;
-    loc.lambda[0] = 1 - fy, loc.lambda[1] = fy - fx, loc.lambda[2] = fx;
-  }
+  const std::uint32_t c = row * (g.cells_y + 1) + loc.cell;
+  const double d1 = fx - fy, d2 = fx + fy - 1;
+  auto set = [&](std::uint32_t a, double la, std::uint32_t b, double lb, double lc) {
+    loc.vertex[0] = a, loc.vertex[1] = b, loc.vertex[2] = c;
+    loc.lambda[0] = la, loc.lambda[1] = lb, loc.lambda[2] = lc;
+  };
+  if (d1 >= 0 && d2 <= 0) set(v00, -d2, v10, d1, 2 * fy);        // bottom
+  else if (d1 >= 0) set(v10, d1, v11, d2, 2 * (1 - fx));          // right
+  else if (d2 >= 0) set(v11, d2, v01, -d1, 2 * (1 - fy));         // top
+  else set(v01, -d1, v00, -d2, 2 * fx);                           // left
   return loc;
 }
 
@@ -62,8 +67,14 @@ WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, con
   g.origin_x = center.x() - 0.5 * g.cells_x * g.cell;
   g.origin_y = center.y() - 0.5 * g.cells_y * g.cell;
 
+  // Nodes: the cell corners, then the cell centres. Each cell is four
+  // triangles meeting at its centre, so the tessellation (and the discrete
+  // energy below) has the grid's mirror and quarter-turn symmetries: a
+  // single diagonal per cell made one direction cheaper and gave
+  // mirror-symmetric layouts lopsided weights (0.537 against 0.149 on the snake).
   const std::uint32_t row = g.cells_x + 1;
-  const std::size_t G = std::size_t(row) * (g.cells_y + 1);
+  const std::size_t corners = std::size_t(row) * (g.cells_y + 1);
+  const std::size_t G = corners + std::size_t(g.cells_x) * g.cells_y;
   Points grid_points(G);
   for (std::uint32_t j = 0; j <= g.cells_y; ++j)
     for (std::uint32_t i = 0; i <= g.cells_x; ++i)
@@ -71,9 +82,13 @@ WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, con
   Triangles tris;
   for (std::uint32_t j = 0; j < g.cells_y; ++j)
     for (std::uint32_t i = 0; i < g.cells_x; ++i) {
-      const std::uint32_t v00 = j * row + i;
-      tris.push_back({v00, v00 + 1, v00 + row + 1});
-      tris.push_back({v00, v00 + row + 1, v00 + row});
+      const std::uint32_t v00 = j * row + i, v10 = v00 + 1, v01 = v00 + row, v11 = v01 + 1;
+      const std::uint32_t c = std::uint32_t(corners) + j * g.cells_x + i;
+      grid_points[c] = {g.origin_x + (i + 0.5) * g.cell, g.origin_y + (j + 0.5) * g.cell};
+      tris.push_back({v00, v10, c});
+      tris.push_back({v10, v11, c});
+      tris.push_back({v11, v01, c});
+      tris.push_back({v01, v00, c});
     }
 
   // Gradient operators: grad W = E^-T D (W_a, W_b, W_c).
@@ -134,12 +149,12 @@ WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, con
   const Eigen::MatrixXd solution = lu.solve(rhs);
   if (lu.info() != Eigen::Success || !solution.allFinite()) throw BakeError(file, "the pose-space weight solve failed");
 
-  g.weights.resize(G * N);
+  std::vector<double> all(G * N);  // corners, then centres
   for (std::size_t v = 0; v < G; ++v) {
     // The exact field sums to 1 (the constant 1 meets every constraint at zero
     // energy); dividing by the sum removes the solver's roundoff.
     const double sum = solution.row(v).sum();
-    for (std::size_t i = 0; i < N; ++i) g.weights[v * N + i] = solution(v, i) / sum;
+    for (std::size_t i = 0; i < N; ++i) all[v * N + i] = solution(v, i) / sum;
   }
   // The KKT solve meets W(p_i) = e_i only to its conditioning (~1e-12 here);
   // move the three grid values around each point along its barycentric
@@ -150,11 +165,13 @@ WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, con
     const double norm = loc.lambda[0] * loc.lambda[0] + loc.lambda[1] * loc.lambda[1] + loc.lambda[2] * loc.lambda[2];
     for (std::size_t j = 0; j < N; ++j) {
       double value = 0;
-      for (int k = 0; k < 3; ++k) value += loc.lambda[k] * g.weights[loc.vertex[k] * N + j];
+      for (int k = 0; k < 3; ++k) value += loc.lambda[k] * all[loc.vertex[k] * N + j];
       const double residual = (i == j ? 1.0 : 0.0) - value;
-      for (int k = 0; k < 3; ++k) g.weights[loc.vertex[k] * N + j] += loc.lambda[k] / norm * residual;
+      for (int k = 0; k < 3; ++k) all[loc.vertex[k] * N + j] += loc.lambda[k] / norm * residual;
     }
   }
+  g.weights.assign(all.begin(), all.begin() + std::ptrdiff_t(corners * N));
+  g.centre_weights.assign(all.begin() + std::ptrdiff_t(corners * N), all.end());
   return g;
 }
 

@@ -332,7 +332,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   if (nnz > fmt::kMaxFactorNonzeros)
     return Fail(err, ErrorCode::kTooLarge, "factor has %llu nonzeros, above %u", (unsigned long long)nnz,
                 fmt::kMaxFactorNonzeros);
-  if ((meta.flags & ~fmt::kMetaFlagHasUVs) != 0)
+  if ((meta.flags & ~(fmt::kMetaFlagHasUVs | fmt::kMetaFlagGridCentres)) != 0)
     return Fail(err, ErrorCode::kBadVersion, "unknown META flags 0x%x", meta.flags);
   if (!std::isfinite(meta.grid_origin_x) || !std::isfinite(meta.grid_origin_y) ||
       !std::isfinite(meta.grid_cell_size) || !(meta.grid_cell_size > 0) ||
@@ -346,7 +346,10 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   if (!std::isfinite(meta.rig_size) || !(meta.rig_size > 0))
     return Fail(err, ErrorCode::kBadValue, "rig size %g is not finite and positive", meta.rig_size);
   const std::uint64_t n = V - 1;
-  const std::uint64_t grid_vertices = std::uint64_t(meta.grid_cells_x + 1) * (meta.grid_cells_y + 1);
+  const std::uint64_t grid_corners = std::uint64_t(meta.grid_cells_x + 1) * (meta.grid_cells_y + 1);
+  const std::uint64_t grid_centres =
+      (meta.flags & fmt::kMetaFlagGridCentres) ? std::uint64_t(meta.grid_cells_x) * meta.grid_cells_y : 0;
+  const std::uint64_t grid_vertices = grid_corners + grid_centres;
   const bool has_uvs = (meta.flags & fmt::kMetaFlagHasUVs) != 0;
 
   // Sections with sizes implied by the counts.
@@ -419,7 +422,10 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
     rig.factor_.row = CopyInto<std::uint32_t>(arena, lrow, nnz);
     rig.factor_.value = CopyInto<double>(arena, lval, nnz);
     rig.factor_.inv_diagonal = CopyInto<double>(arena, dinv, n);
-    rig.grid_.weights = CopyInto<double>(arena, wgrid, grid_vertices * N);
+    const Span<const double> grid_all = CopyInto<double>(arena, wgrid, grid_vertices * N);
+    rig.grid_.weights = {grid_all.data, std::size_t(grid_corners * N)};
+    if (grid_centres && grid_all.data)  // (null while the arena is only being measured)
+      rig.grid_.centre_weights = {grid_all.data + grid_corners * N, std::size_t(grid_centres * N)};
     if (has_uvs) rig.uvs_ = CopyInto<float>(arena, uvs, N * V * 2);
     if (canvases) rig.canvases_ = CopyInto<double>(arena, canvases, N * 4);
     const Span<const char> chars = CopyInto<char>(arena, strs, strings_section->size);
@@ -560,6 +566,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
         !CheckFinite(rig.shears_, "stretches", err, fmt::kMaxStretch) ||
         !CheckFinite(rig.factor_.value, "factor values", err) ||
         !CheckFinite(rig.grid_.weights, "weight grid", err, fmt::kMaxGridWeight) ||
+        !CheckFinite(rig.grid_.centre_weights, "weight grid centres", err, fmt::kMaxGridWeight) ||
         !CheckFinite(rig.canvases_, "canvases", err))
       return false;
     for (std::size_t i = 0; i < rig.canvases_.size; i += 4)

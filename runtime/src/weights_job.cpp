@@ -65,13 +65,26 @@ bool WeightsJob::Run() const {
   const std::uint32_t j = v >= g.cells_y ? g.cells_y - 1 : std::uint32_t(v);
   const double fx = Clamp(u - i, 0, 1), fy = Clamp(v - j, 0, 1);
 
-  // Each cell is split along its (0,0)-(1,1) diagonal, as the bake built it.
   const std::size_t row = std::size_t(g.cells_x) + 1;
   const double* w00 = g.weights.data + (std::size_t(j) * row + i) * n;
   const double* w10 = w00 + n;
   const double* w01 = w00 + row * n;
   const double* w11 = w01 + n;
-  if (fx >= fy) {
+  if (g.centre_weights.size != 0) {
+    // Format 1.2: the cell is four triangles meeting at its centre c; the
+    // diagonals fx = fy and fx + fy = 1 say which one holds the point.
+    const double* wc = g.centre_weights.data + (std::size_t(j) * g.cells_x + i) * n;
+    const double d1 = fx - fy, d2 = fx + fy - 1;
+    if (d1 >= 0 && d2 <= 0) {  // bottom: (0,0) (1,0) c
+      for (std::uint32_t k = 0; k < n; ++k) raw[k] = -d2 * w00[k] + d1 * w10[k] + 2 * fy * wc[k];
+    } else if (d1 >= 0) {  // right: (1,0) (1,1) c
+      for (std::uint32_t k = 0; k < n; ++k) raw[k] = d1 * w10[k] + d2 * w11[k] + 2 * (1 - fx) * wc[k];
+    } else if (d2 >= 0) {  // top: (1,1) (0,1) c
+      for (std::uint32_t k = 0; k < n; ++k) raw[k] = d2 * w11[k] - d1 * w01[k] + 2 * (1 - fy) * wc[k];
+    } else {  // left: (0,1) (0,0) c
+      for (std::uint32_t k = 0; k < n; ++k) raw[k] = -d1 * w01[k] - d2 * w00[k] + 2 * fx * wc[k];
+    }
+  } else if (fx >= fy) {  // before 1.2: each cell split on its (0,0)-(1,1) diagonal
     for (std::uint32_t k = 0; k < n; ++k) raw[k] = (1 - fx) * w00[k] + (fx - fy) * w10[k] + fy * w11[k];
   } else {
     for (std::uint32_t k = 0; k < n; ++k) raw[k] = (1 - fy) * w00[k] + (fy - fx) * w01[k] + fx * w11[k];

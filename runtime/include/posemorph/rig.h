@@ -39,6 +39,11 @@ struct PoseSpaceGrid {
   double cell = 1;                    // square cell edge length
   std::uint32_t cells_x = 0, cells_y = 0;
   Span<const double> weights;  // (cells_x+1)*(cells_y+1) vertices x N, row-major in y then x
+  // cells_x*cells_y cell centres x N, row-major in y then x (format 1.2): each
+  // cell is four triangles meeting at its centre, a tessellation with the
+  // grid's mirror and quarter-turn symmetries. Empty for rigs baked before
+  // 1.2, whose cells are split on the (0,0)-(1,1) diagonal.
+  Span<const double> centre_weights;
 };
 
 // The LDL^T factor of the pinned cotangent system, permuted: P K P^T = L D L^T.

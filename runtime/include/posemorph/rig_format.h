@@ -9,7 +9,9 @@ namespace posemorph::format {
 
 constexpr unsigned char kMagic[8] = {'P', 'M', 'R', 'I', 'G', '\r', '\n', 0x1a};
 constexpr std::uint16_t kVersionMajor = 1;
-constexpr std::uint16_t kVersionMinor = 1;  // 1.1 added the optional CANV section
+// 1.1 added the optional CANV section; 1.2 the weight grid's cell centres
+// (META flag kMetaFlagGridCentres). Older files load unchanged.
+constexpr std::uint16_t kVersionMinor = 2;
 constexpr std::uint32_t kHeaderSize = 64;
 constexpr std::uint32_t kSectionEntrySize = 24;
 constexpr std::uint32_t kSectionAlignment = 16;
@@ -63,7 +65,7 @@ struct Meta {
   std::uint32_t grid_cells_x;
   std::uint32_t grid_cells_y;
   std::uint32_t factor_nonzeros;
-  std::uint32_t flags;  // bit 0: UVS section present
+  std::uint32_t flags;  // bit 0: UVS section present; bit 1: the weight grid has cell centres (1.2)
   double grid_origin_x;
   double grid_origin_y;
   double grid_cell_size;
@@ -72,6 +74,11 @@ struct Meta {
 };
 constexpr std::uint32_t kMetaSize = 72;
 constexpr std::uint32_t kMetaFlagHasUVs = 1u;
+// WGRD holds (cells_x+1)(cells_y+1) corner rows, then cells_x * cells_y
+// centre rows (row-major in y then x), N weights each; each cell is split
+// into four triangles at its centre. Without it (files before 1.2): corner
+// rows only, each cell split on its (0,0)-(1,1) diagonal.
+constexpr std::uint32_t kMetaFlagGridCentres = 2u;
 
 // PATH section entry: key count, then flags (bit 0 loop; bits 8..15 interpolation).
 constexpr std::uint32_t kPathEntrySize = 8;

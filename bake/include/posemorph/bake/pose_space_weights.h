@@ -17,6 +17,9 @@ struct WeightGrid {
   double origin_x = 0, origin_y = 0, cell = 1;
   std::uint32_t cells_x = 0, cells_y = 0;
   std::vector<double> weights;  // (cells_x+1)(cells_y+1) x N, row-major in y then x
+  // cells_x * cells_y x N: each cell is four triangles meeting at its centre
+  // (format 1.2; the runtime's PoseSpaceGrid::centre_weights).
+  std::vector<double> centre_weights;
 };
 
 // Throws BakeError (with `file`) if two points share a grid cell.

@@ -1,0 +1,55 @@
+// SPDX-License-Identifier: MIT
+// Rigs baked before format 1.2 keep loading and keep their frames: their
+// weight grid has no cell centres and its cells are split on one diagonal,
+// as they were baked. tests/runtime/rigs/small-format-1.1.pmrig was written
+// by the bake before 1.2 (from small.json).
+#include "posemorph/jobs.h"
+#include "posemorph/rig_format.h"
+#include "runtime_support.h"
+
+using namespace posemorph;
+using namespace posemorph::test;
+
+TEST_CASE("a format 1.1 rig loads and interpolates its grid as it was baked") {
+  const std::vector<unsigned char> bytes =
+      ReadFileBytes(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/small-format-1.1.pmrig");
+  Rig rig;
+  Error err;
+  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
+  CHECK(rig.format_major() == 1);
+  CHECK(rig.format_minor() == 1);
+  const PoseSpaceGrid& g = rig.grid();
+  CHECK(g.centre_weights.empty());
+  const std::uint32_t n = rig.pose_count();
+  for (double y : {-0.3, 0.1, 0.25, 0.7})
+    for (double x : {-0.4, 0.0, 0.33, 0.5, 0.9, 1.2}) {
+      CAPTURE(x);
+      CAPTURE(y);
+      const Weights w = WeightsAt(rig, x, y);
+      // The diagonal split, written out: the bits must be the same.
+      const double u = (x - g.origin_x) / g.cell, v = (y - g.origin_y) / g.cell;
+      const std::uint32_t i = std::uint32_t(u), j = std::uint32_t(v);
+      const double fx = u - i, fy = v - j;
+      const std::size_t row = g.cells_x + 1;
+      const double* w00 = g.weights.data + (j * row + i) * n;
+      const double *w10 = w00 + n, *w01 = w00 + row * n, *w11 = w01 + n;
+      for (std::uint32_t k = 0; k < n; ++k) {
+        const double expected = fx >= fy ? (1 - fx) * w00[k] + (fx - fy) * w10[k] + fy * w11[k]
+                                         : (1 - fy) * w00[k] + (fy - fx) * w01[k] + fx * w11[k];
+        CHECK(w.raw[k] == expected);
+      }
+    }
+}
+
+TEST_CASE("a rig baked now is format 1.2 with a centre per grid cell") {
+  const Rig rig = LoadTestRig("small");
+  CHECK(rig.format_minor() == format::kVersionMinor);
+  CHECK(format::kVersionMinor == 2);
+  const PoseSpaceGrid& g = rig.grid();
+  CHECK(g.centre_weights.size == std::size_t(g.cells_x) * g.cells_y * rig.pose_count());
+  // At a cell centre the weights are the centre's row.
+  const std::uint32_t n = rig.pose_count();
+  const Weights w = WeightsAt(rig, g.origin_x + 1.5 * g.cell, g.origin_y + 2.5 * g.cell);
+  const double* c = g.centre_weights.data + (2 * g.cells_x + 1) * n;
+  for (std::uint32_t k = 0; k < n; ++k) CHECK(w.raw[k] == doctest::Approx(c[k]).epsilon(1e-14));
+}
