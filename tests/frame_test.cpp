@@ -75,27 +75,10 @@ std::vector<unsigned char> Render(const Scene& scene, const Camera* camera = nul
   return std::vector<unsigned char>(target.pixels(), target.pixels() + 4 * kSize * kSize);
 }
 
-// The tolerant comparison: pixels with a channel off by more than 3, and the largest difference.
-struct Difference {
-  std::size_t differing = 0;
-  int worst = 0;
-  double share() const { return double(differing) / (kSize * kSize); }
-};
+using Difference = FrameDifference;
 Difference Compare(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b,
                    std::vector<unsigned char>* diff = nullptr) {
-  Difference r;
-  if (diff) diff->assign(a.size(), 255);
-  for (std::size_t p = 0; p < a.size(); p += 4) {
-    int d = 0;
-    for (int c = 0; c < 4; ++c) d = std::max(d, std::abs(int(a[p + c]) - int(b[p + c])));
-    r.worst = std::max(r.worst, d);
-    if (d > 3) ++r.differing;
-    if (diff) {
-      const unsigned char v = (unsigned char)std::min(255, d * 8);
-      (*diff)[p + 1] = (unsigned char)(255 - v), (*diff)[p + 2] = (unsigned char)(255 - v);
-    }
-  }
-  return r;
+  return CompareFrames(a, b, diff);
 }
 
 std::vector<unsigned char> MirrorRows(const std::vector<unsigned char>& frame) {

@@ -21,15 +21,8 @@ int main(int argc, char** argv) {
     return std::fprintf(stderr, "posemorph-png-compare: %s\n", problem.c_str()), 1;
   if (aw != bw || ah != bh)
     return std::fprintf(stderr, "posemorph-png-compare: %ux%u against %ux%u\n", aw, ah, bw, bh), 1;
-  std::size_t differing = 0;
-  int worst = 0;
-  for (std::size_t p = 0; p < a.size(); p += 4) {
-    int d = 0;
-    for (int c = 0; c < 4; ++c) d = std::max(d, std::abs(int(a[p + c]) - int(b[p + c])));
-    worst = std::max(worst, d);
-    differing += d > 3;
-  }
-  const double share = double(differing) / (double(aw) * ah);
-  std::printf("%zu of %u pixels (%.3f%%) differ by more than 3, worst %d\n", differing, aw * ah, 100 * share, worst);
+  const posemorph::viewer::FrameDifference d = posemorph::viewer::CompareFrames(a, b);
+  const double share = d.share();
+  std::printf("%zu of %u pixels (%.3f%%) differ by more than 3, worst %d\n", d.differing, aw * ah, 100 * share, d.worst);
   return share <= std::atof(argv[3]) ? 0 : 1;
 }

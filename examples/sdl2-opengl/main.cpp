@@ -196,6 +196,9 @@ int main(int argc, char** argv) {
   glUniform2f(glGetUniformLocation(program, "view_offset"), float(-centre_x * 2 * zoom / width),
               float(-centre_y * 2 * zoom / height));
   const int path = rig.path_count() > 0 ? 0 : -1;
+  const GLint weights_at = glGetUniformLocation(program, "weights"), layers_at = glGetUniformLocation(program, "layers");
+  const GLint linear_at = glGetUniformLocation(program, "linear");
+  const GLint translation_at = glGetUniformLocation(program, "translation");
 
   double eval_seconds = 0;
   int frame = 0;
@@ -244,11 +247,11 @@ int main(int argc, char** argv) {
         layers[s] = GLint(pose);
         glVertexAttribPointer(1 + s, 2, GL_FLOAT, GL_FALSE, 0, reinterpret_cast<void*>(std::size_t(pose) * V * 8));
       }
-      glUniform1fv(glGetUniformLocation(program, "weights"), K, weights);
-      glUniform1iv(glGetUniformLocation(program, "layers"), K, layers);
+      glUniform1fv(weights_at, K, weights);
+      glUniform1iv(layers_at, K, layers);
       const float linear[4] = {d.transform.a, d.transform.b, d.transform.c, d.transform.d};
-      glUniformMatrix2fv(glGetUniformLocation(program, "linear"), 1, GL_FALSE, linear);  // column-major
-      glUniform2f(glGetUniformLocation(program, "translation"), d.transform.tx, d.transform.ty);
+      glUniformMatrix2fv(linear_at, 1, GL_FALSE, linear);  // column-major
+      glUniform2f(translation_at, d.transform.tx, d.transform.ty);
       glDrawElements(GL_TRIANGLES, GLsizei(d.indices.size), GL_UNSIGNED_INT, nullptr);  // mirrored: no culling
     }
     if (frames > 0 && frame + 1 == frames && !screenshot.empty()) {  // 7. The test's frame, read back.

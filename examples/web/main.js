@@ -120,6 +120,7 @@ async function main() {
     point = [g.minX + (g.maxX - g.minX) * e.offsetX / size, g.maxY - (g.maxY - g.minY) * e.offsetY / size];
   });
 
+  const weightsAt = gl.getUniformLocation(program, 'weights'), layersAt = gl.getUniformLocation(program, 'layers');
   function draw() {
     const list = rig.drawLists(1, point)[0];
     gl.viewport(0, 0, size, size);
@@ -138,8 +139,8 @@ async function main() {
       layers[s] = d.pose;
       gl.vertexAttribPointer(1 + s, 2, gl.FLOAT, false, 0, 8 * V * d.pose);
     }
-    gl.uniform1fv(gl.getUniformLocation(program, 'weights'), weights);
-    gl.uniform1iv(gl.getUniformLocation(program, 'layers'), layers);
+    gl.uniform1fv(weightsAt, weights);
+    gl.uniform1iv(layersAt, layers);
     gl.drawElements(gl.TRIANGLES, 3 * rig.triangleCount, gl.UNSIGNED_INT, 0);
     return list;
   }

@@ -5,12 +5,31 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 #include "blend.frag.h"
 #include "skin.vert.h"
 
 namespace posemorph::viewer {
+
+FrameDifference CompareFrames(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b,
+                              std::vector<unsigned char>* diff) {
+  FrameDifference r;
+  r.pixels = std::min(a.size(), b.size()) / 4;
+  if (diff) diff->assign(4 * r.pixels, 255);
+  for (std::size_t p = 0; p < 4 * r.pixels; p += 4) {
+    int d = 0;
+    for (int c = 0; c < 4; ++c) d = std::max(d, std::abs(int(a[p + c]) - int(b[p + c])));
+    r.worst = std::max(r.worst, d);
+    if (d > 3) ++r.differing;
+    if (diff) {
+      const unsigned char v = (unsigned char)std::min(255, d * 8);
+      (*diff)[p + 1] = (unsigned char)(255 - v), (*diff)[p + 2] = (unsigned char)(255 - v);
+    }
+  }
+  return r;
+}
 
 bool ReadPng(const std::string& path, std::vector<unsigned char>* rgba, std::uint32_t* width, std::uint32_t* height,
              std::string* error) {

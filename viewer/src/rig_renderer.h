@@ -94,6 +94,17 @@ class OffscreenTarget {
 
 bool WritePng(const std::string& path, const unsigned char* rgba, std::uint32_t width, std::uint32_t height,
               std::string* error);
+// The tolerant comparison of two RGBA8 frames of the same size: a pixel
+// differs when a channel is off by more than 3 of 255. `diff`, if given,
+// becomes an image of the differences (white = equal, red = off by 32+).
+struct FrameDifference {
+  std::size_t differing = 0, pixels = 0;
+  int worst = 0;
+  double share() const { return pixels ? double(differing) / double(pixels) : 0.0; }
+};
+FrameDifference CompareFrames(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b,
+                              std::vector<unsigned char>* diff = nullptr);
+
 bool ReadPng(const std::string& path, std::vector<unsigned char>* rgba, std::uint32_t* width, std::uint32_t* height,
              std::string* error);
 
