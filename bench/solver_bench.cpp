@@ -27,31 +27,6 @@ namespace {
 
 // A plate twice as long as wide, `across` quads across, in N bent poses whose
 // points sit on a circle around the rest pose.
-bake::RigDescription PlateRig(int across, int poses) {
-  samples::StripShape shape;
-  shape.length = 10, shape.width = 5, shape.segments = 2 * across, shape.across = across;
-  const double L = shape.length;
-  // Bends keep the radius above half the width (no flips).
-  const std::function<double(double)> kappa[] = {
-      [](double) { return 0.0; },
-      [=](double) { return samples::Degrees(90) / L; },
-      [=](double) { return -samples::Degrees(90) / L; },
-      [=](double s) { return 2 * samples::Degrees(100) * s / (L * L); },
-      [=](double s) { return -2 * samples::Degrees(100) * s / (L * L); },
-      [=](double s) { return 0.3 * std::sin(2 * M_PI * s / L); },
-      [=](double s) { return -0.3 * std::sin(2 * M_PI * s / L); },
-      [=](double s) { return 0.25 * std::sin(M_PI * s / L); },
-  };
-  bake::RigDescription rig;
-  rig.name = "plate";
-  rig.triangles = samples::StripTriangles(shape);
-  for (int i = 0; i < poses; ++i) {
-    const double a = 2 * M_PI * (i - 1) / (poses - 1);
-    rig.poses.push_back(samples::StripPose("p" + std::to_string(i), i ? std::cos(a) : 0, i ? std::sin(a) : 0, shape, kappa[i]));
-  }
-  return rig;
-}
-
 const int kAcross[] = {15, 22, 31, 44};  // 496, 1035, 2016, 4005 vertices
 
 struct Case {
@@ -65,7 +40,8 @@ const Case& GetCase(int size, int poses) {
   static std::map<std::pair<int, int>, Case> cases;
   auto [it, inserted] = cases.try_emplace({size, poses});
   if (inserted) {
-    bake::RigDescription desc = PlateRig(kAcross[size], poses);
+    bake::RigDescription desc = samples::PlateRig(kAcross[size], poses);
+    desc.parameters.compact = false;  // the exact encoding, as these figures were first taken
     it->second.bytes = bake::BakeRig(desc);
     LoadRig(it->second.bytes.data(), it->second.bytes.size(), &it->second.rig, nullptr);
     it->second.K = bake::BuildArapSystem(desc.poses[0].vertices, desc.triangles, "").K;

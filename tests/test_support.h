@@ -14,7 +14,10 @@
 
 namespace posemorph::test {
 
+// Exact encoding: these tests hold the math to 1e-9 (the compact encoding
+// has its own tests, compact_rig_test.cpp).
 inline Rig Bake(bake::RigDescription desc) {
+  desc.parameters.compact = false;
   const std::vector<unsigned char> bytes = bake::BakeRig(desc);
   Rig rig;
   Error err;

@@ -109,4 +109,32 @@ inline bake::RigDescription WormLineRig() {
   return rig;
 }
 
+// A plate of 2 across x across cells (one bend per pose; rest first), the
+// benchmarks' and the compact-size test's large rig: across 22 gives 1035
+// vertices.
+inline bake::RigDescription PlateRig(int across, int poses) {
+  StripShape shape;
+  shape.length = 10, shape.width = 5, shape.segments = 2 * across, shape.across = across;
+  const double L = shape.length;
+  // Bends keep the radius above half the width (no flips).
+  const std::function<double(double)> kappa[] = {
+      [](double) { return 0.0; },
+      [=](double) { return Degrees(90) / L; },
+      [=](double) { return -Degrees(90) / L; },
+      [=](double s) { return 2 * Degrees(100) * s / (L * L); },
+      [=](double s) { return -2 * Degrees(100) * s / (L * L); },
+      [=](double s) { return 0.3 * std::sin(2 * M_PI * s / L); },
+      [=](double s) { return -0.3 * std::sin(2 * M_PI * s / L); },
+      [=](double s) { return 0.25 * std::sin(M_PI * s / L); },
+  };
+  bake::RigDescription rig;
+  rig.name = "plate";
+  rig.triangles = StripTriangles(shape);
+  for (int i = 0; i < poses; ++i) {
+    const double a = 2 * M_PI * (i - 1) / (poses - 1);
+    rig.poses.push_back(StripPose("p" + std::to_string(i), i ? std::cos(a) : 0, i ? std::sin(a) : 0, shape, kappa[i]));
+  }
+  return rig;
+}
+
 }  // namespace posemorph::samples

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <set>
 #include <sstream>
 
@@ -21,7 +22,8 @@ namespace {
 
 const char kUsage[] =
     "usage:\n"
-    "  posemorph-bake RIG.json [-o RIG.pmrig]     bake a rig description (default output: RIG.pmrig)\n"
+    "  posemorph-bake RIG.json [-o RIG.pmrig] [--precision compact|exact] [--max-error PX]\n"
+    "        bake a rig description (default output: RIG.pmrig; compact within 0.01 drawing pixels)\n"
     "  posemorph-bake info RIG.pmrig              sizes, counts, factor fill, pose points, paths\n"
     "  posemorph-bake eval RIG.pmrig (--at X,Y | --path NAME [--time T | --frames K]) -o OUT.svg|.json|.obj\n"
     "        [--sigma S] [--no-shear-limit] [--linear]\n"
@@ -125,7 +127,7 @@ EvalOptions ReadEvalOptions(const Args& args) {
 }
 
 int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out, std::ostream& err) {
-  const Args args = Args::Parse(a, from, {"-o"}, {});
+  const Args args = Args::Parse(a, from, {"-o", "--precision", "--max-error"}, {});
   if (args.positional.empty()) throw UsageError("no rig description given");
   std::string output;
   if (const std::string* o = args.Get("-o")) {
@@ -137,6 +139,15 @@ int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out,
     output += ".pmrig";
   }
   RigDescription rig = ReadRigDescription(args.positional);
+  if (const std::string* p = args.Get("--precision")) {
+    if (*p != "compact" && *p != "exact") throw UsageError("--precision must be compact or exact");
+    rig.parameters.compact = *p == "compact";
+  }
+  if (const std::string* e = args.Get("--max-error")) {
+    rig.parameters.max_error_px = ParseNumber("--max-error", *e);
+    if (!(rig.parameters.max_error_px >= 1e-6) || rig.parameters.max_error_px > 10)
+      throw UsageError("--max-error must be in [1e-6, 10] pixels");
+  }
   BakeReport report;
   const std::vector<unsigned char> bytes = BakeRig(rig, &report);
   WriteFileAtomic(output, bytes);
@@ -145,6 +156,13 @@ int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out,
       << "nnz(L) " << report.factor_nonzeros << ", grid " << report.grid_cells_x << "x" << report.grid_cells_y << ", "
       << report.seconds * 1e3 << " ms; max pose reproduction error " << report.max_reproduction_error
       << " of the rig size\n";
+  if (report.compact) {
+    const CompactReport& c = report.compact_report;
+    out << "compact encoding: " << report.bytes << " bytes (exact " << report.exact_bytes << "); max vertex error "
+        << c.max_error_px << " px over " << c.samples << " frames (pose points, pose hull, paths), at the pose points "
+        << c.pose_error_px << " px; budget " << report.max_error_px << " px at " << report.pixels_per_unit
+        << " px per rig unit; position step " << c.position_step_px << " px, weight step " << c.weight_step << "\n";
+  }
   const MappingReport& m = rig.mapping_report;
   for (const std::string& w : m.warnings) err << "posemorph-bake: warning: " << w << "\n";
   if (m.mapped) {
@@ -156,6 +174,29 @@ int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out,
         << "min angle " << m.min_angle_degrees << " degrees over all poses; " << m.seconds * 1e3 << " ms\n";
   }
   return 0;
+}
+
+// What a section holds and at what precision, from its tag and header.
+std::string DescribeSection(std::uint32_t tag, const unsigned char* d, std::uint64_t size) {
+  auto u32 = [&](std::size_t at) { std::uint32_t v = 0; if (at + 4 <= size) std::memcpy(&v, d + at, 4); return v; };
+  auto f64 = [&](std::size_t at) { double v = 0; if (at + 8 <= size) std::memcpy(&v, d + at, 8); return v; };
+  std::ostringstream s;
+  namespace f = format;
+  if (tag == f::kQuantPositions) s << u32(8) << "-bit positions, step " << f64(0) << " rig units";
+  else if (tag == f::kQuantTriangles) s << u32(0) << "-bit vertex indices";
+  else if (tag == f::kQuantPermutation) s << u32(0) << "-bit fill-reducing order (factor computed at load)";
+  else if (tag == f::kQuantTurns) s << u32(4) << "-bit whole turns of the rotation angles (angles, stretches computed at load)";
+  else if (tag == f::kQuantGrid) s << "weight grid: step " << f64(0) << ", predicted, Exp-Golomb coded, " << u32(8) << " poses stored";
+  else if (tag == f::kAffineUVs) s << "uvs as affine maps of a pose's positions";
+  else if (tag == f::kCompactInfo)
+    s << "error budget " << f64(0) << " px; measured max " << f64(8) << " px, at the pose points " << f64(16) << " px ("
+      << f64(24) << " px per rig unit)";
+  else if (tag == f::kMeta) s << "counts, grid geometry";
+  else if (tag == f::kTriangles || tag == f::kPermutation || tag == f::kFactorColumns || tag == f::kFactorRows || tag == f::kPaths) s << "u32";
+  else if (tag == f::kUVs) s << "f32 uvs";
+  else if (tag == f::kStrings) s << "names and image references";
+  else s << "f64";
+  return s.str();
 }
 
 int Info(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
@@ -189,14 +230,28 @@ int Info(const std::vector<std::string>& a, std::size_t from, std::ostream& out)
   // Where the bytes go (the loader has validated the table already).
   std::uint32_t sections = 0;
   std::memcpy(&sections, bytes.data() + format::kOffSectionCount, 4);
-  out << "  sections:";
+  format::Meta meta{};
+  out << "  sections (" << (rig.format_major()) << "." << rig.format_minor() << ", ";
   for (std::uint32_t s = 0; s < sections; ++s) {
     const unsigned char* e = bytes.data() + format::kHeaderSize + std::size_t(s) * format::kSectionEntrySize;
-    std::uint64_t size = 0;
-    std::memcpy(&size, e + 16, 8);
-    out << ' ' << std::string(reinterpret_cast<const char*>(e), 4) << ' ' << size;
+    std::uint32_t tag = 0;
+    std::memcpy(&tag, e, 4);
+    std::uint64_t offset = 0;
+    std::memcpy(&offset, e + 8, 8);
+    if (tag == format::kMeta) std::memcpy(&meta, bytes.data() + offset, sizeof(meta));
   }
-  out << "\n";
+  const bool compact = (meta.flags & format::kMetaFlagCompact) != 0;
+  out << (compact ? "compact" : "exact") << " encoding):\n";
+  for (std::uint32_t s = 0; s < sections; ++s) {
+    const unsigned char* e = bytes.data() + format::kHeaderSize + std::size_t(s) * format::kSectionEntrySize;
+    std::uint32_t tag = 0;
+    std::uint64_t offset = 0, size = 0;
+    std::memcpy(&tag, e, 4);
+    std::memcpy(&offset, e + 8, 8);
+    std::memcpy(&size, e + 16, 8);
+    out << "    " << std::string(reinterpret_cast<const char*>(e), 4) << ' ' << std::setw(9) << size << "  "
+        << DescribeSection(tag, bytes.data() + offset, size) << "\n";
+  }
   for (std::uint32_t i = 0; i < N; ++i) {
     out << "  pose " << i << " '" << std::string(rig.pose_name(i).data, rig.pose_name(i).size) << "' at ("
         << rig.pose_points()[2 * i] << ", " << rig.pose_points()[2 * i + 1] << ")";

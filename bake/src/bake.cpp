@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "posemorph/bake/bake.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -166,6 +167,22 @@ std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
   }
   if (any_canvas) w.AddArray(fmt::kCanvases, canvases);
   std::vector<unsigned char> bytes = w.Finish();
+  const std::uint64_t exact_bytes = bytes.size();
+
+  // The compact encoding, within the error budget of the exact one.
+  double tolerance = 1e-6;  // pose reproduction, relative to the rig size
+  double pixels_per_unit = 0;
+  CompactReport compact_report;
+  if (rig.parameters.compact) {
+    CompactSettings settings;
+    settings.max_error_px = rig.parameters.max_error_px;
+    pixels_per_unit = any_canvas ? 1.0
+                      : rig.parameters.pixels_per_unit > 0 ? rig.parameters.pixels_per_unit
+                                                           : 1024.0 / meta.rig_size;
+    settings.pixels_per_unit = pixels_per_unit;
+    bytes = CompactRig(bytes, settings, rig.file, &compact_report);
+    tolerance = std::max(tolerance, settings.max_error_px / pixels_per_unit / meta.rig_size);
+  }
 
   // Check what we wrote with the runtime that will read it: it loads, and
   // evaluating at each pose point gives that pose back.
@@ -193,7 +210,7 @@ std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
       worst = std::max(worst, (Eigen::Vector2d(x[2 * v], x[2 * v + 1]) - rig.poses[i].vertices[v]).norm());
   }
   worst /= meta.rig_size;
-  if (!(worst <= 1e-6))
+  if (!(worst <= tolerance))
     throw BakeError(rig.file, "internal error: the baked rig reproduces its poses only to " + std::to_string(worst) + " of its size");
 
   if (report) {
@@ -210,6 +227,11 @@ std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
     report->bytes = bytes.size();
     report->max_reproduction_error = worst;
     report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    report->compact = rig.parameters.compact;
+    report->exact_bytes = exact_bytes;
+    report->max_error_px = rig.parameters.compact ? rig.parameters.max_error_px : 0;
+    report->pixels_per_unit = pixels_per_unit;
+    report->compact_report = compact_report;
   }
   return bytes;
 }

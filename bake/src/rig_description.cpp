@@ -227,6 +227,17 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
     if (p.margin < 0 || p.margin > 10) r.Fail("bake.margin", "must be in [0, 10]");
     if (!(p.epsilon > 0) || p.epsilon > 1e3) r.Fail("bake.epsilon", "must be in (0, 1000]");
     if (p.sigma < 0 || p.sigma > 1) r.Fail("bake.sigma", "must be in [0, 1]");
+    if (b.contains("precision")) {
+      const std::string v = r.String(b["precision"], "bake.precision");
+      if (v != "compact" && v != "exact") r.Fail("bake.precision", "expected \"compact\" or \"exact\"");
+      p.compact = v == "compact";
+    }
+    if (b.contains("max_error")) p.max_error_px = r.Number(b["max_error"], "bake.max_error");
+    if (!(p.max_error_px >= 1e-6) || p.max_error_px > 10) r.Fail("bake.max_error", "must be in [1e-6, 10] pixels");
+    if (b.contains("pixels_per_unit")) {
+      p.pixels_per_unit = r.Number(b["pixels_per_unit"], "bake.pixels_per_unit");
+      if (!(p.pixels_per_unit > 0) || p.pixels_per_unit > 1e6) r.Fail("bake.pixels_per_unit", "must be in (0, 1e6]");
+    }
   }
 
   if (root.contains("paths")) {

@@ -10,6 +10,7 @@
 #include <new>
 #include <utility>
 
+#include "compact/compact_rig.h"
 #include "isa_select.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
@@ -332,7 +333,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   if (nnz > fmt::kMaxFactorNonzeros)
     return Fail(err, ErrorCode::kTooLarge, "factor has %llu nonzeros, above %u", (unsigned long long)nnz,
                 fmt::kMaxFactorNonzeros);
-  if ((meta.flags & ~(fmt::kMetaFlagHasUVs | fmt::kMetaFlagGridCentres)) != 0)
+  if ((meta.flags & ~(fmt::kMetaFlagHasUVs | fmt::kMetaFlagGridCentres | fmt::kMetaFlagCompact)) != 0)
     return Fail(err, ErrorCode::kBadVersion, "unknown META flags 0x%x", meta.flags);
   if (!std::isfinite(meta.grid_origin_x) || !std::isfinite(meta.grid_origin_y) ||
       !std::isfinite(meta.grid_cell_size) || !(meta.grid_cell_size > 0) ||
@@ -352,20 +353,43 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   const std::uint64_t grid_vertices = grid_corners + grid_centres;
   const bool has_uvs = (meta.flags & fmt::kMetaFlagHasUVs) != 0;
 
+  const bool compact = (meta.flags & fmt::kMetaFlagCompact) != 0;
+
   // Sections with sizes implied by the counts.
-  const unsigned char *tris, *poses, *points, *cents, *masses, *grads, *angles, *shears, *perm, *lcol,
-      *lrow, *lval, *dinv, *wgrid, *uvs = nullptr, *paths, *strs, *pkeys;
-  if (!parser.Get(fmt::kTriangles, T * 12, &tris) || !parser.Get(fmt::kPosePositions, N * V * 16, &poses) ||
-      !parser.Get(fmt::kPosePoints, N * 16, &points) || !parser.Get(fmt::kPoseCentroids, N * 16, &cents) ||
-      !parser.Get(fmt::kVertexMasses, V * 8, &masses) || !parser.Get(fmt::kGradients, T * 48, &grads) ||
-      !parser.Get(fmt::kAngles, T * N * 8, &angles) || !parser.Get(fmt::kShears, T * N * 24, &shears) ||
-      !parser.Get(fmt::kPermutation, n * 4, &perm) || !parser.Get(fmt::kFactorColumns, (n + 1) * 4, &lcol) ||
-      !parser.Get(fmt::kFactorRows, nnz * 4, &lrow) || !parser.Get(fmt::kFactorValues, nnz * 8, &lval) ||
-      !parser.Get(fmt::kFactorInvDiagonal, n * 8, &dinv) ||
-      !parser.Get(fmt::kWeightGrid, grid_vertices * N * 8, &wgrid) ||
-      !parser.Get(fmt::kPaths, P * fmt::kPathEntrySize, &paths))
+  const unsigned char *tris = nullptr, *poses = nullptr, *points, *cents = nullptr, *masses = nullptr,
+                      *grads = nullptr, *angles = nullptr, *shears = nullptr, *perm = nullptr, *lcol = nullptr,
+                      *lrow = nullptr, *lval = nullptr, *dinv = nullptr, *wgrid = nullptr, *uvs = nullptr, *paths,
+                      *strs, *pkeys;
+  if (!compact &&
+      (!parser.Get(fmt::kTriangles, T * 12, &tris) || !parser.Get(fmt::kPosePositions, N * V * 16, &poses) ||
+       !parser.Get(fmt::kPoseCentroids, N * 16, &cents) || !parser.Get(fmt::kVertexMasses, V * 8, &masses) ||
+       !parser.Get(fmt::kGradients, T * 48, &grads) || !parser.Get(fmt::kAngles, T * N * 8, &angles) ||
+       !parser.Get(fmt::kShears, T * N * 24, &shears) || !parser.Get(fmt::kPermutation, n * 4, &perm) ||
+       !parser.Get(fmt::kFactorColumns, (n + 1) * 4, &lcol) || !parser.Get(fmt::kFactorRows, nnz * 4, &lrow) ||
+       !parser.Get(fmt::kFactorValues, nnz * 8, &lval) || !parser.Get(fmt::kFactorInvDiagonal, n * 8, &dinv) ||
+       !parser.Get(fmt::kWeightGrid, grid_vertices * N * 8, &wgrid)))
     return false;
-  if (has_uvs && !parser.Get(fmt::kUVs, N * V * 8, &uvs)) return false;
+  if (!parser.Get(fmt::kPosePoints, N * 16, &points) || !parser.Get(fmt::kPaths, P * fmt::kPathEntrySize, &paths))
+    return false;
+  detail::CompactLayout packed;
+  const detail::CompactCounts packed_counts{V, T, N, n, nnz, meta.grid_cells_x, meta.grid_cells_y,
+                                            grid_centres > 0, file_size};
+  bool affine_uvs = false;
+  if (compact) {
+    auto bytes_of = [&](std::uint32_t tag) {
+      const Section* s = parser.table.Find(tag);
+      return s ? detail::SectionBytes{bytes + s->offset, s->size} : detail::SectionBytes{};
+    };
+    if (!detail::ReadCompactLayout(bytes_of(fmt::kQuantPositions), bytes_of(fmt::kQuantTriangles),
+                                   bytes_of(fmt::kQuantPermutation), bytes_of(fmt::kQuantTurns),
+                                   bytes_of(fmt::kQuantGrid), bytes_of(fmt::kAffineUVs), packed_counts, &packed, err))
+      return false;
+    affine_uvs = packed.has_affine_uvs;
+    if (affine_uvs && !has_uvs) return Fail(err, ErrorCode::kBadLayout, "QUVA section present but META says no uvs");
+    if (affine_uvs && parser.table.Find(fmt::kUVs))
+      return Fail(err, ErrorCode::kBadLayout, "both QUVA and UVS present; a rig stores its uvs once");
+  }
+  if (has_uvs && !affine_uvs && !parser.Get(fmt::kUVs, N * V * 8, &uvs)) return false;
   const unsigned char* canvases = nullptr;
   if (parser.table.Find(fmt::kCanvases) && !parser.Get(fmt::kCanvases, N * 32, &canvases)) return false;
   if (!has_uvs && parser.table.Find(fmt::kUVs))
@@ -409,6 +433,57 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
                     source.memory_size, rig.arena_size_);
       arena.base = static_cast<unsigned char*>(source.memory);
     }
+    detail::CompactOutputs decoded{};
+    if (compact) {
+      // Decoded and derived into the layout an exact rig copies into.
+      decoded.triangles = arena.Take<std::uint32_t>(T * 3);
+      decoded.positions = arena.Take<double>(N * V * 2);
+      decoded.centroids = arena.Take<double>(N * 2);
+      decoded.factor.vertex_masses = arena.Take<double>(V);
+      decoded.factor.gradients = arena.Take<double>(T * 6);
+      decoded.angles = arena.Take<double>(T * N);
+      decoded.stretches = arena.Take<double>(T * N * 3);
+      decoded.order = arena.Take<std::uint32_t>(n);
+      decoded.factor.col_start = arena.Take<std::uint32_t>(n + 1);
+      decoded.factor.row = arena.Take<std::uint32_t>(nnz);
+      decoded.factor.value = arena.Take<double>(nnz);
+      decoded.factor.inv_diagonal = arena.Take<double>(n);
+      decoded.grid_corners = arena.Take<double>(grid_vertices * N);
+      decoded.grid_centres = grid_centres && decoded.grid_corners ? decoded.grid_corners + grid_corners * N : nullptr;
+      decoded.uvs = affine_uvs ? arena.Take<float>(N * V * 2) : nullptr;
+      rig.triangles_ = {decoded.triangles, std::size_t(T * 3)};
+      rig.pose_positions_ = {decoded.positions, std::size_t(N * V * 2)};
+      rig.pose_points_ = CopyInto<double>(arena, points, N * 2);
+      rig.pose_centroids_ = {decoded.centroids, std::size_t(N * 2)};
+      rig.vertex_masses_ = {decoded.factor.vertex_masses, std::size_t(V)};
+      rig.gradients_ = {decoded.factor.gradients, std::size_t(T * 6)};
+      rig.angles_ = {decoded.angles, std::size_t(T * N)};
+      rig.shears_ = {decoded.stretches, std::size_t(T * N * 3)};
+      rig.factor_.order = {decoded.order, std::size_t(n)};
+      rig.factor_.col_start = {decoded.factor.col_start, std::size_t(n + 1)};
+      rig.factor_.row = {decoded.factor.row, std::size_t(nnz)};
+      rig.factor_.value = {decoded.factor.value, std::size_t(nnz)};
+      rig.factor_.inv_diagonal = {decoded.factor.inv_diagonal, std::size_t(n)};
+      rig.grid_.weights = {decoded.grid_corners, std::size_t(grid_corners * N)};
+      if (decoded.grid_centres) rig.grid_.centre_weights = {decoded.grid_centres, std::size_t(grid_centres * N)};
+      if (affine_uvs) rig.uvs_ = {decoded.uvs, std::size_t(N * V * 2)};
+      else if (has_uvs) rig.uvs_ = CopyInto<float>(arena, uvs, N * V * 2);
+      // Scratch, used once at load.
+      decoded.grid_scratch = arena.Take<std::int64_t>(grid_corners);
+      decoded.seen = arena.Take<unsigned char>(n);
+      detail::ArapFactorBuffers& f = decoded.factor;
+      f.position = arena.Take<std::uint32_t>(n);
+      f.parent = arena.Take<std::uint32_t>(n);
+      f.flag = arena.Take<std::uint32_t>(n);
+      f.path = arena.Take<std::uint32_t>(n);
+      f.stack = arena.Take<std::uint32_t>(n);
+      f.fill = arena.Take<std::uint32_t>(n);
+      f.entry_start = arena.Take<std::uint32_t>(n + 1);
+      f.entry_row = arena.Take<std::uint32_t>(detail::ArapEntryCapacity(T));
+      f.entry_value = arena.Take<double>(detail::ArapEntryCapacity(T));
+      f.work = arena.Take<double>(n);
+      f.pivot = arena.Take<double>(n);
+    } else {
     rig.triangles_ = CopyInto<std::uint32_t>(arena, tris, T * 3);
     rig.pose_positions_ = CopyInto<double>(arena, poses, N * V * 2);
     rig.pose_points_ = CopyInto<double>(arena, points, N * 2);
@@ -427,6 +502,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
     if (grid_centres && grid_all.data)  // (null while the arena is only being measured)
       rig.grid_.centre_weights = {grid_all.data + grid_corners * N, std::size_t(grid_centres * N)};
     if (has_uvs) rig.uvs_ = CopyInto<float>(arena, uvs, N * V * 2);
+    }
     if (canvases) rig.canvases_ = CopyInto<double>(arena, canvases, N * 4);
     const Span<const char> chars = CopyInto<char>(arena, strs, strings_section->size);
     StringView* strings = arena.Take<StringView>(string_count);
@@ -455,6 +531,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
       }
       continue;
     }
+    if (compact && !detail::DecodeCompact(packed, packed_counts, decoded, err)) return false;
 
     // Strings: u32 length + bytes, one after another, exactly filling STRS.
     std::uint64_t at = 0;

@@ -20,7 +20,10 @@ using namespace posemorph::test;
 
 namespace {
 
-const char* const kSampleRigs[] = {"snake", "worm-line", "gingerbread", "pip", "sprout"};
+// The exact rigs and their compact encodings (derived at load: the same
+// bits on every target too).
+const char* const kSampleRigs[] = {"snake", "worm-line", "gingerbread", "pip", "sprout", "snake.compact", "worm-line.compact",
+                                   "gingerbread.compact", "pip.compact", "sprout.compact"};
 
 // FNV-1a, 64 bits, over the bytes of every value in order.
 struct Fnv64 {

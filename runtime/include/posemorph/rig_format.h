@@ -10,8 +10,9 @@ namespace posemorph::format {
 constexpr unsigned char kMagic[8] = {'P', 'M', 'R', 'I', 'G', '\r', '\n', 0x1a};
 constexpr std::uint16_t kVersionMajor = 1;
 // 1.1 added the optional CANV section; 1.2 the weight grid's cell centres
-// (META flag kMetaFlagGridCentres). Older files load unchanged.
-constexpr std::uint16_t kVersionMinor = 2;
+// (META flag kMetaFlagGridCentres); 1.3 the compact encoding (META flag
+// kMetaFlagCompact). Older files load unchanged.
+constexpr std::uint16_t kVersionMinor = 3;
 constexpr std::uint32_t kHeaderSize = 64;
 constexpr std::uint32_t kSectionEntrySize = 24;
 constexpr std::uint32_t kSectionAlignment = 16;
@@ -79,6 +80,23 @@ constexpr std::uint32_t kMetaFlagHasUVs = 1u;
 // into four triangles at its centre. Without it (files before 1.2): corner
 // rows only, each cell split on its (0,0)-(1,1) diagonal.
 constexpr std::uint32_t kMetaFlagGridCentres = 2u;
+// Compact encoding (1.3): positions, triangles, the permutation and the
+// weight grid are stored quantised and bit-packed (QPOS, QTRI, QPRM, QGRD),
+// uvs as affine maps of a pose's positions (QUVA) or as UVS, rotation angles
+// as whole turns (QTRN) added to the principal angle; masses, centroids,
+// gradients, angles, stretches and the factor are computed at load from the
+// decoded positions, into the same arena layout. See runtime/FORMAT.md.
+constexpr std::uint32_t kMetaFlagCompact = 4u;
+constexpr std::uint32_t kQuantPositions = Tag('Q', 'P', 'O', 'S');
+constexpr std::uint32_t kQuantTriangles = Tag('Q', 'T', 'R', 'I');
+constexpr std::uint32_t kQuantPermutation = Tag('Q', 'P', 'R', 'M');
+constexpr std::uint32_t kQuantTurns = Tag('Q', 'T', 'R', 'N');
+constexpr std::uint32_t kQuantGrid = Tag('Q', 'G', 'R', 'D');
+constexpr std::uint32_t kAffineUVs = Tag('Q', 'U', 'V', 'A');
+// Optional, not read by the loader: f64 error budget (drawing pixels), the
+// largest vertex error the bake measured, the error at the pose points, and
+// drawing pixels per rig unit. For `posemorph-bake info`.
+constexpr std::uint32_t kCompactInfo = Tag('Q', 'I', 'N', 'F');
 
 // PATH section entry: key count, then flags (bit 0 loop; bits 8..15 interpolation).
 constexpr std::uint32_t kPathEntrySize = 8;
@@ -95,6 +113,14 @@ constexpr std::uint32_t kMaxPaths = 1024;
 constexpr std::uint32_t kMaxPathKeys = 1u << 20;  // all paths together
 constexpr std::uint32_t kMaxFactorNonzeros = 1u << 28;
 constexpr std::uint32_t kMaxStringBytes = 1u << 20;
+// A compact rig's factor is computed at load: its declared nonzeros may be
+// at most this many per byte of the file, and the factorisation's work (the
+// sum of its squared column counts) at most kMaxCompactFactorWork, so that
+// time and memory stay bounded by the file's size.
+constexpr std::uint32_t kMaxCompactNonzerosPerByte = 32;
+constexpr std::uint64_t kMaxCompactFactorWork = std::uint64_t(1) << 31;
+// Exp-Golomb codes in QGRD: at most this many leading zeros (values < 2^40).
+constexpr std::uint32_t kMaxGolombZeros = 40;
 // Magnitude limits on stored numbers, so that every evaluation of a rig that
 // loads stays finite (with the weight limit of the jobs, jobs.h).
 constexpr double kMaxAngle = 1e4;          // radians (about 1,600 turns)

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "posemorph/bake/compact_rig.h"
 #include "posemorph/bake/rig_description.h"
 
 namespace posemorph::bake {
@@ -17,6 +18,11 @@ struct BakeReport {
   std::uint64_t bytes = 0;
   double max_reproduction_error = 0;  // at the pose points, relative to the rig size (checked by the runtime)
   double seconds = 0;
+  bool compact = false;            // the encoding written
+  std::uint64_t exact_bytes = 0;   // size of the exact encoding
+  double max_error_px = 0;         // the budget (compact)
+  double pixels_per_unit = 0;      // drawing pixels per rig unit used for it
+  CompactReport compact_report;    // what the compact encoding reached
 };
 
 // Validates (may reorient triangles), analyses, factors, solves the weight

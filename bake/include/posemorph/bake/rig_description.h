@@ -87,6 +87,14 @@ struct BakeParameters {
   // levels out beyond about spread * sqrt(3 / epsilon) from the points.
   double epsilon = 3.0;
   double sigma = 0.25;       // default texture sharpening
+  // Encoding (issue: compact rigs): compact within max_error drawing pixels of
+  // the exact rig for every vertex of every frame in the pose hull and along
+  // the paths, or exact doubles. Pixels per rig unit: 1 when the poses come
+  // from drawings (rig units are drawing units); for rigs given as vertices,
+  // pixels_per_unit, or by default as if the rig's size were 1024 pixels.
+  bool compact = true;
+  double max_error_px = 0.01;
+  double pixels_per_unit = 0;  // 0: the default above
 };
 
 struct RigDescription {

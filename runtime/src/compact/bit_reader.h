@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// Reading the compact sections' bit streams: fixed-width unsigned integers
+// packed least significant bit first, and order-k Exp-Golomb codes (the
+// weight grid's prediction residuals). Every read is bounded by the stream's
+// size; reading past the end sets `overrun` and yields zeros.
+#pragma once
+#include <cstdint>
+#include <cstring>
+
+namespace posemorph::detail {
+
+class BitReader {
+ public:
+  BitReader(const unsigned char* data, std::uint64_t bytes) : data_(data), bits_(bytes * 8) {}
+
+  // `width` bits (0..32) at bit position `at`, without moving the cursor.
+  std::uint32_t At(std::uint64_t at, unsigned width) const {
+    if (width == 0) return 0;
+    if (at + width > bits_) return 0;
+    const std::uint64_t byte = at >> 3;
+    const std::uint64_t avail = bits_ / 8 - byte;
+    std::uint64_t word = 0;
+    std::memcpy(&word, data_ + byte, avail < 8 ? std::size_t(avail) : 8);  // little-endian targets only
+    return std::uint32_t((word >> (at & 7)) & ((std::uint64_t(1) << width) - 1));
+  }
+
+  std::uint32_t Read(unsigned width) {
+    if (pos_ + width > bits_) {
+      overrun = true;
+      pos_ = bits_;
+      return 0;
+    }
+    const std::uint32_t v = At(pos_, width);
+    pos_ += width;
+    return v;
+  }
+
+  // Order-k Exp-Golomb: z zero bits, a one, then z + k bits m; the value is
+  // 2^(z+k) + m - 2^k. At most max_zeros zeros.
+  std::uint64_t ReadGolomb(unsigned k, unsigned max_zeros) {
+    unsigned zeros = 0;
+    while (Read(1) == 0) {
+      if (overrun || ++zeros > max_zeros) {
+        overrun = true;
+        return 0;
+      }
+    }
+    const unsigned width = zeros + k;
+    std::uint64_t m = 0;
+    if (width > 32) {
+      m = std::uint64_t(Read(width - 32)) << 32;
+      m |= Read(32);
+    } else {
+      m = Read(width);
+    }
+    return (std::uint64_t(1) << width) + m - (std::uint64_t(1) << k);
+  }
+
+  std::uint64_t position() const { return pos_; }
+  std::uint64_t size_bits() const { return bits_; }
+  bool overrun = false;
+
+ private:
+  const unsigned char* data_;
+  std::uint64_t bits_;
+  std::uint64_t pos_ = 0;
+};
+
+// Bytes a stream of `count` values of `width` bits takes.
+inline std::uint64_t PackedBytes(std::uint64_t count, unsigned width) { return (count * width + 7) / 8; }
+
+}  // namespace posemorph::detail

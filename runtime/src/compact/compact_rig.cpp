@@ -1,0 +1,335 @@
+// SPDX-License-Identifier: MIT
+#include "compact_rig.h"
+
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <cstring>
+
+#include "bit_reader.h"
+#include "polar_angle.h"
+#include "posemorph/rig_format.h"
+
+namespace posemorph::detail {
+namespace {
+
+namespace fmt = format;
+
+bool Fail(Error* err, ErrorCode code, const char* format, ...) {
+  if (err) {
+    err->code = code;
+    va_list args;
+    va_start(args, format);
+    std::vsnprintf(err->message, sizeof(err->message), format, args);
+    va_end(args);
+  }
+  return false;
+}
+
+std::uint32_t U32(const unsigned char* p) { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
+double F64(const unsigned char* p) { double v; std::memcpy(&v, p, 8); return v; }
+
+// A packed array header: u32 width, u32 zero (QTRI, QPRM).
+bool PackedHeader(const char* tag, const SectionBytes& s, std::uint64_t count, unsigned* width, Error* err) {
+  if (!s.data) return Fail(err, ErrorCode::kBadLayout, "missing section %s", tag);
+  if (s.size < 8) return Fail(err, ErrorCode::kBadLayout, "section %s is %llu bytes, shorter than its header", tag, (unsigned long long)s.size);
+  *width = U32(s.data);
+  if (*width < 1 || *width > 32 || U32(s.data + 4) != 0)
+    return Fail(err, ErrorCode::kBadValue, "section %s: bit width %u outside 1..32 or reserved field set", tag, *width);
+  const std::uint64_t expected = 8 + PackedBytes(count, *width);
+  if (s.size != expected)
+    return Fail(err, ErrorCode::kBadLayout, "section %s is %llu bytes, the counts imply %llu", tag,
+                (unsigned long long)s.size, (unsigned long long)expected);
+  return true;
+}
+
+bool FiniteWithin(double v, double limit) { return std::isfinite(v) && std::fabs(v) <= limit; }
+
+std::int64_t Unzigzag(std::uint64_t u) { return (u & 1) ? -std::int64_t(u >> 1) - 1 : std::int64_t(u >> 1); }
+
+constexpr std::int64_t kMaxPositionCode = std::int64_t(1) << 40;
+
+std::int64_t FloorDiv4(std::int64_t s) { return s >= 0 ? s / 4 : -((-s + 3) / 4); }
+
+}  // namespace
+
+bool ReadCompactLayout(const SectionBytes& qpos, const SectionBytes& qtri, const SectionBytes& qprm,
+                       const SectionBytes& qtrn, const SectionBytes& qgrd, const SectionBytes& quva,
+                       const CompactCounts& c, CompactLayout* out, Error* err) {
+  CompactLayout L;
+  // QPOS: f64 step, u32 Exp-Golomb order k (0..20), u32 zero, N x (f64 x0,
+  // y0), then per pose and vertex the x and y integers as codes of their
+  // differences from the previous vertex's (zigzag, order k).
+  if (!qpos.data) return Fail(err, ErrorCode::kBadLayout, "missing section QPOS");
+  if (qpos.size < 16 + 16 * c.N) return Fail(err, ErrorCode::kBadLayout, "section QPOS is shorter than its header");
+  L.position_step = F64(qpos.data);
+  L.position_k = U32(qpos.data + 8);
+  if (!(L.position_step > 0) || !FiniteWithin(L.position_step, fmt::kMaxMagnitude))
+    return Fail(err, ErrorCode::kBadValue, "section QPOS: step %g is not finite and positive", L.position_step);
+  if (L.position_k > 20 || U32(qpos.data + 12) != 0)
+    return Fail(err, ErrorCode::kBadValue, "section QPOS: code order %u above 20 or reserved field set", L.position_k);
+  for (std::uint64_t i = 0; i < 2 * c.N; ++i)
+    if (!FiniteWithin(F64(qpos.data + 16 + 8 * i), fmt::kMaxMagnitude))
+      return Fail(err, ErrorCode::kBadValue, "section QPOS: origin of pose %llu is not finite or beyond %g",
+                  (unsigned long long)(i / 2), fmt::kMaxMagnitude);
+  if ((qpos.size - 16 - 16 * c.N) * 8 < 2 * c.N * c.V)
+    return Fail(err, ErrorCode::kBadLayout, "section QPOS is too short for %llu vertices in %llu poses",
+                (unsigned long long)c.V, (unsigned long long)c.N);
+  L.positions = qpos;
+
+  // QTRI: u32 Exp-Golomb order k (0..20), u32 zero, then each vertex index
+  // as the code of its difference from the same corner of the previous
+  // triangle (zigzag, order k).
+  if (!qtri.data) return Fail(err, ErrorCode::kBadLayout, "missing section QTRI");
+  if (qtri.size < 8) return Fail(err, ErrorCode::kBadLayout, "section QTRI is shorter than its header");
+  L.triangle_k = U32(qtri.data);
+  if (L.triangle_k > 20 || U32(qtri.data + 4) != 0)
+    return Fail(err, ErrorCode::kBadValue, "section QTRI: code order %u above 20 or reserved field set", L.triangle_k);
+  if ((qtri.size - 8) * 8 < 3 * c.T)
+    return Fail(err, ErrorCode::kBadLayout, "section QTRI is too short for %llu triangles", (unsigned long long)c.T);
+  if (!PackedHeader("QPRM", qprm, c.n, &L.permutation_bits, err)) return false;
+  L.triangles = qtri;
+  L.permutation = qprm;
+
+  // QTRN: i32 base, u32 width (0..32), TN packed values: turn = base + value.
+  if (!qtrn.data) return Fail(err, ErrorCode::kBadLayout, "missing section QTRN");
+  if (qtrn.size < 8) return Fail(err, ErrorCode::kBadLayout, "section QTRN is shorter than its header");
+  std::memcpy(&L.turn_base, qtrn.data, 4);
+  L.turn_bits = U32(qtrn.data + 4);
+  if (L.turn_bits > 32) return Fail(err, ErrorCode::kBadValue, "section QTRN: bit width %u above 32", L.turn_bits);
+  const std::uint64_t turn_expected = 8 + PackedBytes(c.T * c.N, L.turn_bits);
+  if (qtrn.size != turn_expected)
+    return Fail(err, ErrorCode::kBadLayout, "section QTRN is %llu bytes, the counts imply %llu",
+                (unsigned long long)qtrn.size, (unsigned long long)turn_expected);
+  L.turns = qtrn;
+
+  // QGRD: f64 step, u32 coded poses (N, or N - 1 with the last pose 1 minus
+  // the others), u32 zero, per coded pose u32 (k corners | k centres << 8),
+  // then the Exp-Golomb stream.
+  if (!qgrd.data) return Fail(err, ErrorCode::kBadLayout, "missing section QGRD");
+  if (qgrd.size < 16) return Fail(err, ErrorCode::kBadLayout, "section QGRD is shorter than its header");
+  L.grid_step = F64(qgrd.data);
+  L.grid_coded_poses = U32(qgrd.data + 8);
+  if (!(L.grid_step > 0) || !FiniteWithin(L.grid_step, fmt::kMaxGridWeight))
+    return Fail(err, ErrorCode::kBadValue, "section QGRD: step %g is not finite and positive", L.grid_step);
+  if ((L.grid_coded_poses != c.N && L.grid_coded_poses + 1 != c.N) || U32(qgrd.data + 12) != 0)
+    return Fail(err, ErrorCode::kBadValue, "section QGRD: %u coded poses for %llu poses, or reserved field set",
+                L.grid_coded_poses, (unsigned long long)c.N);
+  const std::uint64_t header = 16 + 4 * std::uint64_t(L.grid_coded_poses);
+  if (qgrd.size < header) return Fail(err, ErrorCode::kBadLayout, "section QGRD is shorter than its header");
+  for (std::uint32_t i = 0; i < L.grid_coded_poses; ++i) {
+    const std::uint32_t k = U32(qgrd.data + 16 + 4 * i);
+    if ((k & 0xFFu) > 20 || ((k >> 8) & 0xFFu) > 20 || (k >> 16) != 0)
+      return Fail(err, ErrorCode::kBadValue, "section QGRD: code parameters of pose %u out of range", i);
+  }
+  const std::uint64_t nodes = (c.cells_x + 1) * (c.cells_y + 1) + (c.grid_centres ? c.cells_x * c.cells_y : 0);
+  // Every code is at least one bit: a stream shorter than that cannot hold the grid.
+  if ((qgrd.size - header) * 8 < nodes * L.grid_coded_poses)
+    return Fail(err, ErrorCode::kBadLayout, "section QGRD is too short for a %llux%llu grid",
+                (unsigned long long)c.cells_x, (unsigned long long)c.cells_y);
+  L.grid = qgrd;
+
+  if (quva.data) {
+    if (quva.size != 56 * c.N)
+      return Fail(err, ErrorCode::kBadLayout, "section QUVA is %llu bytes, the counts imply %llu",
+                  (unsigned long long)quva.size, (unsigned long long)(56 * c.N));
+    for (std::uint64_t i = 0; i < c.N; ++i) {
+      const unsigned char* e = quva.data + 56 * i;
+      if (U32(e) >= c.N || U32(e + 4) != 0)
+        return Fail(err, ErrorCode::kBadValue, "section QUVA: pose %llu names source pose %u of %llu", (unsigned long long)i,
+                    U32(e), (unsigned long long)c.N);
+      for (int k = 0; k < 6; ++k)
+        if (!FiniteWithin(F64(e + 8 + 8 * k), fmt::kMaxMagnitude))
+          return Fail(err, ErrorCode::kBadValue, "section QUVA: coefficient %d of pose %llu is not finite", k, (unsigned long long)i);
+    }
+    L.affine_uvs = quva;
+    L.has_affine_uvs = true;
+  }
+
+  if (c.nnz > std::uint64_t(fmt::kMaxCompactNonzerosPerByte) * c.file_size)
+    return Fail(err, ErrorCode::kTooLarge, "META: %llu factor nonzeros for a compact file of %llu bytes (at most %u per byte)",
+                (unsigned long long)c.nnz, (unsigned long long)c.file_size, fmt::kMaxCompactNonzerosPerByte);
+  *out = L;
+  return true;
+}
+
+bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
+  const std::uint64_t V = c.V, T = c.T, N = c.N, n = c.n;
+  // Triangles.
+  {
+    BitReader r(L.triangles.data + 8, L.triangles.size - 8);
+    for (std::uint64_t k = 0; k < 3 * T; ++k) {
+      const std::int64_t previous = k >= 3 ? std::int64_t(o.triangles[k - 3]) : 0;
+      const std::int64_t value = previous + Unzigzag(r.ReadGolomb(L.triangle_k, fmt::kMaxGolombZeros));
+      if (r.overrun || value < 0 || value >= std::int64_t(V))
+        return Fail(err, ErrorCode::kBadValue, "section QTRI: triangle %llu has a vertex index outside 0..%llu or runs past the section",
+                    (unsigned long long)(k / 3), (unsigned long long)(V - 1));
+      o.triangles[k] = std::uint32_t(value);
+    }
+    if ((r.position() + 7) / 8 != r.size_bits() / 8)
+      return Fail(err, ErrorCode::kBadLayout, "section QTRI has bytes after its codes");
+    for (std::uint64_t t = 0; t < T; ++t) {
+      const std::uint32_t a = o.triangles[3 * t], b = o.triangles[3 * t + 1], d = o.triangles[3 * t + 2];
+      if (a >= V || b >= V || d >= V)
+        return Fail(err, ErrorCode::kBadValue, "section QTRI: triangle %llu has a vertex index >= %llu", (unsigned long long)t,
+                    (unsigned long long)V);
+      if (a == b || b == d || a == d)
+        return Fail(err, ErrorCode::kBadValue, "section QTRI: triangle %llu repeats a vertex", (unsigned long long)t);
+    }
+  }
+  // Permutation.
+  {
+    const BitReader r(L.permutation.data + 8, L.permutation.size - 8);
+    std::memset(o.seen, 0, n);
+    for (std::uint64_t k = 0; k < n; ++k) {
+      const std::uint32_t v = r.At(k * L.permutation_bits, L.permutation_bits);
+      if (v >= n || o.seen[v])
+        return Fail(err, ErrorCode::kBadValue, "section QPRM: not a permutation (entry %llu)", (unsigned long long)k);
+      o.seen[v] = 1;
+      o.order[k] = v;
+    }
+  }
+  // Positions: origin + step * q, pose by pose.
+  {
+    const unsigned char* origins = L.positions.data + 16;
+    BitReader r(origins + 16 * N, L.positions.size - 16 - 16 * N);
+    for (std::uint64_t i = 0; i < N; ++i) {
+      const double ox = F64(origins + 16 * i), oy = F64(origins + 16 * i + 8);
+      std::int64_t qx = 0, qy = 0;
+      for (std::uint64_t v = 0; v < V; ++v) {
+        const std::uint64_t k = 2 * (i * V + v);
+        qx += Unzigzag(r.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
+        qy += Unzigzag(r.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
+        if (r.overrun || qx < 0 || qy < 0 || qx > kMaxPositionCode || qy > kMaxPositionCode)
+          return Fail(err, ErrorCode::kBadValue, "section QPOS: vertex %llu of pose %llu: code runs past the section or out of range",
+                      (unsigned long long)v, (unsigned long long)i);
+        o.positions[k] = ox + L.position_step * double(qx);
+        o.positions[k + 1] = oy + L.position_step * double(qy);
+        if (!FiniteWithin(o.positions[k], fmt::kMaxMagnitude) || !FiniteWithin(o.positions[k + 1], fmt::kMaxMagnitude))
+          return Fail(err, ErrorCode::kBadValue, "section QPOS: vertex %llu of pose %llu is beyond %g", (unsigned long long)v,
+                      (unsigned long long)i, fmt::kMaxMagnitude);
+      }
+    }
+    if ((r.position() + 7) / 8 != r.size_bits() / 8)
+      return Fail(err, ErrorCode::kBadLayout, "section QPOS has bytes after its codes");
+  }
+  // Gradients, masses and the factor from the rest pose.
+  if (!BuildArapFactor(o.positions, V, o.triangles, T, o.order, c.nnz, o.factor, err)) return false;
+  // Centroids.
+  for (std::uint64_t i = 0; i < N; ++i) {
+    double cx = 0, cy = 0;
+    for (std::uint64_t v = 0; v < V; ++v) {
+      cx += o.factor.vertex_masses[v] * o.positions[2 * (i * V + v)];
+      cy += o.factor.vertex_masses[v] * o.positions[2 * (i * V + v) + 1];
+    }
+    o.centroids[2 * i] = cx;
+    o.centroids[2 * i + 1] = cy;
+  }
+  // Angles and stretches: the polar split of A = E_i E_0^-1, plus whole turns.
+  {
+    const double kTwoPi = 6.283185307179586232;
+    const BitReader turns(L.turns.data + 8, L.turns.size - 8);
+    for (std::uint64_t t = 0; t < T; ++t) {
+      const std::uint32_t* tri = o.triangles + 3 * t;
+      const double* p0 = o.positions;
+      const double e00 = p0[2 * tri[0]] - p0[2 * tri[2]], e10 = p0[2 * tri[0] + 1] - p0[2 * tri[2] + 1];
+      const double e01 = p0[2 * tri[1]] - p0[2 * tri[2]], e11 = p0[2 * tri[1] + 1] - p0[2 * tri[2] + 1];
+      const double det0 = e00 * e11 - e01 * e10;  // > 0: checked by BuildArapFactor
+      const double i00 = e11 / det0, i01 = -e01 / det0, i10 = -e10 / det0, i11 = e00 / det0;  // E_0^-1
+      for (std::uint64_t i = 0; i < N; ++i) {
+        const double* p = o.positions + 2 * i * V;
+        const double f00 = p[2 * tri[0]] - p[2 * tri[2]], f10 = p[2 * tri[0] + 1] - p[2 * tri[2] + 1];
+        const double f01 = p[2 * tri[1]] - p[2 * tri[2]], f11 = p[2 * tri[1] + 1] - p[2 * tri[2] + 1];
+        const double det = f00 * f11 - f01 * f10;
+        if (!(det > 0) || !std::isfinite(det))
+          return Fail(err, ErrorCode::kBadValue, "section QPOS: triangle %llu is inverted or degenerate in pose %llu",
+                      (unsigned long long)t, (unsigned long long)i);
+        const double a = f00 * i00 + f01 * i10, b = f00 * i01 + f01 * i11;
+        const double cc = f10 * i00 + f11 * i10, d = f10 * i01 + f11 * i11;
+        const PolarParts s = PolarSplit(a, b, cc, d);
+        const std::uint64_t k = t * N + i;
+        const std::int64_t turn = std::int64_t(L.turn_base) + std::int64_t(turns.At(k * L.turn_bits, L.turn_bits));
+        o.angles[k] = s.alpha + kTwoPi * double(turn);
+        o.stretches[3 * k] = s.s11;
+        o.stretches[3 * k + 1] = s.s12;
+        o.stretches[3 * k + 2] = s.s22;
+      }
+    }
+  }
+  // Weight grid: per coded pose, corners predicted from their left, lower and
+  // lower-left neighbours, centres from the rounded mean of their corners.
+  {
+    const std::uint64_t cx = c.cells_x, cy = c.cells_y, row = cx + 1;
+    const std::uint32_t coded = L.grid_coded_poses;
+    const std::uint64_t header = 16 + 4 * std::uint64_t(coded);
+    BitReader r(L.grid.data + header, L.grid.size - header);
+    const std::int64_t kLimit = std::int64_t(1) << 40;
+    auto next = [&](unsigned k, std::int64_t pred, std::int64_t* q) {
+      const std::uint64_t u = r.ReadGolomb(k, fmt::kMaxGolombZeros);
+      *q = pred + Unzigzag(u);
+      return !r.overrun && *q <= kLimit && *q >= -kLimit;
+    };
+    for (std::uint32_t i = 0; i < coded; ++i) {
+      const std::uint32_t ks = std::uint32_t(L.grid.data[16 + 4 * i]) | std::uint32_t(L.grid.data[17 + 4 * i]) << 8;
+      const unsigned k_corner = ks & 0xFFu, k_centre = (ks >> 8) & 0xFFu;
+      std::int64_t* q = o.grid_scratch;
+      for (std::uint64_t y = 0; y <= cy; ++y)
+        for (std::uint64_t x = 0; x <= cx; ++x) {
+          std::int64_t pred = 0;
+          if (x > 0) pred += q[y * row + x - 1];
+          if (y > 0) pred += q[(y - 1) * row + x];
+          if (x > 0 && y > 0) pred -= q[(y - 1) * row + x - 1];
+          if (!next(k_corner, pred, &q[y * row + x]))
+            return Fail(err, ErrorCode::kBadValue, "section QGRD: pose %u, corner (%llu, %llu): code runs past the section or out of range",
+                        i, (unsigned long long)x, (unsigned long long)y);
+          o.grid_corners[(y * row + x) * N + i] = L.grid_step * double(q[y * row + x]);
+        }
+      if (!o.grid_centres) continue;
+      for (std::uint64_t y = 0; y < cy; ++y)
+        for (std::uint64_t x = 0; x < cx; ++x) {
+          const std::int64_t pred =
+              FloorDiv4(q[y * row + x] + q[y * row + x + 1] + q[(y + 1) * row + x] + q[(y + 1) * row + x + 1] + 2);
+          std::int64_t value;
+          if (!next(k_centre, pred, &value))
+            return Fail(err, ErrorCode::kBadValue, "section QGRD: pose %u, centre (%llu, %llu): code runs past the section or out of range",
+                        i, (unsigned long long)x, (unsigned long long)y);
+          o.grid_centres[(y * cx + x) * N + i] = L.grid_step * double(value);
+        }
+    }
+    if ((r.position() + 7) / 8 != r.size_bits() / 8)
+      return Fail(err, ErrorCode::kBadLayout, "section QGRD has %llu bytes after its codes",
+                  (unsigned long long)(r.size_bits() / 8 - (r.position() + 7) / 8));
+    if (coded + 1 == N) {
+      auto complete = [&](double* w, std::uint64_t nodes) {
+        for (std::uint64_t g = 0; g < nodes; ++g) {
+          double sum = 0;
+          for (std::uint64_t i = 0; i + 1 < N; ++i) sum += w[g * N + i];
+          w[g * N + N - 1] = 1 - sum;
+        }
+      };
+      complete(o.grid_corners, (cx + 1) * (cy + 1));
+      if (o.grid_centres) complete(o.grid_centres, cx * cy);
+    }
+  }
+  // Uvs: each pose's as an affine map of one pose's decoded positions.
+  if (o.uvs) {
+    for (std::uint64_t i = 0; i < N; ++i) {
+      const unsigned char* e = L.affine_uvs.data + 56 * i;
+      const double* p = o.positions + 2 * std::uint64_t(U32(e)) * V;
+      double m[6];
+      for (int k = 0; k < 6; ++k) m[k] = F64(e + 8 + 8 * k);
+      for (std::uint64_t v = 0; v < V; ++v) {
+        const double u = m[0] * p[2 * v] + m[1] * p[2 * v + 1] + m[2];
+        const double w = m[3] * p[2 * v] + m[4] * p[2 * v + 1] + m[5];
+        if (!(std::fabs(u) <= 1e30) || !(std::fabs(w) <= 1e30))  // a float holds it
+          return Fail(err, ErrorCode::kBadValue, "section QUVA: uv of vertex %llu in pose %llu is beyond 1e30",
+                      (unsigned long long)v, (unsigned long long)i);
+        o.uvs[2 * (i * V + v)] = float(u);
+        o.uvs[2 * (i * V + v) + 1] = float(w);
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace posemorph::detail
