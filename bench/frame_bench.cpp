@@ -35,20 +35,24 @@ bake::RigDescription LargeStrip() {
 struct Fixture {
   std::vector<unsigned char> bytes;
   Rig rig;
-  explicit Fixture(bake::RigDescription desc) {
+  Fixture(bake::RigDescription desc, bool compact) {
+    desc.parameters.compact = compact;
     bytes = bake::BakeRig(desc);
     LoadRig(bytes.data(), bytes.size(), &rig, nullptr);
   }
 };
 
+// 0..2: snake, worm-line, 1000-vertex strip, exact; 3..5: the same, compact.
 Fixture& Get(int which) {
-  static Fixture snake(samples::SnakeRig()), worm(samples::WormLineRig()), large(LargeStrip());
-  return which == 0 ? snake : which == 1 ? worm : large;
+  static Fixture snake(samples::SnakeRig(), false), worm(samples::WormLineRig(), false), large(LargeStrip(), false);
+  static Fixture snake_c(samples::SnakeRig(), true), worm_c(samples::WormLineRig(), true), large_c(LargeStrip(), true);
+  Fixture* all[] = {&snake, &worm, &large, &snake_c, &worm_c, &large_c};
+  return *all[which];
 }
 
 void Label(benchmark::State& state, const Rig& rig) {
   state.SetLabel(std::to_string(rig.vertex_count()) + " vertices, " + std::to_string(rig.triangle_count()) +
-                 " triangles, " + std::to_string(rig.pose_count()) + " poses");
+                 " triangles, " + std::to_string(rig.pose_count()) + " poses, " + (state.range(0) >= 3 ? "compact" : "exact"));
 }
 
 void BM_Frame(benchmark::State& state) {
@@ -107,7 +111,7 @@ void BM_Load(benchmark::State& state) {
     LoadRig(f.bytes.data(), f.bytes.size(), &rig, nullptr);
     benchmark::DoNotOptimize(rig.vertex_count());
   }
-  state.SetLabel(std::to_string(f.bytes.size()) + " bytes");
+  state.SetLabel(std::to_string(f.bytes.size()) + " bytes, " + (state.range(0) >= 3 ? "compact" : "exact"));
 }
 
 void BM_Bake(benchmark::State& state) {
@@ -152,8 +156,8 @@ BENCHMARK(BM_DeformerSetup)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DeformerDrag)->Unit(benchmark::kMicrosecond);
 
 // 0: snake sample, 1: worm-line sample, 2: 1000-vertex strip.
-BENCHMARK(BM_Frame)->DenseRange(0, 2);
+BENCHMARK(BM_Frame)->DenseRange(0, 5);
 BENCHMARK(BM_Weights)->DenseRange(0, 2);
 BENCHMARK(BM_Solve)->DenseRange(0, 2);
-BENCHMARK(BM_Load)->DenseRange(0, 2);
+BENCHMARK(BM_Load)->DenseRange(0, 5);
 BENCHMARK(BM_Bake)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);

@@ -54,7 +54,8 @@ using namespace posemorph;
 using namespace posemorph::test;
 
 TEST_CASE("a frame performs zero heap allocations") {
-  const Rig rig = LoadTestRig("snake");
+  for (const char* name : {"snake", "snake.compact"}) {
+  const Rig rig = LoadTestRig(name);
   const std::uint32_t N = rig.pose_count();
   std::vector<double> raw(N), shear(N), tex(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
   std::vector<float> xf(x.size());
@@ -97,6 +98,7 @@ TEST_CASE("a frame performs zero heap allocations") {
   g_counting = false;
   CHECK(ok);
   CHECK(g_allocations.load() == 0);
+  }
 }
 
 TEST_CASE("draw lists for a crowd allocate nothing, in C++ and through the C API") {
@@ -183,7 +185,12 @@ TEST_CASE("the C API reports a failed allocation with a message, whichever alloc
 }
 
 TEST_CASE("loading in place allocates nothing at all, in C++ and through the C API") {
-  const std::vector<unsigned char> bytes = TestRigBytes("snake");
+  // The exact rig, and the compact one (whose factor, angles and grid are
+  // computed at load, in the caller's memory too).
+  for (const char* name : {"snake", "snake.compact"}) {
+  const std::string rig_name = name;
+  CAPTURE(rig_name);
+  const std::vector<unsigned char> bytes = TestRigBytes(name);
   std::size_t needed = 0, c_needed = 0;
   REQUIRE(RigMemorySize(bytes.data(), bytes.size(), &needed, nullptr));
   REQUIRE(pm_rig_memory_size(bytes.data(), bytes.size(), &c_needed, nullptr) == PM_OK);
@@ -208,4 +215,5 @@ TEST_CASE("loading in place allocates nothing at all, in C++ and through the C A
   CHECK(c_status == PM_OK);
   CHECK(g_allocations.load() == 0);
   pm_rig_free(c_rig);
+  }
 }

@@ -9,6 +9,17 @@
 
 namespace posemorph::detail {
 
+// Index of the lowest set bit of a non-zero word.
+inline unsigned LowestSetBit(std::uint64_t word) {
+#if defined(__GNUC__) || defined(__clang__)
+  return unsigned(__builtin_ctzll(word));
+#else
+  unsigned i = 0;
+  while (((word >> i) & 1u) == 0) ++i;
+  return i;
+#endif
+}
+
 class BitReader {
  public:
   BitReader(const unsigned char* data, std::uint64_t bytes) : data_(data), bits_(bytes * 8) {}
@@ -36,15 +47,22 @@ class BitReader {
   }
 
   // Order-k Exp-Golomb: z zero bits, a one, then z + k bits m; the value is
-  // 2^(z+k) + m - 2^k. At most max_zeros zeros.
+  // 2^(z+k) + m - 2^k. At most max_zeros (<= 56) zeros.
   std::uint64_t ReadGolomb(unsigned k, unsigned max_zeros) {
-    unsigned zeros = 0;
-    while (Read(1) == 0) {
-      if (overrun || ++zeros > max_zeros) {
-        overrun = true;
-        return 0;
-      }
+    // The next up to 57 bits, first in the lowest: the zeros end at the
+    // lowest set bit.
+    const std::uint64_t byte = pos_ >> 3;
+    const std::uint64_t avail = bits_ / 8 - (byte < bits_ / 8 ? byte : bits_ / 8);
+    std::uint64_t word = 0;
+    std::memcpy(&word, data_ + byte, avail < 8 ? std::size_t(avail) : 8);
+    word >>= (pos_ & 7);
+    const unsigned zeros = LowestSetBit(word | (std::uint64_t(1) << 57));
+    if (zeros > max_zeros || pos_ + zeros + 1 > bits_) {
+      overrun = true;
+      pos_ = bits_;
+      return 0;
     }
+    pos_ += zeros + 1;
     const unsigned width = zeros + k;
     std::uint64_t m = 0;
     if (width > 32) {

@@ -52,8 +52,8 @@ struct PolarParts {
 // A = [[a, b], [c, d]] with det A > 0 (then a + d and c - b are not both 0).
 inline PolarParts PolarSplit(double a, double b, double c, double d) {
   const double cs = a + d, sn = c - b;
-  const double h = std::sqrt(cs * cs + sn * sn);
-  const double co = cs / h, si = sn / h;
+  const double inv_h = 1 / std::sqrt(cs * cs + sn * sn);
+  const double co = cs * inv_h, si = sn * inv_h;
   PolarParts out;
   out.alpha = PortableAtan2(sn, cs);
   out.s11 = co * a + si * c;
