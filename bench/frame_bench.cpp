@@ -104,6 +104,32 @@ void BM_Solve(benchmark::State& state) {
   Label(state, rig);
 }
 
+// A crowd of 1000 on one thread, each character at its own point of the
+// first path: exact (0..2) against compact (3..5) rigs, same run.
+void BM_Crowd1000(benchmark::State& state) {
+  const Rig& rig = Get(int(state.range(0))).rig;
+  const std::size_t count = 1000, N = rig.pose_count();
+  std::vector<double> w(count * N), ws(count * N), work(rig.batch_workspace_size());
+  std::vector<float> xf(count * 2 * std::size_t(rig.vertex_count()));
+  for (std::size_t c = 0; c < count; ++c) {
+    double px, py;
+    SamplePath(rig, 0, 0.003 * double(c), &px, &py);
+    WeightsJob wj;
+    wj.rig = &rig, wj.x = px, wj.y = py;
+    wj.raw = {w.data() + c * N, N}, wj.shear = {ws.data() + c * N, N};
+    wj.Run();
+  }
+  for (auto _ : state) {
+    MorphBatchJob job;
+    job.rig = &rig, job.count = count;
+    job.weights = MakeSpan(w), job.shear_weights = MakeSpan(ws);
+    job.workspace = MakeSpan(work), job.positions_f32 = MakeSpan(xf);
+    job.Run();
+    benchmark::DoNotOptimize(xf.data());
+  }
+  Label(state, rig);
+}
+
 void BM_Load(benchmark::State& state) {
   const Fixture& f = Get(int(state.range(0)));
   for (auto _ : state) {
@@ -160,4 +186,5 @@ BENCHMARK(BM_Frame)->DenseRange(0, 5);
 BENCHMARK(BM_Weights)->DenseRange(0, 2);
 BENCHMARK(BM_Solve)->DenseRange(0, 2);
 BENCHMARK(BM_Load)->DenseRange(0, 5);
+BENCHMARK(BM_Crowd1000)->DenseRange(0, 5)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_Bake)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);

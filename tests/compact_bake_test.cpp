@@ -45,3 +45,15 @@ TEST_CASE("--precision exact keeps the exact encoding") {
   CHECK(bytes.size() == report.exact_bytes);
   CHECK(report.max_reproduction_error <= 1e-9);
 }
+
+TEST_CASE("a budget no compact encoding reaches gives the exact encoding, and the report says so") {
+  bake::RigDescription desc = samples::SnakeRig();
+  desc.parameters.max_error_px = 1e-6;
+  desc.parameters.pixels_per_unit = 1e6;  // a budget of 1e-12 rig units: beyond 40-bit positions
+  bake::BakeReport report;
+  const std::vector<unsigned char> bytes = bake::BakeRig(desc, &report);
+  CHECK(report.compact_report.fell_back);
+  CHECK_FALSE(report.compact);
+  CHECK(bytes.size() == report.exact_bytes);
+  CHECK(report.max_reproduction_error <= 1e-9);
+}

@@ -156,6 +156,9 @@ int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out,
       << "nnz(L) " << report.factor_nonzeros << ", grid " << report.grid_cells_x << "x" << report.grid_cells_y << ", "
       << report.seconds * 1e3 << " ms; max pose reproduction error " << report.max_reproduction_error
       << " of the rig size\n";
+  if (report.compact_report.fell_back)
+    err << "posemorph-bake: warning: " << args.positional << ": no compact encoding stays within " << report.max_error_px
+        << " px of the exact rig; wrote the exact encoding (" << report.bytes << " bytes)\n";
   if (report.compact) {
     const CompactReport& c = report.compact_report;
     out << "compact encoding: " << report.bytes << " bytes (exact " << report.exact_bytes << "); max vertex error "
@@ -176,14 +179,26 @@ int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out,
   return 0;
 }
 
+double MedianLoadMicroseconds(const std::vector<unsigned char>& bytes) {
+  std::vector<double> times;
+  for (int k = 0; k < 21; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    Rig rig;
+    LoadRig(bytes.data(), bytes.size(), &rig, nullptr);
+    times.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::nth_element(times.begin(), times.begin() + 10, times.end());
+  return std::round(times[10]);
+}
+
 // What a section holds and at what precision, from its tag and header.
 std::string DescribeSection(std::uint32_t tag, const unsigned char* d, std::uint64_t size) {
   auto u32 = [&](std::size_t at) { std::uint32_t v = 0; if (at + 4 <= size) std::memcpy(&v, d + at, 4); return v; };
   auto f64 = [&](std::size_t at) { double v = 0; if (at + 8 <= size) std::memcpy(&v, d + at, 8); return v; };
   std::ostringstream s;
   namespace f = format;
-  if (tag == f::kQuantPositions) s << u32(8) << "-bit positions, step " << f64(0) << " rig units";
-  else if (tag == f::kQuantTriangles) s << u32(0) << "-bit vertex indices";
+  if (tag == f::kQuantPositions) s << "positions: step " << f64(0) << " rig units, differences Exp-Golomb coded (order " << u32(8) << ")";
+  else if (tag == f::kQuantTriangles) s << "vertex indices: differences Exp-Golomb coded (order " << u32(0) << ")";
   else if (tag == f::kQuantPermutation) s << u32(0) << "-bit fill-reducing order (factor computed at load)";
   else if (tag == f::kQuantTurns) s << u32(4) << "-bit whole turns of the rotation angles (angles, stretches computed at load)";
   else if (tag == f::kQuantGrid) s << "weight grid: step " << f64(0) << ", predicted, Exp-Golomb coded, " << u32(8) << " poses stored";
@@ -223,6 +238,7 @@ int Info(const std::vector<std::string>& a, std::size_t from, std::ostream& out)
       << "  weight grid: " << g.cells_x << " x " << g.cells_y << " cells of " << g.cell << ", origin (" << g.origin_x
       << ", " << g.origin_y << ")\n"
       << "  rig size " << rig.size() << ", default sigma " << rig.default_sigma() << "\n"
+      << "  load " << MedianLoadMicroseconds(bytes) << " us (median of 21 loads on this machine)\n"
       << "  kernel path " << IsaName(rig.isa()) << " (this build and CPU run:";
   for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512, Isa::kNeon, Isa::kWasmSimd})
     if (IsaAvailable(isa)) out << ' ' << IsaName(isa);

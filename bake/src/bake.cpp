@@ -181,7 +181,8 @@ std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
                                                            : 1024.0 / meta.rig_size;
     settings.pixels_per_unit = pixels_per_unit;
     bytes = CompactRig(bytes, settings, rig.file, &compact_report);
-    tolerance = std::max(tolerance, settings.max_error_px / pixels_per_unit / meta.rig_size);
+    if (!compact_report.fell_back)
+      tolerance = std::max(tolerance, settings.max_error_px / pixels_per_unit / meta.rig_size);
   }
 
   // Check what we wrote with the runtime that will read it: it loads, and
@@ -227,7 +228,7 @@ std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
     report->bytes = bytes.size();
     report->max_reproduction_error = worst;
     report->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    report->compact = rig.parameters.compact;
+    report->compact = rig.parameters.compact && !compact_report.fell_back;
     report->exact_bytes = exact_bytes;
     report->max_error_px = rig.parameters.compact ? rig.parameters.max_error_px : 0;
     report->pixels_per_unit = pixels_per_unit;

@@ -494,8 +494,13 @@ std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_by
     ps *= 2;
     best = std::move(coarser);
   }
-  if (!best.ok) throw BakeError(file, "no compact encoding reaches the error budget of " + std::to_string(settings.max_error_px) +
-                                          " px; bake with --precision exact");
+  if (!best.ok) {
+    // Nothing within budget (a sliver that folds under any step tried, say):
+    // the exact encoding, and the caller says so.
+    rep.fell_back = true;
+    if (report) *report = rep;
+    return exact_bytes;
+  }
   double ws = budget / (4 * reach);
   Trial t = attempt(ps, ws);
   if (t.ok) {

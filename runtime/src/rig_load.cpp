@@ -521,6 +521,11 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
     const std::uint64_t blocks = (T + 7) / 8;
     double* blend = arena.Take<double>(blocks * 4 * N * 8);
     if (pass == 0) {
+      // A compact rig expands at load; bound how far, so that a small hostile
+      // file cannot claim a huge arena (legitimate rigs expand 10-30x).
+      if (compact && arena.used > fmt::kMaxCompactExpansion * file_size + (std::uint64_t(1) << 20))
+        return Fail(err, ErrorCode::kTooLarge, "a compact rig of %llu bytes would need %llu bytes in memory (at most %u times its size)",
+                    (unsigned long long)file_size, (unsigned long long)arena.used, fmt::kMaxCompactExpansion);
       if (arena.used > std::uint64_t(SIZE_MAX / 2))
         return Fail(err, ErrorCode::kTooLarge, "the rig needs %llu bytes in memory, more than this target addresses",
                     (unsigned long long)arena.used);

@@ -54,7 +54,7 @@ bool SameBits(const double* a, const double* b, std::size_t n) { return std::mem
 }  // namespace
 
 TEST_CASE("a batch gives each character exactly what MorphJob gives it") {
-  for (const char* name : {"snake", "gingerbread"}) {
+  for (const char* name : {"snake", "gingerbread", "snake.compact", "pip.compact"}) {
     const Rig rig = LoadTestRig(name);
     const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
     for (std::size_t count : {1u, 3u, 8u, 13u, 64u}) {
@@ -75,7 +75,8 @@ TEST_CASE("a batch gives each character exactly what MorphJob gives it") {
 }
 
 TEST_CASE("splitting a crowd across threads changes no bit") {
-  const Rig rig = LoadTestRig("snake");
+  for (const char* name : {"snake", "snake.compact"}) {
+  const Rig rig = LoadTestRig(name);
   const std::size_t count = 100, v2 = 2 * std::size_t(rig.vertex_count());
   const Crowd crowd = RandomCrowd(rig, count, 42);
   const std::vector<double> whole = RunBatch(rig, crowd, 0, count);
@@ -107,6 +108,7 @@ TEST_CASE("splitting a crowd across threads changes no bit") {
     REQUIRE(joined.size() == whole.size());
     CHECK(SameBits(joined.data(), whole.data(), whole.size()));
   }
+}
 }
 
 TEST_CASE("a batch can write only the single-precision copy") {

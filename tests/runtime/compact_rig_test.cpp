@@ -252,6 +252,8 @@ TEST_CASE("hostile compact sections are refused with the section named") {
     Poke(b, meta.offset + 24, nnz + 1);
   }, "META declares");
   expect([&](auto& b) { Poke(b, meta.offset + 24, std::uint32_t(1u << 27)); }, "factor nonzeros for a compact file");
+  // A pose count the other sections do not have.
+  expect([&](auto& b) { Poke(b, meta.offset + 8, std::uint32_t(64)); }, "section PPNT is");
   // Every vertex at its pose's origin (a step too small to move it): no area.
   expect([&](auto& b) { Poke(b, qpos.offset, 1e-300); }, "section QPOS: triangle 0 is not counter-clockwise with positive area in pose 0");
 }

@@ -119,6 +119,8 @@ constexpr std::uint32_t kMaxStringBytes = 1u << 20;
 // time and memory stay bounded by the file's size.
 constexpr std::uint32_t kMaxCompactNonzerosPerByte = 32;
 constexpr std::uint64_t kMaxCompactFactorWork = std::uint64_t(1) << 31;
+// A compact rig's arena may be at most this many times its file (plus 1 MiB).
+constexpr std::uint32_t kMaxCompactExpansion = 256;
 // Exp-Golomb codes in QGRD: at most this many leading zeros (values < 2^40).
 constexpr std::uint32_t kMaxGolombZeros = 40;
 // Magnitude limits on stored numbers, so that every evaluation of a rig that

@@ -62,8 +62,13 @@ class BitReader {
       pos_ = bits_;
       return 0;
     }
-    pos_ += zeros + 1;
     const unsigned width = zeros + k;
+    if (zeros + 1 + width <= 57 && pos_ + zeros + 1 + width <= bits_) {  // all in the word already read
+      const std::uint64_t m = (word >> (zeros + 1)) & ((std::uint64_t(1) << width) - 1);
+      pos_ += zeros + 1 + width;
+      return (std::uint64_t(1) << width) + m - (std::uint64_t(1) << k);
+    }
+    pos_ += zeros + 1;
     std::uint64_t m = 0;
     if (width > 32) {
       m = std::uint64_t(Read(width - 32)) << 32;

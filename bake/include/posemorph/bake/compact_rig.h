@@ -35,10 +35,13 @@ struct CompactReport {
   double weight_step = 0;        // quantisation step of the weight grid
   std::uint32_t trials = 0;      // encodings tried
   bool affine_uvs = false;
+  bool fell_back = false;        // no encoding within budget: the exact bytes were returned
   std::vector<CompactSection> sections;
 };
 
-// Throws BakeError(file, ...) when no encoding within budget is found.
+// When no encoding within budget is found (twelve halvings of the position
+// step), returns the exact bytes and sets report->fell_back. Throws
+// BakeError(file, ...) only when the exact rig itself does not load.
 std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact, const CompactSettings& settings,
                                       const std::string& file, CompactReport* report = nullptr);
 
