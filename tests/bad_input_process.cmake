@@ -49,3 +49,49 @@ if(NOT status EQUAL 0 OR out MATCHES "compact encoding")
   message(FATAL_ERROR "exact bake: status '${status}', output: ${out}")
 endif()
 
+# Inputs the bake reads only within limits, outputs it refuses to replace:
+# one line naming the file and why, exit status 1, nothing written.
+function(expect_refusal label expected)
+  execute_process(COMMAND ${BAKE} ${ARGN} RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(REGEX MATCHALL "\n" lines "${err}")
+  list(LENGTH lines line_count)
+  if(NOT status EQUAL 1 OR NOT err MATCHES "${expected}" OR NOT line_count EQUAL 1)
+    message(FATAL_ERROR "${label}: status '${status}', message: ${err}")
+  endif()
+endfunction()
+expect_refusal("a device as the description" "/dev/zero: is not a regular file" /dev/zero -o ${WORK}/zero.pmrig)
+execute_process(COMMAND mkfifo ${WORK}/pipe.json)
+expect_refusal("a pipe as the description" "pipe.json: is not a regular file" ${WORK}/pipe.json -o ${WORK}/pipe.pmrig)
+expect_refusal("a folder as the description" "bad-input: is not a regular file" ${WORK} -o ${WORK}/folder.pmrig)
+execute_process(COMMAND truncate -s 65M ${WORK}/huge.json)
+expect_refusal("a 65 MiB description" "huge.json: is 68157440 bytes, more than the limit of 67108864 for a rig description"
+               ${WORK}/huge.json -o ${WORK}/huge.pmrig)
+file(REMOVE ${WORK}/huge.json)
+file(WRITE ${WORK}/mesh-from-device.json [=[{"posemorph": 1, "poses": [{"name": "a", "point": [0, 0], "mesh": "/dev/zero"},
+ {"name": "b", "point": [1, 0], "mesh": "/dev/zero"}]}]=])
+expect_refusal("a device as a mesh file" "/dev/zero: is not a regular file .*named in .*mesh-from-device.json"
+               ${WORK}/mesh-from-device.json -o ${WORK}/mesh.pmrig)
+file(COPY_FILE ${WORK}/ok.json ${WORK}/self.json)
+expect_refusal("-o naming the input" "self.json: is the input .*self.json; refusing to overwrite it" ${WORK}/self.json -o ${WORK}/self.json)
+file(READ ${WORK}/self.json after)
+file(READ ${WORK}/ok.json before)
+if(NOT after STREQUAL before)
+  message(FATAL_ERROR "-o naming the input changed it")
+endif()
+expect_refusal("-o a device" "/dev/null: exists and is not a regular file" ${WORK}/ok.json -o /dev/null)
+expect_refusal("-o a folder" "bad-input: is a directory" ${WORK}/ok.json -o ${WORK})
+file(CREATE_LINK ${WORK}/ok.json ${WORK}/link.pmrig SYMBOLIC)
+expect_refusal("-o a symbolic link" "link.pmrig: exists and is not a regular file" ${WORK}/ok.json -o ${WORK}/link.pmrig)
+foreach(left zero.pmrig pipe.pmrig folder.pmrig huge.pmrig mesh.pmrig)
+  if(EXISTS ${WORK}/${left})
+    message(FATAL_ERROR "a refused bake wrote ${left}")
+  endif()
+endforeach()
+# A 65-byte PNG whose header claims 8192 x 2049 pixels: refused from the
+# header, before anything is decoded.
+file(COPY_FILE ${DATA}/bomb-8192x2049.png ${WORK}/bomb.png)
+file(WRITE ${WORK}/bomb.json [=[{"posemorph": 1, "poses": [
+ {"name": "a", "point": [0, 0], "drawing": "bomb.png", "landmarks": [[0, 0], [10, 0], [10, 10]]},
+ {"name": "b", "point": [1, 0], "drawing": "bomb.png", "landmarks": [[0, 0], [10, 0], [10, 10]]}]}]=])
+expect_refusal("a decompression bomb" "bomb.json: pose 'a' \\(index 0\\): .*bomb.png: PNG size 8192 x 2049 is outside 1..16384 per side or above the limit of 16777216 pixels"
+               ${WORK}/bomb.json -o ${WORK}/bomb.pmrig)

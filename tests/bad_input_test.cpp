@@ -320,7 +320,7 @@ TEST_CASE("drawn poses: bad drawings and correspondences") {
   d["poses"][0]["drawing"] = "a.gif";
   ExpectFailure(d.dump(), "pose 'a' (index 0): drawing \"a.gif\" is neither .png nor .svg");
   d["poses"][0]["drawing"] = "missing.png";
-  ExpectFailure(d.dump(), "missing.png: cannot read PNG");
+  ExpectFailure(d.dump(), "missing.png: cannot open file");
 
   // A transparent drawing, and an SVG whose outline crosses itself.
   d["poses"][0]["drawing"] = "clear.png";

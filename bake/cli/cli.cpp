@@ -12,6 +12,7 @@
 
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/input_file.h"
 #include "posemorph/path.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
@@ -34,13 +35,7 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-std::vector<unsigned char> ReadBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw BakeError(path, "cannot open file");
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) throw BakeError(path, "read error");
-  return bytes;
-}
+std::vector<unsigned char> ReadBytes(const std::string& path) { return ReadInputFile(path, kMaxRigFileBytes, "a baked rig"); }
 
 Rig LoadRigFile(const std::string& path) {
   const std::vector<unsigned char> bytes = ReadBytes(path);
@@ -138,6 +133,7 @@ int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out,
     if (dot != std::string::npos && output.find('/', dot) == std::string::npos) output.resize(dot);
     output += ".pmrig";
   }
+  CheckOutputPath(output, {args.positional});
   RigDescription rig = ReadRigDescription(args.positional);
   if (const std::string* p = args.Get("--precision")) {
     if (*p != "compact" && *p != "exact") throw UsageError("--precision must be compact or exact");

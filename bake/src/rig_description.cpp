@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/input_file.h"
 #include "posemorph/rig_format.h"
 
 namespace posemorph::bake {
@@ -81,15 +82,9 @@ json ParseJson(const std::string& text, const std::string& file) {
 }
 
 std::string ReadText(const std::string& path, const std::string& referenced_from) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    if (referenced_from.empty()) throw BakeError(path, "cannot open file");
-    throw BakeError(path, "cannot open file (named in " + referenced_from + ")");
-  }
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (in.bad()) throw BakeError(path, "read error");
-  return s.str();
+  const std::vector<unsigned char> bytes =
+      ReadInputFile(path, kMaxTextFileBytes, referenced_from.empty() ? "a rig description" : "a mesh file", referenced_from);
+  return std::string(bytes.begin(), bytes.end());
 }
 
 }  // namespace

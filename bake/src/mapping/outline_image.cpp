@@ -13,6 +13,7 @@
 
 #include "geometry.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/input_file.h"
 
 namespace posemorph::bake::mapping {
 namespace {
@@ -181,13 +182,18 @@ std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int
   png_image image;
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, path.c_str()))
+  const std::vector<unsigned char> file = ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing");
+  if (!png_image_begin_read_from_memory(&image, file.data(), file.size()))
     throw BakeError(path, std::string("cannot read PNG: ") + image.message);
   image.format = PNG_FORMAT_GA;  // grey + alpha: only the alpha is used
-  if (image.width == 0 || image.height == 0 || image.width > 16384 || image.height > 16384) {
+  // The header's size, checked before anything is decoded: a small file can
+  // claim a huge image (a decompression bomb).
+  if (image.width == 0 || image.height == 0 || image.width > 16384 || image.height > 16384 ||
+      std::uint64_t(image.width) * image.height > kMaxDrawingPixels) {
     png_image_free(&image);
     throw BakeError(path, "PNG size " + std::to_string(image.width) + " x " + std::to_string(image.height) +
-                              " is outside 1..16384");
+                              " is outside 1..16384 per side or above the limit of " + std::to_string(kMaxDrawingPixels) +
+                              " pixels");
   }
   std::vector<unsigned char> ga(PNG_IMAGE_SIZE(image));
   if (!png_image_finish_read(&image, nullptr, ga.data(), 0, nullptr)) {

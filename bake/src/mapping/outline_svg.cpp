@@ -10,6 +10,7 @@
 
 #include "geometry.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/input_file.h"
 
 namespace posemorph::bake::mapping {
 namespace {
@@ -228,11 +229,8 @@ SvgOutline OutlineFromSvgText(const std::string& text, double tol, const std::st
 }
 
 SvgOutline OutlineFromSvg(const std::string& path, double tol) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw BakeError(path, "cannot open file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return OutlineFromSvgText(s.str(), tol, path);
+  const std::vector<unsigned char> bytes = ReadInputFile(path, kMaxTextFileBytes, "an SVG drawing");
+  return OutlineFromSvgText(std::string(bytes.begin(), bytes.end()), tol, path);
 }
 
 }  // namespace posemorph::bake::mapping
