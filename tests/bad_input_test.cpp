@@ -125,6 +125,24 @@ TEST_CASE("repeated index") {
   ExpectFailure(d.dump(), "triangle 1 appears twice");
 }
 
+TEST_CASE("a non-manifold mesh: three triangles on one edge") {
+  json d = ValidDescription();
+  // A fifth vertex and a third triangle on the diagonal (0, 2), overlapping the others.
+  for (auto& pose : d["poses"]) pose["vertices"].push_back({0.6, 0.4});
+  d["triangles"].push_back({0, 4, 2});
+  ExpectFailure(d.dump(), "the mesh is not manifold: edge (0, 2) borders triangles 0, 1 and 2 (an edge borders at most two)");
+}
+
+TEST_CASE("pose-space points the grid cannot represent") {
+  json d = ValidDescription();
+  d["poses"][1]["point"] = {1e308, 0};
+  ExpectFailure(d.dump(), "pose 'b' (index 1): pose-space point (1e+308, 0) lies beyond +-1e12");
+  d["poses"][1]["point"] = {-1e13, 0};
+  ExpectFailure(d.dump(), "pose 'b' (index 1): pose-space point (-1e+13, 0) lies beyond +-1e12");
+  d["poses"][1]["point"] = {4.9406564584124654e-324, 0};
+  ExpectFailure(d.dump(), "the pose-space points span only 4.94066e-324; they must span at least 1e-6");
+}
+
 TEST_CASE("degenerate triangle in a pose") {
   json d = ValidDescription();
   d["poses"][1]["vertices"][2] = {0.5, 0.1};  // (0,0), (1,0.2), (0.5,0.1): collinear

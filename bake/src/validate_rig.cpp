@@ -2,6 +2,7 @@
 // Everything the math needs from the input, checked before any of it runs.
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
 #include <set>
 #include <sstream>
@@ -64,6 +65,23 @@ void ValidateRigDescription(RigDescription& rig) {
     if (!seen.insert(key).second) fail("triangle " + std::to_string(t) + " appears twice in the triangle list");
   }
 
+  // Manifold: an edge borders at most two triangles (a third would overlap
+  // one of them, and the ARAP energy would count that area twice).
+  {
+    std::map<std::pair<std::uint32_t, std::uint32_t>, std::vector<std::size_t>> edge_triangles;
+    for (std::size_t t = 0; t < rig.triangles.size(); ++t)
+      for (int k = 0; k < 3; ++k) {
+        std::uint32_t a = rig.triangles[t][k], b = rig.triangles[t][(k + 1) % 3];
+        if (a > b) std::swap(a, b);
+        std::vector<std::size_t>& list = edge_triangles[{a, b}];
+        list.push_back(t);
+        if (list.size() > 2)
+          fail("the mesh is not manifold: edge (" + std::to_string(a) + ", " + std::to_string(b) + ") borders triangles " +
+               std::to_string(list[0]) + ", " + std::to_string(list[1]) + " and " + std::to_string(list[2]) +
+               " (an edge borders at most two)");
+      }
+  }
+
   // Every vertex in a triangle, all triangles in one vertex-connected part:
   // otherwise K (one pinned vertex) is singular.
   std::vector<std::uint32_t> parent(V);
@@ -118,12 +136,30 @@ void ValidateRigDescription(RigDescription& rig) {
     }
   }
 
-  // Pose points: distinct (the grid check later also needs them in distinct cells).
+  // Pose points: representable (the pose-space grid is built from their
+  // spread: 1e308 apart overflows it, 5e-324 apart underflows it), and distinct
+  // (the grid check later also needs them in distinct cells).
+  Eigen::AlignedBox2d point_box;
+  for (std::size_t i = 0; i < N; ++i) {
+    const Eigen::Vector2d& p = rig.poses[i].point;
+    if (!(std::fabs(p.x()) <= format::kMaxPathValue) || !(std::fabs(p.y()) <= format::kMaxPathValue)) {
+      std::ostringstream s;
+      s << PoseLabel(rig, i) << ": pose-space point (" << p.x() << ", " << p.y() << ") lies beyond +-1e12";
+      fail(s.str());
+    }
+    point_box.extend(p);
+  }
   for (std::size_t i = 0; i < N; ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (rig.poses[i].point == rig.poses[j].point)
         fail(PoseLabel(rig, i) + " and " + PoseLabel(rig, j) + " share the pose-space point (" +
              std::to_string(rig.poses[i].point.x()) + ", " + std::to_string(rig.poses[i].point.y()) + ")");
+  if (!(point_box.sizes().maxCoeff() >= 1e-6)) {
+    std::ostringstream s;
+    s << "the pose-space points span only " << point_box.sizes().maxCoeff()
+      << "; they must span at least 1e-6 (pose-space units are yours: 1 is a good scale)";
+    fail(s.str());
+  }
 }
 
 }  // namespace posemorph::bake
