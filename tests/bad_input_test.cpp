@@ -368,3 +368,27 @@ TEST_CASE("drawn poses: a PNG drawing with a speck bakes with a warning") {
   CHECK(r.status == 0);
   CHECK(r.err.find("a.png: dropped 1 speck(s) apart from the shape (1 pixels)") != std::string::npos);
 }
+
+TEST_CASE("messages escape control characters and elide the middle of huge ones") {
+  json d = ValidDescription();
+  d["poses"][0]["name"] = "a\x1b[31mRED\x07";
+  d["poses"][1]["name"] = "a\x1b[31mRED\x07";
+  ExpectFailure(d.dump(), "pose 'a\\x1b[31mRED\\x07' (index 1): the name is used by pose 0 too");
+  {
+    TempDir dir;
+    Write(dir.path / "rig.json", d.dump());
+    const Result r = Run({(dir.path / "rig.json").string(), "-o", (dir.path / "out.pmrig").string()});
+    for (char c : r.err) CHECK((static_cast<unsigned char>(c) >= 0x20 || c == '\n'));
+  }
+  const std::string huge(900000, 'N');
+  d["poses"][0]["name"] = huge;
+  d["poses"][1]["name"] = huge;
+  TempDir dir;
+  Write(dir.path / "rig.json", d.dump());
+  const Result r = Run({(dir.path / "rig.json").string(), "-o", (dir.path / "out.pmrig").string()});
+  CHECK(r.status == 1);
+  CHECK(r.err.size() < 1100);
+  CHECK(r.err.find("rig.json: pose 'NNN") != std::string::npos);
+  CHECK(r.err.find(" characters ...] ") != std::string::npos);
+  CHECK(r.err.find("(index 1): the name is used by pose 0 too\n") != std::string::npos);
+}

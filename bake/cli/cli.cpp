@@ -3,10 +3,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
+#include <new>
 #include <set>
 #include <sstream>
 
@@ -379,6 +381,47 @@ int Deform(const std::vector<std::string>& a, std::size_t from, std::ostream& ou
   return 0;
 }
 
+// A message as the terminal will show it: control characters (and UTF-8's
+// C1 controls) escaped as \xNN, so that a name in a file cannot drive the
+// terminal; longer than 1000 characters, its middle elided (a 900 KB pose
+// name once came out whole), keeping the file at the start and the problem
+// at the end.
+std::string Printable(const std::string& message) {
+  std::string s;
+  char hex[8];
+  for (std::size_t i = 0; i < message.size(); ++i) {
+    const unsigned char c = static_cast<unsigned char>(message[i]);
+    const bool c1 = c == 0xC2 && i + 1 < message.size() && static_cast<unsigned char>(message[i + 1]) >= 0x80 &&
+                    static_cast<unsigned char>(message[i + 1]) <= 0x9F;
+    if (c < 0x20 || c == 0x7F) {
+      std::snprintf(hex, sizeof(hex), "\\x%02x", c);
+      s += hex;
+    } else if (c1) {
+      std::snprintf(hex, sizeof(hex), "\\x%02x", static_cast<unsigned char>(message[++i]));
+      s += hex;
+    } else {
+      s += char(c);
+    }
+  }
+  const std::size_t keep = 480;
+  if (s.size() > 2 * keep + 40)
+    s = s.substr(0, keep) + " [... " + std::to_string(s.size() - 2 * keep) + " characters ...] " + s.substr(s.size() - keep);
+  return s;
+}
+
+// The file a command works on, for messages that do not name one.
+std::string InputOf(const std::vector<std::string>& a) {
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i] == "info" || a[i] == "eval" || a[i] == "sheet" || a[i] == "deform" || a[i] == "bake") continue;
+    if (!a[i].empty() && a[i][0] == '-') {
+      ++i;  // an option and its value
+      continue;
+    }
+    return a[i];
+  }
+  return "posemorph-bake";
+}
+
 }  // namespace
 
 int RunBakeCommand(const std::vector<std::string>& a, std::ostream& out, std::ostream& err) {
@@ -396,13 +439,16 @@ int RunBakeCommand(const std::vector<std::string>& a, std::ostream& out, std::os
     if (cmd == "bake") return Bake(a, 1, out, err);
     return Bake(a, 0, out, err);
   } catch (const UsageError& e) {
-    err << "posemorph-bake: " << e.what() << "\n" << kUsage;
+    err << "posemorph-bake: " << Printable(e.what()) << "\n" << kUsage;
     return 2;
   } catch (const BakeError& e) {
-    err << "posemorph-bake: error: " << e.what() << "\n";
+    err << "posemorph-bake: error: " << Printable(e.what()) << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    err << "posemorph-bake: error: " << Printable(InputOf(a)) << ": out of memory (the input asks for more than this machine has)\n";
     return 1;
   } catch (const std::exception& e) {
-    err << "posemorph-bake: error: " << e.what() << "\n";
+    err << "posemorph-bake: error: " << Printable(InputOf(a)) << ": internal error: " << Printable(e.what()) << "\n";
     return 1;
   }
 }
