@@ -392,3 +392,9 @@ TEST_CASE("messages escape control characters and elide the middle of huge ones"
   CHECK(r.err.find(" characters ...] ") != std::string::npos);
   CHECK(r.err.find("(index 1): the name is used by pose 0 too\n") != std::string::npos);
 }
+
+TEST_CASE("a pose-space grid finer than bakes within 1 GB is refused") {
+  json d = ValidDescription();
+  d["bake"]["grid_resolution"] = 1024;
+  ExpectFailure(d.dump(), "bake.grid_resolution: must be in 2..256 (finer grids need more than 1 GB to bake)");
+}
