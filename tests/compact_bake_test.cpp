@@ -16,7 +16,7 @@ using namespace posemorph;
 TEST_CASE("a 1035-vertex, 8-pose rig bakes compact within 100 KB and within the budget") {
   bake::RigDescription desc = samples::PlateRig(22, 8);
   desc.file = "plate";
-  desc.parameters.pixels_per_unit = 40;  // a 10 x 5 unit plate drawn 400 x 200 pixels
+  // Given as vertices: the default scale (the rig's size counts as 1024 pixels).
   bake::RigDescription copy = desc;
   bake::BakeReport report;
   const std::vector<unsigned char> bytes = bake::BakeRig(desc, &report);

@@ -96,6 +96,21 @@ std::vector<unsigned char> Packed(const std::vector<std::uint32_t>& values, unsi
 
 std::uint64_t ZigZag(std::int64_t r) { return r >= 0 ? std::uint64_t(r) * 2 : std::uint64_t(-(r + 1)) * 2 + 1; }
 
+// The weight grid's corner prediction (the runtime's decoder has the same):
+// the residual is D_x D_y q, with D = 1 - shift applied `order` times along
+// each axis where the neighbours exist (order 1: the Lorenzo predictor, exact
+// for bilinear fields; order 2: exact for biquadratic ones).
+std::int64_t CornerPrediction(const std::int64_t* q, std::uint64_t row, std::uint64_t x, std::uint64_t y, unsigned order) {
+  static const std::int64_t kCoefficients[3][3] = {{1, 0, 0}, {1, -1, 0}, {1, -2, 1}};
+  const std::int64_t* a = kCoefficients[x < order ? x : order];
+  const std::int64_t* b = kCoefficients[y < order ? y : order];
+  std::int64_t pred = 0;
+  for (std::uint64_t j = 0; j <= order && j <= y; ++j)
+    for (std::uint64_t i = 0; i <= order && i <= x; ++i)
+      if (i || j) pred -= a[i] * b[j] * q[(y - j) * row + (x - i)];
+  return pred;
+}
+
 std::int64_t FloorDiv4(std::int64_t s) { return s >= 0 ? s / 4 : -((-s + 3) / 4); }
 
 std::map<std::uint32_t, std::vector<unsigned char>> RawSections(const std::vector<unsigned char>& bytes) {
@@ -300,16 +315,19 @@ struct Encoder {
       std::vector<std::uint32_t> params;
       for (std::uint32_t i = 0; i < coded; ++i) {
         std::vector<std::int64_t> qc(corners);
-        std::vector<std::uint64_t> corner_codes, centre_codes;
-        for (std::uint64_t y = 0; y <= g.cells_y; ++y)
-          for (std::uint64_t x = 0; x < row; ++x) {
-            qc[y * row + x] = std::llround(g.weights[(y * row + x) * N + i] / weight_step);
-            std::int64_t pred = 0;
-            if (x > 0) pred += qc[y * row + x - 1];
-            if (y > 0) pred += qc[(y - 1) * row + x];
-            if (x > 0 && y > 0) pred -= qc[(y - 1) * row + x - 1];
-            corner_codes.push_back(ZigZag(qc[y * row + x] - pred));
-          }
+        for (std::uint64_t k = 0; k < corners; ++k) qc[k] = std::llround(g.weights[k * N + i] / weight_step);
+        // The predictor order that codes this pose's corners in fewer bits.
+        std::vector<std::uint64_t> corner_codes, centre_codes, by_order[2];
+        for (unsigned o = 1; o <= 2; ++o)
+          for (std::uint64_t y = 0; y <= g.cells_y; ++y)
+            for (std::uint64_t x = 0; x < row; ++x)
+              by_order[o - 1].push_back(ZigZag(qc[y * row + x] - CornerPrediction(qc.data(), row, x, y, o)));
+        const unsigned k1 = BestOrder(by_order[0]), k2 = BestOrder(by_order[1]);
+        std::uint64_t bits1 = 0, bits2 = 0;
+        for (std::uint64_t u : by_order[0]) bits1 += GolombBits(u, k1);
+        for (std::uint64_t u : by_order[1]) bits2 += GolombBits(u, k2);
+        const unsigned corner_order = bits2 < bits1 ? 2 : 1;
+        corner_codes = by_order[corner_order - 1];
         for (std::uint64_t y = 0; y < g.cells_y && !g.centre_weights.empty(); ++y)
           for (std::uint64_t x = 0; x < g.cells_x; ++x) {
             const std::int64_t value = std::llround(g.centre_weights[(y * g.cells_x + x) * N + i] / weight_step);
@@ -318,7 +336,7 @@ struct Encoder {
             centre_codes.push_back(ZigZag(value - pred));
           }
         const unsigned kc = BestOrder(corner_codes), kz = centre_codes.empty() ? 0 : BestOrder(centre_codes);
-        params.push_back(kc | kz << 8);
+        params.push_back(kc | kz << 8 | corner_order << 16);
         for (std::uint64_t u : corner_codes) bw.Golomb(u, kc);
         for (std::uint64_t u : centre_codes) bw.Golomb(u, kz);
       }

@@ -49,6 +49,20 @@ std::int64_t Unzigzag(std::uint64_t u) { return (u & 1) ? -std::int64_t(u >> 1) 
 
 constexpr std::int64_t kMaxPositionCode = std::int64_t(1) << 40;
 
+// Corner prediction of order 1 (Lorenzo) or 2: the residual is D_x D_y q
+// with D = 1 - shift applied `order` times along each axis where the
+// neighbours exist. The bake's encoder computes the same.
+std::int64_t CornerPrediction(const std::int64_t* q, std::uint64_t row, std::uint64_t x, std::uint64_t y, unsigned order) {
+  static const std::int64_t kCoefficients[3][3] = {{1, 0, 0}, {1, -1, 0}, {1, -2, 1}};
+  const std::int64_t* a = kCoefficients[x < order ? x : order];
+  const std::int64_t* b = kCoefficients[y < order ? y : order];
+  std::int64_t pred = 0;
+  for (std::uint64_t j = 0; j <= order && j <= y; ++j)
+    for (std::uint64_t i = 0; i <= order && i <= x; ++i)
+      if (i || j) pred -= a[i] * b[j] * q[(y - j) * row + (x - i)];
+  return pred;
+}
+
 std::int64_t FloorDiv4(std::int64_t s) { return s >= 0 ? s / 4 : -((-s + 3) / 4); }
 
 }  // namespace
@@ -119,7 +133,7 @@ bool ReadCompactLayout(const SectionBytes& qpos, const SectionBytes& qtri, const
   if (qgrd.size < header) return Fail(err, ErrorCode::kBadLayout, "section QGRD is shorter than its header");
   for (std::uint32_t i = 0; i < L.grid_coded_poses; ++i) {
     const std::uint32_t k = U32(qgrd.data + 16 + 4 * i);
-    if ((k & 0xFFu) > 20 || ((k >> 8) & 0xFFu) > 20 || (k >> 16) != 0)
+    if ((k & 0xFFu) > 20 || ((k >> 8) & 0xFFu) > 20 || ((k >> 16) != 1 && (k >> 16) != 2))
       return Fail(err, ErrorCode::kBadValue, "section QGRD: code parameters of pose %u out of range", i);
   }
   const std::uint64_t nodes = (c.cells_x + 1) * (c.cells_y + 1) + (c.grid_centres ? c.cells_x * c.cells_y : 0);
@@ -271,15 +285,11 @@ bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const Compact
     };
     for (std::uint32_t i = 0; i < coded; ++i) {
       const std::uint32_t ks = std::uint32_t(L.grid.data[16 + 4 * i]) | std::uint32_t(L.grid.data[17 + 4 * i]) << 8;
-      const unsigned k_corner = ks & 0xFFu, k_centre = (ks >> 8) & 0xFFu;
+      const unsigned k_corner = ks & 0xFFu, k_centre = (ks >> 8) & 0xFFu, order = L.grid.data[18 + 4 * i];
       std::int64_t* q = o.grid_scratch;
       for (std::uint64_t y = 0; y <= cy; ++y)
         for (std::uint64_t x = 0; x <= cx; ++x) {
-          std::int64_t pred = 0;
-          if (x > 0) pred += q[y * row + x - 1];
-          if (y > 0) pred += q[(y - 1) * row + x];
-          if (x > 0 && y > 0) pred -= q[(y - 1) * row + x - 1];
-          if (!next(k_corner, pred, &q[y * row + x]))
+          if (!next(k_corner, CornerPrediction(q, row, x, y, order), &q[y * row + x]))
             return Fail(err, ErrorCode::kBadValue, "section QGRD: pose %u, corner (%llu, %llu): code runs past the section or out of range",
                         i, (unsigned long long)x, (unsigned long long)y);
           o.grid_corners[(y * row + x) * N + i] = L.grid_step * double(q[y * row + x]);
