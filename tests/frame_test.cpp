@@ -305,3 +305,38 @@ TEST_CASE("camera: fit, zoom about the cursor, pan, pixel-exact") {
     CHECK(std::fabs(e.centre.x - 10.37) <= 0.5 / 3 + 1e-12);  // moved by at most half a pixel
   }
 }
+
+// Rig files are hostile input to the viewer too: image references must stay
+// inside the images folder, and drawings may not make the texture huge.
+TEST_CASE("drawings: image references stay inside the images folder, and sizes are bounded") {
+  for (const char* bad : {"../../etc/passwd", "/etc/passwd", "a/../../b.png", "..", "a\\..\\b.png", "a\x1b[31m.png", ""})
+    CHECK_FALSE(ImageReferenceStaysInside(bad));
+  for (const char* good : {"rest.png", "poses/rest.png", "a..b.png", "..a.png", "./rest.png"}) CHECK(ImageReferenceStaysInside(good));
+
+  auto rig_with_images = [](const std::string& first, const std::string& second) {
+    bake::RigDescription d = bake::ParseRigDescription(R"({"posemorph": 1, "triangles": [[0, 1, 2]], "poses": [
+      {"name": "a", "point": [0, 0], "vertices": [[0, 0], [1, 0], [0, 1]], "uvs": [[0, 1], [1, 1], [0, 0]], "image": ")" + first + R"("},
+      {"name": "b", "point": [1, 0], "vertices": [[0, 0], [1, 0], [0, 1.5]], "uvs": [[0, 1], [1, 1], [0, 0]], "image": ")" + second + R"("}]})",
+                                                       "in-memory", ".");
+    d.parameters.compact = false;
+    const std::vector<unsigned char> bytes = bake::BakeRig(d);
+    Rig rig;
+    REQUIRE(LoadRig(bytes.data(), bytes.size(), &rig, nullptr));
+    return rig;
+  };
+  const std::string dir = std::string(POSEMORPH_FRAME_OUTPUT) + "/drawing-limits";
+  std::filesystem::create_directories(dir);
+  Drawings drawings;
+  std::string problem;
+  CHECK_FALSE(LoadDrawings(rig_with_images("../../etc/passwd", "b.png"), dir, &drawings, &problem));
+  CHECK(problem == "pose 0: image reference '../../etc/passwd' leaves the images folder (absolute, '..', or a control character); refusing to open it");
+  // 8192 x 1 and 1 x 8192: two small PNGs that would share an 8192 x 8192 texture.
+  std::vector<unsigned char> line(8192 * 4, 255);
+  REQUIRE(WritePng(dir + "/wide.png", line.data(), 8192, 1, &problem));
+  REQUIRE(WritePng(dir + "/tall.png", line.data(), 1, 8192, &problem));
+  CHECK_FALSE(LoadDrawings(rig_with_images("wide.png", "tall.png"), dir, &drawings, &problem));
+  CHECK(problem == "the drawings (8192 wide, 8192 high at most) would share a texture of more than 16777216 pixels; draw the poses on canvases of one size");
+  CHECK_FALSE(LoadDrawings(rig_with_images("missing.png", "tall.png"), dir, &drawings, &problem));
+  CHECK(problem == dir + "/missing.png: cannot open file");
+  CHECK_FALSE(LoadDrawings(rig_with_images("..", "tall.png"), dir, &drawings, &problem));
+}

@@ -2,9 +2,11 @@
 #include "rig_renderer.h"
 
 #include <png.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 
@@ -31,13 +33,59 @@ FrameDifference CompareFrames(const std::vector<unsigned char>& a, const std::ve
   return r;
 }
 
+// Relative, without '..' components, backslashes or control characters:
+// image names come from the rig file, and a rig is hostile input.
+bool ImageReferenceStaysInside(const std::string& reference) {
+  if (reference.empty() || reference[0] == '/') return false;
+  for (unsigned char c : reference)
+    if (c < 0x20 || c == 0x7F || c == '\\') return false;
+  std::size_t start = 0;
+  while (start <= reference.size()) {
+    const std::size_t end = std::min(reference.find('/', start), reference.size());
+    if (reference.compare(start, end - start, "..") == 0) return false;
+    start = end + 1;
+  }
+  return true;
+}
+
+std::string Printable(const std::string& text) {
+  std::string out;
+  for (unsigned char c : text.substr(0, 200)) {
+    if (c < 0x20 || c == 0x7F) {
+      char hex[8];
+      std::snprintf(hex, sizeof(hex), "\\x%02x", c);
+      out += hex;
+    } else {
+      out += char(c);
+    }
+  }
+  return text.size() > 200 ? out + "..." : out;
+}
+
 bool ReadPng(const std::string& path, std::vector<unsigned char>* rgba, std::uint32_t* width, std::uint32_t* height,
              std::string* error) {
+  // A regular file (a pipe would block, a device never end), its size
+  // checked from the header before anything is decoded.
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) {
+    *error = path + ": cannot open file";
+    return false;
+  }
+  if (!S_ISREG(st.st_mode)) {
+    *error = path + ": is not a regular file (a directory, device or pipe)";
+    return false;
+  }
   png_image image;
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_file(&image, path.c_str())) {
     *error = path + ": cannot read PNG: " + image.message;
+    return false;
+  }
+  if (std::uint64_t(image.width) * image.height > kMaxDrawingPixels) {
+    *error = path + ": PNG of " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+             " pixels is above the limit of " + std::to_string(kMaxDrawingPixels) + " pixels";
+    png_image_free(&image);
     return false;
   }
   image.format = PNG_FORMAT_RGBA;
@@ -81,11 +129,25 @@ bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::st
       *error = "pose " + std::to_string(i) + " has no image reference";
       return false;
     }
-    const std::string path = dir + "/" + std::string(name.data, name.size);
+    const std::string reference(name.data, name.size);
+    if (!ImageReferenceStaysInside(reference)) {
+      *error = "pose " + std::to_string(i) + ": image reference '" + Printable(reference) +
+               "' leaves the images folder (absolute, '..', or a control character); refusing to open it";
+      return false;
+    }
+    const std::string path = dir + "/" + reference;
     if (!ReadPng(path, &images[i], &w[i], &h[i], error)) return false;
   }
   out->width = *std::max_element(w.begin(), w.end());
   out->height = *std::max_element(h.begin(), h.end());
+  // All drawings are resampled to one size for the texture array: drawings
+  // of very different shapes (8192 x 1 and 1 x 8192) must not make it huge.
+  if (std::uint64_t(out->width) * out->height > kMaxDrawingPixels) {
+    *error = "the drawings (" + std::to_string(out->width) + " wide, " + std::to_string(out->height) +
+             " high at most) would share a texture of more than " + std::to_string(kMaxDrawingPixels) +
+             " pixels; draw the poses on canvases of one size";
+    return false;
+  }
   out->rgba.assign(N, std::vector<unsigned char>(std::size_t(out->width) * out->height * 4));
   for (std::uint32_t i = 0; i < N; ++i)
     for (std::uint32_t y = 0; y < out->height; ++y)

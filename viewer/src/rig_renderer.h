@@ -23,6 +23,11 @@ struct Drawings {
 };
 // Reads each pose's image (rig.pose_image) from `dir`. False with a message
 // naming the file when one is missing or unreadable, or the rig has no uvs.
+// Limits on the drawings the viewer loads (rig files are hostile input):
+// each at most this many pixels, and so the texture array they share. Image
+// references must stay inside `dir` (relative, no '..').
+constexpr std::uint64_t kMaxDrawingPixels = std::uint64_t(1) << 24;  // 4096 x 4096
+bool ImageReferenceStaysInside(const std::string& reference);
 bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::string* error);
 
 constexpr std::uint32_t kDrawingsPerCharacter = kMaxBlendDrawings;
