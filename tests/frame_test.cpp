@@ -340,3 +340,11 @@ TEST_CASE("drawings: image references stay inside the images folder, and sizes a
   CHECK(problem == dir + "/missing.png: cannot open file");
   CHECK_FALSE(LoadDrawings(rig_with_images("..", "tall.png"), dir, &drawings, &problem));
 }
+
+TEST_CASE("a failed Vulkan call becomes a message naming the call and the cause") {
+  CHECK_NOTHROW(VkCheck(VK_SUCCESS, "vkCreateBuffer"));
+  CHECK_THROWS_WITH_AS(VkCheck(VK_ERROR_OUT_OF_DEVICE_MEMORY, "vkAllocateMemory"),
+                       "Vulkan vkAllocateMemory: out of GPU memory (VkResult -2)", GpuError);
+  CHECK_THROWS_WITH_AS(VkCheck(VK_ERROR_OUT_OF_HOST_MEMORY, "vkCreateBuffer"),
+                       "Vulkan vkCreateBuffer: out of host memory (VkResult -1)", GpuError);
+}

@@ -6,6 +6,18 @@
 
 namespace posemorph::viewer {
 
+void VkCheck(VkResult result, const char* call) {
+  if (result == VK_SUCCESS) return;
+  const char* what = result == VK_ERROR_OUT_OF_HOST_MEMORY     ? "out of host memory"
+                     : result == VK_ERROR_OUT_OF_DEVICE_MEMORY ? "out of GPU memory"
+                     : result == VK_ERROR_DEVICE_LOST          ? "the GPU device was lost"
+                     : result == VK_ERROR_INITIALIZATION_FAILED ? "initialisation failed"
+                     : result == VK_ERROR_TOO_MANY_OBJECTS      ? "too many objects"
+                     : result == VK_ERROR_FORMAT_NOT_SUPPORTED  ? "format not supported"
+                                                               : "failed";
+  throw GpuError(std::string("Vulkan ") + call + ": " + what + " (VkResult " + std::to_string(int(result)) + ")");
+}
+
 VKAPI_ATTR VkBool32 VKAPI_CALL Gpu::OnMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                               VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT* data,
                                               void* self) {
@@ -28,9 +40,9 @@ bool Gpu::Init(const GpuOptions& options, std::string* error) {
   std::vector<const char*> layers, extensions = options.instance_extensions;
   if (options.validation) {
     std::uint32_t n = 0;
-    vkEnumerateInstanceLayerProperties(&n, nullptr);
+    VkCheck(vkEnumerateInstanceLayerProperties(&n, nullptr), "vkEnumerateInstanceLayerProperties");
     std::vector<VkLayerProperties> available(n);
-    vkEnumerateInstanceLayerProperties(&n, available.data());
+    VkCheck(vkEnumerateInstanceLayerProperties(&n, available.data()), "vkEnumerateInstanceLayerProperties");
     bool found = false;
     for (const auto& l : available) found |= std::strcmp(l.layerName, "VK_LAYER_KHRONOS_validation") == 0;
     if (!found) return fail("the Vulkan validation layer is not installed (Debian: vulkan-validationlayers)");
@@ -63,9 +75,9 @@ bool Gpu::Init(const GpuOptions& options, std::string* error) {
 
   // The first device with Vulkan 1.3 and a graphics queue; a discrete GPU if there is one.
   std::uint32_t n = 0;
-  vkEnumeratePhysicalDevices(instance_, &n, nullptr);
+  VkCheck(vkEnumeratePhysicalDevices(instance_, &n, nullptr), "vkEnumeratePhysicalDevices");
   std::vector<VkPhysicalDevice> devices(n);
-  vkEnumeratePhysicalDevices(instance_, &n, devices.data());
+  VkCheck(vkEnumeratePhysicalDevices(instance_, &n, devices.data()), "vkEnumeratePhysicalDevices");
   int best_rank = -1;
   for (VkPhysicalDevice d : devices) {
     VkPhysicalDeviceProperties p;
@@ -121,7 +133,7 @@ bool Gpu::Init(const GpuOptions& options, std::string* error) {
 
 Gpu::~Gpu() {
   if (device_) {
-    vkDeviceWaitIdle(device_);
+    vkDeviceWaitIdle(device_);  // in a destructor: nothing to report to
     if (pool_) vkDestroyCommandPool(device_, pool_, nullptr);
     vkDestroyDevice(device_, nullptr);
   }
@@ -146,7 +158,7 @@ VkDeviceMemory Gpu::Allocate(const VkMemoryRequirements& req, VkMemoryPropertyFl
       break;
     }
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  vkAllocateMemory(device_, &mai, nullptr, &memory);
+  VkCheck(vkAllocateMemory(device_, &mai, nullptr, &memory), "vkAllocateMemory");
   return memory;
 }
 
@@ -156,15 +168,15 @@ Buffer Gpu::CreateBuffer(VkDeviceSize size, VkBufferUsageFlags usage) {
   VkBufferCreateInfo bci{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
   bci.size = size;
   bci.usage = usage;
-  vkCreateBuffer(device_, &bci, nullptr, &b.buffer);
+  VkCheck(vkCreateBuffer(device_, &bci, nullptr, &b.buffer), "vkCreateBuffer");
   VkMemoryRequirements req;
   vkGetBufferMemoryRequirements(device_, b.buffer, &req);
   VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
   flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
   b.memory = Allocate(req, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
                       (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) ? &flags : nullptr);
-  vkBindBufferMemory(device_, b.buffer, b.memory, 0);
-  vkMapMemory(device_, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped);
+  VkCheck(vkBindBufferMemory(device_, b.buffer, b.memory, 0), "vkBindBufferMemory");
+  VkCheck(vkMapMemory(device_, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");
   if (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) {
     VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
     info.buffer = b.buffer;
@@ -192,17 +204,17 @@ Image Gpu::CreateImage(VkFormat format, std::uint32_t width, std::uint32_t heigh
   ici.tiling = VK_IMAGE_TILING_OPTIMAL;
   ici.usage = usage;
   ici.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-  vkCreateImage(device_, &ici, nullptr, &im.image);
+  VkCheck(vkCreateImage(device_, &ici, nullptr, &im.image), "vkCreateImage");
   VkMemoryRequirements req;
   vkGetImageMemoryRequirements(device_, im.image, &req);
   im.memory = Allocate(req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, nullptr);
-  vkBindImageMemory(device_, im.image, im.memory, 0);
+  VkCheck(vkBindImageMemory(device_, im.image, im.memory, 0), "vkBindImageMemory");
   VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vci.image = im.image;
   vci.viewType = layers > 1 || (usage & VK_IMAGE_USAGE_SAMPLED_BIT) ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   vci.format = format;
   vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
-  vkCreateImageView(device_, &vci, nullptr, &im.view);
+  VkCheck(vkCreateImageView(device_, &vci, nullptr, &im.view), "vkCreateImageView");
   return im;
 }
 
@@ -219,17 +231,17 @@ void Gpu::RunOnce(const std::function<void(VkCommandBuffer)>& record) {
   ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   ai.commandBufferCount = 1;
   VkCommandBuffer cmd;
-  vkAllocateCommandBuffers(device_, &ai, &cmd);
+  VkCheck(vkAllocateCommandBuffers(device_, &ai, &cmd), "vkAllocateCommandBuffers");
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  vkBeginCommandBuffer(cmd, &bi);
+  VkCheck(vkBeginCommandBuffer(cmd, &bi), "vkBeginCommandBuffer");
   record(cmd);
-  vkEndCommandBuffer(cmd);
+  VkCheck(vkEndCommandBuffer(cmd), "vkEndCommandBuffer");
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.commandBufferCount = 1;
   si.pCommandBuffers = &cmd;
-  vkQueueSubmit(queue_, 1, &si, VK_NULL_HANDLE);
-  vkQueueWaitIdle(queue_);
+  VkCheck(vkQueueSubmit(queue_, 1, &si, VK_NULL_HANDLE), "vkQueueSubmit");
+  VkCheck(vkQueueWaitIdle(queue_), "vkQueueWaitIdle");
   vkFreeCommandBuffers(device_, pool_, 1, &cmd);
 }
 

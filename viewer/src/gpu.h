@@ -6,10 +6,20 @@
 #include <vulkan/vulkan.h>
 
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 namespace posemorph::viewer {
+
+// A Vulkan call that failed: which call and what it returned (out of host or
+// device memory says so). Everything that creates or submits checks its
+// result through VkCheck; posemorph-view turns the exception into one line
+// naming the rig and an exit status of 1.
+struct GpuError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+void VkCheck(VkResult result, const char* call);
 
 struct GpuOptions {
   bool validation = false;              // enable VK_LAYER_KHRONOS_validation; its messages are counted

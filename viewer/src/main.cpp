@@ -9,6 +9,8 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -100,8 +102,28 @@ int Fail(const std::string& problem) {
 
 }  // namespace
 
+namespace {
+int Run(int argc, char** argv, std::string* rig_path_out);
+}  // namespace
+
+// Every failure ends in one line naming the rig and the problem, exit status 1:
+// a Vulkan call that failed (out of GPU memory, say) or host memory running out.
 int main(int argc, char** argv) {
-  std::string rig_path, images, output;
+  std::string rig_path;
+  try {
+    return Run(argc, argv, &rig_path);
+  } catch (const std::bad_alloc&) {
+    return Fail((rig_path.empty() ? std::string("posemorph-view") : rig_path) + ": out of memory");
+  } catch (const std::exception& e) {
+    return Fail((rig_path.empty() ? std::string("posemorph-view") : rig_path) + ": " + e.what());
+  }
+}
+
+namespace {
+
+int Run(int argc, char** argv, std::string* rig_path_out) {
+  std::string& rig_path = *rig_path_out;
+  std::string images, output;
   WindowOptions window;
   bool headless = false, validation = false;
   std::uint32_t width = 640, height = 640, frames = 0;
@@ -240,3 +262,5 @@ int main(int argc, char** argv) {
     return std::fprintf(stderr, "posemorph-view: %d validation message(s)\n", gpu.validation_messages()), 3;
   return 0;
 }
+
+}  // namespace

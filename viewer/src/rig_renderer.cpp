@@ -185,7 +185,7 @@ VkShaderModule Module(VkDevice device, const std::uint32_t* code, std::size_t by
   ci.codeSize = bytes;
   ci.pCode = code;
   VkShaderModule m = VK_NULL_HANDLE;
-  vkCreateShaderModule(device, &ci, nullptr, &m);
+  VkCheck(vkCreateShaderModule(device, &ci, nullptr, &m), "vkCreateShaderModule");
   return m;
 }
 
@@ -229,25 +229,25 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
   sci.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;  // outside the drawing: nothing
-  vkCreateSampler(dev, &sci, nullptr, &sampler_);
+  VkCheck(vkCreateSampler(dev, &sci, nullptr, &sampler_), "vkCreateSampler");
 
   VkDescriptorSetLayoutBinding binding{0, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT,
                                        nullptr};
   VkDescriptorSetLayoutCreateInfo lci{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   lci.bindingCount = 1;
   lci.pBindings = &binding;
-  vkCreateDescriptorSetLayout(dev, &lci, nullptr, &set_layout_);
+  VkCheck(vkCreateDescriptorSetLayout(dev, &lci, nullptr, &set_layout_), "vkCreateDescriptorSetLayout");
   VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1};
   VkDescriptorPoolCreateInfo dpi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   dpi.maxSets = 1;
   dpi.poolSizeCount = 1;
   dpi.pPoolSizes = &size;
-  vkCreateDescriptorPool(dev, &dpi, nullptr, &pool_);
+  VkCheck(vkCreateDescriptorPool(dev, &dpi, nullptr, &pool_), "vkCreateDescriptorPool");
   VkDescriptorSetAllocateInfo dai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
   dai.descriptorPool = pool_;
   dai.descriptorSetCount = 1;
   dai.pSetLayouts = &set_layout_;
-  vkAllocateDescriptorSets(dev, &dai, &set_);
+  VkCheck(vkAllocateDescriptorSets(dev, &dai, &set_), "vkAllocateDescriptorSets");
   VkDescriptorImageInfo dii{sampler_, drawings_.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
   VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
   write.dstSet = set_;
@@ -262,7 +262,7 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   pli.pSetLayouts = &set_layout_;
   pli.pushConstantRangeCount = 1;
   pli.pPushConstantRanges = &range;
-  vkCreatePipelineLayout(dev, &pli, nullptr, &layout_);
+  VkCheck(vkCreatePipelineLayout(dev, &pli, nullptr, &layout_), "vkCreatePipelineLayout");
 
   VkShaderModule vs = Module(dev, kSkinVert, sizeof kSkinVert), fs = Module(dev, kBlendFrag, sizeof kBlendFrag);
   VkPipelineShaderStageCreateInfo stages[2] = {{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO},
@@ -317,7 +317,7 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   vkGetPhysicalDeviceFeatures(gpu.physical(), &features);
   if (features.fillModeNonSolid) {
     rs.polygonMode = VK_POLYGON_MODE_LINE;
-    vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &lines_);
+    VkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &lines_), "vkCreateGraphicsPipelines");
   }
   vkDestroyShaderModule(dev, vs, nullptr);
   vkDestroyShaderModule(dev, fs, nullptr);
@@ -331,7 +331,7 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
 RigRenderer::~RigRenderer() {
   if (!gpu_) return;
   VkDevice dev = gpu_->device();
-  vkDeviceWaitIdle(dev);
+  vkDeviceWaitIdle(dev);  // in a destructor: nothing to report to
   if (fill_) vkDestroyPipeline(dev, fill_, nullptr);
   if (lines_) vkDestroyPipeline(dev, lines_, nullptr);
   if (layout_) vkDestroyPipelineLayout(dev, layout_, nullptr);

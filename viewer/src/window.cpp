@@ -225,7 +225,7 @@ bool Viewer::CreateSwapchain() {
     rp.pSubpasses = &sub;
     rp.dependencyCount = 1;
     rp.pDependencies = &dep;
-    vkCreateRenderPass(gpu_.device(), &rp, nullptr, &ui_pass_);
+    VkCheck(vkCreateRenderPass(gpu_.device(), &rp, nullptr, &ui_pass_), "vkCreateRenderPass");
   }
   for (VkImage image : sc_.images) {
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -234,7 +234,7 @@ bool Viewer::CreateSwapchain() {
     vi.format = sc_.format;
     vi.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     VkImageView view;
-    vkCreateImageView(gpu_.device(), &vi, nullptr, &view);
+    VkCheck(vkCreateImageView(gpu_.device(), &vi, nullptr, &view), "vkCreateImageView");
     sc_.views.push_back(view);
     VkFramebufferCreateInfo fi{VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO};
     fi.renderPass = ui_pass_;
@@ -244,11 +244,11 @@ bool Viewer::CreateSwapchain() {
     fi.height = extent.height;
     fi.layers = 1;
     VkFramebuffer fb;
-    vkCreateFramebuffer(gpu_.device(), &fi, nullptr, &fb);
+    VkCheck(vkCreateFramebuffer(gpu_.device(), &fi, nullptr, &fb), "vkCreateFramebuffer");
     sc_.framebuffers.push_back(fb);
     VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
     VkSemaphore s;
-    vkCreateSemaphore(gpu_.device(), &si, nullptr, &s);
+    VkCheck(vkCreateSemaphore(gpu_.device(), &si, nullptr, &s), "vkCreateSemaphore");
     sc_.rendered.push_back(s);
   }
   return true;
@@ -256,7 +256,7 @@ bool Viewer::CreateSwapchain() {
 
 void Viewer::DestroySwapchain() {
   VkDevice dev = gpu_.device();
-  vkDeviceWaitIdle(dev);
+  VkCheck(vkDeviceWaitIdle(dev), "vkDeviceWaitIdle");
   for (VkFramebuffer f : sc_.framebuffers) vkDestroyFramebuffer(dev, f, nullptr);
   for (VkImageView v : sc_.views) vkDestroyImageView(dev, v, nullptr);
   for (VkSemaphore s : sc_.rendered) vkDestroySemaphore(dev, s, nullptr);
@@ -545,7 +545,7 @@ void Viewer::BuildUi() {
 
 void Viewer::Frame(bool screenshot) {
   VkDevice dev = gpu_.device();
-  vkWaitForFences(dev, 1, &fence_, VK_TRUE, UINT64_MAX);
+  VkCheck(vkWaitForFences(dev, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
   if (resized_ || sc_.handle == VK_NULL_HANDLE) {
     resized_ = false;
     if (!CreateSwapchain()) return;
@@ -557,7 +557,7 @@ void Viewer::Frame(bool screenshot) {
     resized_ = true;
     return;
   }
-  vkResetFences(dev, 1, &fence_);
+  VkCheck(vkResetFences(dev, 1, &fence_), "vkResetFences");
 
   // The characters: the runtime, timed, then into the GPU buffers.
   Scene shown = scene_;
@@ -591,10 +591,10 @@ void Viewer::Frame(bool screenshot) {
     if (one_to_one_) camera_.zoom = 1, camera_ = PixelExact(camera_, view_w, sc_.extent.height), one_to_one_ = false;
   }
 
-  vkResetCommandBuffer(cmd_, 0);
+  VkCheck(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-  vkBeginCommandBuffer(cmd_, &bi);
+  VkCheck(vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
   const VkImage image = sc_.images[index];
   Transition(cmd_, image, 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
   VkRenderingAttachmentInfo colour{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
@@ -630,7 +630,7 @@ void Viewer::Frame(bool screenshot) {
     vkCmdCopyImageToBuffer(cmd_, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, shot_.buffer, 1, &copy);
     Transition(cmd_, image, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
   }
-  vkEndCommandBuffer(cmd_);
+  VkCheck(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
 
   const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
@@ -641,7 +641,7 @@ void Viewer::Frame(bool screenshot) {
   si.pCommandBuffers = &cmd_;
   si.signalSemaphoreCount = 1;
   si.pSignalSemaphores = &sc_.rendered[index];
-  vkQueueSubmit(gpu_.queue(), 1, &si, fence_);
+  VkCheck(vkQueueSubmit(gpu_.queue(), 1, &si, fence_), "vkQueueSubmit");
   VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
   pi.waitSemaphoreCount = 1;
   pi.pWaitSemaphores = &sc_.rendered[index];
@@ -698,12 +698,12 @@ int Viewer::Run() {
   ai.commandPool = gpu_.command_pool();
   ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
   ai.commandBufferCount = 1;
-  vkAllocateCommandBuffers(gpu_.device(), &ai, &cmd_);
+  VkCheck(vkAllocateCommandBuffers(gpu_.device(), &ai, &cmd_), "vkAllocateCommandBuffers");
   VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
   fi.flags = VK_FENCE_CREATE_SIGNALED_BIT;
-  vkCreateFence(gpu_.device(), &fi, nullptr, &fence_);
+  VkCheck(vkCreateFence(gpu_.device(), &fi, nullptr, &fence_), "vkCreateFence");
   VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
-  vkCreateSemaphore(gpu_.device(), &si, nullptr, &acquired_);
+  VkCheck(vkCreateSemaphore(gpu_.device(), &si, nullptr, &acquired_), "vkCreateSemaphore");
 
   // Dear ImGui on the window and the swapchain's render pass.
   IMGUI_CHECKVERSION();
@@ -717,7 +717,7 @@ int Viewer::Run() {
   dp.maxSets = 16;
   dp.poolSizeCount = 1;
   dp.pPoolSizes = &ps;
-  vkCreateDescriptorPool(gpu_.device(), &dp, nullptr, &ui_pool_);
+  VkCheck(vkCreateDescriptorPool(gpu_.device(), &dp, nullptr, &ui_pool_), "vkCreateDescriptorPool");
   ImGui_ImplVulkan_InitInfo ii{};
   ii.Instance = gpu_.instance();
   ii.PhysicalDevice = gpu_.physical();
@@ -830,7 +830,7 @@ int Viewer::Run() {
       glfwSetWindowSize(window_, int(options_.width) - 100, int(options_.height) - 60);
     }
     if (smoke && ++smoke_frame_ >= options_.smoke_frames) {
-      vkWaitForFences(gpu_.device(), 1, &fence_, VK_TRUE, UINT64_MAX);
+      VkCheck(vkWaitForFences(gpu_.device(), 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
       if (!shot_.buffer) {
         std::fprintf(stderr, "posemorph-view: error: no frame was drawn\n");
         status = 1;
@@ -855,7 +855,7 @@ int Viewer::Run() {
     }
   }
 
-  vkDeviceWaitIdle(gpu_.device());
+  VkCheck(vkDeviceWaitIdle(gpu_.device()), "vkDeviceWaitIdle");
   ImGui_ImplVulkan_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
