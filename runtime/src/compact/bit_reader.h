@@ -28,11 +28,7 @@ class BitReader {
   std::uint32_t At(std::uint64_t at, unsigned width) const {
     if (width == 0) return 0;
     if (at + width > bits_) return 0;
-    const std::uint64_t byte = at >> 3;
-    const std::uint64_t avail = bits_ / 8 - byte;
-    std::uint64_t word = 0;
-    std::memcpy(&word, data_ + byte, avail < 8 ? std::size_t(avail) : 8);  // little-endian targets only
-    return std::uint32_t((word >> (at & 7)) & ((std::uint64_t(1) << width) - 1));
+    return std::uint32_t((Word(at >> 3) >> (at & 7)) & ((std::uint64_t(1) << width) - 1));
   }
 
   std::uint32_t Read(unsigned width) {
@@ -51,11 +47,7 @@ class BitReader {
   std::uint64_t ReadGolomb(unsigned k, unsigned max_zeros) {
     // The next up to 57 bits, first in the lowest: the zeros end at the
     // lowest set bit.
-    const std::uint64_t byte = pos_ >> 3;
-    const std::uint64_t avail = bits_ / 8 - (byte < bits_ / 8 ? byte : bits_ / 8);
-    std::uint64_t word = 0;
-    std::memcpy(&word, data_ + byte, avail < 8 ? std::size_t(avail) : 8);
-    word >>= (pos_ & 7);
+    const std::uint64_t word = Word(pos_ >> 3) >> (pos_ & 7);
     const unsigned zeros = LowestSetBit(word | (std::uint64_t(1) << 57));
     if (zeros > max_zeros || pos_ + zeros + 1 > bits_) {
       overrun = true;
@@ -84,6 +76,19 @@ class BitReader {
   bool overrun = false;
 
  private:
+  // The 8 bytes from `byte` (zeros past the end), little-endian; a fixed-size
+  // copy (one load) except in the last 8 bytes.
+  std::uint64_t Word(std::uint64_t byte) const {
+    std::uint64_t word = 0;
+    const std::uint64_t size = bits_ / 8;
+    if (byte + 8 <= size) {
+      std::memcpy(&word, data_ + byte, 8);  // little-endian targets only
+    } else if (byte < size) {
+      std::memcpy(&word, data_ + byte, std::size_t(size - byte));
+    }
+    return word;
+  }
+
   const unsigned char* data_;
   std::uint64_t bits_;
   std::uint64_t pos_ = 0;

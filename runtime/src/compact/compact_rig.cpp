@@ -289,7 +289,17 @@ bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const Compact
       std::int64_t* q = o.grid_scratch;
       for (std::uint64_t y = 0; y <= cy; ++y)
         for (std::uint64_t x = 0; x <= cx; ++x) {
-          if (!next(k_corner, CornerPrediction(q, row, x, y, order), &q[y * row + x]))
+          std::int64_t pred;
+          const std::int64_t* at = q + y * row + x;
+          if (x >= order && y >= order) {  // inside: the formulas written out (the same integers)
+            pred = order == 1 ? at[-1] + at[-std::int64_t(row)] - at[-std::int64_t(row) - 1]
+                              : 2 * at[-1] - at[-2] + 2 * at[-std::int64_t(row)] - 4 * at[-std::int64_t(row) - 1] +
+                                    2 * at[-std::int64_t(row) - 2] - at[-2 * std::int64_t(row)] +
+                                    2 * at[-2 * std::int64_t(row) - 1] - at[-2 * std::int64_t(row) - 2];
+          } else {
+            pred = CornerPrediction(q, row, x, y, order);
+          }
+          if (!next(k_corner, pred, &q[y * row + x]))
             return Fail(err, ErrorCode::kBadValue, "section QGRD: pose %u, corner (%llu, %llu): code runs past the section or out of range",
                         i, (unsigned long long)x, (unsigned long long)y);
           o.grid_corners[(y * row + x) * N + i] = L.grid_step * double(q[y * row + x]);
