@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "posemorph/bake/error.h"
+#include "posemorph/compact_codec.h"
 #include "posemorph/jobs.h"
 #include "posemorph/path.h"
 #include "posemorph/rig.h"
@@ -93,25 +94,6 @@ std::vector<unsigned char> Packed(const std::vector<std::uint32_t>& values, unsi
   out.insert(out.end(), w.bytes().begin(), w.bytes().end());
   return out;
 }
-
-std::uint64_t ZigZag(std::int64_t r) { return r >= 0 ? std::uint64_t(r) * 2 : std::uint64_t(-(r + 1)) * 2 + 1; }
-
-// The weight grid's corner prediction (the runtime's decoder has the same):
-// the residual is D_x D_y q, with D = 1 - shift applied `order` times along
-// each axis where the neighbours exist (order 1: the Lorenzo predictor, exact
-// for bilinear fields; order 2: exact for biquadratic ones).
-std::int64_t CornerPrediction(const std::int64_t* q, std::uint64_t row, std::uint64_t x, std::uint64_t y, unsigned order) {
-  static const std::int64_t kCoefficients[3][3] = {{1, 0, 0}, {1, -1, 0}, {1, -2, 1}};
-  const std::int64_t* a = kCoefficients[x < order ? x : order];
-  const std::int64_t* b = kCoefficients[y < order ? y : order];
-  std::int64_t pred = 0;
-  for (std::uint64_t j = 0; j <= order && j <= y; ++j)
-    for (std::uint64_t i = 0; i <= order && i <= x; ++i)
-      if (i || j) pred -= a[i] * b[j] * q[(y - j) * row + (x - i)];
-  return pred;
-}
-
-std::int64_t FloorDiv4(std::int64_t s) { return s >= 0 ? s / 4 : -((-s + 3) / 4); }
 
 std::map<std::uint32_t, std::vector<unsigned char>> RawSections(const std::vector<unsigned char>& bytes) {
   std::map<std::uint32_t, std::vector<unsigned char>> out;
@@ -253,7 +235,7 @@ struct Encoder {
         for (int d = 0; d < 2; ++d) {
           const std::uint64_t k = 2 * (i * V + v) + d;
           const std::int64_t previous = v > 0 ? std::int64_t(q[k - 2]) : 0;
-          pos_codes.push_back(ZigZag(std::int64_t(q[k]) - previous));
+          pos_codes.push_back(fmt::ZigZag(std::int64_t(q[k]) - previous));
         }
     const unsigned pos_k = BestOrder(pos_codes);
     Append(qpos, position_step);
@@ -270,7 +252,7 @@ struct Encoder {
 
     std::vector<std::uint64_t> tri_codes;
     for (std::uint64_t k = 0; k < 3 * T; ++k)
-      tri_codes.push_back(ZigZag(std::int64_t(exact.triangles()[k]) - (k >= 3 ? std::int64_t(exact.triangles()[k - 3]) : 0)));
+      tri_codes.push_back(fmt::ZigZag(std::int64_t(exact.triangles()[k]) - (k >= 3 ? std::int64_t(exact.triangles()[k - 3]) : 0)));
     const unsigned tri_k = BestOrder(tri_codes);
     std::vector<unsigned char> qtri;
     Append(qtri, std::uint32_t(tri_k));
@@ -321,7 +303,7 @@ struct Encoder {
         for (unsigned o = 1; o <= 2; ++o)
           for (std::uint64_t y = 0; y <= g.cells_y; ++y)
             for (std::uint64_t x = 0; x < row; ++x)
-              by_order[o - 1].push_back(ZigZag(qc[y * row + x] - CornerPrediction(qc.data(), row, x, y, o)));
+              by_order[o - 1].push_back(fmt::ZigZag(qc[y * row + x] - fmt::GridCornerPrediction(qc.data(), row, x, y, o)));
         const unsigned k1 = BestOrder(by_order[0]), k2 = BestOrder(by_order[1]);
         std::uint64_t bits1 = 0, bits2 = 0;
         for (std::uint64_t u : by_order[0]) bits1 += GolombBits(u, k1);
@@ -332,8 +314,8 @@ struct Encoder {
           for (std::uint64_t x = 0; x < g.cells_x; ++x) {
             const std::int64_t value = std::llround(g.centre_weights[(y * g.cells_x + x) * N + i] / weight_step);
             const std::int64_t pred =
-                FloorDiv4(qc[y * row + x] + qc[y * row + x + 1] + qc[(y + 1) * row + x] + qc[(y + 1) * row + x + 1] + 2);
-            centre_codes.push_back(ZigZag(value - pred));
+                fmt::GridCentrePrediction(qc[y * row + x], qc[y * row + x + 1], qc[(y + 1) * row + x], qc[(y + 1) * row + x + 1]);
+            centre_codes.push_back(fmt::ZigZag(value - pred));
           }
         const unsigned kc = BestOrder(corner_codes), kz = centre_codes.empty() ? 0 : BestOrder(centre_codes);
         params.push_back(kc | kz << 8 | corner_order << 16);

@@ -12,6 +12,7 @@
 
 #include "compact/compact_rig.h"
 #include "isa_select.h"
+#include "load_error.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
 
@@ -26,16 +27,7 @@ namespace {
 
 namespace fmt = format;
 
-bool Fail(Error* err, ErrorCode code, const char* format, ...) {
-  if (err) {
-    err->code = code;
-    va_list args;
-    va_start(args, format);
-    std::vsnprintf(err->message, sizeof(err->message), format, args);
-    va_end(args);
-  }
-  return false;
-}
+constexpr auto Fail = detail::LoadFail;
 
 std::uint16_t ReadU16(const unsigned char* p) { std::uint16_t v; std::memcpy(&v, p, 2); return v; }
 std::uint32_t ReadU32(const unsigned char* p) { std::uint32_t v; std::memcpy(&v, p, 4); return v; }

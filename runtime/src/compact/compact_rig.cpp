@@ -2,12 +2,13 @@
 #include "compact_rig.h"
 
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <cstring>
 
 #include "bit_reader.h"
+#include "../load_error.h"
 #include "polar_angle.h"
+#include "posemorph/compact_codec.h"
 #include "posemorph/rig_format.h"
 
 namespace posemorph::detail {
@@ -15,16 +16,7 @@ namespace {
 
 namespace fmt = format;
 
-bool Fail(Error* err, ErrorCode code, const char* format, ...) {
-  if (err) {
-    err->code = code;
-    va_list args;
-    va_start(args, format);
-    std::vsnprintf(err->message, sizeof(err->message), format, args);
-    va_end(args);
-  }
-  return false;
-}
+constexpr auto Fail = LoadFail;
 
 std::uint32_t U32(const unsigned char* p) { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
 double F64(const unsigned char* p) { double v; std::memcpy(&v, p, 8); return v; }
@@ -45,25 +37,7 @@ bool PackedHeader(const char* tag, const SectionBytes& s, std::uint64_t count, u
 
 bool FiniteWithin(double v, double limit) { return std::isfinite(v) && std::fabs(v) <= limit; }
 
-std::int64_t Unzigzag(std::uint64_t u) { return (u & 1) ? -std::int64_t(u >> 1) - 1 : std::int64_t(u >> 1); }
-
 constexpr std::int64_t kMaxPositionCode = std::int64_t(1) << 40;
-
-// Corner prediction of order 1 (Lorenzo) or 2: the residual is D_x D_y q
-// with D = 1 - shift applied `order` times along each axis where the
-// neighbours exist. The bake's encoder computes the same.
-std::int64_t CornerPrediction(const std::int64_t* q, std::uint64_t row, std::uint64_t x, std::uint64_t y, unsigned order) {
-  static const std::int64_t kCoefficients[3][3] = {{1, 0, 0}, {1, -1, 0}, {1, -2, 1}};
-  const std::int64_t* a = kCoefficients[x < order ? x : order];
-  const std::int64_t* b = kCoefficients[y < order ? y : order];
-  std::int64_t pred = 0;
-  for (std::uint64_t j = 0; j <= order && j <= y; ++j)
-    for (std::uint64_t i = 0; i <= order && i <= x; ++i)
-      if (i || j) pred -= a[i] * b[j] * q[(y - j) * row + (x - i)];
-  return pred;
-}
-
-std::int64_t FloorDiv4(std::int64_t s) { return s >= 0 ? s / 4 : -((-s + 3) / 4); }
 
 }  // namespace
 
@@ -174,7 +148,7 @@ bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const Compact
     BitReader r(L.triangles.data + 8, L.triangles.size - 8);
     for (std::uint64_t k = 0; k < 3 * T; ++k) {
       const std::int64_t previous = k >= 3 ? std::int64_t(o.triangles[k - 3]) : 0;
-      const std::int64_t value = previous + Unzigzag(r.ReadGolomb(L.triangle_k, fmt::kMaxGolombZeros));
+      const std::int64_t value = previous + fmt::UnZigZag(r.ReadGolomb(L.triangle_k, fmt::kMaxGolombZeros));
       if (r.overrun || value < 0 || value >= std::int64_t(V))
         return Fail(err, ErrorCode::kBadValue, "section QTRI: triangle %llu has a vertex index outside 0..%llu or runs past the section",
                     (unsigned long long)(k / 3), (unsigned long long)(V - 1));
@@ -212,8 +186,8 @@ bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const Compact
       std::int64_t qx = 0, qy = 0;
       for (std::uint64_t v = 0; v < V; ++v) {
         const std::uint64_t k = 2 * (i * V + v);
-        qx += Unzigzag(r.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
-        qy += Unzigzag(r.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
+        qx += fmt::UnZigZag(r.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
+        qy += fmt::UnZigZag(r.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
         if (r.overrun || qx < 0 || qy < 0 || qx > kMaxPositionCode || qy > kMaxPositionCode)
           return Fail(err, ErrorCode::kBadValue, "section QPOS: vertex %llu of pose %llu: code runs past the section or out of range",
                       (unsigned long long)v, (unsigned long long)i);
@@ -280,7 +254,7 @@ bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const Compact
     const std::int64_t kLimit = std::int64_t(1) << 40;
     auto next = [&](unsigned k, std::int64_t pred, std::int64_t* q) {
       const std::uint64_t u = r.ReadGolomb(k, fmt::kMaxGolombZeros);
-      *q = pred + Unzigzag(u);
+      *q = pred + fmt::UnZigZag(u);
       return !r.overrun && *q <= kLimit && *q >= -kLimit;
     };
     for (std::uint32_t i = 0; i < coded; ++i) {
@@ -297,7 +271,7 @@ bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const Compact
                                     2 * at[-std::int64_t(row) - 2] - at[-2 * std::int64_t(row)] +
                                     2 * at[-2 * std::int64_t(row) - 1] - at[-2 * std::int64_t(row) - 2];
           } else {
-            pred = CornerPrediction(q, row, x, y, order);
+            pred = fmt::GridCornerPrediction(q, row, x, y, order);
           }
           if (!next(k_corner, pred, &q[y * row + x]))
             return Fail(err, ErrorCode::kBadValue, "section QGRD: pose %u, corner (%llu, %llu): code runs past the section or out of range",
@@ -308,7 +282,7 @@ bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const Compact
       for (std::uint64_t y = 0; y < cy; ++y)
         for (std::uint64_t x = 0; x < cx; ++x) {
           const std::int64_t pred =
-              FloorDiv4(q[y * row + x] + q[y * row + x + 1] + q[(y + 1) * row + x] + q[(y + 1) * row + x + 1] + 2);
+              fmt::GridCentrePrediction(q[y * row + x], q[y * row + x + 1], q[(y + 1) * row + x], q[(y + 1) * row + x + 1]);
           std::int64_t value;
           if (!next(k_centre, pred, &value))
             return Fail(err, ErrorCode::kBadValue, "section QGRD: pose %u, centre (%llu, %llu): code runs past the section or out of range",
