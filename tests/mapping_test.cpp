@@ -239,6 +239,67 @@ TEST_CASE("mapping: matching a shape to its own rotated, scaled copy is the iden
   }
 }
 
+TEST_CASE("mapping: the matching's work is bounded on long outlines, unchanged on short ones") {
+  // A 40,000-unit square matched at spacing 1 would need 40,000^2 steps per
+  // span: it gets at most kMaxMatchedSamples samples instead, identity still.
+  const Polygon big = {{0, 0}, {10000, 0}, {10000, 10000}, {0, 10000}};
+  const Polygon twin = Transformed(big, 0.3, 1.2, Point(5, 7));
+  pm::MatchingParameters prm;
+  prm.spacing = 1.0;
+  const pm::CorrespondedBoundary m = pm::MatchBoundaries({big, twin}, {{big[0]}, {twin[0]}}, prm);
+  CHECK(m.spacing == doctest::Approx(40000.0 / double(pm::kMaxMatchedSamples)));
+  CHECK(m.points[0].size() <= 2 * pm::kMaxMatchedSamples);
+  CHECK(m.points[0].size() >= pm::kMaxMatchedSamples / 2);
+  double worst = 0;
+  for (std::size_t j = 0; j < m.points[0].size(); ++j)
+    worst = std::max(worst, (Transformed({m.points[0][j]}, 0.3, 1.2, Point(5, 7))[0] - m.points[1][j]).norm());
+  CHECK(worst <= 1e-6 * 12000);
+  // A short outline keeps the spacing it was given.
+  const Polygon small = {{0, 0}, {100, 0}, {100, 100}, {0, 100}};
+  const pm::CorrespondedBoundary s = pm::MatchBoundaries({small, small}, {{small[0]}, {small[0]}}, prm);
+  CHECK(s.spacing == 1.0);
+  CHECK(s.points[0].size() == 400);
+}
+
+TEST_CASE("mapping: refinement stops at its vertex budget and says so") {
+  // Grid coordinates (the mapping refines on its integer grid).
+  const Polygon square = {{0, 0}, {400000, 0}, {400000, 400000}, {0, 400000}};
+  pm::CompatibleMesh mesh = pm::TriangulateCompatibly({square, square}, "squares", 0);
+  pm::RefinementParameters rp;
+  rp.max_edge_length = 5000;  // about 7,000 vertices
+  rp.max_vertices = 2000;
+  pm::CompatibleMesh budgeted = mesh;
+  CHECK_FALSE(pm::RefineCompatibly(budgeted, rp));
+  CHECK(budgeted.vertices[0].size() <= rp.max_vertices);
+  rp.max_edge_length = 80000;
+  CHECK(pm::RefineCompatibly(mesh, rp));
+  CHECK(mesh.vertices[0].size() < rp.max_vertices);
+}
+
+TEST_CASE("mapping: outline limits name the pose and the limit") {
+  Polygon many;
+  for (std::size_t k = 0; k <= pm::kMaxOutlinePoints; ++k) {
+    const double t = 2 * M_PI * double(k) / double(pm::kMaxOutlinePoints + 1);
+    many.push_back({1000 * std::cos(t), 1000 * std::sin(t)});
+  }
+  pb::MappingParameters prm;
+  try {
+    pm::MapPolygons({many, many}, {{many[0]}, {many[0]}}, prm, {"pose 'a'", "pose 'b'"}, "limits.json");
+    FAIL("an outline over the limit was mapped");
+  } catch (const pb::BakeError& e) {
+    CHECK(std::string(e.what()) == "limits.json: pose 'a': the outline has 100001 points, more than the limit of 100000");
+  }
+  const Polygon square = {{0, 0}, {40, 0}, {40, 40}, {0, 40}};
+  std::vector<Point> landmarks;
+  for (std::size_t k = 0; k <= pm::kMaxLandmarks; ++k) landmarks.push_back({40.0 * double(k) / double(pm::kMaxLandmarks + 1), 0});
+  try {
+    pm::MapPolygons({square, square}, {landmarks, landmarks}, prm, {"pose 'a'", "pose 'b'"}, "limits.json");
+    FAIL("landmarks over the limit were mapped");
+  } catch (const pb::BakeError& e) {
+    CHECK(std::string(e.what()) == "limits.json: pose 'a': gives 513 landmarks, more than the limit of 512");
+  }
+}
+
 TEST_CASE("mapping: outlines from alpha") {
   const int W = 64, H = 64;
   std::vector<unsigned char> alpha(W * H, 0);

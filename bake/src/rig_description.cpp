@@ -17,6 +17,8 @@
 namespace posemorph::bake {
 namespace {
 
+constexpr double kMaxCoordinate = 1e9;
+
 using nlohmann::json;
 
 struct Reader {
@@ -51,10 +53,18 @@ struct Reader {
     if (!j.is_string()) Fail(where, "expected a string");
     return j.get<std::string>();
   }
+  // Geometry (vertices, outlines, landmarks, uvs): coordinates within
+  // +-kMaxCoordinate, so differences, areas and the mapping's integer grid
+  // stay finite and exact.
   std::vector<Eigen::Vector2d> Points(const json& a, const std::string& where) const {
     std::vector<Eigen::Vector2d> out;
     out.reserve(a.size());
-    for (std::size_t i = 0; i < a.size(); ++i) out.push_back(Point(a[i], where + "[" + std::to_string(i) + "]"));
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const std::string w = where + "[" + std::to_string(i) + "]";
+      out.push_back(Point(a[i], w));
+      if (!(out.back().cwiseAbs().maxCoeff() <= kMaxCoordinate))
+        Fail(w, "coordinate beyond +-1e9 (" + a[i].dump() + ")");
+    }
     return out;
   }
   std::vector<std::array<std::uint32_t, 3>> ReadTriangles(const json& a, const std::string& where) const {
@@ -203,6 +213,12 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
           m["max_steiner_points"].get<long long>() > 100000)
         r.Fail("mapping.max_steiner_points", "expected an integer in 0..100000");
       p.max_steiner_points = int(m["max_steiner_points"].get<long long>());
+    }
+    if (m.contains("max_vertices")) {
+      if (!m["max_vertices"].is_number_integer() || m["max_vertices"].get<long long>() < 16 ||
+          m["max_vertices"].get<long long>() > 100000)
+        r.Fail("mapping.max_vertices", "expected an integer in 16..100000");
+      p.max_vertices = int(m["max_vertices"].get<long long>());
     }
   }
 

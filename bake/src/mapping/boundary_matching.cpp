@@ -99,9 +99,12 @@ CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
   out.points.resize(N);
   out.at.resize(N);
   const double lambda = prm.stretch_cost;
+  // Long outlines (or a tiny spacing) get kMaxMatchedSamples samples at most.
+  const double spacing = std::max(prm.spacing, perimeter[0] / double(kMaxMatchedSamples));
+  out.spacing = spacing;
   for (std::size_t k = 0; k < L; ++k) {
     const double len0 = (k + 1 < L ? s[0][k + 1] : s[0][0] + perimeter[0]) - s[0][k];
-    const std::size_t m = std::max<std::size_t>(4, std::size_t(std::lround(len0 / prm.spacing)));
+    const std::size_t m = std::max<std::size_t>(4, std::size_t(std::lround(std::min(len0 / spacing, double(kMaxMatchedSamples)))));
     out.landmarks.push_back(out.at[0].size());
     const double h0 = len0 / double(m) * prm.bending_scale;
     std::vector<double> theta0(m + 1);
@@ -113,25 +116,28 @@ CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
       const double hi = len / double(m) * prm.bending_scale;
       std::vector<double> theta(m + 1);
       for (std::size_t q = 0; q <= m; ++q) theta[q] = Turning(arc[i], s[i][k] + len * double(q) / double(m), hi);
-      // D[j][q]: cheapest monotone path from (0, 0) to (j, q).
+      // D(j, q): cheapest monotone path from (0, 0) to (j, q), kept one row
+      // of j at a time; the steps taken are kept whole for the backtrack.
       const std::size_t W = m + 1;
-      std::vector<double> D(W * W, std::numeric_limits<double>::infinity());
+      std::vector<double> before(W, std::numeric_limits<double>::infinity()), row(W);
       std::vector<unsigned char> from(W * W, 0);  // 0 diagonal, 1 from j-1, 2 from q-1
-      for (std::size_t j = 0; j <= m; ++j)
+      for (std::size_t j = 0; j <= m; ++j) {
         for (std::size_t q = 0; q <= m; ++q) {
           const double cost = std::abs(WrapAngle(theta0[j] - theta[q]));
           if (j == 0 && q == 0) {
-            D[0] = cost;
+            row[0] = cost;
             continue;
           }
           double best = std::numeric_limits<double>::infinity();
           unsigned char step = 0;
-          if (j > 0 && q > 0 && D[(j - 1) * W + q - 1] < best) best = D[(j - 1) * W + q - 1], step = 0;
-          if (j > 0 && D[(j - 1) * W + q] + lambda < best) best = D[(j - 1) * W + q] + lambda, step = 1;
-          if (q > 0 && D[j * W + q - 1] + lambda < best) best = D[j * W + q - 1] + lambda, step = 2;
-          D[j * W + q] = best + cost;
+          if (j > 0 && q > 0 && before[q - 1] < best) best = before[q - 1], step = 0;
+          if (j > 0 && before[q] + lambda < best) best = before[q] + lambda, step = 1;
+          if (q > 0 && row[q - 1] + lambda < best) best = row[q - 1] + lambda, step = 2;
+          row[q] = best + cost;
           from[j * W + q] = step;
         }
+        std::swap(before, row);
+      }
       std::vector<double> sum(m + 1, 0), count(m + 1, 0);
       for (std::size_t j = m, q = m;;) {
         sum[j] += double(q), count[j] += 1;
@@ -151,6 +157,9 @@ CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
   // samples, chords there would cut through that shape: add samples in every
   // pose, spread evenly over each pose's own stretch.
   const std::size_t M = out.at[0].size();
+  double longest = 0;
+  for (double p : perimeter) longest = std::max(longest, p);
+  const double dense_spacing = std::max(spacing, longest / double(kMaxMatchedSamples));
   std::vector<std::vector<double>> dense(N);
   std::vector<std::size_t> dense_landmarks;
   std::size_t next_landmark = 0;
@@ -167,7 +176,7 @@ CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
       while (to[i] < from[i]) to[i] += perimeter[i];
       gap = std::max(gap, to[i] - from[i]);
     }
-    const std::size_t pieces = std::max<std::size_t>(1, std::size_t(std::ceil(gap / (1.5 * prm.spacing))));
+    const std::size_t pieces = std::max<std::size_t>(1, std::size_t(std::ceil(gap / (1.5 * dense_spacing))));
     for (std::size_t p = 0; p < pieces; ++p)
       for (std::size_t i = 0; i < N; ++i) dense[i].push_back(from[i] + (to[i] - from[i]) * double(p) / double(pieces));
   }

@@ -65,7 +65,8 @@ Point BoundaryMidpoint(const Point& a, const Point& b) {
 
 class Refiner {
  public:
-  explicit Refiner(CompatibleMesh& m) : m_(m), boundary_(m.vertices[0].size(), false) {
+  Refiner(CompatibleMesh& m, std::size_t max_vertices)
+      : m_(m), boundary_(m.vertices[0].size(), false), max_vertices_(max_vertices) {
     // Boundary = vertices on edges used by one triangle.
     EdgeMap em(m.triangles);
     for (const auto& [key, ts] : em.at)
@@ -116,7 +117,10 @@ class Refiner {
   }
 
   // Splits every edge longer than max_length (longest first), until none is.
-  void SplitLong(double max_length) {
+  bool Full() const { return m_.vertices[0].size() >= max_vertices_; }
+
+  // False when the vertex budget ran out first.
+  bool SplitLong(double max_length) {
     for (int pass = 0; pass < 64; ++pass) {
       EdgeMap em(m_.triangles);
       std::vector<std::pair<double, std::uint64_t>> longs;
@@ -125,7 +129,7 @@ class Refiner {
         const double l = Length(key >> 32, key & 0xffffffffu);
         if (l > max_length) longs.emplace_back(-l, key);
       }
-      if (longs.empty()) return;
+      if (longs.empty()) return true;
       std::sort(longs.begin(), longs.end());
       std::vector<bool> touched(m_.triangles.size(), false);
       for (const auto& [neg, key] : longs) {
@@ -134,9 +138,11 @@ class Refiner {
         if ((ts[0] != EdgeMap::kNone && touched[ts[0]]) || (ts[1] != EdgeMap::kNone && touched[ts[1]])) continue;
         for (std::size_t t : ts)
           if (t != EdgeMap::kNone) touched[t] = true;
+        if (Full()) return false;
         SplitEdge(key >> 32, key & 0xffffffffu, em);
       }
     }
+    return true;
   }
 
   int Flip() {
@@ -257,6 +263,7 @@ class Refiner {
       for (int e = 1; e < 3; ++e)
         if (Length(tri[e], tri[(e + 1) % 3]) > Length(a, b)) a = tri[e], b = tri[(e + 1) % 3];
       if (Length(a, b) < min_length) continue;
+      if (Full()) break;
       const auto& ts = em.at.at(Key(a, b));
       if ((ts[0] != EdgeMap::kNone && touched[ts[0]]) || (ts[1] != EdgeMap::kNone && touched[ts[1]])) continue;
       for (std::size_t u : ts)
@@ -269,13 +276,15 @@ class Refiner {
  private:
   CompatibleMesh& m_;
   std::vector<bool> boundary_;
+  std::size_t max_vertices_;
 };
 
 }  // namespace
 
-void RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& prm) {
-  Refiner r(mesh);
-  if (prm.max_edge_length > 0) r.SplitLong(prm.max_edge_length);
+bool RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& prm) {
+  Refiner r(mesh, prm.max_vertices);
+  const bool within_budget = prm.max_edge_length > 0 ? r.SplitLong(prm.max_edge_length) : true;
+  if (!within_budget) return false;
   r.Flip();
   r.Smooth(24);
   r.Flip();
@@ -288,6 +297,7 @@ void RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& prm) {
     r.Smooth(24);
     r.Flip();
   }
+  return true;
 }
 
 double MinAngleDegrees(const CompatibleMesh& mesh) {

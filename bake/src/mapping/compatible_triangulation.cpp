@@ -10,7 +10,9 @@
 // Stages II and III share one computation: the Steiner count of a pair is the
 // largest over poses of its link distance minus one.
 #include <algorithm>
+#include <cstdint>
 #include <limits>
+#include <string>
 
 #include "geometry.h"
 #include "posemorph/bake/error.h"
@@ -19,6 +21,22 @@ namespace posemorph::bake::mapping {
 namespace {
 
 using Piece = std::vector<std::size_t>;  // global vertex ids, counter-clockwise
+
+// The triangulation's work, counted in elementary steps (a segment test, a
+// relaxation) as it goes: intricate boundaries in very different poses could
+// otherwise take hours (Floyd-Warshall is cubic in the candidate points).
+// Past the budget the bake stops with a message instead.
+struct Work {
+  std::uint64_t used = 0;
+  const std::string* what = nullptr;
+  void Spend(std::uint64_t steps) {
+    used += steps;
+    if (used > kMaxTriangulationWork)
+      throw BakeError("", *what + ": the boundaries are too intricate to triangulate compatibly within the bake's "
+                                  "limit of " + std::to_string(kMaxTriangulationWork) +
+                                  " steps; raise mapping.simplify_tolerance or add landmarks where the poses differ");
+  }
+};
 
 struct View {  // one pose's positions of one piece
   Polygon p;
@@ -63,7 +81,7 @@ bool PointsSeeEachOther(const View& v, const Point& c, const Point& d) {
 // Interior candidates for Steiner points: centroids of an ear-clipping
 // triangulation of this pose's piece and midpoints of its diagonals, so any
 // two vertices are joined through them along the triangulation's dual tree.
-std::vector<Point> Candidates(const View& v) {
+std::vector<Point> Candidates(const View& v, Work& work) {
   std::vector<std::size_t> idx(v.n());
   for (std::size_t k = 0; k < v.n(); ++k) idx[k] = k;
   std::vector<Point> out;
@@ -73,6 +91,7 @@ std::vector<Point> Candidates(const View& v) {
       const std::size_t m = idx.size();
       const std::size_t a = idx[(k + m - 1) % m], b = idx[k], c = idx[(k + 1) % m];
       if (Cross(v.p[a], v.p[b], v.p[c]) <= 0) continue;
+      work.Spend(2 * m);
       View rest;
       for (std::size_t i : idx) rest.p.push_back(v.p[i]);
       if (!IsDiagonal(rest, (k + m - 1) % m, (k + 1) % m)) continue;
@@ -113,11 +132,12 @@ struct LinkPaths {  // one pose's shortest link paths between piece vertices thr
   std::vector<int> dist, next;    // c x c Floyd-Warshall over candidates
 };
 
-LinkPaths ComputeLinkPaths(const View& v) {
+LinkPaths ComputeLinkPaths(const View& v, Work& work) {
   LinkPaths lp;
   const std::size_t n = v.n();
-  lp.cand = Candidates(v);
+  lp.cand = Candidates(v, work);
   const std::size_t c = lp.cand.size();
+  work.Spend(std::uint64_t(c) * c * (n + c) + std::uint64_t(n) * c * n);  // visibility, Floyd-Warshall, sight lines
   lp.dist.assign(c * c, kUnreachable);
   lp.next.assign(c * c, -1);
   for (std::size_t i = 0; i < c; ++i) {
@@ -148,8 +168,10 @@ LinkPaths ComputeLinkPaths(const View& v) {
         continue;
       }
       int best = kUnreachable;
+      work.Spend(n + c);
       for (std::size_t i = 0; i < c; ++i) {
         if (!sees[a * c + i]) continue;
+        work.Spend(c);
         for (std::size_t j = 0; j < c; ++j) {
           if (!sees[b * c + j] || lp.dist[i * c + j] >= best - 1) continue;
           best = lp.dist[i * c + j] + 1;
@@ -166,6 +188,8 @@ LinkPaths ComputeLinkPaths(const View& v) {
 CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const std::string& what,
                                      std::size_t max_steiner_points) {
   const std::size_t N = polygons.size(), n0 = polygons[0].size();
+  Work work;
+  work.what = &what;
   CompatibleMesh mesh;
   mesh.vertices = polygons;
   mesh.boundary_vertices = n0;
@@ -188,6 +212,7 @@ CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const
     }
 
     // Stage I: chords visible in every pose, balanced ones first, then short ones.
+    work.Spend(std::uint64_t(n) * n * N);
     std::vector<std::tuple<bool, int, double, std::size_t, std::size_t>> pairs;
     for (std::size_t a = 0; a < n; ++a)
       for (std::size_t b = a + 2; b < n; ++b) {
@@ -203,7 +228,10 @@ CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const
     for (const auto& [sliver, bucket, length, a, b] : pairs) {
       (void)sliver, (void)bucket, (void)length;
       bool all = true;
-      for (std::size_t i = 0; i < N && all; ++i) all = IsDiagonal(views[i], a, b);
+      for (std::size_t i = 0; i < N && all; ++i) {
+        work.Spend(n);
+        all = IsDiagonal(views[i], a, b);
+      }
       if (all) {
         A = a, B = b, found = true;
         break;
@@ -213,7 +241,7 @@ CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const
     if (!found) {
       // Stages II and III.
       std::vector<LinkPaths> lp(N);
-      for (std::size_t i = 0; i < N; ++i) lp[i] = ComputeLinkPaths(views[i]);
+      for (std::size_t i = 0; i < N; ++i) lp[i] = ComputeLinkPaths(views[i], work);
       std::vector<std::tuple<int, bool, std::size_t, std::size_t, std::size_t>> options;  // k, sliver, -balance, a, b
       for (std::size_t a = 0; a < n; ++a)
         for (std::size_t b = a + 2; b < n; ++b) {
@@ -226,6 +254,7 @@ CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const
       std::sort(options.begin(), options.end());
       for (const auto& [k, sliver, unbalance, a, b] : options) {
         (void)sliver, (void)unbalance;
+        work.Spend(std::uint64_t(N) * (n + std::size_t(k)) * 8);  // paths, both halves checked simple
         if (mesh.steiner_points + std::size_t(k) > max_steiner_points) {
           throw BakeError("", what + ": the drawings cannot be triangulated compatibly with at most " +
                                   std::to_string(max_steiner_points) + " Steiner points (mapping.max_steiner_points)");

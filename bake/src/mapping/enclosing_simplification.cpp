@@ -22,8 +22,10 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+class OutlineEdges;
 struct PoseState {
   const Polygon* outline = nullptr;
+  const OutlineEdges* edges = nullptr;
   std::vector<double> cumulative;  // arc length at each outline vertex (size n + 1)
   double perimeter = 0;
   std::vector<double> at;          // per corresponding point, unwrapped arc length
@@ -87,15 +89,64 @@ bool HitsPolygon(const PoseState& st, const Linked& L, std::size_t u, std::size_
   return false;
 }
 
-bool CrossesOutline(const Polygon& outline, const Point& p, const Point& q) {
-  const Point lo = p.cwiseMin(q), hi = p.cwiseMax(q);
-  for (std::size_t i = 0, n = outline.size(); i < n; ++i) {
-    const Point &c = outline[i], &d = outline[(i + 1) % n];
-    if (OutsideBox(lo, hi, c, d)) continue;
-    if (ProperlyCross(p, q, c, d)) return true;
+// The outline's edges in a hierarchy of consecutive runs, each with its
+// bounding box (runs of 16 edges, runs of 16 runs, ...): a segment is tested
+// exactly only against the edges of runs whose boxes it meets, so long
+// outlines cost about log(n) boxes and a few edges per test instead of n.
+class OutlineEdges {
+ public:
+  explicit OutlineEdges(const Polygon& outline) : o_(&outline) {
+    const std::size_t n = outline.size();
+    std::vector<Box> level((n + kFan - 1) / kFan);
+    for (std::size_t i = 0; i < n; ++i) {
+      Box& b = level[i / kFan];
+      const Point &c = outline[i], &d = outline[(i + 1) % n];
+      b.lo = b.lo.cwiseMin(c.cwiseMin(d)), b.hi = b.hi.cwiseMax(c.cwiseMax(d));
+    }
+    levels_.push_back(std::move(level));
+    while (levels_.back().size() > 1) {
+      const std::vector<Box>& below = levels_.back();
+      std::vector<Box> up((below.size() + kFan - 1) / kFan);
+      for (std::size_t k = 0; k < below.size(); ++k) {
+        Box& b = up[k / kFan];
+        b.lo = b.lo.cwiseMin(below[k].lo), b.hi = b.hi.cwiseMax(below[k].hi);
+      }
+      levels_.push_back(std::move(up));
+    }
   }
-  return false;
-}
+
+  // The open segment p-q properly crosses an outline edge.
+  bool Crosses(const Point& p, const Point& q) const {
+    if (o_->empty()) return false;
+    return Visit(levels_.size() - 1, 0, p, q, p.cwiseMin(q), p.cwiseMax(q));
+  }
+
+ private:
+  static constexpr std::size_t kFan = 16;
+  struct Box {
+    Point lo{kInf, kInf}, hi{-kInf, -kInf};
+  };
+
+  bool Visit(std::size_t level, std::size_t k, const Point& p, const Point& q, const Point& lo, const Point& hi) const {
+    const Box& b = levels_[level][k];
+    if (b.hi.x() < lo.x() || b.lo.x() > hi.x() || b.hi.y() < lo.y() || b.lo.y() > hi.y()) return false;
+    if (level == 0) {
+      const std::size_t n = o_->size();
+      for (std::size_t i = k * kFan; i < std::min(n, (k + 1) * kFan); ++i) {
+        const Point &c = (*o_)[i], &d = (*o_)[(i + 1) % n];
+        if (!OutsideBox(lo, hi, c, d) && ProperlyCross(p, q, c, d)) return true;
+      }
+      return false;
+    }
+    const std::size_t below = levels_[level - 1].size();
+    for (std::size_t c = k * kFan; c < std::min(below, (k + 1) * kFan); ++c)
+      if (Visit(level - 1, c, p, q, lo, hi)) return true;
+    return false;
+  }
+
+  const Polygon* o_;
+  std::vector<std::vector<Box>> levels_;
+};
 
 // Every outline vertex between the edge's ends is on its inner side (or on it).
 bool SpanInside(const PoseState& st, std::size_t a, std::size_t b, const Point& pa, const Point& pb) {
@@ -137,6 +188,8 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
                                      double tolerance) {
   const std::size_t N = outlines.size(), M = boundary.points[0].size();
   std::vector<PoseState> st(N);
+  std::vector<OutlineEdges> edges;  // per pose; reserved so the pointers to them stay valid
+  edges.reserve(N);
   std::vector<bool> landmark(M, false);
   for (std::size_t k : boundary.landmarks) landmark[k] = true;
 
@@ -144,6 +197,8 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
   for (std::size_t i = 0; i < N; ++i) {
     PoseState& s = st[i];
     s.outline = &outlines[i];
+    edges.emplace_back(outlines[i]);
+    s.edges = &edges.back();
     s.cumulative = CumulativeArcLength(outlines[i]);
     s.perimeter = s.cumulative.back();
     s.at = boundary.at[i];
@@ -170,7 +225,7 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
       bool all_ok = true;
       for (std::size_t e = 0; e < M; ++e) {
         const std::size_t f = (e + 1) % M;
-        if (!SpanInside(s, e, f, s.pos[e], s.pos[f]) || CrossesOutline(outlines[i], s.pos[e], s.pos[f])) {
+        if (!SpanInside(s, e, f, s.pos[e], s.pos[f]) || s.edges->Crosses(s.pos[e], s.pos[f])) {
           offset[e] = offset[e] * 1.5 + 2.0;
           all_ok = false;
         }
@@ -262,8 +317,8 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
       const bool moved_a = A != s.pos[a], moved_b = B != s.pos[b];
       if (moved_a && !SpanInside(s, pa, a, s.pos[pa], A)) return false;
       if (moved_b && !SpanInside(s, b, nb, B, s.pos[nb])) return false;
-      if (CrossesOutline(*s.outline, A, B) || (moved_a && CrossesOutline(*s.outline, s.pos[pa], A)) ||
-          (moved_b && CrossesOutline(*s.outline, B, s.pos[nb])))
+      if (s.edges->Crosses(A, B) || (moved_a && s.edges->Crosses(s.pos[pa], A)) ||
+          (moved_b && s.edges->Crosses(B, s.pos[nb])))
         return false;
       // Test the new edges against the polygon as it would be.
       const Point old_a = s.pos[a], old_b = s.pos[b];

@@ -73,8 +73,18 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines, const std::v
     for (const Point& p : rig_outlines[k]) extent = std::max(extent, p.cwiseAbs().maxCoeff());
     for (const Point& p : rig_landmarks[k]) extent = std::max(extent, p.cwiseAbs().maxCoeff());
   }
+  if (!(extent <= 1e9))
+    throw BakeError(file, "an outline or landmark lies beyond +-1e9 drawing units (" + Format(extent) + ")");
   const Grid grid = Grid::For(extent);
   st.grid_scale = grid.scale;
+  for (std::size_t k = 0; k < N; ++k) {
+    if (rig_outlines[k].size() > kMaxOutlinePoints)
+      fail(k, "the outline has " + std::to_string(rig_outlines[k].size()) + " points, more than the limit of " +
+                  std::to_string(kMaxOutlinePoints));
+    if (rig_landmarks[k].size() > kMaxLandmarks)
+      fail(k, "gives " + std::to_string(rig_landmarks[k].size()) + " landmarks, more than the limit of " +
+                  std::to_string(kMaxLandmarks));
+  }
   for (std::size_t k = 0; k < N; ++k) {
     Polygon g;
     for (const Point& p : rig_outlines[k]) g.push_back(grid.ToGrid(p));
@@ -126,9 +136,19 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines, const std::v
   MatchingParameters mp;
   mp.spacing = prm.spacing * grid.scale;
   st.matched = MatchBoundaries(st.outlines, st.landmarks, mp);
+  if (st.matched.spacing > mp.spacing)
+    st.warnings.push_back(labels[0] + ": the outline is " + Format(CumulativeArcLength(st.outlines[0]).back() / grid.scale) +
+                          " long; it is matched at a spacing of " + Format(st.matched.spacing / grid.scale) +
+                          " instead of mapping.spacing " + Format(prm.spacing) + " (at most " +
+                          std::to_string(kMaxMatchedSamples) + " samples)");
   try {
     st.simplified = SimplifyEnclosing(st.outlines, st.matched, prm.simplify_tolerance * grid.scale);
   } catch (const BakeError& e) {
+    if (st.matched.spacing > mp.spacing)
+      throw BakeError(file, std::string(e.what()) + " (the outlines are matched at a spacing of " +
+                                Format(st.matched.spacing / grid.scale) + ", coarser than mapping.spacing, because " +
+                                labels[0] + "'s outline is longer than " + std::to_string(kMaxMatchedSamples) +
+                                " samples allow)");
     throw BakeError(file, e.what());
   }
   for (std::size_t k = 0; k < N; ++k) {
@@ -149,7 +169,12 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines, const std::v
   RefinementParameters rp;
   rp.max_edge_length = (prm.max_edge_length > 0 ? prm.max_edge_length : box0.diagonal().norm() / 10) * grid.scale;
   rp.min_angle_goal = prm.min_angle;
-  RefineCompatibly(st.mesh, rp);
+  rp.max_vertices = std::size_t(prm.max_vertices);
+  if (!RefineCompatibly(st.mesh, rp))
+    throw BakeError(file, "mapping.max_edge_length " + Format(rp.max_edge_length / grid.scale) +
+                              " needs more than mapping.max_vertices " + std::to_string(prm.max_vertices) +
+                              " mesh vertices; give a longer max_edge_length (0: a tenth of the shape's size) or a "
+                              "larger max_vertices");
   return st;
 }
 
@@ -203,6 +228,10 @@ void MapDrawings(RigDescription& rig) {
     }
     if (d.from_drawing)
       for (const Point& p : pose.landmarks) d.landmarks.push_back({p.x(), -p.y()});
+    if (raw.size() > mapping::kMaxOutlinePoints)
+      fail(d, (d.from_drawing ? pose.drawing_path + ": " : std::string()) + "the outline has " +
+                  std::to_string(raw.size()) + " points, more than the limit of " +
+                  std::to_string(mapping::kMaxOutlinePoints));
     d.outline = std::move(raw);
     report.outline_vertices.push_back(d.outline.size());
   }
@@ -216,6 +245,7 @@ void MapDrawings(RigDescription& rig) {
     labels.push_back("pose '" + rig.poses[d.index].name + "' (index " + std::to_string(d.index) + ")");
   }
   const mapping::MappingStages st = mapping::MapPolygons(outlines, landmarks, prm, labels, rig.file);
+  for (const std::string& w : st.warnings) report.warnings.push_back(rig.file + ": " + w);
   const mapping::CompatibleMesh& mesh = st.mesh;
   const mapping::Grid grid{st.grid_scale};
   report.matched_vertices = st.matched.points[0].size();

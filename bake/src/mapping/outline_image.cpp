@@ -155,6 +155,9 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
       if (crossings == 0) continue;
       if (crossings != 2) throw BakeError(file, "internal: ambiguous marching-squares cell");
       next[leave] = enter;
+      if (next.size() > kMaxTracedBorder)
+        throw BakeError(file, "the shape's border crosses more than " + std::to_string(kMaxTracedBorder) +
+                                  " pixel edges (the limit; its outline would be too intricate to map)");
     }
 
   // Follow every loop; the outer border is the one enclosing the most area.
@@ -178,11 +181,11 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
   return result;
 }
 
-std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height) {
+static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char>& file, const std::string& path, int* width,
+                                                 int* height) {
   png_image image;
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;
-  const std::vector<unsigned char> file = ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing");
   if (!png_image_begin_read_from_memory(&image, file.data(), file.size()))
     throw BakeError(path, std::string("cannot read PNG: ") + image.message);
   image.format = PNG_FORMAT_GA;  // grey + alpha: only the alpha is used
@@ -208,10 +211,20 @@ std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int
   return alpha;
 }
 
+std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height) {
+  return DecodePngAlpha(ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing"), path, width, height);
+}
+
 ImageOutline OutlineFromPng(const std::string& path, double threshold) {
   int width = 0, height = 0;
   const std::vector<unsigned char> alpha = ReadPngAlpha(path, &width, &height);
   return OutlineFromAlpha(alpha, width, height, threshold, path);
+}
+
+ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double threshold, const std::string& file) {
+  int width = 0, height = 0;
+  const std::vector<unsigned char> alpha = DecodePngAlpha(png, file, &width, &height);
+  return OutlineFromAlpha(alpha, width, height, threshold, file);
 }
 
 }  // namespace posemorph::bake::mapping

@@ -4,6 +4,7 @@
 #include <tinyxml2.h>
 
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -65,6 +66,12 @@ Polygon Deduplicated(Polygon p) {
     if (out.empty() || (q - out.back()).norm() > 0) out.push_back(q);
   while (out.size() > 1 && out.front() == out.back()) out.pop_back();
   return out;
+}
+
+std::string FormatNumber(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", v);
+  return text;
 }
 
 double Length(const char* text) {  // "120", "120px"
@@ -155,6 +162,10 @@ Polygon FlattenSvgPath(const std::string& d, double tol, const std::string& file
         throw BakeError(file, std::string("path data: unknown command '") + cmd + "'");
     }
     previous = cmd;
+    if (out.size() > kMaxOutlinePoints)
+      throw BakeError(file, "the path flattens to more than " + std::to_string(kMaxOutlinePoints) +
+                                " outline points (the limit; mapping.curve_tolerance " + FormatNumber(tol) +
+                                " sets how finely curves are cut)");
     if (up == 'Z') {
       s.SkipSeparators();
       if (s.i < d.size()) break;  // only the first closed subpath

@@ -57,6 +57,7 @@ struct MappingParameters {
   double spacing = 1.0;             // drawing units between matched boundary samples
   double landmark_distance = 0.05;  // a landmark may lie this far off its outline, times the outline's size
   int max_steiner_points = 100;     // interior points the compatible triangulation may add
+  int max_vertices = 20000;         // refinement's vertex budget (mesh vertices in all)
 };
 
 // What mapping made, for the bake report and the closing figures.

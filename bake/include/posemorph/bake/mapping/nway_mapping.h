@@ -10,6 +10,7 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,8 @@ struct ImageOutline {
 // the outline traced where alpha crosses the threshold (marching squares,
 // sub-pixel). Throws BakeError naming the file.
 ImageOutline OutlineFromPng(const std::string& path, double alpha_threshold);
+// The same from a PNG already in memory (`file` names it in messages).
+ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double alpha_threshold, const std::string& file);
 // The alpha channel of a PNG (any colour type), row by row. Throws BakeError naming the file.
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height);
 ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width, int height,
@@ -68,6 +71,23 @@ bool Encloses(const Polygon& outer, const Polygon& inner);
 
 // --- Correspondence ---------------------------------------------------------
 
+// Bounds on the matching's work, whatever the drawing: pose 0's outline gets
+// at most kMaxMatchedSamples samples between landmarks (the spacing grows on
+// long outlines), so one span's dynamic programme holds at most
+// (kMaxMatchedSamples + 1)^2 one-byte steps (67 MB) and two rows of costs;
+// the samples added where another pose stretches are bounded the same way
+// against that pose's perimeter. Landmarks: at most kMaxLandmarks per pose.
+constexpr std::size_t kMaxMatchedSamples = 8192;
+// Outline points per pose, as traced, flattened or given (a 4096-pixel disc
+// traces to about 23,000); the exact checks on outlines are at worst quadratic.
+constexpr std::size_t kMaxOutlinePoints = 100000;
+// A traced PNG border, before collinear points are dropped: bounds the
+// tracer's memory on any drawing the pixel limit admits.
+constexpr std::size_t kMaxTracedBorder = 1000000;
+// The compatible triangulation's work in elementary steps (segment tests,
+// Floyd-Warshall relaxations), a few seconds at most.
+constexpr std::uint64_t kMaxTriangulationWork = std::uint64_t(4) << 30;
+constexpr std::size_t kMaxLandmarks = 512;
 struct MatchingParameters {
   double spacing = 1.0;          // arc length between samples on pose 0's outline
   double stretch_cost = 0.05;    // per unmatched step, against bending differences in radians
@@ -77,6 +97,7 @@ struct CorrespondedBoundary {
   std::vector<Polygon> points;              // per pose, M corresponding points on its outline
   std::vector<std::vector<double>> at;      // per pose, their arc-length positions (from the outline's vertex 0)
   std::vector<std::size_t> landmarks;       // index of each landmark among the M points
+  double spacing = 0;                       // the spacing used: parameters.spacing, or more on long outlines
 };
 // outlines: CCW; landmarks[i][k]: the k-th user point of pose i (the first is
 // the start point), already on outline i. Pose 0 is the parameter domain.
@@ -122,12 +143,15 @@ struct RefinementParameters {
   double max_edge_length = 0;   // 0: no splitting for length
   double min_angle_goal = 20;   // degrees; triangles below it get their longest edge split (bounded)
   int rounds = 4;
+  std::size_t max_vertices = 20000;  // no split beyond this many vertices
 };
 // Edge splits, flips legal in all N meshes that raise the smallest angle over
 // all poses, and angle-based smoothing of interior vertices that never
 // inverts a triangle or lowers the local smallest angle. Boundary vertices
 // stay where they are (only new points on boundary edges are added).
-void RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& parameters);
+// Stops splitting at parameters.max_vertices; returns false when splitting
+// for max_edge_length stopped there (the edges are then longer than asked).
+bool RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& parameters);
 
 double MinAngleDegrees(const CompatibleMesh& mesh);  // over all triangles and poses
 
@@ -140,6 +164,7 @@ struct MappingStages {
   CorrespondedBoundary matched;
   SimplifiedBoundary simplified;
   CompatibleMesh mesh;                          // grid
+  std::vector<std::string> warnings;            // limits that changed what was asked (e.g. a coarser spacing)
 };
 // Outlines and landmarks in rig coordinates (y up, any orientation); labels
 // name each pose in messages. The driver behind MapDrawings, exposed so
