@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
+#include "posemorph/bake/stage.h"
 #include "test_support.h"
 
 using namespace posemorph;
@@ -231,6 +232,39 @@ TEST_CASE("rig files that are not rigs") {
   const Result r = Run({"info", (dir.path / "fake.pmrig").string()});
   CHECK(r.err.find("fake.pmrig: not a valid rig (truncated)") != std::string::npos);
   CHECK_FALSE(fs::exists(dir.path / "s.svg"));
+}
+
+TEST_CASE("descriptions beyond the rig format's limits are refused by name, not baked into a rig that does not load") {
+  json j = ValidDescription();
+  j["poses"][0]["name"] = std::string(600000, 'a');
+  j["poses"][1]["name"] = std::string(500000, 'b');
+  ExpectFailure(j.dump(), "pose names, image references and path names take 1100016 bytes, more than the rig format's "
+                          "limit of 1048576 (the longest, pose '");
+  j = ValidDescription();
+  j["paths"] = json::array();
+  for (int k = 0; k < 1025; ++k) j["paths"].push_back({{"name", "p" + std::to_string(k)}, {"keys", {{0, 0, 0}}}});
+  ExpectFailure(j.dump(), "paths: 1025 paths, more than the rig format's limit of 1024");
+  j = ValidDescription();
+  json keys = json::array();
+  for (int k = 0; k < (1 << 20) + 1; ++k) keys.push_back({k, 0, 0});
+  j["paths"] = {{{"name", "long"}, {"keys", keys}}};
+  ExpectFailure(j.dump(), "paths: 1048577 keys in all, more than the rig format's limit of 1048576");
+}
+
+TEST_CASE("a failure without context of its own names the bake stage it happened in") {
+  try {
+    bake::BakeStage outer("mapping the drawings");
+    {
+      bake::BakeStage inner("tracing a.png");
+      CHECK(std::string(bake::CurrentBakeStage()) == "tracing a.png");
+    }
+    CHECK(std::string(bake::CurrentBakeStage()) == "mapping the drawings");
+    bake::BakeStage failing("solving the pose-space weights");
+    throw std::bad_alloc();
+  } catch (const std::bad_alloc&) {
+    // Left by the exception: the stage it happened in is still named.
+    CHECK(std::string(bake::CurrentBakeStage()) == "solving the pose-space weights");
+  }
 }
 
 TEST_CASE("usage errors exit with status 2") {

@@ -14,6 +14,7 @@
 
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/stage.h"
 #include "posemorph/bake/input_file.h"
 #include "posemorph/path.h"
 #include "posemorph/rig.h"
@@ -136,6 +137,7 @@ int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out,
     output += ".pmrig";
   }
   CheckOutputPath(output, {args.positional});
+  BakeStage reading("reading the rig description");
   RigDescription rig = ReadRigDescription(args.positional);
   if (const std::string* p = args.Get("--precision")) {
     if (*p != "compact" && *p != "exact") throw UsageError("--precision must be compact or exact");
@@ -148,6 +150,7 @@ int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out,
   }
   BakeReport report;
   const std::vector<unsigned char> bytes = BakeRig(rig, &report);
+  BakeStage writing("writing the output");
   WriteFileAtomic(output, bytes);
   out << "baked " << args.positional << " -> " << output << ": " << report.vertices << " vertices, " << report.triangles
       << " triangles, " << report.poses << " poses, " << report.paths << " paths, " << report.bytes << " bytes, "
@@ -425,7 +428,14 @@ std::string InputOf(const std::vector<std::string>& a) {
 }  // namespace
 
 int RunBakeCommand(const std::vector<std::string>& a, std::ostream& out, std::ostream& err) {
+  // Where a failure without context of its own happened (out of memory, an
+  // unexpected exception): the bake stage, or the command.
+  auto where = [&]() {
+    const std::string stage = CurrentBakeStage();
+    return stage.empty() ? std::string() : " while " + stage;
+  };
   try {
+    BakeStage command("running the command");
     if (a.empty()) throw UsageError("no command given");
     const std::string& cmd = a[0];
     if (cmd == "-h" || cmd == "--help" || cmd == "help") {
@@ -439,16 +449,20 @@ int RunBakeCommand(const std::vector<std::string>& a, std::ostream& out, std::os
     if (cmd == "bake") return Bake(a, 1, out, err);
     return Bake(a, 0, out, err);
   } catch (const UsageError& e) {
-    err << "posemorph-bake: " << Printable(e.what()) << "\n" << kUsage;
+    // One line naming the problem; the whole usage only when nothing was given.
+    if (a.empty()) err << kUsage;
+    else err << "posemorph-bake: " << Printable(e.what()) << " (posemorph-bake --help lists the commands and options)\n";
     return 2;
   } catch (const BakeError& e) {
     err << "posemorph-bake: error: " << Printable(e.what()) << "\n";
     return 1;
   } catch (const std::bad_alloc&) {
-    err << "posemorph-bake: error: " << Printable(InputOf(a)) << ": out of memory (the input asks for more than this machine has)\n";
+    err << "posemorph-bake: error: " << Printable(InputOf(a)) << ": out of memory" << where()
+        << " (the input asks for more than this machine has)\n";
     return 1;
   } catch (const std::exception& e) {
-    err << "posemorph-bake: error: " << Printable(InputOf(a)) << ": internal error: " << Printable(e.what()) << "\n";
+    err << "posemorph-bake: error: " << Printable(InputOf(a)) << ": internal error" << where() << ": "
+        << Printable(e.what()) << "\n";
     return 1;
   }
 }

@@ -3,7 +3,9 @@
 
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "posemorph/bake/error.h"
 
@@ -20,11 +22,12 @@ ArapSystem BuildArapSystem(const Points& rest, const Triangles& triangles, const
   D << 1, 0, -1, 0, 1, -1;
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(9 * triangles.size());
-  double total_area = 0;
+  double total_area = 0, smallest_area = HUGE_VAL, largest_area = 0;
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const auto& tri = triangles[t];
     const Eigen::Matrix2d E = EdgeMatrix(rest, tri);
     const double area = 0.5 * E.determinant();
+    smallest_area = std::min(smallest_area, area), largest_area = std::max(largest_area, area);
     // Row d of J_t(x) is (G x^d)^T with G = E^-T D, so the energy term is
     // area ||G x^d - a_d||^2: K gets area G^T G, the right-hand side area G^T a_d.
     const Eigen::Matrix<double, 2, 3> G = E.inverse().transpose() * D;
@@ -61,11 +64,23 @@ ArapSystem BuildArapSystem(const Points& rest, const Triangles& triangles, const
   Kp.setFromTriplets(permuted.begin(), permuted.end());
 
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt(Kp);
-  if (ldlt.info() != Eigen::Success) throw BakeError(file, "the ARAP system could not be factored");
+  // A failure here means the rest pose's triangles are beyond what double
+  // precision resolves (validation refuses zero, negative and non-finite
+  // areas): say so with the areas, not the solver's symptom.
+  auto precision_problem = [&](const std::string& symptom) {
+    std::ostringstream s;
+    s << "pose 0's mesh cannot be solved as-rigidly-as-possible (" << symptom
+      << "): its triangle areas range from " << smallest_area << " to " << largest_area
+      << "; triangles this thin or this unequal are beyond double precision (rescale the mesh or remove slivers)";
+    return BakeError(file, s.str());
+  };
+  if (ldlt.info() != Eigen::Success) throw precision_problem("the factorisation failed");
   const Eigen::VectorXd d = ldlt.vectorD();
   for (std::size_t k = 0; k < n; ++k) {
     if (!(d[k] > 0) || !std::isfinite(d[k]))
-      throw BakeError(file, "the ARAP system is not positive definite (pivot " + std::to_string(k) + " is " + std::to_string(d[k]) + ")");
+      throw precision_problem("pivot " + std::to_string(k) + " of " + std::to_string(n) + " for vertex " +
+                              std::to_string(sys.order[k] + 1) + " is " + std::to_string(d[k]) +
+                              ", not positive");
     sys.inv_diagonal.push_back(1.0 / d[k]);
   }
   Eigen::SparseMatrix<double> L = ldlt.matrixL();

@@ -11,6 +11,7 @@
 
 #include "posemorph/bake/arap_system.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/stage.h"
 #include "posemorph/bake/pose_space_weights.h"
 #include "posemorph/bake/triangle_math.h"
 #include "posemorph/jobs.h"
@@ -66,13 +67,18 @@ std::vector<unsigned char> Bytes(const T& value) {
 
 std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
   const auto start = std::chrono::steady_clock::now();
-  ResolveDeformedPoses(rig);
+  {
+    BakeStage stage("mapping the drawings and deforming poses");
+    ResolveDeformedPoses(rig);
+  }
+  BakeStage stage("validating the rig");
   ValidateRigDescription(rig);
   const std::size_t V = rig.poses[0].vertices.size(), T = rig.triangles.size(), N = rig.poses.size();
   const Points& rest = rig.poses[0].vertices;
 
   std::vector<double> angles, shears;
   AnalysePoses(rig, angles, shears);
+  BakeStage arap_stage("building and factoring the ARAP system");
   const ArapSystem sys = BuildArapSystem(rest, rig.triangles, rig.file);
 
   std::vector<Eigen::Vector2d> points;
@@ -81,7 +87,9 @@ std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
     points.push_back(p.point);
     names.push_back(p.name);
   }
+  BakeStage weights_stage("solving the pose-space weights");
   const WeightGrid grid = SolvePoseSpaceWeights(points, names, rig.parameters, rig.file);
+  BakeStage write_stage("writing and encoding the rig");
 
   Eigen::AlignedBox2d box;
   for (const auto& v : rest) box.extend(v);
@@ -187,6 +195,7 @@ std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
 
   // Check what we wrote with the runtime that will read it: it loads, and
   // evaluating at each pose point gives that pose back.
+  BakeStage check_stage("checking the baked rig");
   Rig loaded;
   Error err;
   if (!LoadRig(bytes.data(), bytes.size(), &loaded, &err))

@@ -5,6 +5,7 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/triangle_math.h"
@@ -143,11 +144,21 @@ WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, con
   kkt.makeCompressed();
   Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
   lu.compute(kkt);
-  if (lu.info() != Eigen::Success) throw BakeError(file, "the pose-space weight system is singular: " + lu.lastErrorMessage());
+  // The grid and constraint checks above leave a solvable system; a failure
+  // here is a layout beyond the grid's precision: say which layout.
+  auto layout_problem = [&](const std::string& symptom) {
+    std::ostringstream s;
+    s << "the pose-space weights cannot be solved for these pose points (" << symptom << "): "
+      << N << " points on a " << g.cells_x << " x " << g.cells_y << " grid of cell size " << g.cell
+      << "; move points that nearly coincide apart, or change bake.grid_resolution (now " << params.grid_resolution
+      << ")";
+    return BakeError(file, s.str());
+  };
+  if (lu.info() != Eigen::Success) throw layout_problem("the solver reports: " + lu.lastErrorMessage());
   Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(G + N, N);
   for (std::size_t i = 0; i < N; ++i) rhs(G + i, i) = 1;
   const Eigen::MatrixXd solution = lu.solve(rhs);
-  if (lu.info() != Eigen::Success || !solution.allFinite()) throw BakeError(file, "the pose-space weight solve failed");
+  if (lu.info() != Eigen::Success || !solution.allFinite()) throw layout_problem("the solve gave non-finite weights");
 
   std::vector<double> all(G * N);  // corners, then centres
   for (std::size_t v = 0; v < G; ++v) {

@@ -160,6 +160,33 @@ void ValidateRigDescription(RigDescription& rig) {
       << "; they must span at least 1e-6 (pose-space units are yours: 1 is a good scale)";
     fail(s.str());
   }
+
+  // The rig format's own limits (runtime/include/posemorph/rig_format.h),
+  // checked here so a description beyond them is refused by name instead of
+  // baking a rig the runtime would not load.
+  if (rig.paths.size() > format::kMaxPaths)
+    fail("paths: " + std::to_string(rig.paths.size()) + " paths, more than the rig format's limit of " +
+         std::to_string(format::kMaxPaths));
+  std::size_t keys = 0;
+  for (const PathDescription& path : rig.paths) keys += path.keys.size();
+  if (keys > format::kMaxPathKeys)
+    fail("paths: " + std::to_string(keys) + " keys in all, more than the rig format's limit of " +
+         std::to_string(format::kMaxPathKeys));
+  std::size_t string_bytes = 0, longest = 0;
+  std::string longest_name;
+  auto count = [&](const std::string& text, const std::string& what) {
+    string_bytes += 4 + text.size();
+    if (text.size() > longest) longest = text.size(), longest_name = what;
+  };
+  for (std::size_t i = 0; i < N; ++i) {
+    count(rig.poses[i].name, PoseLabel(rig, i) + "'s name");
+    count(rig.poses[i].image, PoseLabel(rig, i) + "'s image reference");
+  }
+  for (std::size_t k = 0; k < rig.paths.size(); ++k) count(rig.paths[k].name, "paths[" + std::to_string(k) + "].name");
+  if (string_bytes > format::kMaxStringBytes)
+    fail("pose names, image references and path names take " + std::to_string(string_bytes) +
+         " bytes, more than the rig format's limit of " + std::to_string(format::kMaxStringBytes) + " (the longest, " +
+         longest_name + ", has " + std::to_string(longest) + ")");
 }
 
 }  // namespace posemorph::bake
