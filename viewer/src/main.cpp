@@ -7,14 +7,15 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
-#include <iterator>
+#include <sys/stat.h>
+
 #include <new>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "posemorph/rig.h"
+#include "rig_renderer.h"
 #include "scene.h"
 #include "window.h"
 
@@ -47,8 +48,10 @@ const char* kUsage =
     "                half-way, save a screenshot of the last frame, exit\n"
     "  --description window: the rig description that recorded gestures are saved into\n";
 
+// A usage error: one line naming the option and what it wants (the whole
+// usage only when nothing was given, and on --help).
 int Usage(const std::string& problem) {
-  std::fprintf(stderr, "posemorph-view: %s\n%s", problem.c_str(), kUsage);
+  std::fprintf(stderr, "posemorph-view: %s (posemorph-view --help lists the options)\n", Printable(problem, 1000).c_str());
   return 2;
 }
 
@@ -96,8 +99,28 @@ bool ParseCount(const char* text, long lo, long hi, std::uint32_t* out) {
 }
 
 int Fail(const std::string& problem) {
-  std::fprintf(stderr, "posemorph-view: error: %s\n", problem.c_str());
+  std::fprintf(stderr, "posemorph-view: error: %s\n", Printable(problem, 1000).c_str());
   return 1;
+}
+
+// The rig file: a regular file (a pipe would block, a device never end) of at
+// most kMaxRigFileBytes, read whole.
+constexpr std::uint64_t kMaxRigFileBytes = std::uint64_t(256) << 20;
+bool ReadRigFile(const std::string& path, std::vector<unsigned char>* bytes, std::string* error) {
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) return *error = path + ": cannot open file", false;
+  if (!S_ISREG(st.st_mode)) return *error = path + ": is not a regular file (a directory, device or pipe)", false;
+  if (std::uint64_t(st.st_size) > kMaxRigFileBytes)
+    return *error = path + ": is " + std::to_string(st.st_size) + " bytes, more than the limit of " +
+                    std::to_string(kMaxRigFileBytes) + " for a rig",
+           false;
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) return *error = path + ": cannot open file", false;
+  bytes->resize(std::size_t(st.st_size));
+  const std::size_t got = bytes->empty() ? 0 : std::fread(bytes->data(), 1, bytes->size(), f);
+  std::fclose(f);
+  if (got != bytes->size()) return *error = path + ": cannot read the whole file", false;
+  return true;
 }
 
 }  // namespace
@@ -131,8 +154,10 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
   enum class CameraMode { kFit, kOneToOne, kGiven } camera_mode = CameraMode::kFit;
   Camera given_camera;
   Blend blend = Blend::kExact;
+  if (argc < 2) return std::fputs(kUsage, stderr), 2;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a == "-h" || a == "--help") return std::fputs(kUsage, stdout), 0;
     auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
     const char* v = nullptr;
     if (a == "--headless") headless = true;
@@ -191,14 +216,16 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
     images = slash == std::string::npos ? "." : rig_path.substr(0, slash);
   }
 
-  std::ifstream in(rig_path, std::ios::binary);
-  if (!in) return Fail(rig_path + ": cannot open file");
-  const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::vector<unsigned char> bytes;
+  std::string problem;
+  if (!ReadRigFile(rig_path, &bytes, &problem)) return Fail(problem);
   Rig rig;
   Error err;
   if (!LoadRig(bytes.data(), bytes.size(), &rig, &err)) return Fail(rig_path + ": " + err.message);
+  if (!scene.path.empty() && rig.FindPath(scene.path.c_str()) < 0)
+    return Fail(rig_path + ": has no path named \"" + scene.path + "\"");
+  if (frames > 0 && headless && scene.path.empty()) return Usage("--frames needs --path NAME");
   Drawings drawings;
-  std::string problem;
   if (!LoadDrawings(rig, images, &drawings, &problem)) return Fail(rig_path + ": " + problem);
 
   if (!headless) {

@@ -48,9 +48,9 @@ bool ImageReferenceStaysInside(const std::string& reference) {
   return true;
 }
 
-std::string Printable(const std::string& text) {
+std::string Printable(const std::string& text, std::size_t max) {
   std::string out;
-  for (unsigned char c : text.substr(0, 200)) {
+  for (unsigned char c : text.substr(0, max)) {
     if (c < 0x20 || c == 0x7F) {
       char hex[8];
       std::snprintf(hex, sizeof(hex), "\\x%02x", c);
@@ -59,7 +59,7 @@ std::string Printable(const std::string& text) {
       out += char(c);
     }
   }
-  return text.size() > 200 ? out + "..." : out;
+  return text.size() > max ? out + "..." : out;
 }
 
 bool ReadPng(const std::string& path, std::vector<unsigned char>* rgba, std::uint32_t* width, std::uint32_t* height,

@@ -28,6 +28,9 @@ struct Drawings {
 // references must stay inside `dir` (relative, no '..').
 constexpr std::uint64_t kMaxDrawingPixels = std::uint64_t(1) << 24;  // 4096 x 4096
 bool ImageReferenceStaysInside(const std::string& reference);
+// Control characters as \xNN and at most `max` characters (then "..."):
+// names from a rig file or the command line, before they reach a terminal.
+std::string Printable(const std::string& text, std::size_t max = 200);
 bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::string* error);
 
 constexpr std::uint32_t kDrawingsPerCharacter = kMaxBlendDrawings;
