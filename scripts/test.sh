@@ -4,7 +4,9 @@
 # test: the full suite with GCC (release) and with Clang, each on every
 # kernel path this CPU runs (POSEMORPH_ISA = the fastest by default, then
 # avx2, sse2, scalar), under AddressSanitizer + UBSan (debug), the runtime's
-# threads under ThreadSanitizer (tsan), the ways a game consumes the library
+# threads under ThreadSanitizer (tsan), the libFuzzer harnesses for a minute
+# each (scripts/fuzz.sh; POSEMORPH_FUZZ_SECONDS changes it), the hostile-input
+# corpus (a ctest test, tests/hostile/), the ways a game consumes the library
 # (install + find_package, pkg-config from C, add_subdirectory without the
 # bake's dependencies, a shared library: scripts/consumer-test.sh), and the
 # runtime's own tests built for aarch64 (qemu), Windows (wine) and
@@ -34,7 +36,7 @@ for preset in release clang; do
   ctest --preset "$preset" -j"$jobs"
   for isa in "${forced[@]}"; do
     echo "== $preset: every test, POSEMORPH_ISA=$isa"
-    POSEMORPH_ISA=$isa ctest --preset "$preset" -j"$jobs"
+    POSEMORPH_ISA=$isa ctest --preset "$preset" -j"$jobs" -LE hostile  # the bake's processes do not change with the path
   done
 done
 scripts/consumer-test.sh
@@ -43,4 +45,6 @@ for preset in tsan debug; do
   echo "== $preset"
   ctest --preset "$preset" -j"$jobs"
 done
+echo "== fuzz: each libFuzzer harness for ${POSEMORPH_FUZZ_SECONDS:-60} s"
+scripts/fuzz.sh "${POSEMORPH_FUZZ_SECONDS:-60}"
 scripts/cross-test.sh
