@@ -188,6 +188,11 @@ static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char
   image.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_memory(&image, file.data(), file.size()))
     throw BakeError(path, std::string("cannot read PNG: ") + image.message);
+  if (!(image.format & PNG_FORMAT_FLAG_ALPHA)) {
+    png_image_free(&image);
+    throw BakeError(path, "has no alpha channel (and no transparent colour): the bake takes the character's shape from "
+                          "alpha; save the drawing with transparency");
+  }
   image.format = PNG_FORMAT_GA;  // grey + alpha: only the alpha is used
   // The header's size, checked before anything is decoded: a small file can
   // claim a huge image (a decompression bomb).
