@@ -267,6 +267,23 @@ TEST_CASE("a failure without context of its own names the bake stage it happened
   }
 }
 
+TEST_CASE("an unknown key in the description bakes with a warning naming it") {
+  TempDir dir;
+  json j = ValidDescription();
+  j["bake"]["grid_resolutoin"] = 32;
+  j["poses"][1]["landmark"] = json::array();
+  Write(dir.path / "rig.json", j.dump());
+  const Result r = Run({(dir.path / "rig.json").string(), "-o", (dir.path / "rig.pmrig").string()});
+  CHECK(r.status == 0);
+  CHECK(r.err.find("rig.json: bake: unknown key \"grid_resolutoin\" ignored") != std::string::npos);
+  CHECK(r.err.find("rig.json: poses[1]: unknown key \"landmark\" ignored") != std::string::npos);
+  // Only known keys: no warning.
+  j = ValidDescription();
+  Write(dir.path / "rig.json", j.dump());
+  CHECK(Run({(dir.path / "rig.json").string(), "-o", (dir.path / "rig.pmrig").string()}).err.find("unknown key") ==
+        std::string::npos);
+}
+
 TEST_CASE("usage errors exit with status 2") {
   CHECK(Run({}).status == 2);
   CHECK(Run({"eval", "x.pmrig"}).status == 2);

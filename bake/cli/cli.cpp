@@ -124,6 +124,8 @@ EvalOptions ReadEvalOptions(const Args& args) {
   return o;
 }
 
+std::string Printable(const std::string& message);
+
 int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out, std::ostream& err) {
   const Args args = Args::Parse(a, from, {"-o", "--precision", "--max-error"}, {});
   if (args.positional.empty()) throw UsageError("no rig description given");
@@ -168,7 +170,8 @@ int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out,
         << " px per rig unit; position step " << c.position_step_px << " px, weight step " << c.weight_step << "\n";
   }
   const MappingReport& m = rig.mapping_report;
-  for (const std::string& w : m.warnings) err << "posemorph-bake: warning: " << w << "\n";
+  for (const std::string& w : rig.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
+  for (const std::string& w : m.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
   if (m.mapped) {
     out << "mapped drawings: outlines";
     for (std::size_t v : m.outline_vertices) out << " " << v;

@@ -97,6 +97,52 @@ std::string ReadText(const std::string& path, const std::string& referenced_from
   return std::string(bytes.begin(), bytes.end());
 }
 
+// Keys the description may use, object by object; any other key is most
+// likely a misspelt option, which would otherwise be ignored in silence.
+void WarnUnknownKeys(const json& object, const std::string& where, std::initializer_list<const char*> known,
+                     const std::string& file, std::vector<std::string>* warnings) {
+  if (!object.is_object()) return;
+  for (const auto& item : object.items()) {
+    bool found = false;
+    for (const char* k : known) found = found || item.key() == k;
+    if (!found)
+      warnings->push_back(file + ": " + (where.empty() ? "" : where + ": ") + "unknown key \"" + item.key() +
+                          "\" ignored (bake/RIG_DESCRIPTION.md lists the keys)");
+  }
+}
+
+void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std::string>* warnings) {
+  WarnUnknownKeys(root, "", {"posemorph", "name", "poses", "triangles", "mapping", "bake", "paths"}, file, warnings);
+  if (root.contains("mapping"))
+    WarnUnknownKeys(root["mapping"], "mapping",
+                    {"simplify_tolerance", "max_edge_length", "min_angle", "alpha_threshold", "curve_tolerance",
+                     "spacing", "landmark_distance", "max_steiner_points", "max_vertices"},
+                    file, warnings);
+  if (root.contains("bake"))
+    WarnUnknownKeys(root["bake"], "bake",
+                    {"grid_resolution", "margin", "epsilon", "sigma", "precision", "max_error", "pixels_per_unit"}, file,
+                    warnings);
+  const json& poses = root["poses"];
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const std::string w = "poses[" + std::to_string(i) + "]";
+    WarnUnknownKeys(poses[i], w,
+                    {"name", "point", "drawing", "outline", "landmarks", "vertices", "mesh", "deform", "uvs", "image"},
+                    file, warnings);
+    if (poses[i].contains("deform")) {
+      const json& d = poses[i]["deform"];
+      WarnUnknownKeys(d, w + ".deform", {"from", "handles"}, file, warnings);
+      if (d.contains("handles") && d["handles"].is_array())
+        for (std::size_t h = 0; h < d["handles"].size(); ++h)
+          WarnUnknownKeys(d["handles"][h], w + ".deform.handles[" + std::to_string(h) + "]", {"at", "vertex", "to"},
+                          file, warnings);
+    }
+  }
+  if (root.contains("paths") && root["paths"].is_array())
+    for (std::size_t i = 0; i < root["paths"].size(); ++i)
+      WarnUnknownKeys(root["paths"][i], "paths[" + std::to_string(i) + "]", {"name", "loop", "interpolation", "keys"},
+                      file, warnings);
+}
+
 }  // namespace
 
 RigDescription ParseRigDescription(const std::string& text, const std::string& file, const std::string& base_dir) {
@@ -287,6 +333,7 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
       rig.paths.push_back(std::move(path));
     }
   }
+  WarnUnknownKeys(root, file, &rig.warnings);
   return rig;
 }
 

@@ -107,6 +107,7 @@ struct RigDescription {
   MappingParameters mapping;
   std::vector<PathDescription> paths;
   MappingReport mapping_report;  // filled by MapDrawings
+  std::vector<std::string> warnings;  // from reading it: keys this bake does not know (a misspelt option)
 };
 
 // Reads and parses a description; relative mesh paths resolve against its
