@@ -1,15 +1,17 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: MIT
 """Replays the hostile-input corpus (cases.py) against the real posemorph-bake
-and posemorph-view processes, each under a 1 GiB address-space limit and a
-10 s timeout, and asserts for every case: the expected exit status (1 for bad
+and posemorph-view processes, each under a 1 GiB address-space limit, 10 s of
+CPU time and 60 s of wall-clock time, and asserts for every case: the expected exit status (1 for bad
 input, 2 for usage, 0 where the limits admit the input), exactly one line on
 stderr naming the offending file (or option) and the problem, nothing written
 and no temporary left in the case's folder, an existing output untouched.
 
 usage: replay.py --bake BIN --view BIN --work DIR [--only NAME] [--table]
-Prints one line per case (status, seconds, peak resident memory) and the worst
-time and memory over the corpus."""
+Prints one line per case (status, CPU seconds, peak resident memory) and the
+worst time and memory over the corpus. CPU time (user + system, all threads)
+is the bound, not wall-clock time: it does not grow when other tests share the
+machine, so the bound holds the tool's own work to account and not the load."""
 import argparse
 import os
 import re
@@ -24,7 +26,9 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import cases as corpus  # noqa: E402
 
 ADDRESS_LIMIT = 1 << 30
-TIMEOUT_S = 10.0
+CPU_LIMIT_S = 10.0   # the bound every case must stay within
+WALL_LIMIT_S = 60.0  # a process that waits (not computing) is stopped here
+TICKS = os.sysconf('SC_CLK_TCK')
 PRLIMIT = shutil.which('prlimit') or '/usr/bin/prlimit'
 
 
@@ -49,10 +53,20 @@ def peak_resident_kib(pid):
     return 0
 
 
+def cpu_seconds(pid):
+    """User + system time of a running process, all its threads."""
+    try:
+        with open('/proc/%d/stat' % pid) as f:
+            fields = f.read().rsplit(')', 1)[1].split()
+        return (int(fields[11]) + int(fields[12])) / TICKS  # utime, stime (fields 14, 15)
+    except (OSError, IndexError, ValueError):
+        return 0.0
+
+
 def run(argv, cwd, env):
     """Runs argv under prlimit (which sets the address-space limit and execs
-    the tool in the same process); returns (exit status or None on timeout,
-    seconds, peak RSS in KiB, stdout, stderr)."""
+    the tool in the same process); returns (exit status or None when stopped
+    at a limit, CPU seconds, wall seconds, peak RSS in KiB, stdout, stderr)."""
     out_path, err_path = os.path.join(cwd, '..', '.stdout'), os.path.join(cwd, '..', '.stderr')
     with open(out_path, 'wb') as o, open(err_path, 'wb') as e, open(os.devnull, 'rb') as null:
         own_kib = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
@@ -60,20 +74,22 @@ def run(argv, cwd, env):
         pid = os.posix_spawn(PRLIMIT, [PRLIMIT, '--as=%d' % ADDRESS_LIMIT, '--'] + argv, env,
                              file_actions=[(os.POSIX_SPAWN_DUP2, null.fileno(), 0), (os.POSIX_SPAWN_DUP2, o.fileno(), 1),
                                            (os.POSIX_SPAWN_DUP2, e.fileno(), 2)], setsid=True)
-        status, rss, timed_out = None, 0, False
+        status, rss, cpu, stopped = None, 0, 0.0, False
         while True:
             # The tool's own peak (VmHWM of the process after exec), sampled
             # every 5 ms up to its exit; ru_maxrss would count this script too.
             rss = max(rss, peak_resident_kib(pid))
+            cpu = max(cpu, cpu_seconds(pid))
             wpid, wstatus, usage = os.wait4(pid, os.WNOHANG)
             if wpid == pid:
                 status = os.waitstatus_to_exitcode(wstatus)
+                cpu = usage.ru_utime + usage.ru_stime
                 # A peak above this script's own size is the tool's (fork copied ours).
                 if usage.ru_maxrss > own_kib:
                     rss = max(rss, usage.ru_maxrss)
                 break
-            if time.monotonic() - start > TIMEOUT_S and not timed_out:
-                timed_out = True
+            if (cpu > CPU_LIMIT_S or time.monotonic() - start > WALL_LIMIT_S) and not stopped:
+                stopped = True
                 os.killpg(pid, signal.SIGKILL)
             time.sleep(0.005)
         seconds = time.monotonic() - start
@@ -81,7 +97,7 @@ def run(argv, cwd, env):
         stdout, stderr = o.read(), e.read()
     os.remove(out_path)
     os.remove(err_path)
-    return (None if timed_out else status), seconds, rss, stdout, stderr
+    return (None if stopped else status), cpu, seconds, rss, stdout, stderr
 
 
 def check(case, tools, work, env):
@@ -94,11 +110,14 @@ def check(case, tools, work, env):
                 for p in before if os.path.isfile(os.path.join(folder, p)) and not os.path.islink(os.path.join(folder, p))
                 and before[p][0] < (1 << 20)}
     argv = [tools[case.tool]] + [a.replace('{w}', folder) for a in case.args]
-    status, seconds, rss, stdout, stderr = run(argv, folder, env)
+    status, cpu, seconds, rss, stdout, stderr = run(argv, folder, env)
     problems = []
     text = stderr.decode('utf-8', 'replace')
     if status is None:
-        problems.append('did not finish in %g s' % TIMEOUT_S)
+        problems.append('stopped after %.2f s of CPU time, %.2f s in all (limits %g s CPU, %g s in all)' % (
+            cpu, seconds, CPU_LIMIT_S, WALL_LIMIT_S))
+    elif cpu > CPU_LIMIT_S:
+        problems.append('took %.2f s of CPU time, more than %g s' % (cpu, CPU_LIMIT_S))
     elif status != case.status:
         problems.append('exit status %s, expected %d' % (status, case.status))
     after = listing(folder)
@@ -128,7 +147,7 @@ def check(case, tools, work, env):
             problems.append('the output does not match /%s/' % case.message)
     if not problems:
         shutil.rmtree(folder, ignore_errors=True)
-    return problems, status, seconds, rss, text.strip()
+    return problems, status, cpu, seconds, rss, text.strip()
 
 
 def main():
@@ -150,16 +169,16 @@ def main():
         if tools[case.tool] is None:
             print('skip  %-44s (no %s given)' % (case.name, case.tool))
             continue
-        problems, status, seconds, rss, message = check(case, tools, work, env)
-        worst_s = max(worst_s, (seconds, case.name))
+        problems, status, cpu, seconds, rss, message = check(case, tools, work, env)
+        worst_s = max(worst_s, (cpu, case.name))
         worst_rss = max(worst_rss, (rss, case.name))
         mark = 'ok  ' if not problems else 'FAIL'
-        print('%s  %-44s exit %-4s %6.2f s %8.1f MiB  %s' % (mark, case.name, status, seconds, rss / 1024.0,
-                                                            message[:160]))
+        print('%s  %-44s exit %-4s %6.2f s CPU %6.2f s %8.1f MiB  %s' % (mark, case.name, status, cpu, seconds,
+                                                                     rss / 1024.0, message[:160]))
         for p in problems:
             print('      - ' + p)
             failures += 1 if p is problems[0] else 0
-    print('%d cases, %d failed; worst time %.2f s (%s), worst peak memory %.1f MiB (%s)' % (
+    print('%d cases, %d failed; worst CPU time %.2f s (%s), worst peak memory %.1f MiB (%s)' % (
         len(selected), failures, worst_s[0], worst_s[1], worst_rss[0] / 1024.0, worst_rss[1]))
     return 1 if failures else 0
 

@@ -7,6 +7,7 @@
 #include <png.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <deque>
 #include <unordered_map>
@@ -25,45 +26,91 @@ struct Mask {
   unsigned char at(int x, int y) const { return in[std::size_t(y) * w + x]; }
 };
 
-// Labels the 4-connected components of value `value`; returns sizes.
-std::vector<std::size_t> Components(const Mask& m, unsigned char value, std::vector<int>& label) {
-  label.assign(m.in.size(), -1);
-  std::vector<std::size_t> sizes;
-  std::vector<std::size_t> stack;
-  for (std::size_t s = 0; s < m.in.size(); ++s) {
-    if (m.in[s] != value || label[s] >= 0) continue;
-    const int id = int(sizes.size());
-    sizes.push_back(0);
-    label[s] = id;
-    stack.push_back(s);
-    while (!stack.empty()) {
-      const std::size_t p = stack.back();
-      stack.pop_back();
-      ++sizes[id];
-      const int x = int(p % m.w), y = int(p / m.w);
-      const int nx[4] = {x - 1, x + 1, x, x}, ny[4] = {y, y, y - 1, y + 1};
-      for (int k = 0; k < 4; ++k) {
-        if (nx[k] < 0 || ny[k] < 0 || nx[k] >= m.w || ny[k] >= m.h) continue;
-        const std::size_t q = std::size_t(ny[k]) * m.w + nx[k];
-        if (m.in[q] == value && label[q] < 0) {
-          label[q] = id;
-          stack.push_back(q);
-        }
+// The 4-connected components of the pixels of one value, found on runs (a
+// row's maximal spans of that value) joined by union-find where they overlap
+// the row above: memory and time go with the number of runs, not pixels.
+struct Run {
+  int x0, x1;             // [x0, x1) in one row
+  std::uint32_t parent;   // union-find; a root is its component's first run
+};
+struct RunComponents {
+  std::vector<Run> runs;                 // row by row, left to right
+  std::vector<std::size_t> row_start;    // row y's runs: [row_start[y], row_start[y + 1])
+  std::vector<std::uint32_t> component;  // per run; components numbered in raster order of their first pixel
+  std::vector<std::size_t> sizes;        // pixels per component
+};
+
+std::uint32_t Root(std::vector<Run>& runs, std::uint32_t i) {
+  while (runs[i].parent != i) {
+    runs[i].parent = runs[runs[i].parent].parent;  // path halving
+    i = runs[i].parent;
+  }
+  return i;
+}
+
+RunComponents Components(const Mask& m, unsigned char value) {
+  RunComponents c;
+  c.row_start.reserve(std::size_t(m.h) + 1);
+  for (int y = 0; y < m.h; ++y) {
+    c.row_start.push_back(c.runs.size());
+    const unsigned char* row = m.in.data() + std::size_t(y) * m.w;
+    for (int x = 0; x < m.w;) {
+      if (row[x] != value) {
+        ++x;
+        continue;
       }
+      int end = x + 1;
+      while (end < m.w && row[end] == value) ++end;
+      c.runs.push_back({x, end, std::uint32_t(c.runs.size())});
+      x = end;
+    }
+    if (y == 0) continue;
+    // Join the runs that overlap a run of the row above (sharing an edge).
+    std::size_t a = c.row_start[std::size_t(y) - 1], b = c.row_start[y];
+    const std::size_t a_end = c.row_start[y], b_end = c.runs.size();
+    while (a < a_end && b < b_end) {
+      const Run &up = c.runs[a], &here = c.runs[b];
+      if (up.x1 <= here.x0) { ++a; continue; }
+      if (here.x1 <= up.x0) { ++b; continue; }
+      const std::uint32_t ra = Root(c.runs, std::uint32_t(a)), rb = Root(c.runs, std::uint32_t(b));
+      if (ra != rb) c.runs[std::max(ra, rb)].parent = std::min(ra, rb);  // the earlier run stays the root
+      if (c.runs[a].x1 < c.runs[b].x1) ++a; else ++b;
     }
   }
-  return sizes;
+  c.row_start.push_back(c.runs.size());
+  c.component.resize(c.runs.size());
+  for (std::size_t i = 0; i < c.runs.size(); ++i) {
+    const std::uint32_t root = Root(c.runs, std::uint32_t(i));  // root <= i: already numbered
+    if (root == i) {
+      c.component[i] = std::uint32_t(c.sizes.size());
+      c.sizes.push_back(0);
+    } else {
+      c.component[i] = c.component[root];
+    }
+    c.sizes[c.component[i]] += std::size_t(c.runs[i].x1 - c.runs[i].x0);
+  }
+  return c;
+}
+
+// Sets every pixel of the runs of `c` whose component is not `keep` to `to`;
+// returns how many.
+std::size_t SetAllBut(Mask& m, const RunComponents& c, std::uint32_t keep, unsigned char to) {
+  std::size_t changed = 0;
+  for (int y = 0; y < m.h; ++y)
+    for (std::size_t i = c.row_start[y]; i < c.row_start[std::size_t(y) + 1]; ++i) {
+      if (c.component[i] == keep) continue;
+      const Run& r = c.runs[i];
+      std::memset(&m.at(r.x0, y), to, std::size_t(r.x1 - r.x0));
+      changed += std::size_t(r.x1 - r.x0);
+    }
+  return changed;
 }
 
 // Background not connected to the border becomes shape. Returns pixels filled.
 std::size_t FillHoles(Mask& m) {
-  std::vector<int> label;
-  Components(m, 0, label);
-  const int outside = label[0];  // the padding is background and touches everything outside
-  std::size_t filled = 0;
-  for (std::size_t p = 0; p < m.in.size(); ++p)
-    if (m.in[p] == 0 && label[p] != outside) m.in[p] = 1, ++filled;
-  return filled;
+  const RunComponents background = Components(m, 0);
+  // The padding row is background and touches everything outside.
+  return SetAllBut(m, background, background.component[0], 1);
 }
 
 // Two shape pixels meeting only at a corner would make the border touch
@@ -102,14 +149,13 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
   for (int y = 1; y <= height; ++y)
     for (int x = 1; x <= width; ++x) m.at(x, y) = a(x, y) >= cut;
 
-  std::vector<int> label;
-  const std::vector<std::size_t> sizes = Components(m, 1, label);
+  const RunComponents shape = Components(m, 1);
+  const std::vector<std::size_t>& sizes = shape.sizes;
   if (sizes.empty())
     throw BakeError(file, "image is empty or fully transparent (no pixel has alpha >= " +
                               std::to_string(threshold).substr(0, 4) + ")");
   const int keep = int(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
-  for (std::size_t p = 0; p < m.in.size(); ++p)
-    if (m.in[p] && label[p] != keep) m.in[p] = 0, ++result.dropped_pixels;
+  result.dropped_pixels = SetAllBut(m, shape, std::uint32_t(keep), 0);
   result.dropped_components = int(sizes.size()) - 1;
   if (sizes[keep] < 4) throw BakeError(file, "the drawn shape is smaller than 4 pixels");
 
@@ -136,6 +182,8 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
   std::unordered_map<std::size_t, Point> where;
   for (int y = 0; y + 1 < m.h; ++y)
     for (int x = 0; x + 1 < m.w; ++x) {
+      const unsigned char c0 = m.at(x, y);
+      if (c0 == m.at(x + 1, y) && c0 == m.at(x, y + 1) && c0 == m.at(x + 1, y + 1)) continue;  // no crossing
       // Walk the cell's corners c0 (x,y) c1 (x+1,y) c2 (x+1,y+1) c3 (x,y+1).
       const int cx[4] = {x, x + 1, x + 1, x}, cy[4] = {y, y, y + 1, y + 1};
       bool in[4];
@@ -209,11 +257,14 @@ static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char
     png_image_free(&image);
     throw BakeError(path, "cannot decode PNG: " + message);
   }
-  std::vector<unsigned char> alpha(std::size_t(image.width) * image.height);
-  for (std::size_t i = 0; i < alpha.size(); ++i) alpha[i] = ga[2 * i + 1];
+  // Keep the alpha bytes in place (byte i moves down from 2i + 1).
+  const std::size_t pixels = std::size_t(image.width) * image.height;
+  for (std::size_t i = 0; i < pixels; ++i) ga[i] = ga[2 * i + 1];
+  ga.resize(pixels);
+  ga.shrink_to_fit();
   *width = int(image.width);
   *height = int(image.height);
-  return alpha;
+  return ga;
 }
 
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height) {
