@@ -7,10 +7,16 @@
 #include <functional>
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
+#include <unistd.h>
 
+#include "cli.h"
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/inbetween_check.h"
+#include "posemorph/bake/pose_space_samples.h"
 #include "posemorph/bake/mapping/nway_mapping.h"
 #include "posemorph/bake/rig_description.h"
 
@@ -133,15 +139,30 @@ double Orient2(const Point& a, const Point& b, const Point& c) {
   return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
 }
 
-// Every triangle positive in every pose, one connectivity (shared by construction), and the rig bakes.
-void CheckCompatible(pb::RigDescription& rig) {
+// Every triangle positive in every pose, one connectivity (shared by
+// construction), and the rig bakes. These shapes have no landmarks but the
+// start point, and some fold between poses: folds are allowed (and counted).
+std::size_t CheckCompatible(pb::RigDescription& rig) {
   for (const auto& pose : rig.poses) {
     REQUIRE(pose.vertices.size() == rig.poses[0].vertices.size());
     for (const auto& t : rig.triangles)
       REQUIRE(Orient2(pose.vertices[t[0]], pose.vertices[t[1]], pose.vertices[t[2]]) > 0);
   }
+  rig.parameters.allow_folds = true;
   pb::BakeReport report;
   CHECK_NOTHROW(pb::BakeRig(rig, &report));
+  MESSAGE("in-betweens: smallest area ratio " << report.inbetweens.min_area_ratio << ", "
+                                              << report.inbetweens.FoldsInHull() << " triangles fold in the hull");
+  return report.inbetweens.FoldsInHull();
+}
+
+// The area of triangle t in the frame at a pose-space point, from the runtime.
+double FrameArea(const posemorph::Rig& rig, const Point& at, std::uint32_t t) {
+  std::vector<double> x;
+  REQUIRE(pb::EvaluateFrame(rig, at, x));
+  const std::uint32_t* v = rig.triangles().data + 3 * t;
+  return 0.5 * ((x[2 * v[1]] - x[2 * v[0]]) * (x[2 * v[2] + 1] - x[2 * v[0] + 1]) -
+                (x[2 * v[1] + 1] - x[2 * v[0] + 1]) * (x[2 * v[2]] - x[2 * v[0]]));
 }
 
 }  // namespace
@@ -158,6 +179,7 @@ TEST_CASE("mapping: robustness corpus triangulates compatibly") {
   corpus["combs"] = {Comb(6, 0), Comb(6, 12), Comb(6, -10), Comb(6, 5), Comb(6, -4)};
   corpus["deep C"] = {DeepC(0.6), DeepC(0.08), DeepC(1.2)};
   corpus["spiral vs S"] = {Spiral(1.5, 8), SShape(50, 8)};
+  int folding = 0;
   for (auto& [name, shapes] : corpus) {
     const std::string case_name = name;  // Clang 14 cannot capture a structured binding
     CAPTURE(case_name);
@@ -167,7 +189,136 @@ TEST_CASE("mapping: robustness corpus triangulates compatibly") {
     MESSAGE(name << ": " << r.matched_vertices << " matched -> " << r.boundary_vertices << " boundary, "
                  << r.steiner_points << " Steiner, " << r.vertices << " vertices, " << r.triangles
                  << " triangles, min angle " << r.min_angle_degrees << ", " << r.seconds * 1e3 << " ms");
-    CheckCompatible(rig);
+    folding += CheckCompatible(rig) > 0;
+  }
+  MESSAGE(folding << " of " << corpus.size() << " corpus rigs fold in the pose hull (no landmarks but the start)");
+}
+
+TEST_CASE("bake: an in-between that folds fails the bake, naming the triangle, where, the poses and where to hold it") {
+  // A spiral and an S with only their start points as landmarks: half-way
+  // between them some triangles turn over.
+  pb::RigDescription rig = OutlineRig({Spiral(1.5, 8), SShape(50, 8)});
+  pb::MapDrawings(rig);
+  pb::RigDescription allowed = rig;
+  std::string message;
+  try {
+    pb::BakeRig(rig);
+  } catch (const pb::BakeError& e) {
+    message = e.what();
+  }
+  CAPTURE(message);
+  CHECK(message.rfind("corpus.json: the in-betweens fold: ", 0) == 0);
+  CHECK(message.find(" triangles turn over (the worst: triangle ") != std::string::npos);
+  CHECK(message.find(" of its smallest in a pose) at (") != std::string::npos);
+  CHECK(message.find("between 'pose") != std::string::npos);
+  CHECK(message.find("a landmark near its centre would hold it: (") != std::string::npos);
+  CHECK(message.find(") in 'pose0'") != std::string::npos);
+  CHECK(message.find(") in 'pose1'") != std::string::npos);
+  CHECK(message.find("or bake with --allow-folds (bake.allow_folds)") != std::string::npos);
+  CHECK(message.find('\n') == std::string::npos);
+
+  // Allowed, it bakes with a warning per fold, and every fold it reports is
+  // one: the runtime's frame at that point has the triangle turned over.
+  allowed.parameters.allow_folds = true;
+  pb::BakeReport report;
+  const std::vector<unsigned char> bytes = pb::BakeRig(allowed, &report);
+  const pb::InbetweenCheck& check = report.inbetweens;
+  REQUIRE(check.FoldsInHull() > 0);
+  CHECK(check.min_area_ratio <= check.folds[0].area_ratio);
+  CHECK(report.warnings.size() == std::min<std::size_t>(check.folds.size(), 10) + (check.folds.size() > 10));
+  CHECK(report.warnings[0].find("corpus.json: the in-betweens fold (allowed): triangle ") == 0);
+  posemorph::Rig loaded;
+  REQUIRE(posemorph::LoadRig(bytes.data(), bytes.size(), &loaded, nullptr));
+  for (const pb::InbetweenFold& f : check.folds) {
+    CAPTURE(f.triangle);
+    CHECK(f.area_ratio <= 0);
+    CHECK(FrameArea(loaded, f.at, f.triangle) <= 0);
+  }
+  // The poses themselves are fold-free: at every pose point the check's ratio is at least 1.
+  for (std::uint32_t i = 0; i < loaded.pose_count(); ++i)
+    for (std::uint32_t t = 0; t < loaded.triangle_count(); ++t)
+      REQUIRE(FrameArea(loaded, Point(loaded.pose_points()[2 * i], loaded.pose_points()[2 * i + 1]), t) > 0);
+}
+
+TEST_CASE("posemorph-bake: a folding rig exits 1 with one line and writes nothing, --allow-folds writes it with warnings, info lists the folds") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("posemorph-folds-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path input = dir / "folds.json", output = dir / "folds.pmrig";
+  {
+    std::ofstream f(input);
+    f.precision(17);
+    f << "{\"posemorph\": 1, \"poses\": [";
+    const std::vector<Polygon> shapes = {Spiral(1.5, 8), SShape(50, 8)};
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+      f << (i ? ", " : "") << "{\"name\": \"" << (i ? "s" : "spiral") << "\", \"point\": [" << (i ? -1 : 1)
+        << ", 0], \"landmarks\": [[" << shapes[i][0].x() << ", " << shapes[i][0].y() << "]], \"outline\": [";
+      for (std::size_t k = 0; k < shapes[i].size(); ++k)
+        f << (k ? ", " : "") << "[" << shapes[i][k].x() << ", " << shapes[i][k].y() << "]";
+      f << "]}";
+    }
+    f << "]}";
+  }
+  auto run = [](const std::vector<std::string>& args, std::string* out, std::string* err) {
+    std::ostringstream o, e;
+    const int status = pb::RunBakeCommand(args, o, e);
+    *out = o.str();
+    *err = e.str();
+    return status;
+  };
+  std::string out, err;
+  CHECK(run({input.string(), "-o", output.string()}, &out, &err) == 1);
+  CAPTURE(err);
+  CHECK(err.rfind("posemorph-bake: error: " + input.string() + ": the in-betweens fold: ", 0) == 0);
+  CHECK(std::count(err.begin(), err.end(), '\n') == 1);
+  CHECK_FALSE(fs::exists(output));
+  CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 1);  // no temporary left
+
+  CHECK(run({input.string(), "-o", output.string(), "--allow-folds"}, &out, &err) == 0);
+  CHECK(fs::exists(output));
+  CHECK(err.find("posemorph-bake: warning: " + input.string() + ": the in-betweens fold (allowed): triangle ") == 0);
+  CHECK(out.find("in-betweens: ") != std::string::npos);
+  CHECK(run({"info", output.string()}, &out, &err) == 0);
+  CHECK(out.find("  in-betweens: smallest triangle area -") != std::string::npos);
+  CHECK(out.find(" triangles fold in the hull\n    triangle ") != std::string::npos);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("bake: the samples' in-betweens do not fold, and the check samples the hull, every two poses and the paths") {
+  for (const std::string name : {"snake", "gingerbread", "worm-line"}) {
+    CAPTURE(name);
+    pb::RigDescription rig =
+        pb::ReadRigDescription(std::string(POSEMORPH_SOURCE_DIR) + "/assets/" + name + "/" + name + ".json");
+    pb::BakeReport report;
+    const std::vector<unsigned char> bytes = pb::BakeRig(rig, &report);
+    const pb::InbetweenCheck& check = report.inbetweens;
+    MESSAGE(name << ": " << check.frames << " frames, smallest area ratio " << check.min_area_ratio);
+    CHECK(check.folds.empty());
+    CHECK(check.min_area_ratio > 0.5);
+    CHECK(check.grid == 64);
+    posemorph::Rig loaded;
+    REQUIRE(posemorph::LoadRig(bytes.data(), bytes.size(), &loaded, nullptr));
+    // The smallest ratio is where the check says, measured again from the runtime's frame.
+    const std::uint32_t* v = loaded.triangles().data + 3 * check.min_triangle;
+    double smallest = 1e300;
+    for (std::uint32_t i = 0; i < loaded.pose_count(); ++i) {
+      const double* p = loaded.pose_positions(i).data;
+      smallest = std::min(smallest, 0.5 * ((p[2 * v[1]] - p[2 * v[0]]) * (p[2 * v[2] + 1] - p[2 * v[0] + 1]) -
+                                           (p[2 * v[1] + 1] - p[2 * v[0] + 1]) * (p[2 * v[2]] - p[2 * v[0]])));
+    }
+    CHECK(FrameArea(loaded, check.min_at, check.min_triangle) / smallest == doctest::Approx(check.min_area_ratio).epsilon(1e-12));
+    // Samples: pose points, hull edges and grid, the segment between every two poses, every path.
+    pb::PoseSpaceSampling sampling;
+    sampling.grid = sampling.per_edge = sampling.per_pair = 64;
+    const std::vector<pb::PoseSpaceSample> samples = pb::SamplePoseSpace(loaded, sampling);
+    CHECK(check.frames == samples.size());
+    const std::size_t N = loaded.pose_count();
+    std::size_t pairs = 0, on_paths = 0;
+    for (const pb::PoseSpaceSample& s : samples) on_paths += s.path >= 0;
+    pairs = N * (N - 1) / 2 * 63;
+    CHECK(on_paths == 201 * loaded.path_count());
+    CHECK(samples.size() >= N + pairs + on_paths);
   }
 }
 

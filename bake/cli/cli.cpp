@@ -26,9 +26,10 @@ namespace {
 
 const char kUsage[] =
     "usage:\n"
-    "  posemorph-bake RIG.json [-o RIG.pmrig] [--precision compact|exact] [--max-error PX]\n"
-    "        bake a rig description (default output: RIG.pmrig; compact within 0.01 drawing pixels)\n"
-    "  posemorph-bake info RIG.pmrig              sizes, counts, factor fill, pose points, paths\n"
+    "  posemorph-bake RIG.json [-o RIG.pmrig] [--precision compact|exact] [--max-error PX] [--allow-folds]\n"
+    "        bake a rig description (default output: RIG.pmrig; compact within 0.01 drawing pixels;\n"
+    "        an in-between where a triangle turns over fails the bake unless --allow-folds)\n"
+    "  posemorph-bake info RIG.pmrig              sizes, counts, factor fill, in-betweens, pose points, paths\n"
     "  posemorph-bake eval RIG.pmrig (--at X,Y | --path NAME [--time T | --frames K]) -o OUT.svg|.json|.obj\n"
     "        [--sigma S] [--no-shear-limit] [--linear]\n"
     "  posemorph-bake sheet RIG.pmrig -o OUT.svg [--columns C] [--rows R] [--no-shear-limit] [--linear]\n"
@@ -127,7 +128,7 @@ EvalOptions ReadEvalOptions(const Args& args) {
 std::string Printable(const std::string& message);
 
 int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out, std::ostream& err) {
-  const Args args = Args::Parse(a, from, {"-o", "--precision", "--max-error"}, {});
+  const Args args = Args::Parse(a, from, {"-o", "--precision", "--max-error"}, {"--allow-folds"});
   if (args.positional.empty()) throw UsageError("no rig description given");
   std::string output;
   if (const std::string* o = args.Get("-o")) {
@@ -150,6 +151,7 @@ int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out,
     if (!(rig.parameters.max_error_px >= 1e-6) || rig.parameters.max_error_px > 10)
       throw UsageError("--max-error must be in [1e-6, 10] pixels");
   }
+  if (args.switches.count("--allow-folds")) rig.parameters.allow_folds = true;
   BakeReport report;
   const std::vector<unsigned char> bytes = BakeRig(rig, &report);
   BakeStage writing("writing the output");
@@ -169,6 +171,11 @@ int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out,
         << c.pose_error_px << " px; budget " << report.max_error_px << " px at " << report.pixels_per_unit
         << " px per rig unit; position step " << c.position_step_px << " px, weight step " << c.weight_step << "\n";
   }
+  const InbetweenCheck& ib = report.inbetweens;
+  out << "in-betweens: " << ib.frames << " frames (pose hull: grid " << ib.grid << ", edges, every two poses; paths), "
+      << "smallest triangle area " << ib.min_area_ratio << " of its smallest in a pose (triangle " << ib.min_triangle
+      << " at (" << ib.min_at.x() << ", " << ib.min_at.y() << ")); " << ib.folds.size() << " folded triangles; " << ib.seconds * 1e3 << " ms\n";
+  for (const std::string& w : report.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
   const MappingReport& m = rig.mapping_report;
   for (const std::string& w : rig.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
   for (const std::string& w : m.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
@@ -272,6 +279,13 @@ int Info(const std::vector<std::string>& a, std::size_t from, std::ostream& out)
     out << "    " << std::string(reinterpret_cast<const char*>(e), 4) << ' ' << std::setw(9) << size << "  "
         << DescribeSection(tag, bytes.data() + offset, size) << "\n";
   }
+  const InbetweenCheck ib = CheckInbetweens(rig, args.positional);
+  out << "  in-betweens: smallest triangle area " << ib.min_area_ratio << " of its smallest in a pose in the pose hull"
+      << " (triangle " << ib.min_triangle << " at (" << ib.min_at.x() << ", " << ib.min_at.y() << "); " << ib.frames
+      << " frames); " << ib.FoldsInHull() << " triangles fold in the hull";
+  if (ib.folds.size() > ib.FoldsInHull()) out << ", " << ib.folds.size() - ib.FoldsInHull() << " only on paths outside it";
+  out << "\n";
+  for (const InbetweenFold& f : ib.folds) out << "    " << DescribeFold(rig, f) << "\n";
   for (std::uint32_t i = 0; i < N; ++i) {
     out << "  pose " << i << " '" << std::string(rig.pose_name(i).data, rig.pose_name(i).size) << "' at ("
         << rig.pose_points()[2 * i] << ", " << rig.pose_points()[2 * i + 1] << ")";

@@ -11,6 +11,8 @@
 
 #include "posemorph/bake/arap_system.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/inbetween_check.h"
+#include "posemorph/bake/pose_space_samples.h"
 #include "posemorph/bake/stage.h"
 #include "posemorph/bake/pose_space_weights.h"
 #include "posemorph/bake/triangle_math.h"
@@ -200,28 +202,27 @@ std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
   Error err;
   if (!LoadRig(bytes.data(), bytes.size(), &loaded, &err))
     throw BakeError(rig.file, std::string("internal error: the baked rig does not load: ") + err.message);
-  std::vector<double> raw(N), limited(N), work(loaded.morph_workspace_size()), x(2 * V);
+  std::vector<double> x;
   double worst = 0;
   for (std::size_t i = 0; i < N; ++i) {
-    WeightsJob wj;
-    wj.rig = &loaded;
-    wj.x = points[i].x();
-    wj.y = points[i].y();
-    wj.raw = MakeSpan(raw);
-    wj.shear = MakeSpan(limited);
-    MorphJob mj;
-    mj.rig = &loaded;
-    mj.weights = MakeSpan(raw);
-    mj.shear_weights = MakeSpan(limited);
-    mj.workspace = MakeSpan(work);
-    mj.positions = MakeSpan(x);
-    if (!wj.Run() || !mj.Run()) throw BakeError(rig.file, "internal error: the baked rig does not evaluate");
+    if (!EvaluateFrame(loaded, points[i], x)) throw BakeError(rig.file, "internal error: the baked rig does not evaluate");
     for (std::size_t v = 0; v < V; ++v)
       worst = std::max(worst, (Eigen::Vector2d(x[2 * v], x[2 * v + 1]) - rig.poses[i].vertices[v]).norm());
   }
   worst /= meta.rig_size;
   if (!(worst <= tolerance))
     throw BakeError(rig.file, "internal error: the baked rig reproduces its poses only to " + std::to_string(worst) + " of its size");
+
+  // The in-betweens: no triangle may turn over between the poses.
+  BakeStage inbetween_stage("checking the in-betweens for folds");
+  InbetweenCheck inbetweens = CheckInbetweens(loaded, rig.file);
+  const std::size_t folds_in_hull = inbetweens.FoldsInHull();
+  if (folds_in_hull > 0 && !rig.parameters.allow_folds) {
+    const std::size_t n = folds_in_hull;
+    throw BakeError(rig.file, "the in-betweens fold: " + std::to_string(n) + (n == 1 ? " triangle turns" : " triangles turn") +
+                                  " over (the worst: " + DescribeFold(loaded, inbetweens.folds[0]) +
+                                  "); add a landmark there, or bake with --allow-folds (bake.allow_folds) to write it anyway");
+  }
 
   if (report) {
     report->vertices = std::uint32_t(V);
@@ -242,6 +243,15 @@ std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
     report->max_error_px = rig.parameters.compact ? rig.parameters.max_error_px : 0;
     report->pixels_per_unit = pixels_per_unit;
     report->compact_report = compact_report;
+    report->warnings.clear();
+    const std::size_t shown = std::min<std::size_t>(inbetweens.folds.size(), 10);
+    for (std::size_t k = 0; k < shown; ++k)
+      report->warnings.push_back(rig.file + ": the in-betweens fold" + (inbetweens.folds[k].in_hull ? " (allowed)" : "") +
+                                 ": " + DescribeFold(loaded, inbetweens.folds[k]));
+    if (inbetweens.folds.size() > shown)
+      report->warnings.push_back(rig.file + ": the in-betweens fold: " + std::to_string(inbetweens.folds.size() - shown) +
+                                 " more triangles turn over");
+    report->inbetweens = std::move(inbetweens);
   }
   return bytes;
 }

@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/pose_space_samples.h"
 #include "posemorph/compact_codec.h"
 #include "posemorph/jobs.h"
 #include "posemorph/path.h"
@@ -120,69 +121,9 @@ std::string TagText(std::uint32_t tag) {
 // Frames sampled where the rig is used: the pose points, a grid over the
 // convex hull of the pose points and its edges, and every path.
 std::vector<Eigen::Vector2d> SamplePoints(const Rig& rig) {
-  const std::uint32_t N = rig.pose_count();
-  std::vector<Eigen::Vector2d> pts, out;
-  for (std::uint32_t i = 0; i < N; ++i) pts.emplace_back(rig.pose_points()[2 * i], rig.pose_points()[2 * i + 1]);
-  out = pts;
-  std::vector<Eigen::Vector2d> s = pts;
-  std::sort(s.begin(), s.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  auto cross = [](const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-  };
-  std::vector<Eigen::Vector2d> hull;
-  for (int pass = 0; pass < 2; ++pass) {
-    const std::size_t start = hull.size();
-    for (const auto& p : s) {
-      while (hull.size() >= start + 2 && cross(hull[hull.size() - 2], hull.back(), p) <= 0) hull.pop_back();
-      hull.push_back(p);
-    }
-    hull.pop_back();
-    std::reverse(s.begin(), s.end());
-  }
-  for (std::size_t e = 0; e < hull.size(); ++e) {
-    const Eigen::Vector2d a = hull[e], b = hull[(e + 1) % hull.size()];
-    for (int k = 1; k < 32; ++k) out.push_back(a + (b - a) * (k / 32.0));
-  }
-  Eigen::AlignedBox2d box;
-  for (const auto& p : pts) box.extend(p);
-  const int G = 24;
-  for (int iy = 0; iy <= G && hull.size() >= 3; ++iy)
-    for (int ix = 0; ix <= G; ++ix) {
-      const Eigen::Vector2d p = box.min() + Eigen::Vector2d(box.sizes().x() * ix / G, box.sizes().y() * iy / G);
-      bool inside = true;
-      for (std::size_t e = 0; e < hull.size(); ++e) inside = inside && cross(hull[e], hull[(e + 1) % hull.size()], p) >= 0;
-      if (inside) out.push_back(p);
-    }
-  for (std::uint32_t k = 0; k < rig.path_count(); ++k) {
-    const PathView path = rig.path(k);
-    const double t0 = path.keys[0], t1 = path.keys[3 * (path.key_count() - 1)];
-    for (int j = 0; j <= 200; ++j) {
-      double x, y;
-      if (SamplePath(path, t0 + (t1 - t0) * j / 200.0, &x, &y)) out.emplace_back(x, y);
-    }
-  }
+  std::vector<Eigen::Vector2d> out;
+  for (const PoseSpaceSample& s : SamplePoseSpace(rig, PoseSpaceSampling{})) out.push_back(s.at);
   return out;
-}
-
-bool Evaluate(const Rig& rig, const Eigen::Vector2d& at, std::vector<double>& x) {
-  const std::size_t N = rig.pose_count();
-  std::vector<double> raw(N), limited(N), work(rig.morph_workspace_size());
-  x.assign(2 * std::size_t(rig.vertex_count()), 0);
-  WeightsJob wj;
-  wj.rig = &rig;
-  wj.x = at.x();
-  wj.y = at.y();
-  wj.raw = MakeSpan(raw);
-  wj.shear = MakeSpan(limited);
-  MorphJob mj;
-  mj.rig = &rig;
-  mj.weights = MakeSpan(raw);
-  mj.shear_weights = MakeSpan(limited);
-  mj.workspace = MakeSpan(work);
-  mj.positions = MakeSpan(x);
-  return wj.Run() && mj.Run();
 }
 
 struct Encoder {
@@ -428,7 +369,7 @@ std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_by
   const std::vector<Eigen::Vector2d> samples = SamplePoints(exact);
   std::vector<std::vector<double>> reference(samples.size());
   for (std::size_t s = 0; s < samples.size(); ++s)
-    if (!Evaluate(exact, samples[s], reference[s])) throw BakeError(file, "internal error: the exact rig does not evaluate");
+    if (!EvaluateFrame(exact, samples[s], reference[s])) throw BakeError(file, "internal error: the exact rig does not evaluate");
 
   const double budget = settings.max_error_px / settings.pixels_per_unit;  // rig units
   // Largest distance a vertex travels between poses (centroids aligned): how
@@ -468,7 +409,7 @@ std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_by
     if (!LoadRig(t.bytes.data(), t.bytes.size(), &rig, &err)) return t;
     std::vector<double> x;
     for (std::size_t s = 0; s < samples.size(); ++s) {
-      if (!Evaluate(rig, samples[s], x)) return t;
+      if (!EvaluateFrame(rig, samples[s], x)) return t;
       double worst = 0;
       for (std::uint64_t v = 0; v < V; ++v)
         worst = std::max(worst, std::hypot(x[2 * v] - reference[s][2 * v], x[2 * v + 1] - reference[s][2 * v + 1]));

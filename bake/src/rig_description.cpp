@@ -120,7 +120,7 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
                     file, warnings);
   if (root.contains("bake"))
     WarnUnknownKeys(root["bake"], "bake",
-                    {"grid_resolution", "margin", "epsilon", "sigma", "precision", "max_error", "pixels_per_unit"}, file,
+                    {"grid_resolution", "margin", "epsilon", "sigma", "precision", "max_error", "pixels_per_unit", "allow_folds"}, file,
                     warnings);
   const json& poses = root["poses"];
   for (std::size_t i = 0; i < poses.size(); ++i) {
@@ -289,6 +289,10 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
       const std::string v = r.String(b["precision"], "bake.precision");
       if (v != "compact" && v != "exact") r.Fail("bake.precision", "expected \"compact\" or \"exact\"");
       p.compact = v == "compact";
+    }
+    if (b.contains("allow_folds")) {
+      if (!b["allow_folds"].is_boolean()) r.Fail("bake.allow_folds", "expected true or false");
+      p.allow_folds = b["allow_folds"].get<bool>();
     }
     if (b.contains("max_error")) p.max_error_px = r.Number(b["max_error"], "bake.max_error");
     if (!(p.max_error_px >= 1e-6) || p.max_error_px > 10) r.Fail("bake.max_error", "must be in [1e-6, 10] pixels");

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "posemorph/bake/compact_rig.h"
+#include "posemorph/bake/inbetween_check.h"
 #include "posemorph/bake/rig_description.h"
 
 namespace posemorph::bake {
@@ -23,11 +24,14 @@ struct BakeReport {
   double max_error_px = 0;         // the budget (compact)
   double pixels_per_unit = 0;      // drawing pixels per rig unit used for it
   CompactReport compact_report;    // what the compact encoding reached
+  InbetweenCheck inbetweens;       // the rig written, evaluated over the pose hull and the paths
+  std::vector<std::string> warnings;  // "FILE: ..." (folds, when allowed)
 };
 
 // Validates (may reorient triangles), analyses, factors, solves the weight
-// grid and serialises. The result is loaded back with the runtime and every
-// pose is checked at its point before it is returned. Throws BakeError.
+// grid and serialises. The result is loaded back with the runtime, every pose
+// is checked at its point and the in-betweens for folds (a fold throws unless
+// rig.parameters.allow_folds) before it is returned. Throws BakeError.
 std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report = nullptr);
 
 // Writes bytes to path via a temporary file in the same folder and a rename,

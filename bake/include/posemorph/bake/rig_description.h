@@ -96,6 +96,10 @@ struct BakeParameters {
   bool compact = true;
   double max_error_px = 0.01;
   double pixels_per_unit = 0;  // 0: the default above
+  // The bake evaluates in-betweens over the pose hull and the paths
+  // (inbetween_check.h); a triangle that turns over fails the bake unless
+  // folds are allowed (then they are warnings).
+  bool allow_folds = false;
 };
 
 struct RigDescription {

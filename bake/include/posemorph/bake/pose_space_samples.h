@@ -1,0 +1,41 @@
+// SPDX-License-Identifier: MIT
+// Where a rig is used, as points of its pose space: the pose points, a grid
+// over their convex hull, the hull's edges, the segment between every two
+// pose points, and every path. The bake evaluates its rig there with the
+// runtime: to choose the compact encoding's steps (compact_rig.h) and to find
+// folding in-betweens (inbetween_check.h).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "posemorph/rig.h"
+
+namespace posemorph::bake {
+
+struct PoseSpaceSampling {
+  int grid = 24;       // grid cells along each side of the pose points' bounding box (points inside the hull kept)
+  int per_edge = 32;   // parts each hull edge is cut into
+  int per_pair = 0;    // parts the segment between every two pose points is cut into (0: none)
+  int per_path = 200;  // parts each path's duration is cut into
+};
+
+struct PoseSpaceSample {
+  Eigen::Vector2d at;
+  std::int32_t path = -1;  // the path it lies on, or -1
+  bool in_hull = true;     // inside or on the convex hull of the pose points
+};
+
+// In this order: pose points, hull edges, grid, pairs, paths.
+std::vector<PoseSpaceSample> SamplePoseSpace(const Rig& rig, const PoseSpaceSampling& sampling);
+
+// The convex hull, counter-clockwise, collinear points dropped (fewer than
+// three points when the pose points are collinear).
+std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> points);
+
+// The frame at a pose-space point with the rig's default settings (raw and
+// shear-limited weights, as a game's first call gives). False if a job fails.
+bool EvaluateFrame(const Rig& rig, const Eigen::Vector2d& at, std::vector<double>& positions);
+
+}  // namespace posemorph::bake

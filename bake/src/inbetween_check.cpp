@@ -1,0 +1,125 @@
+// SPDX-License-Identifier: MIT
+#include "posemorph/bake/inbetween_check.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/pose_space_samples.h"
+#include "posemorph/jobs.h"
+
+namespace posemorph::bake {
+namespace {
+
+double SignedArea(const double* x, const std::uint32_t* t) {
+  const double ax = x[2 * t[0]], ay = x[2 * t[0] + 1];
+  return 0.5 * ((x[2 * t[1]] - ax) * (x[2 * t[2] + 1] - ay) - (x[2 * t[1] + 1] - ay) * (x[2 * t[2]] - ax));
+}
+
+std::string Name(StringView s) { return std::string(s.data, s.size); }
+
+std::string Number(double v) {
+  std::ostringstream s;
+  s.precision(3);
+  s << (std::abs(v) < 5e-4 ? 0.0 : v);
+  return s.str();
+}
+
+}  // namespace
+
+InbetweenCheck CheckInbetweens(const Rig& rig, const std::string& file, double max_work) {
+  const std::uint32_t T = rig.triangle_count(), N = rig.pose_count(), V = rig.vertex_count();
+  const std::uint32_t* tris = rig.triangles().data;
+  // The smallest area each triangle has in a pose (validation made every one positive).
+  std::vector<double> reference(T, std::numeric_limits<double>::infinity());
+  for (std::uint32_t i = 0; i < N; ++i)
+    for (std::uint32_t t = 0; t < T; ++t)
+      reference[t] = std::min(reference[t], SignedArea(rig.pose_positions(i).data, tris + 3 * t));
+
+  PoseSpaceSampling sampling;
+  sampling.per_edge = 64;
+  sampling.per_pair = 64;
+  std::vector<PoseSpaceSample> samples;
+  for (sampling.grid = 64;; sampling.grid = sampling.grid * 3 / 4) {
+    samples = SamplePoseSpace(rig, sampling);
+    if (double(samples.size()) * V <= max_work || sampling.grid <= 8) break;
+    sampling.per_edge = sampling.per_pair = std::max(8, sampling.grid);
+  }
+
+  const auto start = std::chrono::steady_clock::now();
+  InbetweenCheck check;
+  check.min_area_ratio = std::numeric_limits<double>::infinity();
+  check.grid = sampling.grid;
+  check.frames = samples.size();
+  // Per triangle, the most inverted frame inside the hull and outside it.
+  std::vector<double> worst[2] = {std::vector<double>(T, std::numeric_limits<double>::infinity()),
+                                  std::vector<double>(T, std::numeric_limits<double>::infinity())};
+  std::vector<std::size_t> where[2] = {std::vector<std::size_t>(T, 0), std::vector<std::size_t>(T, 0)};
+  std::vector<double> x;
+  for (std::size_t s = 0; s < samples.size(); ++s) {
+    if (!EvaluateFrame(rig, samples[s].at, x))
+      throw BakeError(file, "internal error: the baked rig does not evaluate at an in-between");
+    for (std::uint32_t t = 0; t < T; ++t) {
+      const double ratio = SignedArea(x.data(), tris + 3 * t) / reference[t];
+      if (samples[s].in_hull && ratio < check.min_area_ratio)
+        check.min_area_ratio = ratio, check.min_at = samples[s].at, check.min_triangle = t;
+      const int side = samples[s].in_hull ? 0 : 1;
+      if (ratio < worst[side][t]) worst[side][t] = ratio, where[side][t] = s;
+    }
+  }
+  for (std::uint32_t t = 0; t < T; ++t) {
+    const int side = worst[0][t] > 0 ? 1 : 0;  // a fold inside the hull is the one reported
+    if (worst[side][t] > 0) continue;
+    const PoseSpaceSample& s = samples[where[side][t]];
+    check.folds.push_back({t, worst[side][t], s.at, s.path, s.in_hull});
+  }
+  check.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::stable_sort(check.folds.begin(), check.folds.end(), [](const InbetweenFold& a, const InbetweenFold& b) {
+    return a.in_hull != b.in_hull ? a.in_hull : a.area_ratio < b.area_ratio;
+  });
+  return check;
+}
+
+std::string DescribeFold(const Rig& rig, const InbetweenFold& fold) {
+  const std::uint32_t N = rig.pose_count();
+  std::vector<double> raw(N), limited(N);
+  WeightsJob wj;
+  wj.rig = &rig;
+  wj.x = fold.at.x();
+  wj.y = fold.at.y();
+  wj.raw = MakeSpan(raw);
+  wj.shear = MakeSpan(limited);
+  wj.Run();
+  std::vector<std::uint32_t> order(N);
+  for (std::uint32_t i = 0; i < N; ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) { return raw[a] > raw[b]; });
+  std::ostringstream s;
+  s << "triangle " << fold.triangle << " turns over (area " << Number(fold.area_ratio)
+    << " of its smallest in a pose) at (" << Number(fold.at.x()) << ", " << Number(fold.at.y()) << ")";
+  if (fold.path >= 0) s << " on path '" << Name(rig.path(std::uint32_t(fold.path)).name) << "'";
+  if (!fold.in_hull) s << " (outside the pose points' hull)";
+  s << " between ";
+  std::size_t shown = 0;
+  for (std::uint32_t k = 0; k < N && shown < 3; ++k) {
+    const std::uint32_t i = order[k];
+    if (shown > 0 && raw[i] < 0.05) break;
+    s << (shown ? ", " : "") << "'" << Name(rig.pose_name(i)) << "' (" << Number(raw[i]) << ")";
+    ++shown;
+  }
+  s << "; a landmark near its centre would hold it: ";
+  const std::uint32_t* t = rig.triangles().data + 3 * fold.triangle;
+  for (std::size_t k = 0; k < shown; ++k) {
+    const std::uint32_t i = order[k];
+    const double* p = rig.pose_positions(i).data;
+    const double cx = (p[2 * t[0]] + p[2 * t[1]] + p[2 * t[2]]) / 3, cy = (p[2 * t[0] + 1] + p[2 * t[1] + 1] + p[2 * t[2] + 1]) / 3;
+    const bool drawn = rig.pose_canvas(i).width > 0;  // drawing units, y down, as landmarks are given
+    s << (k ? ", " : "") << "(" << Number(cx) << ", " << Number(drawn ? -cy : cy) << ") in "
+      << (drawn && rig.pose_image(i).size ? Name(rig.pose_image(i)) : "'" + Name(rig.pose_name(i)) + "'");
+  }
+  return s.str();
+}
+
+}  // namespace posemorph::bake
