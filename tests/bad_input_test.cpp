@@ -373,7 +373,15 @@ TEST_CASE("drawn poses: bad drawings and correspondences") {
   d["poses"][1]["landmarks"] = json::parse("[[50, 40], [0, 0]]");
   d["poses"][1]["landmarks"][0] = {0, 0};
   d["poses"][1]["landmarks"][1] = {0, 0};
-  ExpectFailure(d.dump(), "pose 'b' (index 1): landmark 1 is out of order or coincides with another");
+  ExpectFailure(d.dump(), "pose 'b' (index 1): landmark 1 is out of order or coincides with another: landmarks go "
+                         "counter-clockwise around the shape as seen in the drawing, in the same order in every pose");
+
+  // Three landmarks given clockwise: the message says so.
+  d = DrawnDescription();
+  d["poses"][0]["landmarks"] = json::parse("[[0, 0], [40, 0], [40, 40]]");
+  d["poses"][1]["landmarks"] = json::parse("[[0, 0], [40, 40], [40, 0]]");
+  ExpectFailure(d.dump(), "pose 'b' (index 1): landmarks are out of order: they go clockwise around the shape as seen in "
+                         "the drawing; give them counter-clockwise, from landmark 0, in the same order in every pose");
 
   // Spirals of 0.6 and 2 turns need more Steiner points than the rig allows.
   d = DrawnDescription();
@@ -403,7 +411,7 @@ TEST_CASE("drawn poses: bad drawings and correspondences") {
                 });
 }
 
-TEST_CASE("drawn poses: a PNG drawing with a speck bakes with a warning") {
+TEST_CASE("drawn poses: a PNG drawing with separate parts bakes with a warning naming the pose, the parts' sizes and shares") {
   TempDir dir;
   json d = DrawnDescription();
   d["poses"][0].erase("outline");
@@ -417,7 +425,21 @@ TEST_CASE("drawn poses: a PNG drawing with a speck bakes with a warning") {
   const Result r = Run({(dir.path / "rig.json").string(), "-o", (dir.path / "out.pmrig").string()});
   CAPTURE(r.err);
   CHECK(r.status == 0);
-  CHECK(r.err.find("a.png: dropped 1 speck(s) apart from the shape (1 pixels)") != std::string::npos);
+  CHECK(r.err.find("rig.json: pose 'a' (index 0): " + (dir.path / "a.png").string() +
+                   ": dropped a separate part of 1 pixels (0.06246% of the drawing): only the largest part is meshed; "
+                   "join the parts in the drawing to keep them\n") != std::string::npos);  // 1 of 1601 pixels
+
+  // Two eyes apart from the head: 3 x 3 and 2 x 2 pixels.
+  WritePngAlpha(dir.path / "a.png", 64, 64, [](int x, int y) {
+    if (x >= 8 && x < 48 && y >= 8 && y < 48) return 255;
+    if (x >= 52 && x < 55 && y >= 10 && y < 13) return 255;
+    return (x >= 58 && x < 60 && y >= 10 && y < 12) ? 255 : 0;
+  });
+  const Result two = Run({(dir.path / "rig.json").string(), "-o", (dir.path / "out.pmrig").string()});
+  CAPTURE(two.err);
+  CHECK(two.status == 0);
+  CHECK(two.err.find("a.png: dropped 2 separate parts of 13 pixels (0.806% of the drawing; the largest 9 pixels, "
+                     "0.558%): only the largest part is meshed") != std::string::npos);  // of 1613 pixels
 }
 
 TEST_CASE("messages escape control characters and elide the middle of huge ones") {

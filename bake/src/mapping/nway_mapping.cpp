@@ -24,6 +24,19 @@ std::string Format(double v) {
   return s.str();
 }
 
+// Landmarks at arc lengths `at` along an outline that runs counter-clockwise
+// which go round the other way: each one further clockwise from landmark 0.
+bool Clockwise(const std::vector<double>& at, double perimeter) {
+  double previous = perimeter;
+  for (std::size_t l = 1; l < at.size(); ++l) {
+    double rel = std::fmod(at[l] - at[0], perimeter);
+    if (rel < 0) rel += perimeter;
+    if (!(rel > 0 && rel < previous)) return false;
+    previous = rel;
+  }
+  return true;
+}
+
 bool EndsWith(std::string s, const std::string& suffix) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
@@ -125,8 +138,11 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines, const std::v
       double rel = std::fmod(at[l] - at[0], perimeter);
       if (rel < 0) rel += perimeter;
       if (!(rel > previous))
-        fail(k, "landmark " + std::to_string(l) + " is out of order or coincides with another: landmarks must follow "
-                "the outline in the same direction in every pose");
+        fail(k, at.size() >= 3 && Clockwise(at, perimeter)
+                    ? std::string("landmarks are out of order: they go clockwise around the shape as seen in the drawing; "
+                                  "give them counter-clockwise, from landmark 0, in the same order in every pose")
+                    : "landmark " + std::to_string(l) + " is out of order or coincides with another: landmarks go "
+                      "counter-clockwise around the shape as seen in the drawing, in the same order in every pose");
       previous = rel;
     }
     st.landmarks.push_back(std::move(on));
@@ -210,9 +226,24 @@ void MapDrawings(RigDescription& rig) {
         d.landmarks = pose.landmarks;
       } else if (png) {
         mapping::ImageOutline io = mapping::OutlineFromPng(pose.drawing_path, prm.alpha_threshold);
-        if (io.dropped_components > 0)
-          report.warnings.push_back(pose.drawing_path + ": dropped " + std::to_string(io.dropped_components) +
-                                    " speck(s) apart from the shape (" + std::to_string(io.dropped_pixels) + " pixels)");
+        if (io.dropped_components > 0) {
+          // Only the largest part is mapped: a separate eye or a loose hand
+          // is left out of the mesh (and drawn only where the mesh covers it).
+          auto share = [&](std::size_t pixels) { return Format(100.0 * double(pixels) / double(io.shape_pixels)) + "%"; };
+          std::string parts;
+          const std::size_t n = io.dropped_parts.size();
+          if (n == 1) {
+            parts = "a separate part of " + std::to_string(io.dropped_parts[0]) + " pixels (" + share(io.dropped_parts[0]) +
+                    " of the drawing)";
+          } else {
+            parts = std::to_string(n) + " separate parts of " + std::to_string(io.dropped_pixels) + " pixels (" +
+                    share(io.dropped_pixels) + " of the drawing; the largest " + std::to_string(io.dropped_parts[0]) +
+                    " pixels, " + share(io.dropped_parts[0]) + ")";
+          }
+          report.warnings.push_back(rig.file + ": pose '" + pose.name + "' (index " + std::to_string(d.index) + "): " +
+                                    pose.drawing_path + ": dropped " + parts +
+                                    ": only the largest part is meshed; join the parts in the drawing to keep them");
+        }
         for (const Point& p : io.outline) raw.push_back({p.x(), -p.y()});
         d.from_drawing = true;
         d.size = Point(io.width, io.height);

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <cstring>
 #include <deque>
+#include <functional>
 #include <unordered_map>
 
 #include "geometry.h"
@@ -157,6 +158,11 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
   const int keep = int(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
   result.dropped_pixels = SetAllBut(m, shape, std::uint32_t(keep), 0);
   result.dropped_components = int(sizes.size()) - 1;
+  for (std::size_t c = 0; c < sizes.size(); ++c) {
+    result.shape_pixels += sizes[c];
+    if (int(c) != keep) result.dropped_parts.push_back(sizes[c]);
+  }
+  std::sort(result.dropped_parts.begin(), result.dropped_parts.end(), std::greater<std::size_t>());
   if (sizes[keep] < 4) throw BakeError(file, "the drawn shape is smaller than 4 pixels");
 
   for (;;) {

@@ -28,8 +28,10 @@ using Polygon = std::vector<Point>;  // closed implicitly
 struct ImageOutline {
   Polygon outline;           // pixel units, y down (image rows); either orientation
   int width = 0, height = 0;
-  int dropped_components = 0;  // specks smaller than the kept shape
+  int dropped_components = 0;  // separate parts smaller than the kept shape
   std::size_t dropped_pixels = 0;
+  std::vector<std::size_t> dropped_parts;  // pixels of each dropped part, largest first
+  std::size_t shape_pixels = 0;            // every pixel at or above the threshold, before anything is dropped
   std::size_t filled_hole_pixels = 0;
 };
 // PNG with alpha: pixels with alpha >= threshold form the shape; the largest
