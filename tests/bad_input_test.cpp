@@ -442,6 +442,60 @@ TEST_CASE("drawn poses: a PNG drawing with separate parts bakes with a warning n
                      "0.558%): only the largest part is meshed") != std::string::npos);  // of 1613 pixels
 }
 
+TEST_CASE("drawn poses: an origin per pose lines up drawings on canvases of different sizes") {
+  // The same 40-pixel square drawn on a 64 x 64 canvas and, 20 px right and
+  // 10 px lower, on a 96 x 80 one. Each pose's origin is the middle of the
+  // square's bottom edge ("between the feet").
+  TempDir dir;
+  WritePngAlpha(dir.path / "a.png", 64, 64, [](int x, int y) { return x >= 8 && x < 48 && y >= 8 && y < 48 ? 255 : 0; });
+  WritePngAlpha(dir.path / "b.png", 96, 80, [](int x, int y) { return x >= 28 && x < 68 && y >= 18 && y < 58 ? 255 : 0; });
+  json d = json::parse(R"({"posemorph": 1, "poses": [
+      {"name": "a", "point": [0, 0], "drawing": "a.png", "origin": [28, 48], "landmarks": [[8, 48], [48, 8]]},
+      {"name": "b", "point": [1, 0], "drawing": "b.png", "origin": [48, 58], "landmarks": [[28, 58], [68, 18]]}],
+    "bake": {"grid_resolution": 8, "precision": "exact"}})");
+  auto bake = [&](const json& description) {
+    bake::RigDescription rig = bake::ParseRigDescription(description.dump(), "rig.json", dir.path.string());
+    const std::vector<unsigned char> bytes = bake::BakeRig(rig);
+    Rig loaded;
+    REQUIRE(LoadRig(bytes.data(), bytes.size(), &loaded, nullptr));
+    return loaded;
+  };
+  auto farthest = [](const Rig& rig) {
+    double worst = 0;
+    for (std::uint32_t v = 0; v < rig.vertex_count(); ++v)
+      worst = std::max(worst, std::hypot(rig.pose_positions(0)[2 * v] - rig.pose_positions(1)[2 * v],
+                                         rig.pose_positions(0)[2 * v + 1] - rig.pose_positions(1)[2 * v + 1]));
+    return worst;
+  };
+  const Rig with = bake(d);
+  CHECK(farthest(with) <= 1e-9);  // the two poses coincide: an in-between does not slide
+  // The origin is the rig's (0, 0) on each canvas, and every vertex's uv
+  // still lands on its own place in its own drawing.
+  CHECK(with.pose_canvas(0).pivot_x == 28);
+  CHECK(with.pose_canvas(0).pivot_y == 48);
+  CHECK(with.pose_canvas(1).width == 96);
+  CHECK(with.pose_canvas(1).pivot_x == 48);
+  CHECK(with.pose_canvas(1).pivot_y == 58);
+  for (std::uint32_t v = 0; v < with.vertex_count(); ++v) {
+    CHECK(with.uvs(1)[2 * v] * 96 == doctest::Approx(with.pose_positions(1)[2 * v] + 48).epsilon(1e-6));
+    CHECK(with.uvs(1)[2 * v + 1] * 80 == doctest::Approx(58 - with.pose_positions(1)[2 * v + 1]).epsilon(1e-6));
+  }
+  // Without origins the second pose sits 20 px right and 10 px lower.
+  json plain = d;
+  plain["poses"][0].erase("origin");
+  plain["poses"][1].erase("origin");
+  CHECK(farthest(bake(plain)) == doctest::Approx(std::hypot(20.0, 10.0)).epsilon(1e-9));
+
+  json bad = d;
+  bad["poses"][0]["origin"] = json::parse("[1, 2, 3]");
+  CHECK_THROWS_WITH(bake::ParseRigDescription(bad.dump(), "rig.json", dir.path.string()),
+                    doctest::Contains("poses[0].origin"));
+  bad = DrawnDescription();
+  bad["poses"][0]["origin"] = json::parse("[1, 2]");
+  CHECK_THROWS_WITH(bake::ParseRigDescription(bad.dump(), "rig.json", dir.path.string()),
+                    "rig.json: poses[0].origin: only a drawing has an origin (an outline is in rig coordinates)");
+}
+
 TEST_CASE("messages escape control characters and elide the middle of huge ones") {
   json d = ValidDescription();
   d["poses"][0]["name"] = "a\x1b[31mRED\x07";

@@ -126,7 +126,7 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const std::string w = "poses[" + std::to_string(i) + "]";
     WarnUnknownKeys(poses[i], w,
-                    {"name", "point", "drawing", "outline", "landmarks", "vertices", "mesh", "deform", "uvs", "image"},
+                    {"name", "point", "drawing", "origin", "outline", "landmarks", "vertices", "mesh", "deform", "uvs", "image"},
                     file, warnings);
     if (poses[i].contains("deform")) {
       const json& d = poses[i]["deform"];
@@ -185,6 +185,14 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
       pose.landmarks = r.Points(r.Array(jp, "landmarks", w), w + ".landmarks");
       if (pose.landmarks.empty()) r.Fail(w + ".landmarks", "needs at least the start point");
       if (jp.contains("uvs")) r.Fail(w + ".uvs", "a drawn pose gets its uvs from its drawing; remove them");
+      if (jp.contains("origin")) {
+        if (!jp.contains("drawing")) r.Fail(w + ".origin", "only a drawing has an origin (an outline is in rig coordinates)");
+        pose.origin = r.Point(jp["origin"], w + ".origin");
+        if (!(std::abs(pose.origin.x()) <= 1e9 && std::abs(pose.origin.y()) <= 1e9))
+          r.Fail(w + ".origin", "must lie within +-1e9 drawing units");
+      }
+    } else if (jp.contains("origin")) {
+      r.Fail(w + ".origin", "only a drawing has an origin");
     } else if (jp.contains("deform")) {
       const json& jd = jp["deform"];
       const std::string wd = w + ".deform";

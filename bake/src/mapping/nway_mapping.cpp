@@ -244,21 +244,22 @@ void MapDrawings(RigDescription& rig) {
                                     pose.drawing_path + ": dropped " + parts +
                                     ": only the largest part is meshed; join the parts in the drawing to keep them");
         }
-        for (const Point& p : io.outline) raw.push_back({p.x(), -p.y()});
+        for (const Point& p : io.outline) raw.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
         d.from_drawing = true;
+        d.origin = Point(0.0 - pose.origin.x(), 0.0 - pose.origin.y());  // the canvas's corner from the pose's origin
         d.size = Point(io.width, io.height);
       } else {
         mapping::SvgOutline so = mapping::OutlineFromSvg(pose.drawing_path, prm.curve_tolerance);
-        for (const Point& p : so.outline) raw.push_back({p.x(), -p.y()});
+        for (const Point& p : so.outline) raw.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
         d.from_drawing = true;
-        d.origin = so.canvas_origin;
+        d.origin = so.canvas_origin - pose.origin;
         d.size = so.canvas_size;
       }
     } catch (const BakeError& e) {
       fail(d, e.what());
     }
     if (d.from_drawing)
-      for (const Point& p : pose.landmarks) d.landmarks.push_back({p.x(), -p.y()});
+      for (const Point& p : pose.landmarks) d.landmarks.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
     if (raw.size() > mapping::kMaxOutlinePoints)
       fail(d, (d.from_drawing ? pose.drawing_path + ": " : std::string()) + "the outline has " +
                   std::to_string(raw.size()) + " points, more than the limit of " +

@@ -42,6 +42,10 @@ struct PoseDescription {
   std::string drawing_path;                 // resolved against the description's folder
   std::vector<Eigen::Vector2d> outline;     // given directly (rig coordinates, y up)
   std::vector<Eigen::Vector2d> landmarks;   // corresponding boundary points; the first is the start point
+  // The drawing point (drawing units, y down) that becomes the rig origin, so
+  // that drawings on canvases of different sizes or offsets line up; (0, 0)
+  // by default: the drawing's own origin.
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();
   // The drawing's canvas in drawing units, and where the rig origin sits on
   // it (canvas-relative, y down), set by MapDrawings; zero when unknown.
   Eigen::Vector2d canvas_size = Eigen::Vector2d::Zero(), canvas_pivot = Eigen::Vector2d::Zero();
