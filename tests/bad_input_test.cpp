@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli.h"
+#include "posemorph/posemorph.h"
 #include "posemorph/bake/stage.h"
 #include "test_support.h"
 
@@ -494,6 +495,33 @@ TEST_CASE("drawn poses: an origin per pose lines up drawings on canvases of diff
   bad["poses"][0]["origin"] = json::parse("[1, 2]");
   CHECK_THROWS_WITH(bake::ParseRigDescription(bad.dump(), "rig.json", dir.path.string()),
                     "rig.json: poses[0].origin: only a drawing has an origin (an outline is in rig coordinates)");
+}
+
+TEST_CASE("a description's \"filter\" reaches the rig, exact and compact, and the C API") {
+  for (const char* precision : {"exact", "compact"}) {
+    CAPTURE(precision);
+    json d = ValidDescription();
+    d["filter"] = "nearest";
+    d["bake"]["precision"] = precision;
+    bake::RigDescription desc = bake::ParseRigDescription(d.dump(), "rig.json", ".");
+    const std::vector<unsigned char> bytes = bake::BakeRig(desc);
+    Rig rig;
+    REQUIRE(LoadRig(bytes.data(), bytes.size(), &rig, nullptr));
+    CHECK(rig.texture_filter() == TextureFilter::kNearest);
+    CHECK(rig.format_minor() == 4);
+    pm_rig* handle = nullptr;
+    REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &handle, nullptr) == PM_OK);
+    CHECK(pm_rig_texture_filter(handle) == PM_FILTER_NEAREST);
+    pm_rig_free(handle);
+    d["filter"] = "linear";
+    desc = bake::ParseRigDescription(d.dump(), "rig.json", ".");
+    const std::vector<unsigned char> linear = bake::BakeRig(desc);
+    REQUIRE(LoadRig(linear.data(), linear.size(), &rig, nullptr));
+    CHECK(rig.texture_filter() == TextureFilter::kLinear);
+  }
+  json d = ValidDescription();
+  d["filter"] = "cubic";
+  ExpectFailure(d.dump(), "filter: expected \"linear\" or \"nearest\" (pixel art)");
 }
 
 TEST_CASE("messages escape control characters and elide the middle of huge ones") {

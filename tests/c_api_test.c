@@ -123,11 +123,13 @@ int main(int argc, char** argv) {
     free(hull_work);
     pm_canvas canvas;
     EXPECT(pm_rig_pose_canvas(rig, 0, &canvas) == PM_OK);
+    EXPECT(pm_rig_texture_filter(rig) == PM_FILTER_LINEAR); /* no "filter" in the description */
+    EXPECT(pm_rig_texture_filter(NULL) == PM_FILTER_LINEAR);
     EXPECT(pm_rig_pose_canvas(rig, info.pose_count, &canvas) == PM_ERROR_INVALID_ARGUMENT);
     uint32_t crc = 0, crc_at = 0, major = 0, minor = 9;
     memcpy(&crc_at, bytes + 32, 4); /* the header's checksum field */
     EXPECT(pm_rig_checksum(rig, &crc) == PM_OK && crc == crc_at);
-    EXPECT(pm_rig_format_version(rig, &major, &minor) == PM_OK && major == 1 && minor == 3);
+    EXPECT(pm_rig_format_version(rig, &major, &minor) == PM_OK && major == 1 && minor == 4);
   }
   pm_rig_free(rig);
   free(bytes), free(raw), free(shear), free(tex), free(work), free(x), free(xf);

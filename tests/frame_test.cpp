@@ -60,7 +60,7 @@ std::vector<unsigned char> Render(const Scene& scene, const Camera* camera = nul
   RigRenderer renderer;
   std::string problem;
   REQUIRE_MESSAGE(renderer.Init(f.gpu, f.rig, f.drawings, OffscreenTarget::kFormat, SceneCharacters(f.rig, scene),
-                                &problem),
+                                SceneFilter(f.rig, scene), &problem),
                   problem);
   SceneBounds bounds;
   std::uint32_t count = 0;
@@ -267,6 +267,56 @@ TEST_CASE("frames: the rendered base pose is its own drawing where the mesh cove
     CHECK(compared > 10000);
     CHECK(double(off) / double(compared) < 0.002);
   }
+}
+
+TEST_CASE("frames: sampled nearest (pixel art), a drawing pixel is one flat block at zoom 4, and is the drawing's colour") {
+  // Zoom 4 about a whole drawing point: each drawing pixel covers a 4 x 4
+  // block of output pixels. Nearest sampling makes every block inside the
+  // drawing flat and of its pixel's colour; linear sampling blends across
+  // pixel edges.
+  Fixture& f = Shared();
+  Camera zoomed;
+  zoomed.centre = {128, -120};
+  zoomed.zoom = 4;
+  Scene s;
+  s.x = f.rig.pose_points().data[0], s.y = f.rig.pose_points().data[1];
+  s.sigma = 1;
+  auto blocks = [&](const std::vector<unsigned char>& frame, std::size_t* flat, std::size_t* true_colour) {
+    std::size_t inside = 0;
+    *flat = *true_colour = 0;
+    for (std::uint32_t by = 0; by < kSize / 4; ++by)
+      for (std::uint32_t bx = 0; bx < kSize / 4; ++bx) {
+        // Output block (bx, by) shows drawing pixel (96 + bx, 88 + by).
+        const std::size_t d = (std::size_t(88 + by) * kSize + 96 + bx) * 4;
+        if (f.drawings.rgba[0][d + 3] < 255) continue;
+        ++inside;
+        const std::size_t first = (std::size_t(4 * by) * kSize + 4 * bx) * 4;
+        bool same = true;
+        for (std::uint32_t y = 0; y < 4; ++y)
+          for (std::uint32_t x = 0; x < 4; ++x)
+            same = same && std::memcmp(&frame[first], &frame[(std::size_t(4 * by + y) * kSize + 4 * bx + x) * 4], 4) == 0;
+        *flat += same;
+        int off = 0;
+        for (int c = 0; c < 3; ++c) off = std::max(off, std::abs(int(frame[first + c]) - int(f.drawings.rgba[0][d + c])));
+        *true_colour += off <= 2;
+      }
+    return inside;
+  };
+  s.filter = 1;
+  std::size_t flat = 0, true_colour = 0;
+  const std::size_t inside = blocks(Render(s, &zoomed), &flat, &true_colour);
+  s.filter = 0;
+  std::size_t linear_flat = 0, linear_true = 0;
+  blocks(Render(s, &zoomed), &linear_flat, &linear_true);
+  MESSAGE("zoom 4, " << inside << " opaque drawing pixels: flat blocks " << flat << " nearest, " << linear_flat
+                     << " linear; of the drawing's colour " << true_colour << " nearest, " << linear_true << " linear");
+  REQUIRE(inside > 2000);
+  CHECK(double(flat) >= 0.999 * double(inside));
+  CHECK(double(true_colour) >= 0.999 * double(inside));
+  CHECK(double(linear_flat) < 0.9 * double(inside));
+  // The rig's hint decides when --filter is not given: Pip's description has none.
+  CHECK(f.rig.texture_filter() == TextureFilter::kLinear);
+  CHECK(SceneFilter(f.rig, Scene{}) == TextureFilter::kLinear);
 }
 
 TEST_CASE("camera: fit, zoom about the cursor, pan, pixel-exact") {

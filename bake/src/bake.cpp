@@ -105,7 +105,8 @@ std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report) {
   meta.grid_cells_y = grid.cells_y;
   meta.factor_nonzeros = std::uint32_t(sys.value.size());
   const bool has_uvs = !rig.poses[0].uvs.empty();
-  meta.flags = (has_uvs ? fmt::kMetaFlagHasUVs : 0) | (grid.centre_weights.empty() ? 0 : fmt::kMetaFlagGridCentres);
+  meta.flags = (has_uvs ? fmt::kMetaFlagHasUVs : 0) | (grid.centre_weights.empty() ? 0 : fmt::kMetaFlagGridCentres) |
+               (rig.nearest_filter ? fmt::kMetaFlagNearestFilter : 0);
   meta.grid_origin_x = grid.origin_x;
   meta.grid_origin_y = grid.origin_y;
   meta.grid_cell_size = grid.cell;

@@ -112,7 +112,7 @@ void WarnUnknownKeys(const json& object, const std::string& where, std::initiali
 }
 
 void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std::string>* warnings) {
-  WarnUnknownKeys(root, "", {"posemorph", "name", "poses", "triangles", "mapping", "bake", "paths"}, file, warnings);
+  WarnUnknownKeys(root, "", {"posemorph", "name", "filter", "poses", "triangles", "mapping", "bake", "paths"}, file, warnings);
   if (root.contains("mapping"))
     WarnUnknownKeys(root["mapping"], "mapping",
                     {"simplify_tolerance", "max_edge_length", "min_angle", "alpha_threshold", "curve_tolerance",
@@ -155,6 +155,11 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
   RigDescription rig;
   rig.file = file;
   if (root.contains("name")) rig.name = r.String(root["name"], "name");
+  if (root.contains("filter")) {
+    const std::string f = r.String(root["filter"], "filter");
+    if (f != "linear" && f != "nearest") r.Fail("filter", "expected \"linear\" or \"nearest\" (pixel art)");
+    rig.nearest_filter = f == "nearest";
+  }
   bool have_triangles = root.contains("triangles");
   if (have_triangles) rig.triangles = r.ReadTriangles(r.Array(root, "triangles", ""), "triangles");
 

@@ -93,7 +93,7 @@ bool ReadDrawing(const std::string& path, std::uint32_t width, std::uint32_t hei
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string rig_path, images, screenshot, filter = "linear";
+  std::string rig_path, images, screenshot, filter;  // filter: empty = as the rig asks
   int crowd = 1, frames = 0, width = 640, height = 640;
   double at_x = NAN, at_y = NAN;
   for (int i = 1; i < argc; ++i) {
@@ -145,7 +145,9 @@ int main(int argc, char** argv) {
     if (!ReadDrawing(images + "/" + std::string(name.data, name.size), w, h, &rgba, &problem)) return Fail(problem);
     glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, GLint(i), GLsizei(w), GLsizei(h), 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
   }
-  const GLint f = filter == "nearest" ? GL_NEAREST : GL_LINEAR;  // nearest for pixel art
+  // Nearest for pixel art: --filter, else the rig's hint (its description's "filter").
+  const bool nearest = filter.empty() ? rig.texture_filter() == TextureFilter::kNearest : filter == "nearest";
+  const GLint f = nearest ? GL_NEAREST : GL_LINEAR;
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, f);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, f);
   glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);  // outside a drawing: nothing

@@ -230,6 +230,10 @@ int pm_rig_pose_canvas(const pm_rig* rig, uint32_t pose, pm_canvas* out) {
   return PM_OK;
 }
 
+int pm_rig_texture_filter(const pm_rig* rig) {
+  return rig && rig->rig.texture_filter() == posemorph::TextureFilter::kNearest ? PM_FILTER_NEAREST : PM_FILTER_LINEAR;
+}
+
 int pm_rig_checksum(const pm_rig* rig, uint32_t* crc) {
   if (!rig || !crc || !rig->rig.loaded()) return PM_ERROR_INVALID_ARGUMENT;
   *crc = rig->rig.checksum();

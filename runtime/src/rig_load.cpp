@@ -144,6 +144,7 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   grid_ = std::exchange(other.grid_, {});
   factor_ = std::exchange(other.factor_, {});
   default_sigma_ = std::exchange(other.default_sigma_, 0);
+  texture_filter_ = std::exchange(other.texture_filter_, TextureFilter::kLinear);
   rig_size_ = std::exchange(other.rig_size_, 0);
   kernels_ = std::exchange(other.kernels_, nullptr);
   checksum_ = std::exchange(other.checksum_, 0);
@@ -325,7 +326,8 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   if (nnz > fmt::kMaxFactorNonzeros)
     return Fail(err, ErrorCode::kTooLarge, "factor has %llu nonzeros, above %u", (unsigned long long)nnz,
                 fmt::kMaxFactorNonzeros);
-  if ((meta.flags & ~(fmt::kMetaFlagHasUVs | fmt::kMetaFlagGridCentres | fmt::kMetaFlagCompact)) != 0)
+  if ((meta.flags & ~(fmt::kMetaFlagHasUVs | fmt::kMetaFlagGridCentres | fmt::kMetaFlagCompact |
+                      fmt::kMetaFlagNearestFilter)) != 0)
     return Fail(err, ErrorCode::kBadVersion, "unknown META flags 0x%x", meta.flags);
   if (!std::isfinite(meta.grid_origin_x) || !std::isfinite(meta.grid_origin_y) ||
       !std::isfinite(meta.grid_cell_size) || !(meta.grid_cell_size > 0) ||
@@ -661,6 +663,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   rig.grid_.cells_y = meta.grid_cells_y;
   rig.factor_.n = meta.vertex_count - 1;
   rig.default_sigma_ = meta.default_sigma;
+  rig.texture_filter_ = (meta.flags & fmt::kMetaFlagNearestFilter) ? TextureFilter::kNearest : TextureFilter::kLinear;
   rig.rig_size_ = meta.rig_size;
   rig.kernels_ = kernels;
   rig.checksum_ = ReadU32(bytes + fmt::kOffChecksum);

@@ -41,10 +41,11 @@ TEST_CASE("a format 1.1 rig loads and interpolates its grid as it was baked") {
     }
 }
 
-TEST_CASE("a rig baked now is format 1.3 with a centre per grid cell") {
+TEST_CASE("a rig baked now is format 1.4 with a centre per grid cell") {
   const Rig rig = LoadTestRig("small");
   CHECK(rig.format_minor() == format::kVersionMinor);
-  CHECK(format::kVersionMinor == 3);
+  CHECK(format::kVersionMinor == 4);
+  CHECK(rig.texture_filter() == TextureFilter::kLinear);  // small.json gives no filter
   const PoseSpaceGrid& g = rig.grid();
   CHECK(g.centre_weights.size == std::size_t(g.cells_x) * g.cells_y * rig.pose_count());
   // At a cell centre the weights are the centre's row.
@@ -58,6 +59,24 @@ TEST_CASE("a rig baked now is format 1.3 with a centre per grid cell") {
 // header's minor version set back to 2 (the header lies outside the CRC):
 // what the 1.2 bake wrote, whose exact sections 1.3 did not change. It loads
 // to the same arrays as today's exact bake of the same description.
+// small-format-1.3-compact.pmrig: small.json as the 1.3 bake wrote it
+// (compact). 1.4 added only the texture-filter flag: it loads, samples
+// linear, and gives the frames of today's compact bake bit for bit.
+TEST_CASE("a format 1.3 compact rig loads and gives today's compact frames") {
+  const std::vector<unsigned char> bytes =
+      ReadFileBytes(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/small-format-1.3-compact.pmrig");
+  Rig old;
+  Error err;
+  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &old, &err), err.message);
+  CHECK(old.format_minor() == 3);
+  CHECK(old.texture_filter() == TextureFilter::kLinear);
+  const Rig now = LoadTestRig("small.compact");
+  for (double x : {-0.5, 0.0, 0.3, 1.0, 1.7}) {
+    CAPTURE(x);
+    CHECK(MorphAt(old, x, 0.2) == MorphAt(now, x, 0.2));
+  }
+}
+
 TEST_CASE("a format 1.2 rig loads to the arrays an exact 1.3 bake gives") {
   const std::vector<unsigned char> bytes =
       ReadFileBytes(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/small-format-1.2.pmrig");

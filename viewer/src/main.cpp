@@ -29,7 +29,7 @@ const char* kUsage =
     "         [--at X,Y | --path NAME [--time T] [--frames K]] [--crowd K] [--sigma S]\n"
     "         [--no-shear-limit] [--linear] [--compare] [--bases] [--wireframe] [--validation]\n"
     "         [--camera X,Y,ZOOM | --camera 1:1] [--transform T] [--seed S] [--drawings K] [--blend B]\n"
-    "         [--smoke-test SHOT.png [--frames K]] [--description RIG.json]\n"
+    "         [--filter linear|nearest] [--smoke-test SHOT.png [--frames K]] [--description RIG.json]\n"
     "  --images DIR  where the rig's drawings are (default: the rig's folder)\n"
     "  --frames K    with --path: K frames over the path's duration, OUT-000.png ...\n"
     "  --crowd K     K characters on a ground line: seeded random places, sizes and facings\n"
@@ -40,6 +40,7 @@ const char* kUsage =
     "  --transform T one character's place, comma-separated: move=X:Y rotate=DEGREES scale=S|SX:SY flip\n"
     "                (applied as scale, flip, rotate, move; e.g. --transform rotate=30,scale=1.5,flip)\n"
     "  --drawings K  blend the K (1..8) most weighted drawings per character (default 8)\n"
+    "  --filter F    sample the drawings linear or nearest (pixel art); default: as the rig asks\n"
     "  --blend B     exact (one pass, weighted sum; default) or over (sequential passes, approximate)\n"
     "  --compare     rigid (left) and linear (right) interpolation side by side\n"
     "  --bases       the N base poses in a row\n"
@@ -185,6 +186,10 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
       if (!ParseCount(v, 0, 0x7fffffff, &scene.seed)) return Usage("--seed wants a whole number >= 0");
     } else if (a == "--drawings" && (v = value())) {
       if (!ParseCount(v, 1, kDrawingsPerCharacter, &scene.max_drawings)) return Usage("--drawings wants 1..8");
+    } else if (a == "--filter" && (v = value())) {
+      if (std::strcmp(v, "linear") == 0) scene.filter = 0;
+      else if (std::strcmp(v, "nearest") == 0) scene.filter = 1;
+      else return Usage("--filter wants linear or nearest");
     } else if (a == "--blend" && (v = value())) {
       if (std::strcmp(v, "exact") == 0) blend = Blend::kExact;
       else if (std::strcmp(v, "over") == 0) blend = Blend::kSequentialOver;
@@ -241,7 +246,8 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
   options.validation = validation;
   if (!gpu.Init(options, &problem)) return Fail(problem);
   RigRenderer renderer;
-  if (!renderer.Init(gpu, rig, drawings, OffscreenTarget::kFormat, SceneCharacters(rig, scene), &problem))
+  if (!renderer.Init(gpu, rig, drawings, OffscreenTarget::kFormat, SceneCharacters(rig, scene), SceneFilter(rig, scene),
+                     &problem))
     return Fail(problem);
   OffscreenTarget target;
   target.Init(gpu, width, height);

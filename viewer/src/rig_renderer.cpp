@@ -192,7 +192,7 @@ VkShaderModule Module(VkDevice device, const std::uint32_t* code, std::size_t by
 }  // namespace
 
 bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFormat target_format,
-                       std::uint32_t max_instances, std::string* error) {
+                       std::uint32_t max_instances, TextureFilter filter, std::string* error) {
   gpu_ = &gpu;
   VkDevice dev = gpu.device();
   const std::uint32_t V = rig.vertex_count(), N = rig.pose_count();
@@ -226,7 +226,7 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   gpu.Destroy(staging);
 
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  sci.magFilter = sci.minFilter = VK_FILTER_LINEAR;
+  sci.magFilter = sci.minFilter = filter == TextureFilter::kNearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
   sci.borderColor = VK_BORDER_COLOR_FLOAT_TRANSPARENT_BLACK;  // outside the drawing: nothing
   VkCheck(vkCreateSampler(dev, &sci, nullptr, &sampler_), "vkCreateSampler");

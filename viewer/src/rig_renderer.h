@@ -52,8 +52,9 @@ class RigRenderer {
   RigRenderer& operator=(const RigRenderer&) = delete;
   ~RigRenderer();
 
+  // The drawings are sampled with `filter` (nearest for pixel art).
   bool Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFormat target_format, std::uint32_t max_instances,
-            std::string* error);
+            TextureFilter filter, std::string* error);
   // Written by the caller before Record: instance-major float x, y per vertex.
   float* positions() { return static_cast<float*>(positions_.mapped); }
   Instance* instances() { return static_cast<Instance*>(instances_.mapped); }

@@ -35,6 +35,11 @@ View TransformBounds(const Transform2D& t, const View& r) {
   return out;
 }
 
+TextureFilter SceneFilter(const Rig& rig, const Scene& scene) {
+  if (scene.filter < 0) return rig.texture_filter();
+  return scene.filter == 1 ? TextureFilter::kNearest : TextureFilter::kLinear;
+}
+
 std::uint32_t SceneCharacters(const Rig& rig, const Scene& scene) {
   if (scene.show_bases) return rig.pose_count();
   if (scene.compare_linear) return 2;

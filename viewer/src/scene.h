@@ -25,10 +25,13 @@ struct Scene {
   bool wireframe = false;
   bool compare_linear = false;  // two characters: rigid (left) and linear (right) at the same point
   bool show_bases = false;      // the N base poses in a row, each exactly at its point
+  int filter = -1;              // drawings sampled: 0 linear, 1 nearest, -1 as the rig asks (its "filter")
 };
 
 // How many characters the scene draws.
 std::uint32_t SceneCharacters(const Rig& rig, const Scene& scene);
+// How the drawings are sampled: --filter, else the rig's hint.
+TextureFilter SceneFilter(const Rig& rig, const Scene& scene);
 
 // The CPU buffers a scene's evaluation reuses from frame to frame.
 struct SceneScratch {

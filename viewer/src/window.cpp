@@ -690,7 +690,7 @@ int Viewer::Run() {
     return 1;
   }
   renderer_ = std::make_unique<RigRenderer>();
-  if (!renderer_->Init(gpu_, rig_, drawings_, sc_.format, kMaxCharacters, &problem)) {
+  if (!renderer_->Init(gpu_, rig_, drawings_, sc_.format, kMaxCharacters, SceneFilter(rig_, scene_), &problem)) {
     std::fprintf(stderr, "posemorph-view: error: %s\n", problem.c_str());
     return 1;
   }

@@ -129,6 +129,12 @@ typedef struct pm_canvas {
 } pm_canvas;
 PM_API int pm_rig_pose_canvas(const pm_rig* rig, uint32_t pose, pm_canvas* out);
 
+/* How the rig's drawings want to be sampled (format 1.4; earlier rigs:
+ * linear): PM_FILTER_NEAREST for pixel art. A hint for the renderer. */
+#define PM_FILTER_LINEAR 0
+#define PM_FILTER_NEAREST 1
+PM_API int pm_rig_texture_filter(const pm_rig* rig);
+
 /* The CRC-32 of the file and its format version: network peers compare
  * them (after a handshake) to know they hold the same rig. */
 PM_API int pm_rig_checksum(const pm_rig* rig, uint32_t* crc);

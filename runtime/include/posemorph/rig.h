@@ -70,6 +70,8 @@ struct Factor {
 // the canvas (x right, y down), in drawing units (pixels for a PNG). A rig
 // unit is a drawing unit, y up. All zero when the pose has no drawing or the
 // rig predates format 1.1.
+enum class TextureFilter { kLinear, kNearest };
+
 struct DrawingCanvas {
   double width = 0, height = 0;
   double pivot_x = 0, pivot_y = 0;
@@ -126,6 +128,9 @@ class PM_API Rig {
   const PoseSpaceGrid& grid() const { return grid_; }
   const Factor& factor() const { return factor_; }
   double default_sigma() const { return default_sigma_; }
+  // How the drawings want to be sampled (the description's "filter"; pixel
+  // art: nearest). A hint for renderers; linear for rigs before format 1.4.
+  TextureFilter texture_filter() const { return texture_filter_; }
   double size() const { return rig_size_; }  // bounding-box diagonal of pose 0
 
   // Doubles a MorphJob needs as workspace.
@@ -160,6 +165,7 @@ class PM_API Rig {
   PoseSpaceGrid grid_;
   Factor factor_;
   double default_sigma_ = 0, rig_size_ = 0;
+  TextureFilter texture_filter_ = TextureFilter::kLinear;
   const detail::KernelTable* kernels_ = nullptr;
   std::uint32_t checksum_ = 0;
   std::uint16_t format_major_ = 0, format_minor_ = 0;

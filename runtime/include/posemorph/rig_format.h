@@ -12,7 +12,7 @@ constexpr std::uint16_t kVersionMajor = 1;
 // 1.1 added the optional CANV section; 1.2 the weight grid's cell centres
 // (META flag kMetaFlagGridCentres); 1.3 the compact encoding (META flag
 // kMetaFlagCompact). Older files load unchanged.
-constexpr std::uint16_t kVersionMinor = 3;
+constexpr std::uint16_t kVersionMinor = 4;
 constexpr std::uint32_t kHeaderSize = 64;
 constexpr std::uint32_t kSectionEntrySize = 24;
 constexpr std::uint32_t kSectionAlignment = 16;
@@ -87,6 +87,9 @@ constexpr std::uint32_t kMetaFlagGridCentres = 2u;
 // gradients, angles, stretches and the factor are computed at load from the
 // decoded positions, into the same arena layout. See runtime/FORMAT.md.
 constexpr std::uint32_t kMetaFlagCompact = 4u;
+// 1.4: the drawings are pixel art: renderers should sample them nearest (a
+// hint; it changes no number the runtime computes).
+constexpr std::uint32_t kMetaFlagNearestFilter = 8u;
 constexpr std::uint32_t kQuantPositions = Tag('Q', 'P', 'O', 'S');
 constexpr std::uint32_t kQuantTriangles = Tag('Q', 'T', 'R', 'I');
 constexpr std::uint32_t kQuantPermutation = Tag('Q', 'P', 'R', 'M');

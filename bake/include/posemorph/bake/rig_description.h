@@ -109,6 +109,7 @@ struct BakeParameters {
 struct RigDescription {
   std::string file;  // where it came from, for messages
   std::string name;
+  bool nearest_filter = false;  // "filter": "nearest": the drawings are pixel art (a hint for renderers)
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<PoseDescription> poses;
   BakeParameters parameters;
