@@ -179,7 +179,7 @@ std::string FrameObj(const Rig& rig, const Frame& f) {
   return obj.str();
 }
 
-std::string ContactSheetSvg(const Rig& rig, const std::string& title, int columns, int rows, const EvalOptions& options) {
+std::vector<std::array<double, 2>> SheetPoints(const Rig& rig, int columns, int rows, std::array<double, 4>* box) {
   const std::uint32_t N = rig.pose_count();
   const auto pts = rig.pose_points();
   Box pbox;
@@ -189,15 +189,26 @@ std::string ContactSheetSvg(const Rig& rig, const std::string& title, int column
   const double ex = 0.25 * spread;
   const double sx0 = pbox.x0 - ex, sx1 = pbox.x1 + ex, sy0 = pbox.y0 - ex, sy1 = pbox.y1 + ex;
   if (pbox.y1 - pbox.y0 < 1e-9 * spread) rows = 1;
+  if (box) *box = {sx0, sy0, sx1, sy1};
+  std::vector<std::array<double, 2>> out;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < columns; ++c)
+      out.push_back({sx0 + (sx1 - sx0) * c / std::max(1, columns - 1),
+                     rows == 1 ? 0.5 * (pbox.y0 + pbox.y1) : sy1 - (sy1 - sy0) * r / (rows - 1)});
+  return out;
+}
+
+std::string ContactSheetSvg(const Rig& rig, const std::string& title, int columns, int rows, const EvalOptions& options) {
+  const std::uint32_t N = rig.pose_count();
+  const auto pts = rig.pose_points();
+  std::array<double, 4> sampled{};
+  const std::vector<std::array<double, 2>> points = SheetPoints(rig, columns, rows, &sampled);
+  rows = int(points.size()) / columns;
+  const double sx0 = sampled[0], sy0 = sampled[1], sx1 = sampled[2], sy1 = sampled[3];
 
   std::vector<Frame> samples, bases;
   std::vector<const std::vector<double>*> all;
-  for (int r = 0; r < rows; ++r)
-    for (int c = 0; c < columns; ++c) {
-      const double x = sx0 + (sx1 - sx0) * c / std::max(1, columns - 1);
-      const double y = rows == 1 ? 0.5 * (pbox.y0 + pbox.y1) : sy1 - (sy1 - sy0) * r / (rows - 1);
-      samples.push_back(EvaluateFrame(rig, x, y, options));
-    }
+  for (const auto& p : points) samples.push_back(EvaluateFrame(rig, p[0], p[1], options));
   for (std::uint32_t i = 0; i < N; ++i) {
     bases.push_back(EvaluateFrame(rig, pts[2 * i], pts[2 * i + 1], options));
     bases.back().label = Name(rig.pose_name(i));

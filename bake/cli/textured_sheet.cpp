@@ -1,0 +1,202 @@
+// SPDX-License-Identifier: MIT
+#include "textured_sheet.h"
+
+#include <png.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/input_file.h"
+
+namespace posemorph::bake {
+namespace {
+
+std::string Name(StringView v) { return std::string(v.data, v.size); }
+
+// A reference that stays inside the images folder.
+bool SafeReference(const std::string& ref) {
+  if (ref.empty() || ref[0] == '/' || ref.find('\\') != std::string::npos || ref.find(':') != std::string::npos)
+    return false;
+  for (unsigned char c : ref)
+    if (c < 0x20 || c == 0x7f) return false;
+  for (const auto& part : std::filesystem::path(ref))
+    if (part == "..") return false;
+  return true;
+}
+
+RgbaImage DecodeRgba(const std::vector<unsigned char>& file, const std::string& path) {
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_memory(&image, file.data(), file.size()))
+    throw BakeError(path, std::string("cannot read PNG: ") + image.message);
+  if (image.width == 0 || image.height == 0 || std::uint64_t(image.width) * image.height > kMaxDrawingPixels) {
+    png_image_free(&image);
+    throw BakeError(path, "PNG size " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                              " is empty or above the limit of " + std::to_string(kMaxDrawingPixels) + " pixels");
+  }
+  image.format = PNG_FORMAT_RGBA;
+  RgbaImage out;
+  out.width = image.width;
+  out.height = image.height;
+  out.rgba.resize(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, out.rgba.data(), 0, nullptr)) {
+    const std::string message = image.message;
+    png_image_free(&image);
+    throw BakeError(path, "cannot decode PNG: " + message);
+  }
+  return out;
+}
+
+// Premultiplied colour of a drawing at uv (0..1 across the canvas, y down);
+// transparent outside it, as the viewer's clamp-to-border sampler.
+void Sample(const RgbaImage& d, double u, double v, TextureFilter filter, double out[4]) {
+  const double x = u * d.width - 0.5, y = v * d.height - 0.5;
+  auto texel = [&](long tx, long ty, double weight) {
+    if (tx < 0 || ty < 0 || tx >= long(d.width) || ty >= long(d.height) || weight == 0) return;
+    const unsigned char* p = &d.rgba[(std::size_t(ty) * d.width + std::size_t(tx)) * 4];
+    const double a = p[3] / 255.0;
+    out[0] += weight * a * p[0] / 255.0;
+    out[1] += weight * a * p[1] / 255.0;
+    out[2] += weight * a * p[2] / 255.0;
+    out[3] += weight * a;
+  };
+  out[0] = out[1] = out[2] = out[3] = 0;
+  if (filter == TextureFilter::kNearest) {
+    texel(long(std::floor(x + 0.5)), long(std::floor(y + 0.5)), 1);
+    return;
+  }
+  const double fx = std::floor(x), fy = std::floor(y), ax = x - fx, ay = y - fy;
+  const long x0 = long(fx), y0 = long(fy);
+  texel(x0, y0, (1 - ax) * (1 - ay));
+  texel(x0 + 1, y0, ax * (1 - ay));
+  texel(x0, y0 + 1, (1 - ax) * ay);
+  texel(x0 + 1, y0 + 1, ax * ay);
+}
+
+}  // namespace
+
+std::vector<RgbaImage> ReadPoseDrawings(const Rig& rig, const std::string& rig_file, const std::string& images) {
+  std::vector<RgbaImage> out;
+  if (rig.uvs(0).size == 0) throw BakeError(rig_file, "has no uvs: --textured needs a rig baked from drawings");
+  for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
+    const std::string ref = Name(rig.pose_image(i));
+    if (ref.empty()) throw BakeError(rig_file, "pose '" + Name(rig.pose_name(i)) + "' has no drawing: --textured needs one per pose");
+    if (!SafeReference(ref))
+      throw BakeError(rig_file, "pose '" + Name(rig.pose_name(i)) + "': image reference '" + ref +
+                                    "' leaves the images folder");
+    const std::string path = (std::filesystem::path(images) / ref).string();
+    out.push_back(DecodeRgba(ReadInputFile(path, kMaxTextFileBytes, "a drawing"), path));
+    const DrawingCanvas c = rig.pose_canvas(i);
+    if (c.width > 0 && (double(out.back().width) != c.width || double(out.back().height) != c.height))
+      throw BakeError(path, "is " + std::to_string(out.back().width) + " x " + std::to_string(out.back().height) +
+                                " pixels; the rig was baked from a drawing of " + std::to_string(long(c.width)) + " x " +
+                                std::to_string(long(c.height)));
+  }
+  return out;
+}
+
+RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, int columns, int rows,
+                        const EvalOptions& options, TextureFilter filter, std::uint32_t cell, TexturedSheetLayout* layout) {
+  const std::uint32_t N = rig.pose_count(), V = rig.vertex_count(), T = rig.triangle_count();
+  const auto pts = rig.pose_points();
+  std::vector<Frame> frames;
+  for (std::uint32_t i = 0; i < N; ++i) frames.push_back(EvaluateFrame(rig, pts[2 * i], pts[2 * i + 1], options));
+  const std::vector<std::array<double, 2>> points = SheetPoints(rig, columns, rows);
+  for (const auto& p : points) frames.push_back(EvaluateFrame(rig, p[0], p[1], options));
+  const std::uint32_t grid_rows = std::uint32_t(points.size()) / std::uint32_t(columns);
+
+  // One scale and one centre for every cell, so that sizes and places compare.
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const Frame& f : frames)
+    for (std::uint32_t v = 0; v < V; ++v) {
+      x0 = std::min(x0, f.positions[2 * v]), x1 = std::max(x1, f.positions[2 * v]);
+      y0 = std::min(y0, f.positions[2 * v + 1]), y1 = std::max(y1, f.positions[2 * v + 1]);
+    }
+  TexturedSheetLayout lay;
+  lay.cell = cell;
+  lay.columns = std::uint32_t(std::max<int>(columns, int(N)));
+  lay.rows = grid_rows;
+  lay.scale = 0.92 * cell / std::max({x1 - x0, y1 - y0, 1e-12});
+  lay.centre_x = 0.5 * (x0 + x1);
+  lay.centre_y = 0.5 * (y0 + y1);
+  if (layout) *layout = lay;
+
+  RgbaImage sheet;
+  sheet.width = lay.columns * cell;
+  sheet.height = (1 + grid_rows) * cell;
+  std::vector<double> acc(std::size_t(sheet.width) * sheet.height * 4, 0.0);
+  std::vector<unsigned char> covered(std::size_t(sheet.width) * sheet.height, 0);
+  for (std::size_t k = 0; k < frames.size(); ++k) {
+    const std::uint32_t cx = k < N ? std::uint32_t(k) : std::uint32_t(k - N) % std::uint32_t(columns);
+    const std::uint32_t cy = k < N ? 0 : 1 + std::uint32_t(k - N) / std::uint32_t(columns);
+    const double ox = (cx + 0.5) * cell, oy = (cy + 0.5) * cell;
+    const Frame& f = frames[k];
+    auto sx = [&](std::uint32_t v) { return ox + (f.positions[2 * v] - lay.centre_x) * lay.scale; };
+    auto sy = [&](std::uint32_t v) { return oy - (f.positions[2 * v + 1] - lay.centre_y) * lay.scale; };
+    for (std::uint32_t t = 0; t < T; ++t) {
+      const std::uint32_t* tri = rig.triangles().data + 3 * t;
+      const double ax = sx(tri[0]), ay = sy(tri[0]), bx = sx(tri[1]), by = sy(tri[1]), qx = sx(tri[2]), qy = sy(tri[2]);
+      const double area = (bx - ax) * (qy - ay) - (by - ay) * (qx - ax);
+      if (!(std::abs(area) > 1e-12)) continue;
+      const long px0 = std::max<long>(long(std::floor(std::min({ax, bx, qx}))), long(cx * cell));
+      const long px1 = std::min<long>(long(std::ceil(std::max({ax, bx, qx}))), long((cx + 1) * cell) - 1);
+      const long py0 = std::max<long>(long(std::floor(std::min({ay, by, qy}))), long(cy * cell));
+      const long py1 = std::min<long>(long(std::ceil(std::max({ay, by, qy}))), long((cy + 1) * cell) - 1);
+      for (long py = py0; py <= py1; ++py)
+        for (long px = px0; px <= px1; ++px) {
+          const std::size_t at = std::size_t(py) * sheet.width + std::size_t(px);
+          if (covered[at]) continue;  // a pixel on a shared edge is drawn once
+          const double x = px + 0.5, y = py + 0.5;
+          const double l1 = ((x - ax) * (qy - ay) - (y - ay) * (qx - ax)) / area;
+          const double l2 = ((bx - ax) * (y - ay) - (by - ay) * (x - ax)) / area;
+          const double l0 = 1 - l1 - l2;
+          if (l0 < -1e-9 || l1 < -1e-9 || l2 < -1e-9) continue;
+          covered[at] = 1;
+          for (std::uint32_t i = 0; i < N; ++i) {
+            const double w = f.texture[i];
+            if (!(w > 1e-6)) continue;
+            const auto uv = rig.uvs(i);
+            const double u = l0 * uv[2 * tri[0]] + l1 * uv[2 * tri[1]] + l2 * uv[2 * tri[2]];
+            const double v = l0 * uv[2 * tri[0] + 1] + l1 * uv[2 * tri[1] + 1] + l2 * uv[2 * tri[2] + 1];
+            double c[4];
+            Sample(drawings[i], u, v, filter, c);
+            for (int ch = 0; ch < 4; ++ch) acc[at * 4 + std::size_t(ch)] += w * c[ch];
+          }
+        }
+    }
+  }
+  // Over a light background, as the viewer's.
+  const double background[3] = {0.93, 0.94, 0.95};
+  sheet.rgba.resize(acc.size());
+  for (std::size_t p = 0; p < covered.size(); ++p) {
+    const double a = std::clamp(acc[p * 4 + 3], 0.0, 1.0);
+    for (int ch = 0; ch < 3; ++ch)
+      sheet.rgba[p * 4 + std::size_t(ch)] =
+          static_cast<unsigned char>(std::lround(255 * std::clamp(acc[p * 4 + std::size_t(ch)] + (1 - a) * background[ch], 0.0, 1.0)));
+    sheet.rgba[p * 4 + 3] = 255;
+  }
+  return sheet;
+}
+
+std::vector<unsigned char> EncodePng(const RgbaImage& image, const std::string& file) {
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  png.width = image.width;
+  png.height = image.height;
+  png.format = PNG_FORMAT_RGBA;
+  png_alloc_size_t size = 0;
+  if (!png_image_write_get_memory_size(png, size, 0, image.rgba.data(), 0, nullptr))
+    throw BakeError(file, std::string("cannot encode PNG: ") + png.message);
+  std::vector<unsigned char> out(size);
+  if (!png_image_write_to_memory(&png, out.data(), &size, 0, image.rgba.data(), 0, nullptr))
+    throw BakeError(file, std::string("cannot encode PNG: ") + png.message);
+  out.resize(size);
+  return out;
+}
+
+}  // namespace posemorph::bake

@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// The contact sheet drawn with the drawings (`posemorph-bake sheet --textured`):
+// each frame rasterised on the CPU, every pixel of a triangle taking each
+// pose's drawing at that pose's uvs, blended by the texture weights as the
+// viewer's exact cross-fade does, over a light background. The base poses
+// in the first row, then the sheet's grid of pose-space points: ghosting and
+// texture swimming show without a GPU.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "posemorph/rig.h"
+#include "preview.h"
+
+namespace posemorph::bake {
+
+struct RgbaImage {
+  std::uint32_t width = 0, height = 0;
+  std::vector<unsigned char> rgba;  // straight (not premultiplied) alpha, rows top to bottom
+};
+
+// Reads every pose's drawing: references relative to `images`, never leaving
+// it ('..', absolute paths, backslashes and control characters are refused),
+// regular files of at most 64 MiB and 16,777,216 pixels, each the size its
+// pose's canvas records. Throws BakeError naming the rig or the file.
+std::vector<RgbaImage> ReadPoseDrawings(const Rig& rig, const std::string& rig_file, const std::string& images);
+
+struct TexturedSheetLayout {
+  std::uint32_t cell = 0;             // pixels per cell side
+  std::uint32_t columns = 0, rows = 0;  // rows of the pose-space grid (after the base row)
+  double scale = 0;                   // pixels per rig unit
+  double centre_x = 0, centre_y = 0;  // rig point at each cell's centre
+};
+
+// Row 0: the base poses at their points; rows 1..: SheetPoints(columns, rows).
+RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, int columns, int rows,
+                        const EvalOptions& options, TextureFilter filter, std::uint32_t cell,
+                        TexturedSheetLayout* layout = nullptr);
+
+// PNG bytes of an image (libpng's simplified API).
+std::vector<unsigned char> EncodePng(const RgbaImage& image, const std::string& file);
+
+}  // namespace posemorph::bake

@@ -1,0 +1,118 @@
+// SPDX-License-Identifier: MIT
+// posemorph-bake sheet --textured: frames rasterised with the drawings.
+#include <doctest/doctest.h>
+
+#include <png.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "cli.h"
+#include "posemorph/bake/bake.h"
+#include "posemorph/rig.h"
+#include "textured_sheet.h"
+
+using namespace posemorph;
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Pip {
+  std::string images = std::string(POSEMORPH_DRAWN_SAMPLES) + "/pip";
+  std::vector<unsigned char> bytes;
+  Rig rig;
+  Pip() {
+    bake::RigDescription d = bake::ReadRigDescription(images + "/pip.json");
+    bytes = bake::BakeRig(d);
+    REQUIRE(LoadRig(bytes.data(), bytes.size(), &rig, nullptr));
+  }
+};
+
+}  // namespace
+
+TEST_CASE("sheet --textured: each base pose is drawn as its own drawing, the in-betweens cross-fade") {
+  Pip pip;
+  const std::vector<bake::RgbaImage> drawings = bake::ReadPoseDrawings(pip.rig, "pip.pmrig", pip.images);
+  REQUIRE(drawings.size() == pip.rig.pose_count());
+  bake::TexturedSheetLayout layout;
+  const bake::RgbaImage sheet =
+      bake::TexturedSheet(pip.rig, drawings, 3, 2, bake::EvalOptions{}, TextureFilter::kNearest, 160, &layout);
+  CHECK(layout.columns == 5);  // wide enough for the 5 base poses
+  CHECK(layout.rows == 2);
+  CHECK(sheet.width == 5 * 160);
+  CHECK(sheet.height == 3 * 160);
+  // Base pose i in cell (i, 0): where the drawing is opaque all around, the
+  // sheet shows the drawing's own pixel (the rig point under each sheet pixel,
+  // mapped to the drawing through the pose's canvas).
+  for (std::uint32_t i = 0; i < pip.rig.pose_count(); ++i) {
+    CAPTURE(i);
+    const bake::RgbaImage& d = drawings[i];
+    const DrawingCanvas canvas = pip.rig.pose_canvas(i);
+    std::size_t compared = 0, same = 0;
+    for (std::uint32_t py = 0; py < 160; ++py)
+      for (std::uint32_t px = i * 160; px < (i + 1) * 160; ++px) {
+        const double x = (px + 0.5 - (i + 0.5) * 160) / layout.scale + layout.centre_x;
+        const double y = -(py + 0.5 - 0.5 * 160) / layout.scale + layout.centre_y;
+        const long dx = long(std::floor(x + canvas.pivot_x)), dy = long(std::floor(-y + canvas.pivot_y));
+        bool interior = true;
+        for (long ny = dy - 1; ny <= dy + 1; ++ny)
+          for (long nx = dx - 1; nx <= dx + 1; ++nx)
+            interior = interior && nx >= 0 && ny >= 0 && nx < long(d.width) && ny < long(d.height) &&
+                       d.rgba[(std::size_t(ny) * d.width + std::size_t(nx)) * 4 + 3] == 255;
+        if (!interior) continue;
+        ++compared;
+        const unsigned char* want = &d.rgba[(std::size_t(dy) * d.width + std::size_t(dx)) * 4];
+        const unsigned char* got = &sheet.rgba[(std::size_t(py) * sheet.width + px) * 4];
+        int off = 0;
+        for (int c = 0; c < 3; ++c) off = std::max(off, std::abs(int(got[c]) - int(want[c])));
+        same += off <= 2;
+      }
+    MESSAGE("pose " << i << ": " << same << " of " << compared << " interior pixels are the drawing's");
+    CHECK(compared > 3000);
+    CHECK(double(same) >= 0.99 * double(compared));
+  }
+  // The background shows where no triangle is: the sheet's corner.
+  CHECK(sheet.rgba[0] == 237);
+  // Linear sampling gives another, smoother sheet of the same size.
+  const bake::RgbaImage linear = bake::TexturedSheet(pip.rig, drawings, 3, 2, bake::EvalOptions{}, TextureFilter::kLinear, 160);
+  CHECK(linear.width == sheet.width);
+  CHECK(linear.rgba != sheet.rgba);
+}
+
+TEST_CASE("posemorph-bake sheet --textured writes a PNG, and refuses what it cannot draw") {
+  Pip pip;
+  const fs::path dir = fs::temp_directory_path() / ("posemorph-sheet-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path rig = dir / "pip.pmrig", out = dir / "sheet.png";
+  std::ofstream(rig, std::ios::binary).write(reinterpret_cast<const char*>(pip.bytes.data()), std::streamsize(pip.bytes.size()));
+  auto run = [](const std::vector<std::string>& args, std::string* text) {
+    std::ostringstream o, e;
+    const int status = bake::RunBakeCommand(args, o, e);
+    *text = o.str() + e.str();
+    return status;
+  };
+  std::string text;
+  CHECK(run({"sheet", rig.string(), "--textured", "--images", pip.images, "--columns", "2", "--rows", "1", "-o", out.string()}, &text) == 0);
+  CHECK(text.find("wrote " + out.string() + " (800 x 320: 5 poses, then 2x1 samples, drawings sampled linear)") == 0);
+  // The PNG reads back at that size.
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  REQUIRE(png_image_begin_read_from_file(&image, out.string().c_str()));
+  CHECK(image.width == 800);
+  CHECK(image.height == 320);
+  png_image_free(&image);
+
+  CHECK(run({"sheet", rig.string(), "--textured", "-o", (dir / "s.svg").string()}, &text) == 2);
+  CHECK(text.find("sheet --textured needs -o OUT.png") != std::string::npos);
+  // The drawings are not beside the rig (no --images): the first missing one is named.
+  CHECK(run({"sheet", rig.string(), "--textured", "-o", (dir / "t.png").string()}, &text) == 1);
+  CHECK(text.find("posemorph-bake: error: " + (dir / "rest.png").string() + ": ") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "t.png"));
+  fs::remove_all(dir);
+}
