@@ -15,6 +15,7 @@ drawn=build/release/assets   # the SVG drawings of assets/pip and assets/sprout,
 $bin/posemorph-bake $drawn/pip/pip.json -o out/pip.pmrig
 $bin/posemorph-bake info out/pip.pmrig
 $bin/posemorph-bake sheet out/pip.pmrig -o out/pip-sheet.svg
+$bin/posemorph-bake sheet out/pip.pmrig --textured --images $drawn/pip --columns 5 --rows 3 -o out/pip-sheet-textured.png
 $bin/posemorph-bake eval out/pip.pmrig --path hello --frames 16 -o out/pip-hello.svg
 $bin/posemorph-bake $drawn/sprout/sprout.json -o out/sprout.pmrig
 $bin/posemorph-bake sheet out/sprout.pmrig -o out/sprout-sheet.svg

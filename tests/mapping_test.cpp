@@ -319,6 +319,14 @@ TEST_CASE("bake: the samples' in-betweens do not fold, and the check samples the
     pairs = N * (N - 1) / 2 * 63;
     CHECK(on_paths == 201 * loaded.path_count());
     CHECK(samples.size() >= N + pairs + on_paths);
+    // A smaller budget (3e4 vertex-frames) shrinks every part of the sampling; still no fold.
+    const pb::InbetweenCheck small = pb::CheckInbetweens(loaded, name, 3e4);
+    MESSAGE(name << " within 3e4 vertex-frames: grid " << small.grid << ", " << small.frames << " frames, smallest "
+                 << small.min_area_ratio);
+    CHECK(small.grid < 64);
+    CHECK((double(small.frames) * loaded.vertex_count() <= 3e4 || small.grid == 2));
+    CHECK(small.folds.empty());
+    CHECK(small.min_area_ratio >= check.min_area_ratio);
   }
 }
 

@@ -39,14 +39,16 @@ InbetweenCheck CheckInbetweens(const Rig& rig, const std::string& file, double m
     for (std::uint32_t t = 0; t < T; ++t)
       reference[t] = std::min(reference[t], SignedArea(rig.pose_positions(i).data, tris + 3 * t));
 
+  // Every part of the sampling shrinks together until frames x vertices fits
+  // the budget: at most 64 poses and 1,024 paths keep even the smallest
+  // sampling (2 per side, edge, pair and path) to a few thousand frames.
   PoseSpaceSampling sampling;
-  sampling.per_edge = 64;
-  sampling.per_pair = 64;
   std::vector<PoseSpaceSample> samples;
-  for (sampling.grid = 64;; sampling.grid = sampling.grid * 3 / 4) {
+  for (int g = 64;; g = std::max(2, g * 3 / 4)) {
+    sampling.grid = sampling.per_edge = sampling.per_pair = g;
+    sampling.per_path = g >= 64 ? 200 : std::max(2, 3 * g);
     samples = SamplePoseSpace(rig, sampling);
-    if (double(samples.size()) * V <= max_work || sampling.grid <= 8) break;
-    sampling.per_edge = sampling.per_pair = std::max(8, sampling.grid);
+    if (double(samples.size()) * V <= max_work || g == 2) break;
   }
 
   const auto start = std::chrono::steady_clock::now();

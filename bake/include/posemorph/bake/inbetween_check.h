@@ -45,9 +45,10 @@ struct InbetweenCheck {
   double seconds = 0;
 };
 
-// Samples are chosen so that frames x vertices stays near max_work (the grid
-// shrinks from 64 cells per side, never below 8). Throws BakeError(file) if
-// the rig does not evaluate.
+// Samples: a 64-cell grid, 64 parts per hull edge and per pair of poses, 201
+// frames per path; all of them shrink together (to 2) while frames x
+// vertices exceeds max_work. Throws BakeError(file) if the rig does not
+// evaluate.
 InbetweenCheck CheckInbetweens(const Rig& rig, const std::string& file, double max_work = 2e7);
 
 // One line about a fold: where, the poses that weigh most there, how far the
