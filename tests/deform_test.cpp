@@ -104,8 +104,7 @@ TEST_CASE("a rig mixing drawn and deformed poses bakes and reproduces every pose
   higher.deform.from = "wave";
   higher.deform.handles = {{false, 0, {-0.5, -1.5}, {-0.5, -1.5}}, {false, 0, {1.7, 3.7}, {1.2, 4.3}}};
   desc.poses.insert(desc.poses.begin() + 1, higher);
-  bake::RigDescription resolved = desc;
-  bake::ResolveDeformedPoses(resolved);
+  const bake::RigDescription resolved = bake::WithPoseMeshes(desc, bake::ResolvePoseMeshes(desc));
   const Rig rig = Bake(desc);
   for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
     CAPTURE(i);

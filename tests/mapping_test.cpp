@@ -14,6 +14,7 @@
 
 #include "cli.h"
 #include "posemorph/bake/bake.h"
+#include "posemorph/bake/deform_poses.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/inbetween_check.h"
 #include "posemorph/bake/pose_space_samples.h"
@@ -184,8 +185,10 @@ TEST_CASE("mapping: robustness corpus triangulates compatibly") {
     const std::string case_name = name;  // Clang 14 cannot capture a structured binding
     CAPTURE(case_name);
     pb::RigDescription rig = OutlineRig(shapes);
-    REQUIRE_NOTHROW(pb::MapDrawings(rig));
-    const pb::MappingReport& r = rig.mapping_report;
+    pb::MappedDrawings mapped;
+    REQUIRE_NOTHROW(mapped = pb::MapDrawings(rig));
+    const pb::MappingReport& r = mapped.report;
+    rig = pb::WithPoseMeshes(rig, pb::DeformPoses(rig, mapped));
     MESSAGE(name << ": " << r.matched_vertices << " matched -> " << r.boundary_vertices << " boundary, "
                  << r.steiner_points << " Steiner, " << r.vertices << " vertices, " << r.triangles
                  << " triangles, min angle " << r.min_angle_degrees << ", " << r.seconds * 1e3 << " ms");
@@ -198,7 +201,7 @@ TEST_CASE("bake: an in-between that folds fails the bake, naming the triangle, w
   // A spiral and an S with only their start points as landmarks: half-way
   // between them some triangles turn over.
   pb::RigDescription rig = OutlineRig({Spiral(1.5, 8), SShape(50, 8)});
-  pb::MapDrawings(rig);
+  rig = pb::WithPoseMeshes(rig, pb::ResolvePoseMeshes(rig));
   pb::RigDescription allowed = rig;
   std::string message;
   try {
@@ -551,8 +554,9 @@ TEST_CASE("mapping: the drawn samples map with the quality reached") {
     const std::string dir = std::string(POSEMORPH_DRAWN_SAMPLES) + "/" + f.name;
     REQUIRE_MESSAGE(std::filesystem::exists(dir + "/rest.png"), "the build rasterises the drawings (rsvg-convert)");
     pb::RigDescription rig = pb::ReadRigDescription(dir + "/" + f.name + ".json");
-    pb::MapDrawings(rig);
-    const pb::MappingReport& r = rig.mapping_report;
+    const pb::MappedDrawings mapped = pb::MapDrawings(rig);
+    const pb::MappingReport& r = mapped.report;
+    rig = pb::WithPoseMeshes(rig, pb::DeformPoses(rig, mapped));
     MESSAGE(f.name << ": outlines " << r.outline_vertices[0] << ".. vertices, " << r.matched_vertices << " matched -> "
                    << r.boundary_vertices << " boundary, " << r.steiner_points << " Steiner, " << r.vertices
                    << " vertices, " << r.triangles << " triangles, min angle " << r.min_angle_degrees);

@@ -36,7 +36,7 @@ double RigidFitError(const std::vector<double>& x, const std::vector<Eigen::Vect
 
 TEST_CASE("each pose is reproduced at its pose-space point") {
   for (bake::RigDescription desc : {samples::SnakeRig(), samples::WormLineRig(), BentStripRig(Degrees(300)), samples::GingerbreadRig()}) {
-    bake::ResolveDeformedPoses(desc);  // so `original` holds the deformed poses' vertices
+    desc = bake::WithPoseMeshes(desc, bake::ResolvePoseMeshes(desc));  // so `original` holds the deformed poses' vertices
     const bake::RigDescription original = desc;
     const Rig rig = Bake(desc);
     for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {

@@ -58,10 +58,8 @@ double MaxDifference(const std::vector<double>& a, const std::vector<double>& b)
 }
 
 // A sample with every pose as a mesh (drawings mapped, deformations resolved).
-bake::RigDescription Meshes(bake::RigDescription rig) {
-  bake::ResolveDeformedPoses(rig);
-  for (bake::PoseDescription& p : rig.poses) p.drawn = false, p.deformed = false;
-  return rig;
+bake::RigDescription Meshes(const bake::RigDescription& rig) {
+  return bake::WithPoseMeshes(rig, bake::ResolvePoseMeshes(rig));
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "posemorph/bake/bake.h"
+#include "posemorph/bake/deform_poses.h"
 #include "runtime_support.h"
 #include "strip_rig.h"
 

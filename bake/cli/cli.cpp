@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "posemorph/bake/bake.h"
+#include "posemorph/bake/deform_poses.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/stage.h"
 #include "posemorph/bake/input_file.h"
@@ -180,7 +181,7 @@ int Bake(const std::vector<std::string>& a, std::size_t from, std::ostream& out,
       << "smallest triangle area " << ib.min_area_ratio << " of its smallest in a pose (triangle " << ib.min_triangle
       << " at (" << ib.min_at.x() << ", " << ib.min_at.y() << ")); " << ib.folds.size() << " folded triangles; " << ib.seconds * 1e3 << " ms\n";
   for (const std::string& w : report.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
-  const MappingReport& m = rig.mapping_report;
+  const MappingReport& m = report.mapping;
   for (const std::string& w : rig.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
   for (const std::string& w : m.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
   if (m.mapped) {
@@ -407,23 +408,24 @@ int Deform(const std::vector<std::string>& a, std::size_t from, std::ostream& ou
   if (args.positional.empty()) throw UsageError("no rig description given");
   const std::string *output = args.Get("-o"), *name = args.Get("--pose");
   if (!output || !name) throw UsageError("deform needs --pose NAME and -o MESH.json");
-  RigDescription rig = ReadRigDescription(args.positional);
-  ResolveDeformedPoses(rig);
+  const RigDescription rig = ReadRigDescription(args.positional);
+  const PoseMeshes meshes = ResolvePoseMeshes(rig);
   const auto it = std::find_if(rig.poses.begin(), rig.poses.end(), [&](const PoseDescription& p) { return p.name == *name; });
   if (it == rig.poses.end()) throw BakeError(args.positional, "has no pose named '" + *name + "'");
+  const Points& vertices = meshes.poses[std::size_t(it - rig.poses.begin())].vertices;
   // The same mesh-file format a description's "mesh" reads, so the pose can be
   // edited by hand and used in place of its "deform" entry.
   std::ostringstream json;
   json.precision(17);
   json << "{\"vertices\": [";
-  for (std::size_t v = 0; v < it->vertices.size(); ++v)
-    json << (v ? ", [" : "[") << it->vertices[v].x() << ", " << it->vertices[v].y() << "]";
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+    json << (v ? ", [" : "[") << vertices[v].x() << ", " << vertices[v].y() << "]";
   json << "],\n \"triangles\": [";
-  for (std::size_t t = 0; t < rig.triangles.size(); ++t)
-    json << (t ? ", [" : "[") << rig.triangles[t][0] << ", " << rig.triangles[t][1] << ", " << rig.triangles[t][2] << "]";
+  for (std::size_t t = 0; t < meshes.triangles.size(); ++t)
+    json << (t ? ", [" : "[") << meshes.triangles[t][0] << ", " << meshes.triangles[t][1] << ", " << meshes.triangles[t][2] << "]";
   json << "]}\n";
   WriteText(*output, json.str());
-  out << "wrote " << *output << " (pose '" << *name << "', " << it->vertices.size() << " vertices"
+  out << "wrote " << *output << " (pose '" << *name << "', " << vertices.size() << " vertices"
       << (it->deformed ? ", made from '" + it->deform.from + "'" : std::string(", given directly")) << ")\n";
   return 0;
 }

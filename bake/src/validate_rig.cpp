@@ -8,63 +8,61 @@
 #include <sstream>
 
 #include "posemorph/bake/error.h"
-#include "posemorph/bake/rig_description.h"
+#include "posemorph/bake/validate_rig.h"
 #include "posemorph/bake/triangle_math.h"
 #include "posemorph/rig_format.h"
 
 namespace posemorph::bake {
 namespace {
 
-std::string PoseLabel(const RigDescription& rig, std::size_t i) {
-  return "pose '" + rig.poses[i].name + "' (index " + std::to_string(i) + ")";
-}
-
 std::uint32_t FindRoot(std::vector<std::uint32_t>& parent, std::uint32_t v) {
   while (parent[v] != v) v = parent[v] = parent[parent[v]];
   return v;
 }
 
-}  // namespace
-
-void ValidateRigDescription(RigDescription& rig) {
-  const std::string& file = rig.file;
-  auto fail = [&](const std::string& problem) { throw BakeError(file, problem); };
-
+std::string CheckCounts(const PoseMeshes& rig) {
   const std::size_t N = rig.poses.size();
-  if (N < 2) fail("a rig needs at least 2 poses, this one has " + std::to_string(N));
-  if (N > format::kMaxPoses) fail("at most " + std::to_string(format::kMaxPoses) + " poses are supported, got " + std::to_string(N));
+  if (N < 2) return "a rig needs at least 2 poses, this one has " + std::to_string(N);
+  if (N > format::kMaxPoses) return "at most " + std::to_string(format::kMaxPoses) + " poses are supported, got " + std::to_string(N);
   const std::size_t V = rig.poses[0].vertices.size();
-  if (V < 3) fail(PoseLabel(rig, 0) + " has " + std::to_string(V) + " vertices; a mesh needs at least 3");
-  if (V > format::kMaxVertices) fail("too many vertices: " + std::to_string(V));
-  if (rig.triangles.empty()) fail("the triangle list is empty");
-  if (rig.triangles.size() > format::kMaxTriangles) fail("too many triangles: " + std::to_string(rig.triangles.size()));
+  if (V < 3) return PoseLabel(rig.poses[0].name, 0) + " has " + std::to_string(V) + " vertices; a mesh needs at least 3";
+  if (V > format::kMaxVertices) return "too many vertices: " + std::to_string(V);
+  if (rig.triangles.empty()) return "the triangle list is empty";
+  if (rig.triangles.size() > format::kMaxTriangles) return "too many triangles: " + std::to_string(rig.triangles.size());
   for (std::size_t i = 0; i < N; ++i) {
-    const PoseDescription& p = rig.poses[i];
+    const PoseMesh& p = rig.poses[i];
     if (p.vertices.size() != V)
-      fail(PoseLabel(rig, i) + " has " + std::to_string(p.vertices.size()) + " vertices, pose 0 has " + std::to_string(V));
+      return PoseLabel(rig.poses[i].name, i) + " has " + std::to_string(p.vertices.size()) + " vertices, pose 0 has " + std::to_string(V);
     if (!p.uvs.empty() && p.uvs.size() != V)
-      fail(PoseLabel(rig, i) + " has " + std::to_string(p.uvs.size()) + " uvs for " + std::to_string(V) + " vertices");
+      return PoseLabel(rig.poses[i].name, i) + " has " + std::to_string(p.uvs.size()) + " uvs for " + std::to_string(V) + " vertices";
     for (std::size_t j = 0; j < i; ++j)
-      if (rig.poses[j].name == p.name) fail(PoseLabel(rig, i) + ": the name is used by pose " + std::to_string(j) + " too");
+      if (rig.poses[j].name == p.name) return PoseLabel(rig.poses[i].name, i) + ": the name is used by pose " + std::to_string(j) + " too";
   }
-  const bool any_uvs = std::any_of(rig.poses.begin(), rig.poses.end(), [](const PoseDescription& p) { return !p.uvs.empty(); });
+  const bool any_uvs = std::any_of(rig.poses.begin(), rig.poses.end(), [](const PoseMesh& p) { return !p.uvs.empty(); });
   if (any_uvs)
     for (std::size_t i = 0; i < N; ++i)
-      if (rig.poses[i].uvs.empty()) fail(PoseLabel(rig, i) + " has no uvs, but other poses do; give all or none");
+      if (rig.poses[i].uvs.empty()) return PoseLabel(rig.poses[i].name, i) + " has no uvs, but other poses do; give all or none";
+  return {};
+}
 
+std::string CheckIndices(const PoseMeshes& rig) {
+  const std::size_t V = rig.poses[0].vertices.size();
   // Indices.
   std::set<std::array<std::uint32_t, 3>> seen;
   for (std::size_t t = 0; t < rig.triangles.size(); ++t) {
     const auto& tri = rig.triangles[t];
     for (std::uint32_t v : tri)
-      if (v >= V) fail("triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) + ", but there are only " + std::to_string(V));
+      if (v >= V) return "triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) + ", but there are only " + std::to_string(V);
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
-      fail("triangle " + std::to_string(t) + " repeats a vertex (" + std::to_string(tri[0]) + ", " + std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")");
+      return "triangle " + std::to_string(t) + " repeats a vertex (" + std::to_string(tri[0]) + ", " + std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")";
     std::array<std::uint32_t, 3> key = tri;
     std::sort(key.begin(), key.end());
-    if (!seen.insert(key).second) fail("triangle " + std::to_string(t) + " appears twice in the triangle list");
+    if (!seen.insert(key).second) return "triangle " + std::to_string(t) + " appears twice in the triangle list";
   }
+  return {};
+}
 
+std::string CheckManifold(const PoseMeshes& rig) {
   // Manifold: an edge borders at most two triangles (a third would overlap
   // one of them, and the ARAP energy would count that area twice).
   {
@@ -76,12 +74,16 @@ void ValidateRigDescription(RigDescription& rig) {
         std::vector<std::size_t>& list = edge_triangles[{a, b}];
         list.push_back(t);
         if (list.size() > 2)
-          fail("the mesh is not manifold: edge (" + std::to_string(a) + ", " + std::to_string(b) + ") borders triangles " +
+          return "the mesh is not manifold: edge (" + std::to_string(a) + ", " + std::to_string(b) + ") borders triangles " +
                std::to_string(list[0]) + ", " + std::to_string(list[1]) + " and " + std::to_string(list[2]) +
-               " (an edge borders at most two)");
+               " (an edge borders at most two)";
       }
   }
+  return {};
+}
 
+std::string CheckConnected(const PoseMeshes& rig) {
+  const std::size_t V = rig.poses[0].vertices.size();
   // Every vertex in a triangle, all triangles in one vertex-connected part:
   // otherwise K (one pinned vertex) is singular.
   std::vector<std::uint32_t> parent(V);
@@ -93,49 +95,58 @@ void ValidateRigDescription(RigDescription& rig) {
       parent[FindRoot(parent, tri[k])] = FindRoot(parent, tri[(k + 1) % 3]);
     }
   for (std::size_t v = 0; v < V; ++v) {
-    if (!used[v]) fail("vertex " + std::to_string(v) + " is used by no triangle");
+    if (!used[v]) return "vertex " + std::to_string(v) + " is used by no triangle";
     if (FindRoot(parent, std::uint32_t(v)) != FindRoot(parent, 0))
-      fail("the mesh falls apart: vertex " + std::to_string(v) + " is not connected to vertex 0 (a rig is one connected mesh)");
+      return "the mesh falls apart: vertex " + std::to_string(v) + " is not connected to vertex 0 (a rig is one connected mesh)";
   }
+  return {};
+}
 
+std::string CheckFinite(const PoseMeshes& rig) {
+  const std::size_t N = rig.poses.size();
+  const std::size_t V = rig.poses[0].vertices.size();
   // Finite numbers (the reader checks JSON numbers; this also covers rigs built in code).
   for (std::size_t i = 0; i < N; ++i) {
-    const PoseDescription& p = rig.poses[i];
-    if (!p.point.allFinite()) fail(PoseLabel(rig, i) + ": pose-space point is not finite");
+    const PoseMesh& p = rig.poses[i];
+    if (!p.point.allFinite()) return PoseLabel(rig.poses[i].name, i) + ": pose-space point is not finite";
     for (std::size_t v = 0; v < V; ++v)
-      if (!p.vertices[v].allFinite()) fail(PoseLabel(rig, i) + ": vertex " + std::to_string(v) + " is not finite");
+      if (!p.vertices[v].allFinite()) return PoseLabel(rig.poses[i].name, i) + ": vertex " + std::to_string(v) + " is not finite";
     for (std::size_t v = 0; v < p.uvs.size(); ++v)
-      if (!p.uvs[v].allFinite()) fail(PoseLabel(rig, i) + ": uv " + std::to_string(v) + " is not finite");
+      if (!p.uvs[v].allFinite()) return PoseLabel(rig.poses[i].name, i) + ": uv " + std::to_string(v) + " is not finite";
   }
+  return {};
+}
 
-  // Orientation: pose 0 decides (a clockwise mesh is turned around), then every
+std::string CheckAreas(const PoseMeshes& rig) {
+  const std::size_t N = rig.poses.size();
+  // Orientation (OrientTriangles made pose 0 counter-clockwise): every
   // triangle must keep a clearly positive area in every pose.
-  double total = 0;
-  for (const auto& tri : rig.triangles) total += SignedArea(rig.poses[0].vertices, tri);
-  if (total < 0)
-    for (auto& tri : rig.triangles) std::swap(tri[1], tri[2]);
   for (std::size_t i = 0; i < N; ++i) {
     const Points& q = rig.poses[i].vertices;
     Eigen::AlignedBox2d box;
     for (const auto& v : q) box.extend(v);
     const double diag = box.diagonal().norm();
-    if (!(diag > 0)) fail(PoseLabel(rig, i) + ": all vertices coincide");
+    if (!(diag > 0)) return PoseLabel(rig.poses[i].name, i) + ": all vertices coincide";
     const double min_area = 1e-10 * diag * diag;
     for (std::size_t t = 0; t < rig.triangles.size(); ++t) {
       const double a = SignedArea(q, rig.triangles[t]);
       if (std::abs(a) <= min_area) {
         std::ostringstream s;
-        s << PoseLabel(rig, i) << ": triangle " << t << " is degenerate (area " << a << ")";
-        fail(s.str());
+        s << PoseLabel(rig.poses[i].name, i) << ": triangle " << t << " is degenerate (area " << a << ")";
+        return s.str();
       }
       if (a < 0) {
         std::ostringstream s;
-        s << PoseLabel(rig, i) << ": triangle " << t << " is flipped (signed area " << a << ", pose 0 is counter-clockwise)";
-        fail(s.str());
+        s << PoseLabel(rig.poses[i].name, i) << ": triangle " << t << " is flipped (signed area " << a << ", pose 0 is counter-clockwise)";
+        return s.str();
       }
     }
   }
+  return {};
+}
 
+std::string CheckPosePoints(const PoseMeshes& rig) {
+  const std::size_t N = rig.poses.size();
   // Pose points: representable (the pose-space grid is built from their
   // spread: 1e308 apart overflows it, 5e-324 apart underflows it), and distinct
   // (the grid check later also needs them in distinct cells).
@@ -144,34 +155,38 @@ void ValidateRigDescription(RigDescription& rig) {
     const Eigen::Vector2d& p = rig.poses[i].point;
     if (!(std::fabs(p.x()) <= format::kMaxPathValue) || !(std::fabs(p.y()) <= format::kMaxPathValue)) {
       std::ostringstream s;
-      s << PoseLabel(rig, i) << ": pose-space point (" << p.x() << ", " << p.y() << ") lies beyond +-1e12";
-      fail(s.str());
+      s << PoseLabel(rig.poses[i].name, i) << ": pose-space point (" << p.x() << ", " << p.y() << ") lies beyond +-1e12";
+      return s.str();
     }
     point_box.extend(p);
   }
   for (std::size_t i = 0; i < N; ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (rig.poses[i].point == rig.poses[j].point)
-        fail(PoseLabel(rig, i) + " and " + PoseLabel(rig, j) + " share the pose-space point (" +
-             std::to_string(rig.poses[i].point.x()) + ", " + std::to_string(rig.poses[i].point.y()) + ")");
+        return PoseLabel(rig.poses[i].name, i) + " and " + PoseLabel(rig.poses[j].name, j) + " share the pose-space point (" +
+             std::to_string(rig.poses[i].point.x()) + ", " + std::to_string(rig.poses[i].point.y()) + ")";
   if (!(point_box.sizes().maxCoeff() >= 1e-6)) {
     std::ostringstream s;
     s << "the pose-space points span only " << point_box.sizes().maxCoeff()
       << "; they must span at least 1e-6 (pose-space units are yours: 1 is a good scale)";
-    fail(s.str());
+    return s.str();
   }
+  return {};
+}
 
+std::string CheckFormatLimits(const PoseMeshes& rig, const std::vector<PathDescription>& paths) {
+  const std::size_t N = rig.poses.size();
   // The rig format's own limits (runtime/include/posemorph/rig_format.h),
   // checked here so a description beyond them is refused by name instead of
   // baking a rig the runtime would not load.
-  if (rig.paths.size() > format::kMaxPaths)
-    fail("paths: " + std::to_string(rig.paths.size()) + " paths, more than the rig format's limit of " +
-         std::to_string(format::kMaxPaths));
+  if (paths.size() > format::kMaxPaths)
+    return "paths: " + std::to_string(paths.size()) + " paths, more than the rig format's limit of " +
+         std::to_string(format::kMaxPaths);
   std::size_t keys = 0;
-  for (const PathDescription& path : rig.paths) keys += path.keys.size();
+  for (const PathDescription& path : paths) keys += path.keys.size();
   if (keys > format::kMaxPathKeys)
-    fail("paths: " + std::to_string(keys) + " keys in all, more than the rig format's limit of " +
-         std::to_string(format::kMaxPathKeys));
+    return "paths: " + std::to_string(keys) + " keys in all, more than the rig format's limit of " +
+         std::to_string(format::kMaxPathKeys);
   std::size_t string_bytes = 0, longest = 0;
   std::string longest_name;
   auto count = [&](const std::string& text, const std::string& what) {
@@ -179,14 +194,29 @@ void ValidateRigDescription(RigDescription& rig) {
     if (text.size() > longest) longest = text.size(), longest_name = what;
   };
   for (std::size_t i = 0; i < N; ++i) {
-    count(rig.poses[i].name, PoseLabel(rig, i) + "'s name");
-    count(rig.poses[i].image, PoseLabel(rig, i) + "'s image reference");
+    count(rig.poses[i].name, PoseLabel(rig.poses[i].name, i) + "'s name");
+    count(rig.poses[i].image, PoseLabel(rig.poses[i].name, i) + "'s image reference");
   }
-  for (std::size_t k = 0; k < rig.paths.size(); ++k) count(rig.paths[k].name, "paths[" + std::to_string(k) + "].name");
+  for (std::size_t k = 0; k < paths.size(); ++k) count(paths[k].name, "paths[" + std::to_string(k) + "].name");
   if (string_bytes > format::kMaxStringBytes)
-    fail("pose names, image references and path names take " + std::to_string(string_bytes) +
+    return "pose names, image references and path names take " + std::to_string(string_bytes) +
          " bytes, more than the rig format's limit of " + std::to_string(format::kMaxStringBytes) + " (the longest, " +
-         longest_name + ", has " + std::to_string(longest) + ")");
+         longest_name + ", has " + std::to_string(longest) + ")";
+  return {};
+}
+
+}  // namespace
+
+std::optional<std::string> ValidateRig(const PoseMeshes& rig, const std::vector<PathDescription>& paths) {
+  // In this order: each check may assume the ones before it passed.
+  for (std::string (*check)(const PoseMeshes&) :
+       {CheckCounts, CheckIndices, CheckManifold, CheckConnected, CheckFinite, CheckAreas, CheckPosePoints}) {
+    std::string problem = check(rig);
+    if (!problem.empty()) return problem;
+  }
+  std::string problem = CheckFormatLimits(rig, paths);
+  if (!problem.empty()) return problem;
+  return std::nullopt;
 }
 
 }  // namespace posemorph::bake

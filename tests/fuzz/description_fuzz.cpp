@@ -8,7 +8,10 @@
 #include <string>
 
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/deform_poses.h"
+#include "posemorph/bake/orient_triangles.h"
 #include "posemorph/bake/rig_description.h"
+#include "posemorph/bake/validate_rig.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace posemorph::bake;
@@ -21,8 +24,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     std::size_t points = 0;
     for (const PoseDescription& pose : rig.poses) points += pose.outline.size() + pose.landmarks.size();
     if (points > 256 || rig.poses.size() > 8) return 0;
-    ResolveDeformedPoses(rig);  // maps drawn poses first
-    ValidateRigDescription(rig);
+    PoseMeshes meshes = ResolvePoseMeshes(rig);  // maps drawn poses first
+    meshes.triangles = OrientTriangles(meshes);
+    (void)ValidateRig(meshes, rig.paths);
   } catch (const BakeError&) {
   }
   return 0;

@@ -8,7 +8,7 @@
 
 #include "geometry.h"
 #include "posemorph/bake/error.h"
-#include "posemorph/bake/rig_description.h"
+#include "posemorph/bake/map_drawings.h"
 
 namespace posemorph {
 namespace bake {
@@ -198,25 +198,25 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines, const std::v
 
 namespace bake {
 
-void MapDrawings(RigDescription& rig) {
+MappedDrawings MapDrawings(const RigDescription& rig) {
+  MappedDrawings result;
   std::vector<DrawnPose> drawn;
   for (std::size_t i = 0; i < rig.poses.size(); ++i)
     if (rig.poses[i].drawn && rig.poses[i].vertices.empty()) {
       drawn.emplace_back();
       drawn.back().index = i;
     }
-  if (drawn.empty()) return;
+  if (drawn.empty()) return result;
   const auto start = std::chrono::steady_clock::now();
   const MappingParameters& prm = rig.mapping;
-  MappingReport& report = rig.mapping_report;
-  report = MappingReport{};
+  MappingReport& report = result.report;
   auto fail = [&](const DrawnPose& d, const std::string& problem) -> void {
-    throw BakeError(rig.file, "pose '" + rig.poses[d.index].name + "' (index " + std::to_string(d.index) + "): " + problem);
+    throw BakeError(rig.file, PoseLabel(rig.poses[d.index].name, d.index) + ": " + problem);
   };
 
   // 1. Outlines, in rig coordinates (y up).
   for (DrawnPose& d : drawn) {
-    PoseDescription& pose = rig.poses[d.index];
+    const PoseDescription& pose = rig.poses[d.index];
     Polygon raw;
     const bool png = EndsWith(pose.drawing, ".png"), svg = EndsWith(pose.drawing, ".svg");
     if (!pose.drawing.empty() && !png && !svg) fail(d, "drawing \"" + pose.drawing + "\" is neither .png nor .svg");
@@ -240,7 +240,7 @@ void MapDrawings(RigDescription& rig) {
                     share(io.dropped_pixels) + " of the drawing; the largest " + std::to_string(io.dropped_parts[0]) +
                     " pixels, " + share(io.dropped_parts[0]) + ")";
           }
-          report.warnings.push_back(rig.file + ": pose '" + pose.name + "' (index " + std::to_string(d.index) + "): " +
+          report.warnings.push_back(rig.file + ": " + PoseLabel(pose.name, d.index) + ": " +
                                     pose.drawing_path + ": dropped " + parts +
                                     ": only the largest part is meshed; join the parts in the drawing to keep them");
         }
@@ -274,7 +274,7 @@ void MapDrawings(RigDescription& rig) {
   for (const DrawnPose& d : drawn) {
     outlines.push_back(d.outline);
     landmarks.push_back(d.landmarks);
-    labels.push_back("pose '" + rig.poses[d.index].name + "' (index " + std::to_string(d.index) + ")");
+    labels.push_back(PoseLabel(rig.poses[d.index].name, d.index));
   }
   const mapping::MappingStages st = mapping::MapPolygons(outlines, landmarks, prm, labels, rig.file);
   for (const std::string& w : st.warnings) report.warnings.push_back(rig.file + ": " + w);
@@ -289,14 +289,17 @@ void MapDrawings(RigDescription& rig) {
   report.triangles = mesh.triangles.size();
 
   // 5. Back to rig coordinates; uvs into each pose's own drawing.
-  rig.triangles.clear();
   for (const auto& t : mesh.triangles)
-    rig.triangles.push_back({std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])});
+    result.triangles.push_back({std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])});
   for (std::size_t k = 0; k < drawn.size(); ++k) {
     const DrawnPose& d = drawn[k];
-    PoseDescription& pose = rig.poses[d.index];
-    pose.vertices.clear();
-    pose.uvs.clear();
+    const PoseDescription& description = rig.poses[d.index];
+    result.poses.push_back(d.index);
+    result.meshes.emplace_back();
+    PoseMesh& pose = result.meshes.back();
+    pose.name = description.name;
+    pose.point = description.point;
+    pose.image = description.image.empty() ? description.drawing : description.image;
     Eigen::AlignedBox2d box;
     for (const Point& p : d.outline) box.extend(p);
     for (const Point& g : mesh.vertices[k]) {
@@ -307,7 +310,6 @@ void MapDrawings(RigDescription& rig) {
       else uv = Point((p.x() - box.min().x()) / box.sizes().x(), (box.max().y() - p.y()) / box.sizes().y());
       pose.uvs.push_back(uv.cast<float>());
     }
-    if (pose.image.empty()) pose.image = pose.drawing;
     if (d.from_drawing) {
       // Rig coordinates are drawing units with y flipped: the rig origin is
       // the drawing's (0, 0), at -origin on the canvas.
@@ -317,6 +319,7 @@ void MapDrawings(RigDescription& rig) {
   }
   report.mapped = true;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
 }
 
 }  // namespace bake

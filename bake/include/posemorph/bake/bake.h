@@ -7,6 +7,7 @@
 
 #include "posemorph/bake/compact_rig.h"
 #include "posemorph/bake/inbetween_check.h"
+#include "posemorph/bake/map_drawings.h"
 #include "posemorph/bake/rig_description.h"
 
 namespace posemorph::bake {
@@ -26,13 +27,21 @@ struct BakeReport {
   CompactReport compact_report;    // what the compact encoding reached
   InbetweenCheck inbetweens;       // the rig written, evaluated over the pose hull and the paths
   std::vector<std::string> warnings;  // "FILE: ..." (folds, when allowed)
+  MappingReport mapping;             // what mapping the drawings made (mapped: false when none is drawn)
 };
 
-// Validates (may reorient triangles), analyses, factors, solves the weight
-// grid and serialises. The result is loaded back with the runtime, every pose
-// is checked at its point and the in-betweens for folds (a fold throws unless
-// rig.parameters.allow_folds) before it is returned. Throws BakeError.
-std::vector<unsigned char> BakeRig(RigDescription& rig, BakeReport* report = nullptr);
+// The paper's pipeline, one step per header: map the drawings
+// (map_drawings.h) -> the rig's meshes, deformed poses computed
+// (deform_poses.h) -> orient (orient_triangles.h) -> validate
+// (validate_rig.h) -> analyse the poses: angles and stretches
+// (pose_analysis.h) -> build and factor the ARAP system (arap_system.h) ->
+// solve the pose-space weights (pose_space_weights.h) -> write
+// (serialise_rig.h; compact_rig.h within the error budget) -> check the
+// poses with the runtime (reproduction_check.h) -> check the in-betweens for
+// folds (inbetween_check.h; a fold inside the pose hull throws unless
+// description.parameters.allow_folds). Returns the rig's bytes. Throws
+// BakeError naming the file and the problem.
+std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport* report = nullptr);
 
 // Writes bytes to path via a temporary file in the same folder and a rename,
 // so readers never see a partial rig. Throws BakeError.

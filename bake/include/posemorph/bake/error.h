@@ -2,6 +2,7 @@
 // The bake's one error type: which file, and what is wrong with it.
 #pragma once
 #include <stdexcept>
+#include <cstddef>
 #include <string>
 
 namespace posemorph::bake {
@@ -15,5 +16,11 @@ class BakeError : public std::runtime_error {
  private:
   std::string file_;
 };
+
+// How every message names a pose: "pose 'NAME' (index I)", I its index in the
+// description.
+inline std::string PoseLabel(const std::string& name, std::size_t index) {
+  return "pose '" + name + "' (index " + std::to_string(index) + ")";
+}
 
 }  // namespace posemorph::bake

@@ -34,9 +34,9 @@ struct PoseDescription {
   std::vector<Eigen::Vector2d> vertices;
   std::string image;                      // as written in the description
   std::vector<Eigen::Vector2f> uvs;       // empty, or one per vertex
-  bool deformed = false;                  // vertices come from `deform` (ResolveDeformedPoses)
+  bool deformed = false;                  // vertices come from `deform` (deform_poses.h)
   DeformDescription deform;
-  // A drawn pose: its mesh comes from N-way mapping (MapDrawings).
+  // A drawn pose: its mesh comes from N-way mapping (map_drawings.h).
   bool drawn = false;
   std::string drawing;                      // PNG or SVG as written; empty for an outline
   std::string drawing_path;                 // resolved against the description's folder
@@ -46,9 +46,6 @@ struct PoseDescription {
   // that drawings on canvases of different sizes or offsets line up; (0, 0)
   // by default: the drawing's own origin.
   Eigen::Vector2d origin = Eigen::Vector2d::Zero();
-  // The drawing's canvas in drawing units, and where the rig origin sits on
-  // it (canvas-relative, y down), set by MapDrawings; zero when unknown.
-  Eigen::Vector2d canvas_size = Eigen::Vector2d::Zero(), canvas_pivot = Eigen::Vector2d::Zero();
 };
 
 // How drawings become meshes (bake/RIG_DESCRIPTION.md, "mapping").
@@ -62,20 +59,6 @@ struct MappingParameters {
   double landmark_distance = 0.05;  // a landmark may lie this far off its outline, times the outline's size
   int max_steiner_points = 100;     // interior points the compatible triangulation may add
   int max_vertices = 20000;         // refinement's vertex budget (mesh vertices in all)
-};
-
-// What mapping made, for the bake report and the closing figures.
-struct MappingReport {
-  bool mapped = false;
-  std::vector<std::size_t> outline_vertices;  // per drawn pose, as extracted
-  std::size_t matched_vertices = 0;           // corresponding boundary points before simplification
-  std::size_t boundary_vertices = 0;          // after simplification
-  std::size_t steiner_points = 0;             // interior points the compatible triangulation added
-  std::size_t vertices = 0, triangles = 0;    // after refinement
-  double min_angle_degrees = 0;               // over all triangles and drawn poses
-  double simplification_error = 0;            // drawing units
-  double seconds = 0;
-  std::vector<std::string> warnings;          // e.g. specks dropped from a drawing
 };
 
 struct PathDescription {
@@ -115,7 +98,6 @@ struct RigDescription {
   BakeParameters parameters;
   MappingParameters mapping;
   std::vector<PathDescription> paths;
-  MappingReport mapping_report;  // filled by MapDrawings
   std::vector<std::string> warnings;  // from reading it: keys this bake does not know (a misspelt option)
 };
 
@@ -124,23 +106,5 @@ struct RigDescription {
 RigDescription ReadRigDescription(const std::string& path);
 RigDescription ParseRigDescription(const std::string& json_text, const std::string& file,
                                    const std::string& base_dir);
-
-// Turns drawn poses (a drawing or an outline, with landmarks) into compatible
-// meshes: outlines, boundary matching, enclosing simplification, compatible
-// triangulation and refinement (bake/src/mapping/). Fills the triangles, each
-// drawn pose's vertices, image and uvs, and rig.mapping_report. Does nothing
-// when no pose is drawn. Throws BakeError naming the pose and the problem.
-void MapDrawings(RigDescription& rig);
-
-// Maps drawings first (MapDrawings), then computes the vertices of every pose made by deformation (in dependency
-// order), copying its source's drawing and uvs. Throws BakeError naming the
-// pose and the problem: unknown or cyclic source, fewer than 2 handles, a
-// handle off the mesh, coinciding handles, a triangle the deformation flips.
-void ResolveDeformedPoses(RigDescription& rig);
-
-// Checks everything the math needs (counts, indices, orientation, finiteness,
-// connectivity, distinct pose points); throws BakeError naming the pose and
-// triangle. Reorients a mesh given clockwise so pose 0 is counter-clockwise.
-void ValidateRigDescription(RigDescription& rig);
 
 }  // namespace posemorph::bake

@@ -6,15 +6,18 @@
 
 #include "posemorph/bake/arap_deformer.h"
 #include "posemorph/bake/error.h"
-#include "posemorph/bake/rig_description.h"
+#include "posemorph/bake/deform_poses.h"
 
 namespace posemorph::bake {
 
-void ResolveDeformedPoses(RigDescription& rig) {
-  MapDrawings(rig);
+PoseMeshes DeformPoses(const RigDescription& rig, const MappedDrawings& drawings) {
+  PoseMeshes meshes = GivenPoseMeshes(rig);
+  if (drawings.report.mapped) {
+    meshes.triangles = drawings.triangles;
+    for (std::size_t k = 0; k < drawings.poses.size(); ++k) meshes.poses[drawings.poses[k]] = drawings.meshes[k];
+  }
   const std::size_t N = rig.poses.size();
-  auto label = [&](std::size_t i) { return "pose '" + rig.poses[i].name + "' (index " + std::to_string(i) + ")"; };
-  auto fail = [&](std::size_t i, const std::string& problem) { throw BakeError(rig.file, label(i) + ": " + problem); };
+  auto fail = [&](std::size_t i, const std::string& problem) { throw BakeError(rig.file, PoseLabel(rig.poses[i].name, i) + ": " + problem); };
 
   std::vector<char> done(N, 0);
   std::size_t remaining = 0;
@@ -23,7 +26,7 @@ void ResolveDeformedPoses(RigDescription& rig) {
     remaining += rig.poses[i].deformed;
   }
   if (remaining == N && N > 0) throw BakeError(rig.file, "every pose is made by deformation; at least one needs vertices");
-  if (remaining == 0) return;
+  if (remaining == 0) return meshes;
 
   std::vector<std::size_t> source(N, 0);
   for (std::size_t i = 0; i < N; ++i) {
@@ -41,12 +44,14 @@ void ResolveDeformedPoses(RigDescription& rig) {
     bool progress = false;
     for (std::size_t i = 0; i < N; ++i) {
       if (done[i] || !done[source[i]]) continue;
-      PoseDescription& pose = rig.poses[i];
-      const PoseDescription& from = rig.poses[source[i]];
+      PoseMesh& pose = meshes.poses[i];
+      const PoseMesh& from = meshes.poses[source[i]];
+      const DeformDescription& deform = rig.poses[i].deform;
+      const Triangles& triangles = meshes.triangles;
       const Points& mesh = from.vertices;
       const std::size_t V = mesh.size();
-      for (std::size_t t = 0; t < rig.triangles.size(); ++t)
-        for (std::uint32_t v : rig.triangles[t])
+      for (std::size_t t = 0; t < triangles.size(); ++t)
+        for (std::uint32_t v : triangles[t])
           if (v >= V) fail(i, "its source '" + from.name + "' has " + std::to_string(V) + " vertices, triangle " + std::to_string(t) + " uses vertex " + std::to_string(v));
       Eigen::AlignedBox2d box;
       for (const auto& p : mesh) box.extend(p);
@@ -54,12 +59,12 @@ void ResolveDeformedPoses(RigDescription& rig) {
 
       std::vector<std::uint32_t> handles;
       std::vector<Eigen::Vector2d> targets;
-      for (std::size_t h = 0; h < pose.deform.handles.size(); ++h) {
-        const HandleDescription& hd = pose.deform.handles[h];
+      for (std::size_t h = 0; h < deform.handles.size(); ++h) {
+        const HandleDescription& hd = deform.handles[h];
         std::uint32_t v = hd.vertex;
         if (hd.by_vertex) {
           if (v >= V) fail(i, "handle " + std::to_string(h) + " names vertex " + std::to_string(v) + ", but '" + from.name + "' has " + std::to_string(V));
-        } else if (!HandleVertex(mesh, rig.triangles, hd.at, 1e-3 * size, &v)) {
+        } else if (!HandleVertex(mesh, triangles, hd.at, 1e-3 * size, &v)) {
           std::ostringstream s;
           s << "handle " << h << " at (" << hd.at.x() << ", " << hd.at.y() << ") lies outside the mesh of '" << from.name << "'";
           fail(i, s.str());
@@ -73,12 +78,12 @@ void ResolveDeformedPoses(RigDescription& rig) {
       if (handles.size() < 2) fail(i, "a deformation needs at least 2 handles, this one has " + std::to_string(handles.size()));
 
       try {
-        ArapDeformer(mesh, rig.triangles, handles).Deform(targets, &pose.vertices);
+        ArapDeformer(mesh, triangles, handles).Deform(targets, &pose.vertices);
       } catch (const BakeError& e) {
         fail(i, e.what());
       }
-      for (std::size_t t = 0; t < rig.triangles.size(); ++t) {
-        const double before = SignedArea(mesh, rig.triangles[t]), after = SignedArea(pose.vertices, rig.triangles[t]);
+      for (std::size_t t = 0; t < triangles.size(); ++t) {
+        const double before = SignedArea(mesh, triangles[t]), after = SignedArea(pose.vertices, triangles[t]);
         if (before > 0 && !(after > 1e-10 * size * size)) {
           std::ostringstream s;
           s << "the deformation flips triangle " << t << " (signed area " << after << " from " << before
@@ -98,6 +103,11 @@ void ResolveDeformedPoses(RigDescription& rig) {
       for (std::size_t i = 0; i < N; ++i)
         if (!done[i]) fail(i, "deformation sources form a cycle ('" + rig.poses[i].name + "' <- '" + rig.poses[i].deform.from + "' <- ...)");
   }
+  return meshes;
+}
+
+PoseMeshes ResolvePoseMeshes(const RigDescription& description) {
+  return DeformPoses(description, MapDrawings(description));
 }
 
 }  // namespace posemorph::bake

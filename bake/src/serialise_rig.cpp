@@ -1,0 +1,124 @@
+// SPDX-License-Identifier: MIT
+#include "posemorph/bake/serialise_rig.h"
+
+#include <cstring>
+
+#include <Eigen/Geometry>
+
+#include "posemorph/jobs.h"
+#include "posemorph/rig_format.h"
+#include "rig_writer.h"
+
+namespace posemorph::bake {
+namespace {
+
+namespace fmt = format;
+
+template <typename T>
+std::vector<unsigned char> Bytes(const T& value) {
+  std::vector<unsigned char> out(sizeof(T));
+  std::memcpy(out.data(), &value, sizeof(T));
+  return out;
+}
+
+}  // namespace
+
+double RigBoundingBoxDiagonal(const PoseMeshes& meshes) {
+  Eigen::AlignedBox2d box;
+  for (const auto& v : meshes.poses.at(0).vertices) box.extend(v);
+  return box.diagonal().norm();
+}
+
+bool HasCanvases(const PoseMeshes& meshes) {
+  for (const PoseMesh& p : meshes.poses)
+    if (p.canvas_size.x() > 0) return true;
+  return false;
+}
+
+std::vector<unsigned char> SerialiseRig(const RigDescription& description, const PoseMeshes& meshes,
+                                        const PoseAnalysis& analysis, const ArapSystem& system, const WeightGrid& grid) {
+  const std::size_t V = meshes.poses[0].vertices.size(), T = meshes.triangles.size(), N = meshes.poses.size();
+  fmt::Meta meta{};
+  meta.vertex_count = std::uint32_t(V);
+  meta.triangle_count = std::uint32_t(T);
+  meta.pose_count = std::uint32_t(N);
+  meta.path_count = std::uint32_t(description.paths.size());
+  meta.grid_cells_x = grid.cells_x;
+  meta.grid_cells_y = grid.cells_y;
+  meta.factor_nonzeros = std::uint32_t(system.value.size());
+  const bool has_uvs = !meshes.poses[0].uvs.empty();
+  meta.flags = (has_uvs ? fmt::kMetaFlagHasUVs : 0) | (grid.centre_weights.empty() ? 0 : fmt::kMetaFlagGridCentres) |
+               (description.nearest_filter ? fmt::kMetaFlagNearestFilter : 0);
+  meta.grid_origin_x = grid.origin_x;
+  meta.grid_origin_y = grid.origin_y;
+  meta.grid_cell_size = grid.cell;
+  meta.default_sigma = description.parameters.sigma;
+  meta.rig_size = RigBoundingBoxDiagonal(meshes);
+
+  std::vector<std::uint32_t> tris;
+  for (const auto& t : meshes.triangles) tris.insert(tris.end(), t.begin(), t.end());
+  std::vector<double> positions, pose_points, centroids;
+  std::vector<float> uvs;
+  for (const PoseMesh& p : meshes.poses) {
+    Eigen::Vector2d c = Eigen::Vector2d::Zero();
+    for (std::size_t v = 0; v < V; ++v) {
+      positions.push_back(p.vertices[v].x());
+      positions.push_back(p.vertices[v].y());
+      c += system.vertex_masses[v] * p.vertices[v];
+      if (has_uvs) {
+        uvs.push_back(p.uvs[v].x());
+        uvs.push_back(p.uvs[v].y());
+      }
+    }
+    pose_points.push_back(p.point.x());
+    pose_points.push_back(p.point.y());
+    centroids.push_back(c.x());
+    centroids.push_back(c.y());
+  }
+  std::vector<unsigned char> strings, path_table;
+  std::vector<double> keys;
+  for (const PoseMesh& p : meshes.poses) AppendString(strings, p.name);
+  for (const PoseMesh& p : meshes.poses) AppendString(strings, p.image);
+  for (const auto& path : description.paths) {
+    AppendString(strings, path.name);
+    const std::uint32_t entry[2] = {std::uint32_t(path.keys.size()),
+                                    (path.loop ? fmt::kPathFlagLoop : 0u) |
+                                        (std::uint32_t(path.catmull_rom ? PathInterpolation::kCatmullRom : PathInterpolation::kLinear)
+                                         << fmt::kPathInterpolationShift)};
+    const auto* e = reinterpret_cast<const unsigned char*>(entry);
+    path_table.insert(path_table.end(), e, e + sizeof(entry));
+    for (const auto& k : path.keys) keys.insert(keys.end(), k.begin(), k.end());
+  }
+
+  RigWriter w;
+  w.Add(fmt::kMeta, Bytes(meta));
+  w.AddArray(fmt::kTriangles, tris);
+  w.AddArray(fmt::kPosePositions, positions);
+  w.AddArray(fmt::kPosePoints, pose_points);
+  w.AddArray(fmt::kPoseCentroids, centroids);
+  w.AddArray(fmt::kVertexMasses, system.vertex_masses);
+  w.AddArray(fmt::kGradients, system.gradients);
+  w.AddArray(fmt::kAngles, analysis.angles);
+  w.AddArray(fmt::kShears, analysis.stretches);
+  w.AddArray(fmt::kPermutation, system.order);
+  w.AddArray(fmt::kFactorColumns, system.col_start);
+  w.AddArray(fmt::kFactorRows, system.row);
+  w.AddArray(fmt::kFactorValues, system.value);
+  w.AddArray(fmt::kFactorInvDiagonal, system.inv_diagonal);
+  std::vector<double> grid_nodes = grid.weights;  // corners, then cell centres (format 1.2)
+  grid_nodes.insert(grid_nodes.end(), grid.centre_weights.begin(), grid.centre_weights.end());
+  w.AddArray(fmt::kWeightGrid, grid_nodes);
+  w.Add(fmt::kStrings, strings);
+  w.Add(fmt::kPaths, path_table);
+  w.AddArray(fmt::kPathKeys, keys);
+  if (has_uvs) w.AddArray(fmt::kUVs, uvs);
+  if (HasCanvases(meshes)) {
+    std::vector<double> canvases;
+    for (const PoseMesh& p : meshes.poses)
+      canvases.insert(canvases.end(), {p.canvas_size.x(), p.canvas_size.y(), p.canvas_pivot.x(), p.canvas_pivot.y()});
+    w.AddArray(fmt::kCanvases, canvases);
+  }
+  return w.Finish();
+}
+
+}  // namespace posemorph::bake
