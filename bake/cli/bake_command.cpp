@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: MIT
+// posemorph-bake RIG.json: bake a rig description.
+#include "commands.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "command_args.h"
+#include "posemorph/bake/bake.h"
+#include "posemorph/bake/deform_poses.h"
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/input_file.h"
+#include "posemorph/bake/stage.h"
+#include "posemorph/path.h"
+#include "posemorph/rig.h"
+#include "posemorph/rig_format.h"
+#include "preview.h"
+#include "textured_sheet.h"
+
+namespace posemorph::bake::cli {
+
+int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out, std::ostream& err) {
+  const Args args = Args::Parse(a, from, {"-o", "--precision", "--max-error"}, {"--allow-folds"});
+  if (args.positional.empty()) throw UsageError("no rig description given");
+  std::string output;
+  if (const std::string* o = args.Get("-o")) {
+    output = *o;
+  } else {
+    output = args.positional;
+    const auto dot = output.rfind('.');
+    if (dot != std::string::npos && output.find('/', dot) == std::string::npos) output.resize(dot);
+    output += ".pmrig";
+  }
+  CheckOutputPath(output, {args.positional});
+  BakeStage reading("reading the rig description");
+  RigDescription rig = ReadRigDescription(args.positional);
+  if (const std::string* p = args.Get("--precision")) {
+    if (*p != "compact" && *p != "exact") throw UsageError("--precision must be compact or exact");
+    rig.parameters.compact = *p == "compact";
+  }
+  if (const std::string* e = args.Get("--max-error")) {
+    rig.parameters.max_error_px = ParseNumber("--max-error", *e);
+    if (!(rig.parameters.max_error_px >= 1e-6) || rig.parameters.max_error_px > 10)
+      throw UsageError("--max-error must be in [1e-6, 10] pixels");
+  }
+  if (args.switches.count("--allow-folds")) rig.parameters.allow_folds = true;
+  BakeReport report;
+  const std::vector<unsigned char> bytes = BakeRig(rig, &report);
+  BakeStage writing("writing the output");
+  WriteFileAtomic(output, bytes);
+  out << "baked " << args.positional << " -> " << output << ": " << report.vertices << " vertices, " << report.triangles
+      << " triangles, " << report.poses << " poses, " << report.paths << " paths, " << report.bytes << " bytes, "
+      << "nnz(L) " << report.factor_nonzeros << ", grid " << report.grid_cells_x << "x" << report.grid_cells_y << ", "
+      << report.seconds * 1e3 << " ms; max pose reproduction error " << report.max_reproduction_error
+      << " of the rig size\n";
+  if (report.compact_report.fell_back)
+    err << "posemorph-bake: warning: " << args.positional << ": no compact encoding stays within " << report.max_error_px
+        << " px of the exact rig; wrote the exact encoding (" << report.bytes << " bytes)\n";
+  if (report.compact) {
+    const CompactReport& c = report.compact_report;
+    out << "compact encoding: " << report.bytes << " bytes (exact " << report.exact_bytes << "); max vertex error "
+        << c.max_error_px << " px over " << c.samples << " frames (pose points, pose hull, paths), at the pose points "
+        << c.pose_error_px << " px; budget " << report.max_error_px << " px at " << report.pixels_per_unit
+        << " px per rig unit; position step " << c.position_step_px << " px, weight step " << c.weight_step << "\n";
+  }
+  const InbetweenCheck& ib = report.inbetweens;
+  out << "in-betweens: " << ib.frames << " frames (pose hull: grid " << ib.grid << ", edges, every two poses; paths), "
+      << "smallest triangle area " << ib.min_area_ratio << " of its smallest in a pose (triangle " << ib.min_triangle
+      << " at (" << ib.min_at.x() << ", " << ib.min_at.y() << ")); " << ib.folds.size() << " folded triangles; " << ib.seconds * 1e3 << " ms\n";
+  for (const std::string& w : report.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
+  const MappingReport& m = report.mapping;
+  for (const std::string& w : rig.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
+  for (const std::string& w : m.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
+  if (m.mapped) {
+    out << "mapped drawings: outlines";
+    for (std::size_t v : m.outline_vertices) out << " " << v;
+    out << " vertices; " << m.matched_vertices << " matched boundary points -> " << m.boundary_vertices
+        << " after simplification (max error " << m.simplification_error << "); " << m.steiner_points
+        << " Steiner points; " << m.vertices << " vertices, " << m.triangles << " triangles after refinement; "
+        << "min angle " << m.min_angle_degrees << " degrees over all poses; " << m.seconds * 1e3 << " ms\n";
+  }
+  return 0;
+}
+
+}  // namespace posemorph::bake::cli

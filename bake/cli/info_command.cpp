@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+// posemorph-bake info RIG.pmrig: what a baked rig holds.
+#include "commands.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "command_args.h"
+#include "posemorph/bake/bake.h"
+#include "posemorph/bake/deform_poses.h"
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/input_file.h"
+#include "posemorph/bake/stage.h"
+#include "posemorph/path.h"
+#include "posemorph/rig.h"
+#include "posemorph/rig_format.h"
+#include "preview.h"
+#include "textured_sheet.h"
+
+namespace posemorph::bake::cli {
+namespace {
+
+double MedianLoadMicroseconds(const std::vector<unsigned char>& bytes) {
+  std::vector<double> times;
+  for (int k = 0; k < 21; ++k) {
+    const auto start = std::chrono::steady_clock::now();
+    Rig rig;
+    LoadRig(bytes.data(), bytes.size(), &rig, nullptr);
+    times.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count());
+  }
+  std::nth_element(times.begin(), times.begin() + 10, times.end());
+  return std::round(times[10]);
+}
+
+// What a section holds and at what precision, from its tag and header.
+std::string DescribeSection(std::uint32_t tag, const unsigned char* d, std::uint64_t size) {
+  auto u32 = [&](std::size_t at) { std::uint32_t v = 0; if (at + 4 <= size) std::memcpy(&v, d + at, 4); return v; };
+  auto f64 = [&](std::size_t at) { double v = 0; if (at + 8 <= size) std::memcpy(&v, d + at, 8); return v; };
+  std::ostringstream s;
+  namespace f = format;
+  if (tag == f::kQuantPositions) s << "positions: step " << f64(0) << " rig units, differences Exp-Golomb coded (order " << u32(8) << ")";
+  else if (tag == f::kQuantTriangles) s << "vertex indices: differences Exp-Golomb coded (order " << u32(0) << ")";
+  else if (tag == f::kQuantPermutation) s << u32(0) << "-bit fill-reducing order (factor computed at load)";
+  else if (tag == f::kQuantTurns) s << u32(4) << "-bit whole turns of the rotation angles (angles, stretches computed at load)";
+  else if (tag == f::kQuantGrid) s << "weight grid: step " << f64(0) << ", predicted, Exp-Golomb coded, " << u32(8) << " poses stored";
+  else if (tag == f::kAffineUVs) s << "uvs as affine maps of a pose's positions";
+  else if (tag == f::kCompactInfo)
+    s << "error budget " << f64(0) << " px; measured max " << f64(8) << " px, at the pose points " << f64(16) << " px ("
+      << f64(24) << " px per rig unit)";
+  else if (tag == f::kMeta) s << "counts, grid geometry";
+  else if (tag == f::kTriangles || tag == f::kPermutation || tag == f::kFactorColumns || tag == f::kFactorRows || tag == f::kPaths) s << "u32";
+  else if (tag == f::kUVs) s << "f32 uvs";
+  else if (tag == f::kStrings) s << "names and image references";
+  else s << "f64";
+  return s.str();
+}
+
+}  // namespace
+
+int InfoCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
+  const Args args = Args::Parse(a, from, {}, {});
+  if (args.positional.empty()) throw UsageError("no rig file given");
+  const std::vector<unsigned char> bytes = ReadBytes(args.positional);
+  const Rig rig = LoadRigFile(args.positional);
+  const std::uint32_t V = rig.vertex_count(), T = rig.triangle_count(), N = rig.pose_count();
+  // Lower triangle of K (pinned vertex 0 removed): diagonal + one entry per interior edge.
+  std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
+  for (std::uint32_t t = 0; t < T; ++t)
+    for (int k = 0; k < 3; ++k) {
+      std::uint32_t u = rig.triangles()[3 * t + k], v = rig.triangles()[3 * t + (k + 1) % 3];
+      if (u && v) edges.insert({std::min(u, v), std::max(u, v)});
+    }
+  const std::size_t k_lower = edges.size() + (V - 1), l_strict = rig.factor().value.size;
+  const PoseSpaceGrid& g = rig.grid();
+  out << args.positional << ": " << bytes.size() << " bytes (" << double(bytes.size()) / V << " per vertex), arena "
+      << rig.arena_bytes() << " bytes\n"
+      << "  vertices " << V << ", triangles " << T << ", poses " << N << ", paths " << rig.path_count()
+      << (rig.uvs(0).empty() ? ", no uvs" : ", uvs") << "\n"
+      << "  factor: n " << rig.factor().n << ", nnz(K lower) " << k_lower << ", nnz(L) " << l_strict + (V - 1)
+      << " (fill " << double(l_strict + V - 1) / double(k_lower) << "x)\n"
+      << "  weight grid: " << g.cells_x << " x " << g.cells_y << " cells of " << g.cell << ", origin (" << g.origin_x
+      << ", " << g.origin_y << ")\n"
+      << "  rig size " << rig.size() << ", default sigma " << rig.default_sigma() << ", drawings sampled "
+      << (rig.texture_filter() == TextureFilter::kNearest ? "nearest (pixel art)" : "linear") << "\n"
+      << "  load " << MedianLoadMicroseconds(bytes) << " us (median of 21 loads on this machine)\n"
+      << "  kernel path " << IsaName(rig.isa()) << " (this build and CPU run:";
+  for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512, Isa::kNeon, Isa::kWasmSimd})
+    if (IsaAvailable(isa)) out << ' ' << IsaName(isa);
+  out << "; POSEMORPH_ISA chooses)\n";
+  // Where the bytes go (the loader has validated the table already).
+  std::uint32_t sections = 0;
+  std::memcpy(&sections, bytes.data() + format::kOffSectionCount, 4);
+  format::Meta meta{};
+  out << "  sections (" << (rig.format_major()) << "." << rig.format_minor() << ", ";
+  for (std::uint32_t s = 0; s < sections; ++s) {
+    const unsigned char* e = bytes.data() + format::kHeaderSize + std::size_t(s) * format::kSectionEntrySize;
+    std::uint32_t tag = 0;
+    std::memcpy(&tag, e, 4);
+    std::uint64_t offset = 0;
+    std::memcpy(&offset, e + 8, 8);
+    if (tag == format::kMeta) std::memcpy(&meta, bytes.data() + offset, sizeof(meta));
+  }
+  const bool compact = (meta.flags & format::kMetaFlagCompact) != 0;
+  out << (compact ? "compact" : "exact") << " encoding):\n";
+  for (std::uint32_t s = 0; s < sections; ++s) {
+    const unsigned char* e = bytes.data() + format::kHeaderSize + std::size_t(s) * format::kSectionEntrySize;
+    std::uint32_t tag = 0;
+    std::uint64_t offset = 0, size = 0;
+    std::memcpy(&tag, e, 4);
+    std::memcpy(&offset, e + 8, 8);
+    std::memcpy(&size, e + 16, 8);
+    out << "    " << std::string(reinterpret_cast<const char*>(e), 4) << ' ' << std::setw(9) << size << "  "
+        << DescribeSection(tag, bytes.data() + offset, size) << "\n";
+  }
+  const InbetweenCheck ib = CheckInbetweens(rig, args.positional);
+  out << "  in-betweens: smallest triangle area " << ib.min_area_ratio << " of its smallest in a pose in the pose hull"
+      << " (triangle " << ib.min_triangle << " at (" << ib.min_at.x() << ", " << ib.min_at.y() << "); " << ib.frames
+      << " frames); " << ib.FoldsInHull() << " triangles fold in the hull";
+  if (ib.folds.size() > ib.FoldsInHull()) out << ", " << ib.folds.size() - ib.FoldsInHull() << " only on paths outside it";
+  out << "\n";
+  for (const InbetweenFold& f : ib.folds) out << "    " << DescribeFold(rig, f) << "\n";
+  for (std::uint32_t i = 0; i < N; ++i) {
+    out << "  pose " << i << " '" << std::string(rig.pose_name(i).data, rig.pose_name(i).size) << "' at ("
+        << rig.pose_points()[2 * i] << ", " << rig.pose_points()[2 * i + 1] << ")";
+    if (rig.pose_image(i).size) out << " image " << std::string(rig.pose_image(i).data, rig.pose_image(i).size);
+    const DrawingCanvas canvas = rig.pose_canvas(i);
+    if (canvas.width > 0)
+      out << " canvas " << canvas.width << " x " << canvas.height << " origin at (" << canvas.pivot_x << ", "
+          << canvas.pivot_y << ")";
+    out << "\n";
+  }
+  for (std::uint32_t p = 0; p < rig.path_count(); ++p) {
+    const PathView path = rig.path(p);
+    const double duration = path.keys[3 * (path.key_count() - 1)] - path.keys[0];
+    out << "  path '" << std::string(path.name.data, path.name.size) << "': " << path.key_count() << " keys, "
+        << duration << " s, " << (path.interpolation == PathInterpolation::kCatmullRom ? "catmull-rom" : "linear")
+        << (path.loop ? ", loops" : "") << "\n";
+  }
+  return 0;
+}
+
+}  // namespace posemorph::bake::cli

@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+// posemorph-bake sheet RIG.pmrig: a contact sheet of frames across pose space.
+#include "commands.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "command_args.h"
+#include "posemorph/bake/bake.h"
+#include "posemorph/bake/deform_poses.h"
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/input_file.h"
+#include "posemorph/bake/stage.h"
+#include "posemorph/path.h"
+#include "posemorph/rig.h"
+#include "posemorph/rig_format.h"
+#include "preview.h"
+#include "textured_sheet.h"
+
+namespace posemorph::bake::cli {
+
+int SheetCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
+  const Args args = Args::Parse(a, from, {"-o", "--columns", "--rows", "--sigma", "--images", "--filter"},
+                                {"--no-shear-limit", "--linear", "--textured"});
+  if (args.positional.empty()) throw UsageError("no rig file given");
+  const std::string* output = args.Get("-o");
+  const bool textured = args.switches.count("--textured") > 0;
+  if (!output || Extension(*output) != (textured ? "png" : "svg"))
+    throw UsageError(textured ? "sheet --textured needs -o OUT.png" : "sheet needs -o OUT.svg");
+  if (!textured && (args.Get("--images") || args.Get("--filter"))) throw UsageError("--images and --filter go with --textured");
+  const int columns = args.Get("--columns") ? ParseCount("--columns", *args.Get("--columns"), 2, 32) : 7;
+  const int rows = args.Get("--rows") ? ParseCount("--rows", *args.Get("--rows"), 1, 32) : 5;
+  const Rig rig = LoadRigFile(args.positional);
+  if (textured) {
+    TextureFilter filter = rig.texture_filter();
+    if (const std::string* f = args.Get("--filter")) {
+      if (*f != "linear" && *f != "nearest") throw UsageError("--filter wants linear or nearest");
+      filter = *f == "nearest" ? TextureFilter::kNearest : TextureFilter::kLinear;
+    }
+    std::string images = std::filesystem::path(args.positional).parent_path().string();
+    if (const std::string* i = args.Get("--images")) images = *i;
+    if (images.empty()) images = ".";
+    const std::vector<RgbaImage> drawings = ReadPoseDrawings(rig, args.positional, images);
+    TexturedSheetLayout layout;
+    const RgbaImage sheet = TexturedSheet(rig, drawings, columns, rows, ReadEvalOptions(args), filter, 160, &layout);
+    WriteFileAtomic(*output, EncodePng(sheet, *output));
+    out << "wrote " << *output << " (" << sheet.width << " x " << sheet.height << ": " << rig.pose_count()
+        << " poses, then " << columns << "x" << layout.rows << " samples, drawings sampled "
+        << (filter == TextureFilter::kNearest ? "nearest" : "linear") << ")\n";
+    return 0;
+  }
+  WriteText(*output, ContactSheetSvg(rig, args.positional + ": poses across pose space", columns, rows, ReadEvalOptions(args)));
+  out << "wrote " << *output << " (" << rig.pose_count() << " poses, " << columns << "x" << rows << " samples)\n";
+  return 0;
+}
+
+}  // namespace posemorph::bake::cli
