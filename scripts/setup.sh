@@ -27,6 +27,7 @@ packages=(
   pkg-config                # viewer build: finds Dear ImGui (imgui.pc)
   xvfb xauth                # viewer tests: a display for the window smoke test (xvfb-run needs xauth)
   clang libclang-rt-14-dev  # tests: the Clang build, and ThreadSanitizer's runtime
+  clang-format-14 clang-tidy-14   # CI: the layout check (.clang-format) and the static checks (.clang-tidy)
   g++-aarch64-linux-gnu qemu-user   # tests: the runtime for aarch64, run under qemu
   g++-mingw-w64-x86-64 wine64       # tests: the runtime for Windows, run under wine
   emscripten node-acorn nodejs      # tests: the runtime for WebAssembly, run under node (emcc needs acorn)
