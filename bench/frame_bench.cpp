@@ -52,7 +52,8 @@ Fixture& Get(int which) {
 
 void Label(benchmark::State& state, const Rig& rig) {
   state.SetLabel(std::to_string(rig.vertex_count()) + " vertices, " + std::to_string(rig.triangle_count()) +
-                 " triangles, " + std::to_string(rig.pose_count()) + " poses, " + (state.range(0) >= 3 ? "compact" : "exact"));
+                 " triangles, " + std::to_string(rig.pose_count()) + " poses, " +
+                 (state.range(0) >= 3 ? "compact" : "exact"));
 }
 
 void BM_Frame(benchmark::State& state) {
@@ -141,7 +142,9 @@ void BM_Load(benchmark::State& state) {
 }
 
 void BM_Bake(benchmark::State& state) {
-  const bake::RigDescription desc = state.range(0) == 0 ? samples::SnakeRig() : state.range(0) == 1 ? samples::WormLineRig() : LargeStrip();
+  const bake::RigDescription desc = state.range(0) == 0   ? samples::SnakeRig()
+                                    : state.range(0) == 1 ? samples::WormLineRig()
+                                                          : LargeStrip();
   for (auto _ : state) {
     bake::RigDescription d = desc;
     benchmark::DoNotOptimize(bake::BakeRig(d).size());
@@ -157,7 +160,8 @@ void BM_DeformerSetup(benchmark::State& state) {
     bake::ArapDeformer deformer(g.poses[0].vertices, g.triangles, kDragHandles);
     benchmark::DoNotOptimize(&deformer);
   }
-  state.SetLabel(std::to_string(g.poses[0].vertices.size()) + " vertices, " + std::to_string(kDragHandles.size()) + " handles");
+  state.SetLabel(std::to_string(g.poses[0].vertices.size()) + " vertices, " + std::to_string(kDragHandles.size()) +
+                 " handles");
 }
 
 void BM_DeformerDrag(benchmark::State& state) {
@@ -173,7 +177,8 @@ void BM_DeformerDrag(benchmark::State& state) {
     deformer.Deform(targets, &out);
     benchmark::DoNotOptimize(out.data());
   }
-  state.SetLabel(std::to_string(g.poses[0].vertices.size()) + " vertices, " + std::to_string(kDragHandles.size()) + " handles");
+  state.SetLabel(std::to_string(g.poses[0].vertices.size()) + " vertices, " + std::to_string(kDragHandles.size()) +
+                 " handles");
 }
 
 }  // namespace

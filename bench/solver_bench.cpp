@@ -358,13 +358,27 @@ void BM_PathRatios(benchmark::State& state) {
     std::shuffle(order, order + 7, rng);
     for (int which : order) {
       switch (which) {
-        case 0: t[0] = burst(8, [&] { frame.Run(*rig); }); break;
-        case 1: t[1] = burst(8, [&] { best_frame.Run(*best); }); break;
-        case 2: t[2] = burst(1, [&] { CrowdPart(*rig, time, 0, count, crowd, work); }); break;
-        case 3: t[3] = burst(1, [&] { CrowdPart(*best, time, 0, count, best_crowd, work); }); break;
-        case 4: t[4] = burst(8, [&] { detail::SolvePinned(*rig, solver.b.data(), solver.scratch.data(), solver.x.data()); }); break;
-        case 5: t[5] = burst(8, [&] { eigen.Solve(c); }); break;
-        default: t[6] = burst(8, [&] { cholmod.Solve(); }); break;
+        case 0:
+          t[0] = burst(8, [&] { frame.Run(*rig); });
+          break;
+        case 1:
+          t[1] = burst(8, [&] { best_frame.Run(*best); });
+          break;
+        case 2:
+          t[2] = burst(1, [&] { CrowdPart(*rig, time, 0, count, crowd, work); });
+          break;
+        case 3:
+          t[3] = burst(1, [&] { CrowdPart(*best, time, 0, count, best_crowd, work); });
+          break;
+        case 4:
+          t[4] = burst(8, [&] { detail::SolvePinned(*rig, solver.b.data(), solver.scratch.data(), solver.x.data()); });
+          break;
+        case 5:
+          t[5] = burst(8, [&] { eigen.Solve(c); });
+          break;
+        default:
+          t[6] = burst(8, [&] { cholmod.Solve(); });
+          break;
       }
     }
     time += 1.0 / 60;

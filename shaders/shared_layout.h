@@ -10,21 +10,21 @@
 
 // One character of an instanced draw.
 struct Instance {
-  mat2 linear;        // rig units -> world: columns (a, b) and (c, d) of posemorph::Transform2D
-  vec2 translation;   // (tx, ty)
-  ivec4 layers[2];    // the drawings shown (array layers = poses)
-  vec4 weights[2];    // their texture weights, renormalised; 0 for unused slots
+  mat2 linear;       // rig units -> world: columns (a, b) and (c, d) of posemorph::Transform2D
+  vec2 translation;  // (tx, ty)
+  ivec4 layers[2];   // the drawings shown (array layers = poses)
+  vec4 weights[2];   // their texture weights, renormalised; 0 for unused slots
 };
 
 // Push constants of both stages.
 struct PushData {
-  uvec2 positions;    // buffer address: instance-major vec2 x V per instance, rig units
-  uvec2 uvs;          // buffer address: pose-major vec2 x V per pose
-  uvec2 instances;    // buffer address: Instance per character
-  vec2 view_scale;    // world -> clip: the camera
+  uvec2 positions;  // buffer address: instance-major vec2 x V per instance, rig units
+  uvec2 uvs;        // buffer address: pose-major vec2 x V per pose
+  uvec2 instances;  // buffer address: Instance per character
+  vec2 view_scale;  // world -> clip: the camera
   vec2 view_offset;
   uint vertex_count;
-  uint flat_colour;   // 1: one flat colour (the wireframe overlay)
-  int only_slot;      // >= 0: only this drawing slot, at weight / (sum of the weights up to it):
-                      // one pass of the sequential "over" approximation (blend.frag)
+  uint flat_colour;  // 1: one flat colour (the wireframe overlay)
+  int only_slot;     // >= 0: only this drawing slot, at weight / (sum of the weights up to it):
+                     // one pass of the sequential "over" approximation (blend.frag)
 };

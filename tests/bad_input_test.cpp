@@ -27,7 +27,8 @@ namespace {
 struct TempDir {
   fs::path path;
   TempDir() {
-    path = fs::temp_directory_path() / ("posemorph-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    path =
+        fs::temp_directory_path() / ("posemorph-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
     fs::remove_all(path);
     fs::create_directories(path);
   }
@@ -132,7 +133,8 @@ TEST_CASE("a non-manifold mesh: three triangles on one edge") {
   // A fifth vertex and a third triangle on the diagonal (0, 2), overlapping the others.
   for (auto& pose : d["poses"]) pose["vertices"].push_back({0.6, 0.4});
   d["triangles"].push_back({0, 4, 2});
-  ExpectFailure(d.dump(), "the mesh is not manifold: edge (0, 2) borders triangles 0, 1 and 2 (an edge borders at most two)");
+  ExpectFailure(d.dump(),
+                "the mesh is not manifold: edge (0, 2) borders triangles 0, 1 and 2 (an edge borders at most two)");
 }
 
 TEST_CASE("pose-space points the grid cannot represent") {
@@ -174,7 +176,8 @@ TEST_CASE("pose points too close for the weight grid") {
   d["poses"].push_back(d["poses"][1]);
   d["poses"][2]["name"] = "c";
   d["poses"][2]["point"] = {1e-4, 0};
-  ExpectFailure(d.dump(), "pose points 'a' and 'c' fall in one pose-space grid cell; raise bake.grid_resolution (now 8)");
+  ExpectFailure(d.dump(),
+                "pose points 'a' and 'c' fall in one pose-space grid cell; raise bake.grid_resolution (now 8)");
 }
 
 TEST_CASE("non-finite numbers") {
@@ -213,11 +216,13 @@ TEST_CASE("a mesh file gives the vertices") {
   json d = ValidDescription();
   d["poses"][1].erase("vertices");
   d["poses"][1]["mesh"] = "b.json";
-  Write(dir.path / "b.json", R"({"vertices": [[0, 0], [1, 0.2], [0.9, 1.1], [-0.1, 0.9]], "triangles": [[0, 1, 2], [0, 2, 3]]})");
+  Write(dir.path / "b.json",
+        R"({"vertices": [[0, 0], [1, 0.2], [0.9, 1.1], [-0.1, 0.9]], "triangles": [[0, 1, 2], [0, 2, 3]]})");
   Write(dir.path / "rig.json", d.dump());
   CHECK(Run({(dir.path / "rig.json").string()}).status == 0);
   // A mesh file with other triangles is refused.
-  Write(dir.path / "b.json", R"({"vertices": [[0, 0], [1, 0.2], [0.9, 1.1], [-0.1, 0.9]], "triangles": [[0, 1, 3], [1, 2, 3]]})");
+  Write(dir.path / "b.json",
+        R"({"vertices": [[0, 0], [1, 0.2], [0.9, 1.1], [-0.1, 0.9]], "triangles": [[0, 1, 3], [1, 2, 3]]})");
   const Result r = Run({(dir.path / "rig.json").string()});
   CHECK(r.status == 1);
   CHECK(r.err.find("b.json: triangles: differ from the rig's triangle list") != std::string::npos);
@@ -239,8 +244,9 @@ TEST_CASE("descriptions beyond the rig format's limits are refused by name, not 
   json j = ValidDescription();
   j["poses"][0]["name"] = std::string(600000, 'a');
   j["poses"][1]["name"] = std::string(500000, 'b');
-  ExpectFailure(j.dump(), "pose names, image references and path names take 1100016 bytes, more than the rig format's "
-                          "limit of 1048576 (the longest, pose '");
+  ExpectFailure(j.dump(),
+                "pose names, image references and path names take 1100016 bytes, more than the rig format's "
+                "limit of 1048576 (the longest, pose '");
   j = ValidDescription();
   j["paths"] = json::array();
   for (int k = 0; k < 1025; ++k) j["paths"].push_back({{"name", "p" + std::to_string(k)}, {"keys", {{0, 0, 0}}}});
@@ -364,7 +370,8 @@ TEST_CASE("drawn poses: bad drawings and correspondences") {
 
   d = DrawnDescription();
   d["poses"][1]["landmarks"][1] = {25, 20};  // the middle of the shape
-  ExpectFailure(d.dump(), "pose 'b' (index 1): landmark 1 is 19.4 from the outline (more than 5% of the outline's size");
+  ExpectFailure(d.dump(),
+                "pose 'b' (index 1): landmark 1 is 19.4 from the outline (more than 5% of the outline's size");
 
   d = DrawnDescription();
   d["poses"][0].erase("landmarks");
@@ -374,15 +381,17 @@ TEST_CASE("drawn poses: bad drawings and correspondences") {
   d["poses"][1]["landmarks"] = json::parse("[[50, 40], [0, 0]]");
   d["poses"][1]["landmarks"][0] = {0, 0};
   d["poses"][1]["landmarks"][1] = {0, 0};
-  ExpectFailure(d.dump(), "pose 'b' (index 1): landmark 1 is out of order or coincides with another: landmarks go "
-                         "counter-clockwise around the shape as seen in the drawing, in the same order in every pose");
+  ExpectFailure(d.dump(),
+                "pose 'b' (index 1): landmark 1 is out of order or coincides with another: landmarks go "
+                "counter-clockwise around the shape as seen in the drawing, in the same order in every pose");
 
   // Three landmarks given clockwise: the message says so.
   d = DrawnDescription();
   d["poses"][0]["landmarks"] = json::parse("[[0, 0], [40, 0], [40, 40]]");
   d["poses"][1]["landmarks"] = json::parse("[[0, 0], [40, 40], [40, 0]]");
-  ExpectFailure(d.dump(), "pose 'b' (index 1): landmarks are out of order: they go clockwise around the shape as seen in "
-                         "the drawing; give them counter-clockwise, from landmark 0, in the same order in every pose");
+  ExpectFailure(d.dump(),
+                "pose 'b' (index 1): landmarks are out of order: they go clockwise around the shape as seen in "
+                "the drawing; give them counter-clockwise, from landmark 0, in the same order in every pose");
 
   // Spirals of 0.6 and 2 turns need more Steiner points than the rig allows.
   d = DrawnDescription();
@@ -412,7 +421,9 @@ TEST_CASE("drawn poses: bad drawings and correspondences") {
                 });
 }
 
-TEST_CASE("drawn poses: a PNG drawing with separate parts bakes with a warning naming the pose, the parts' sizes and shares") {
+TEST_CASE(
+    "drawn poses: a PNG drawing with separate parts bakes with a warning naming the pose, the parts' sizes and "
+    "shares") {
   TempDir dir;
   json d = DrawnDescription();
   d["poses"][0].erase("outline");
@@ -448,8 +459,10 @@ TEST_CASE("drawn poses: an origin per pose lines up drawings on canvases of diff
   // 10 px lower, on a 96 x 80 one. Each pose's origin is the middle of the
   // square's bottom edge ("between the feet").
   TempDir dir;
-  WritePngAlpha(dir.path / "a.png", 64, 64, [](int x, int y) { return x >= 8 && x < 48 && y >= 8 && y < 48 ? 255 : 0; });
-  WritePngAlpha(dir.path / "b.png", 96, 80, [](int x, int y) { return x >= 28 && x < 68 && y >= 18 && y < 58 ? 255 : 0; });
+  WritePngAlpha(dir.path / "a.png", 64, 64,
+                [](int x, int y) { return x >= 8 && x < 48 && y >= 8 && y < 48 ? 255 : 0; });
+  WritePngAlpha(dir.path / "b.png", 96, 80,
+                [](int x, int y) { return x >= 28 && x < 68 && y >= 18 && y < 58 ? 255 : 0; });
   json d = json::parse(R"({"posemorph": 1, "poses": [
       {"name": "a", "point": [0, 0], "drawing": "a.png", "origin": [28, 48], "landmarks": [[8, 48], [48, 8]]},
       {"name": "b", "point": [1, 0], "drawing": "b.png", "origin": [48, 58], "landmarks": [[28, 58], [68, 18]]}],

@@ -10,12 +10,12 @@
 #include "posemorph/posemorph.h"
 
 static int failures = 0;
-#define EXPECT(cond)                                              \
-  do {                                                            \
-    if (!(cond)) {                                                \
+#define EXPECT(cond)                                                     \
+  do {                                                                   \
+    if (!(cond)) {                                                       \
       fprintf(stderr, "%s:%d: failed: %s\n", __FILE__, __LINE__, #cond); \
-      ++failures;                                                 \
-    }                                                             \
+      ++failures;                                                        \
+    }                                                                    \
   } while (0)
 
 int main(int argc, char** argv) {
@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
     EXPECT(pm_rig_pose_point(rig, i, &px, &py) == PM_OK);
     EXPECT(pm_weights(rig, px, py, info.default_sigma, 1, raw, shear, tex, info.pose_count) == PM_OK);
     EXPECT(fabs(raw[i] - 1) < 1e-12 && fabs(tex[i] - 1) < 1e-12);
-    EXPECT(pm_morph(rig, raw, shear, 0, work, pm_morph_workspace_size(rig), x, xf, 2 * (size_t)info.vertex_count) == PM_OK);
+    EXPECT(pm_morph(rig, raw, shear, 0, work, pm_morph_workspace_size(rig), x, xf, 2 * (size_t)info.vertex_count) ==
+           PM_OK);
     const double* q = pm_rig_pose_positions(rig, i);
     double worst = 0;
     for (uint32_t k = 0; k < 2 * info.vertex_count; ++k) worst = fmax(worst, fabs(x[k] - q[k]));
@@ -74,7 +75,8 @@ int main(int argc, char** argv) {
       EXPECT(pm_morph(rig, bw + i * n, bws + i * n, 0, work, pm_morph_workspace_size(rig), x, NULL, v2) == PM_OK);
       EXPECT(memcmp(x, bx + i * v2, v2 * sizeof(double)) == 0);
     }
-    EXPECT(pm_morph_batch(rig, n, bw, bws, bwork, pm_batch_workspace_size(rig), NULL, NULL, 0) == PM_ERROR_INVALID_ARGUMENT);
+    EXPECT(pm_morph_batch(rig, n, bw, bws, bwork, pm_batch_workspace_size(rig), NULL, NULL, 0) ==
+           PM_ERROR_INVALID_ARGUMENT);
     free(bw), free(bws), free(bwork), free(bx);
   }
   EXPECT(pm_path_find(rig, "no such path") == -1);
@@ -106,16 +108,18 @@ int main(int argc, char** argv) {
     EXPECT(pm_rig_pose_name(rig, 0, name, length, &length) == PM_ERROR_BUFFER_TOO_SMALL && length == strlen(name));
     EXPECT(pm_rig_pose_name(rig, info.pose_count, name, sizeof name, &length) == PM_ERROR_INVALID_ARGUMENT);
     EXPECT(pm_rig_pose_image(rig, 0, name, sizeof name, &length) == PM_OK);
-    if (info.path_count) EXPECT(pm_rig_path_name(rig, 0, name, sizeof name, NULL) == PM_OK && pm_path_find(rig, name) == 0);
+    if (info.path_count)
+      EXPECT(pm_rig_path_name(rig, 0, name, sizeof name, NULL) == PM_OK && pm_path_find(rig, name) == 0);
     pm_grid_info grid;
     EXPECT(pm_rig_grid(rig, &grid) == PM_OK && grid.max_x > grid.min_x && grid.max_y > grid.min_y);
     EXPECT(fabs(grid.max_x - grid.min_x - grid.cell * grid.cells_x) < 1e-9);
     pm_bounds pose_bounds, hull;
     EXPECT(pm_rig_pose_bounds(rig, 0, &pose_bounds) == PM_OK && pose_bounds.max_x > pose_bounds.min_x);
     double* hull_work = calloc(pm_hull_bounds_workspace_size(rig), sizeof(double));
-    EXPECT(pm_rig_hull_bounds(rig, 8, hull_work, pm_hull_bounds_workspace_size(rig) - 1, &hull) == PM_ERROR_BUFFER_TOO_SMALL);
+    EXPECT(pm_rig_hull_bounds(rig, 8, hull_work, pm_hull_bounds_workspace_size(rig) - 1, &hull) ==
+           PM_ERROR_BUFFER_TOO_SMALL);
     EXPECT(pm_rig_hull_bounds(rig, 8, hull_work, pm_hull_bounds_workspace_size(rig), &hull) == PM_OK);
-    for (uint32_t i = 0; i < info.pose_count; ++i) {  /* the hull's bounds hold every pose's */
+    for (uint32_t i = 0; i < info.pose_count; ++i) { /* the hull's bounds hold every pose's */
       EXPECT(pm_rig_pose_bounds(rig, i, &pose_bounds) == PM_OK);
       EXPECT(hull.min_x <= pose_bounds.min_x && hull.max_x >= pose_bounds.max_x);
       EXPECT(hull.min_y <= pose_bounds.min_y && hull.max_y >= pose_bounds.max_y);

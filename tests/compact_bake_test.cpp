@@ -26,7 +26,11 @@ TEST_CASE("a 1035-vertex, 8-pose rig bakes compact within 100 KB and within the 
   MESSAGE("plate: " << bytes.size() << " bytes compact, " << report.exact_bytes << " exact; max vertex error "
                     << report.compact_report.max_error_px << " px over " << report.compact_report.samples << " frames");
   CHECK(bytes.size() <= 100 * 1024);
-  if (const char* dump = std::getenv("POSEMORPH_DUMP_PLATE")) { FILE* f = std::fopen(dump, "wb"); std::fwrite(bytes.data(), 1, bytes.size(), f); std::fclose(f); }
+  if (const char* dump = std::getenv("POSEMORPH_DUMP_PLATE")) {
+    FILE* f = std::fopen(dump, "wb");
+    std::fwrite(bytes.data(), 1, bytes.size(), f);
+    std::fclose(f);
+  }
   CHECK(report.compact_report.max_error_px <= 0.01);
   CHECK(report.compact_report.pose_error_px <= 0.01);
   CHECK(bake::BakeRig(copy) == bytes);  // deterministic

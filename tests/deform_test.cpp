@@ -147,12 +147,18 @@ void ExpectDeformFailure(const std::function<void(nlohmann::json&)>& edit, const
 TEST_CASE("bad deformations are refused with the pose and the problem") {
   ExpectDeformFailure([](auto& d) { d["handles"] = nlohmann::json::array({d["handles"][0]}); },
                       "a deformation needs at least 2 handles, this one has 1");
-  ExpectDeformFailure([](auto& d) { d["handles"][2]["at"] = {-2.4, 3.5}; },
-                      "handle 2 at (-2.4, 3.5) lies outside the mesh of 'rest'");
+  ExpectDeformFailure(
+      [](auto& d) {
+        d["handles"][2]["at"] = {-2.4, 3.5};
+      },
+      "handle 2 at (-2.4, 3.5) lies outside the mesh of 'rest'");
   ExpectDeformFailure([](auto& d) { d["handles"][1]["at"] = d["handles"][0]["at"]; },
                       "handles 0 and 1 coincide (both grab vertex");
-  ExpectDeformFailure([](auto& d) { d["handles"][3]["to"] = {-3.0, 1.9}; },  // right hand dragged across the body
-                      "the deformation flips triangle");
+  ExpectDeformFailure(
+      [](auto& d) {
+        d["handles"][3]["to"] = {-3.0, 1.9};
+      },  // right hand dragged across the body
+      "the deformation flips triangle");
   ExpectDeformFailure([](auto& d) { d["from"] = "nobody"; }, "deforms pose 'nobody', which the rig does not have");
 }
 

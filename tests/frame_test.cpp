@@ -182,7 +182,8 @@ TEST_CASE("frames: the crowd layout is seeded, sorted back to front, and mixes s
     smallest = std::min(smallest, scale), largest = std::max(largest, scale);
     mirrored += t[k].mirrors();
     // Back to front: farther characters (smaller, standing higher) come first.
-    if (k > 0) CHECK(scale >= std::sqrt(std::fabs(double(t[k - 1].a) * t[k - 1].d - double(t[k - 1].b) * t[k - 1].c)) - 1e-6);
+    if (k > 0)
+      CHECK(scale >= std::sqrt(std::fabs(double(t[k - 1].a) * t[k - 1].d - double(t[k - 1].b) * t[k - 1].c)) - 1e-6);
     if (k > 0) CHECK(t[k].ty <= t[k - 1].ty + 1e-3f);
     const auto index = std::uint32_t(std::lround(phase[k] * K));
     REQUIRE(index < K);
@@ -234,9 +235,9 @@ TEST_CASE("frames: sequential over equals the exact blend where one drawing show
   const Difference over = Compare(Render(mid, nullptr, Blend::kSequentialOver), exact);
   mid.max_drawings = 1;
   const Difference dominant = Compare(Render(mid), exact);
-  MESSAGE("at (0.5, 0.5) against the exact blend: sequential over " << over.differing << " pixels (worst "
-          << over.worst << "), dominant drawing only " << dominant.differing << " pixels (worst " << dominant.worst
-          << ")");
+  MESSAGE("at (0.5, 0.5) against the exact blend: sequential over " << over.differing << " pixels (worst " << over.worst
+                                                                    << "), dominant drawing only " << dominant.differing
+                                                                    << " pixels (worst " << dominant.worst << ")");
   CHECK(over.differing > 0);
   CHECK(dominant.differing > 0);
 }
@@ -269,7 +270,8 @@ TEST_CASE("frames: the rendered base pose is its own drawing where the mesh cove
   }
 }
 
-TEST_CASE("frames: sampled nearest (pixel art), a drawing pixel is one flat block at zoom 4, and is the drawing's colour") {
+TEST_CASE(
+    "frames: sampled nearest (pixel art), a drawing pixel is one flat block at zoom 4, and is the drawing's colour") {
   // Zoom 4 about a whole drawing point: each drawing pixel covers a 4 x 4
   // block of output pixels. Nearest sampling makes every block inside the
   // drawing flat and of its pixel's colour; linear sampling blends across
@@ -294,10 +296,12 @@ TEST_CASE("frames: sampled nearest (pixel art), a drawing pixel is one flat bloc
         bool same = true;
         for (std::uint32_t y = 0; y < 4; ++y)
           for (std::uint32_t x = 0; x < 4; ++x)
-            same = same && std::memcmp(&frame[first], &frame[(std::size_t(4 * by + y) * kSize + 4 * bx + x) * 4], 4) == 0;
+            same =
+                same && std::memcmp(&frame[first], &frame[(std::size_t(4 * by + y) * kSize + 4 * bx + x) * 4], 4) == 0;
         *flat += same;
         int off = 0;
-        for (int c = 0; c < 3; ++c) off = std::max(off, std::abs(int(frame[first + c]) - int(f.drawings.rgba[0][d + c])));
+        for (int c = 0; c < 3; ++c)
+          off = std::max(off, std::abs(int(frame[first + c]) - int(f.drawings.rgba[0][d + c])));
         *true_colour += off <= 2;
       }
     return inside;
@@ -359,14 +363,18 @@ TEST_CASE("camera: fit, zoom about the cursor, pan, pixel-exact") {
 // Rig files are hostile input to the viewer too: image references must stay
 // inside the images folder, and drawings may not make the texture huge.
 TEST_CASE("drawings: image references stay inside the images folder, and sizes are bounded") {
-  for (const char* bad : {"../../etc/passwd", "/etc/passwd", "a/../../b.png", "..", "a\\..\\b.png", "a\x1b[31m.png", ""})
+  for (const char* bad :
+       {"../../etc/passwd", "/etc/passwd", "a/../../b.png", "..", "a\\..\\b.png", "a\x1b[31m.png", ""})
     CHECK_FALSE(ImageReferenceStaysInside(bad));
-  for (const char* good : {"rest.png", "poses/rest.png", "a..b.png", "..a.png", "./rest.png"}) CHECK(ImageReferenceStaysInside(good));
+  for (const char* good : {"rest.png", "poses/rest.png", "a..b.png", "..a.png", "./rest.png"})
+    CHECK(ImageReferenceStaysInside(good));
 
   auto rig_with_images = [](const std::string& first, const std::string& second) {
     bake::RigDescription d = bake::ParseRigDescription(R"({"posemorph": 1, "triangles": [[0, 1, 2]], "poses": [
-      {"name": "a", "point": [0, 0], "vertices": [[0, 0], [1, 0], [0, 1]], "uvs": [[0, 1], [1, 1], [0, 0]], "image": ")" + first + R"("},
-      {"name": "b", "point": [1, 0], "vertices": [[0, 0], [1, 0], [0, 1.5]], "uvs": [[0, 1], [1, 1], [0, 0]], "image": ")" + second + R"("}]})",
+      {"name": "a", "point": [0, 0], "vertices": [[0, 0], [1, 0], [0, 1]], "uvs": [[0, 1], [1, 1], [0, 0]], "image": ")" +
+                                                           first + R"("},
+      {"name": "b", "point": [1, 0], "vertices": [[0, 0], [1, 0], [0, 1.5]], "uvs": [[0, 1], [1, 1], [0, 0]], "image": ")" +
+                                                           second + R"("}]})",
                                                        "in-memory", ".");
     d.parameters.compact = false;
     const std::vector<unsigned char> bytes = bake::BakeRig(d);
@@ -379,13 +387,17 @@ TEST_CASE("drawings: image references stay inside the images folder, and sizes a
   Drawings drawings;
   std::string problem;
   CHECK_FALSE(LoadDrawings(rig_with_images("../../etc/passwd", "b.png"), dir, &drawings, &problem));
-  CHECK(problem == "pose 0: image reference '../../etc/passwd' leaves the images folder (absolute, '..', or a control character); refusing to open it");
+  CHECK(problem ==
+        "pose 0: image reference '../../etc/passwd' leaves the images folder (absolute, '..', or a control character); "
+        "refusing to open it");
   // 8192 x 1 and 1 x 8192: two small PNGs that would share an 8192 x 8192 texture.
   std::vector<unsigned char> line(8192 * 4, 255);
   REQUIRE(WritePng(dir + "/wide.png", line.data(), 8192, 1, &problem));
   REQUIRE(WritePng(dir + "/tall.png", line.data(), 1, 8192, &problem));
   CHECK_FALSE(LoadDrawings(rig_with_images("wide.png", "tall.png"), dir, &drawings, &problem));
-  CHECK(problem == "the drawings (8192 wide, 8192 high at most) would share a texture of more than 16777216 pixels; draw the poses on canvases of one size");
+  CHECK(problem ==
+        "the drawings (8192 wide, 8192 high at most) would share a texture of more than 16777216 pixels; draw the "
+        "poses on canvases of one size");
   CHECK_FALSE(LoadDrawings(rig_with_images("missing.png", "tall.png"), dir, &drawings, &problem));
   CHECK(problem == dir + "/missing.png: cannot open file");
   CHECK_FALSE(LoadDrawings(rig_with_images("..", "tall.png"), dir, &drawings, &problem));

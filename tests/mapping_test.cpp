@@ -54,10 +54,12 @@ Polygon Band(const std::function<Point(double)>& c, double w, int samples) {
 }
 
 Polygon Spiral(double turns, double width) {
-  return Band([&](double t) {
-    const double a = t * turns * 2 * M_PI, r = 20 + 60 * t;
-    return Point(r * std::cos(a), r * std::sin(a));
-  }, width, 160);
+  return Band(
+      [&](double t) {
+        const double a = t * turns * 2 * M_PI, r = 20 + 60 * t;
+        return Point(r * std::cos(a), r * std::sin(a));
+      },
+      width, 160);
 }
 
 Polygon SShape(double amplitude, double width) {
@@ -243,7 +245,9 @@ TEST_CASE("bake: an in-between that folds fails the bake, naming the triangle, w
       REQUIRE(FrameArea(loaded, Point(loaded.pose_points()[2 * i], loaded.pose_points()[2 * i + 1]), t) > 0);
 }
 
-TEST_CASE("posemorph-bake: a folding rig exits 1 with one line and writes nothing, --allow-folds writes it with warnings, info lists the folds") {
+TEST_CASE(
+    "posemorph-bake: a folding rig exits 1 with one line and writes nothing, --allow-folds writes it with warnings, "
+    "info lists the folds") {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("posemorph-folds-" + std::to_string(::getpid()));
   fs::remove_all(dir);
@@ -310,7 +314,8 @@ TEST_CASE("bake: the samples' in-betweens do not fold, and the check samples the
       smallest = std::min(smallest, 0.5 * ((p[2 * v[1]] - p[2 * v[0]]) * (p[2 * v[2] + 1] - p[2 * v[0] + 1]) -
                                            (p[2 * v[1] + 1] - p[2 * v[0] + 1]) * (p[2 * v[2]] - p[2 * v[0]])));
     }
-    CHECK(FrameArea(loaded, check.min_at, check.min_triangle) / smallest == doctest::Approx(check.min_area_ratio).epsilon(1e-12));
+    CHECK(FrameArea(loaded, check.min_at, check.min_triangle) / smallest ==
+          doctest::Approx(check.min_area_ratio).epsilon(1e-12));
     // Samples: pose points, hull edges and grid, the segment between every two poses, every path.
     pb::PoseSpaceSampling sampling;
     sampling.grid = sampling.per_edge = sampling.per_pair = 64;
@@ -380,18 +385,20 @@ TEST_CASE("mapping: matching a shape to its own rotated, scaled copy is the iden
   std::rotate(copy.begin(), copy.begin() + 137, copy.end());  // its vertex 0 is elsewhere
   auto back = [&](const Point& p) {
     const Point q = (p - shift) / scale;
-    return Point(std::cos(-angle) * q.x() - std::sin(-angle) * q.y(), std::sin(-angle) * q.x() + std::cos(-angle) * q.y());
+    return Point(std::cos(-angle) * q.x() - std::sin(-angle) * q.y(),
+                 std::sin(-angle) * q.x() + std::cos(-angle) * q.y());
   };
-  const std::vector<std::vector<Point>> landmarks = {{blob[10], blob[150]},
-                                                     {Transformed({blob[10]}, angle, scale, shift)[0],
-                                                      Transformed({blob[150]}, angle, scale, shift)[0]}};
+  const std::vector<std::vector<Point>> landmarks = {
+      {blob[10], blob[150]},
+      {Transformed({blob[10]}, angle, scale, shift)[0], Transformed({blob[150]}, angle, scale, shift)[0]}};
   pm::MatchingParameters prm;
   prm.spacing = 1.0;
   const pm::CorrespondedBoundary m = pm::MatchBoundaries({blob, copy}, landmarks, prm);
   REQUIRE(m.points[0].size() == m.points[1].size());
   REQUIRE(m.points[0].size() > 300);
   double worst = 0;
-  for (std::size_t j = 0; j < m.points[0].size(); ++j) worst = std::max(worst, (back(m.points[1][j]) - m.points[0][j]).norm());
+  for (std::size_t j = 0; j < m.points[0].size(); ++j)
+    worst = std::max(worst, (back(m.points[1][j]) - m.points[0][j]).norm());
   MESSAGE("identity matching: worst distance " << worst << " (sample spacing " << prm.spacing << ")");
   CHECK(worst <= 1e-6);
   // The user's points map exactly onto each other.
@@ -449,11 +456,13 @@ TEST_CASE("mapping: outline limits name the pose and the limit") {
     pm::MapPolygons({many, many}, {{many[0]}, {many[0]}}, prm, {"pose 'a'", "pose 'b'"}, "limits.json");
     FAIL("an outline over the limit was mapped");
   } catch (const pb::BakeError& e) {
-    CHECK(std::string(e.what()) == "limits.json: pose 'a': the outline has 100001 points, more than the limit of 100000");
+    CHECK(std::string(e.what()) ==
+          "limits.json: pose 'a': the outline has 100001 points, more than the limit of 100000");
   }
   const Polygon square = {{0, 0}, {40, 0}, {40, 40}, {0, 40}};
   std::vector<Point> landmarks;
-  for (std::size_t k = 0; k <= pm::kMaxLandmarks; ++k) landmarks.push_back({40.0 * double(k) / double(pm::kMaxLandmarks + 1), 0});
+  for (std::size_t k = 0; k <= pm::kMaxLandmarks; ++k)
+    landmarks.push_back({40.0 * double(k) / double(pm::kMaxLandmarks + 1), 0});
   try {
     pm::MapPolygons({square, square}, {landmarks, landmarks}, prm, {"pose 'a'", "pose 'b'"}, "limits.json");
     FAIL("landmarks over the limit were mapped");
@@ -468,8 +477,8 @@ TEST_CASE("mapping: outlines from alpha") {
   for (int y = 0; y < H; ++y)
     for (int x = 0; x < W; ++x) {
       const double d = std::hypot(x + 0.5 - 32, y + 0.5 - 32);
-      double a = std::clamp(20.5 - d, 0.0, 1.0);   // anti-aliased disk of radius 20
-      if (d < 5) a = 0;                             // a hole
+      double a = std::clamp(20.5 - d, 0.0, 1.0);  // anti-aliased disk of radius 20
+      if (d < 5) a = 0;                           // a hole
       alpha[y * W + x] = (unsigned char)std::lround(a * 255);
     }
   for (int y = 1; y < 4; ++y)
@@ -530,11 +539,17 @@ TEST_CASE("mapping: SVG outlines") {
   CHECK(so.outline == Polygon{{10, 10}, {50, 10}, {50, 40}});
   CHECK(so.canvas_origin == Point(5, 6));
   CHECK(so.canvas_size == Point(200, 100));
-  CHECK_THROWS_WITH_AS(pm::OutlineFromSvgText(R"svg(<svg width="9" height="9"><path d="M 0 0 A 5 5 0 0 1 9 9 Z"/></svg>)svg", 0.1, "a.svg"),
-                       doctest::Contains("a.svg: path data: arcs (A) are not supported"), pb::BakeError);
-  CHECK_THROWS_WITH_AS(pm::OutlineFromSvgText(R"svg(<svg width="9" height="9"><path transform="scale(2)" d="M 0 0 L 9 0 L 9 9 Z"/></svg>)svg", 0.1, "t.svg"),
-                       doctest::Contains("has a transform"), pb::BakeError);
-  CHECK_THROWS_WITH_AS(pm::OutlineFromSvgText("<svg", 0.1, "x.svg"), doctest::Contains("x.svg: invalid SVG"), pb::BakeError);
+  CHECK_THROWS_WITH_AS(
+      pm::OutlineFromSvgText(R"svg(<svg width="9" height="9"><path d="M 0 0 A 5 5 0 0 1 9 9 Z"/></svg>)svg", 0.1,
+                             "a.svg"),
+      doctest::Contains("a.svg: path data: arcs (A) are not supported"), pb::BakeError);
+  CHECK_THROWS_WITH_AS(
+      pm::OutlineFromSvgText(
+          R"svg(<svg width="9" height="9"><path transform="scale(2)" d="M 0 0 L 9 0 L 9 9 Z"/></svg>)svg", 0.1,
+          "t.svg"),
+      doctest::Contains("has a transform"), pb::BakeError);
+  CHECK_THROWS_WITH_AS(pm::OutlineFromSvgText("<svg", 0.1, "x.svg"), doctest::Contains("x.svg: invalid SVG"),
+                       pb::BakeError);
 }
 
 namespace {

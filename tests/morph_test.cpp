@@ -35,15 +35,18 @@ double RigidFitError(const std::vector<double>& x, const std::vector<Eigen::Vect
 }  // namespace
 
 TEST_CASE("each pose is reproduced at its pose-space point") {
-  for (bake::RigDescription desc : {samples::SnakeRig(), samples::WormLineRig(), BentStripRig(Degrees(300)), samples::GingerbreadRig()}) {
-    desc = bake::WithPoseMeshes(desc, bake::ResolvePoseMeshes(desc));  // so `original` holds the deformed poses' vertices
+  for (bake::RigDescription desc :
+       {samples::SnakeRig(), samples::WormLineRig(), BentStripRig(Degrees(300)), samples::GingerbreadRig()}) {
+    desc =
+        bake::WithPoseMeshes(desc, bake::ResolvePoseMeshes(desc));  // so `original` holds the deformed poses' vertices
     const bake::RigDescription original = desc;
     const Rig rig = Bake(desc);
     for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
       CAPTURE(original.name);
       CAPTURE(i);
       for (bool shear_limit : {true, false}) {
-        const std::vector<double> x = MorphAt(rig, original.poses[i].point.x(), original.poses[i].point.y(), shear_limit);
+        const std::vector<double> x =
+            MorphAt(rig, original.poses[i].point.x(), original.poses[i].point.y(), shear_limit);
         CHECK(MaxVertexDistance(x, original.poses[i].vertices) <= 1e-9 * rig.size());
       }
       // And from exact one-hot weights, in single precision for the GPU: the
@@ -111,8 +114,8 @@ TEST_CASE("N = 2 equals Alexa's closed form solved densely") {
     Eigen::MatrixXd K = Eigen::MatrixXd::Zero(V, V), b = Eigen::MatrixXd::Zero(V, 2);
     for (std::size_t k = 0; k < tris.size(); ++k) {
       const Tri& d = data[k];
-      const Eigen::Matrix2d At = Eigen::Rotation2Dd(t * d.theta).toRotationMatrix() *
-                                 ((1 - t) * Eigen::Matrix2d::Identity() + t * d.S);
+      const Eigen::Matrix2d At =
+          Eigen::Rotation2Dd(t * d.theta).toRotationMatrix() * ((1 - t) * Eigen::Matrix2d::Identity() + t * d.S);
       const Eigen::Matrix3d Kt = d.area * d.G.transpose() * d.G;
       const Eigen::Matrix<double, 3, 2> bt = d.area * d.G.transpose() * At.transpose();
       for (int r = 0; r < 3; ++r) {
@@ -164,7 +167,8 @@ TEST_CASE("a strip bent past 270 degrees keeps every triangle positive along the
   // them run past pi, where atan2 alone would have jumped by 2 pi.
   const std::uint32_t N = rig.pose_count();
   double largest = 0;
-  for (std::uint32_t t = 0; t < rig.triangle_count(); ++t) largest = std::max(largest, std::abs(rig.angles()[t * N + 1]));
+  for (std::uint32_t t = 0; t < rig.triangle_count(); ++t)
+    largest = std::max(largest, std::abs(rig.angles()[t * N + 1]));
   CHECK(largest > Degrees(280));
   // The bent pose itself squeezes its inner edge (area ratio 0.74); every
   // in-between shape keeps every triangle at least that large: positive, no tear.

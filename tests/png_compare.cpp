@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
     return std::fprintf(stderr, "posemorph-png-compare: %ux%u against %ux%u\n", aw, ah, bw, bh), 1;
   const posemorph::viewer::FrameDifference d = posemorph::viewer::CompareFrames(a, b);
   const double share = d.share();
-  std::printf("%zu of %u pixels (%.3f%%) differ by more than 3, worst %d\n", d.differing, aw * ah, 100 * share, d.worst);
+  std::printf("%zu of %u pixels (%.3f%%) differ by more than 3, worst %d\n", d.differing, aw * ah, 100 * share,
+              d.worst);
   return share <= std::atof(argv[3]) ? 0 : 1;
 }

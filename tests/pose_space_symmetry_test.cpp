@@ -137,16 +137,16 @@ Layout RandomLayout(unsigned seed, int n) {
 TEST_CASE("pose space: the snake's mirror-symmetric layout gets mirror-symmetric weights") {
   // rest (0,0), left (-1,0), right (1,0), curl (0,1), wave (0,-1).
   const Rig rig = LayoutRig(Points(samples::SnakeRig()));
-  const double mirror_x = PermutedDifference(rig, rig, [](Eigen::Vector2d p) { return Eigen::Vector2d(-p.x(), p.y()); },
-                                             {0, 2, 1, 3, 4});
-  const double mirror_y = PermutedDifference(rig, rig, [](Eigen::Vector2d p) { return Eigen::Vector2d(p.x(), -p.y()); },
-                                             {0, 1, 2, 4, 3});
+  const double mirror_x =
+      PermutedDifference(rig, rig, [](Eigen::Vector2d p) { return Eigen::Vector2d(-p.x(), p.y()); }, {0, 2, 1, 3, 4});
+  const double mirror_y =
+      PermutedDifference(rig, rig, [](Eigen::Vector2d p) { return Eigen::Vector2d(p.x(), -p.y()); }, {0, 1, 2, 4, 3});
   // A quarter turn counter-clockwise takes left to wave, right to curl, curl to left, wave to right.
-  const double quarter = PermutedDifference(rig, rig, [](Eigen::Vector2d p) { return Eigen::Vector2d(-p.y(), p.x()); },
-                                            {0, 3, 4, 2, 1});
+  const double quarter =
+      PermutedDifference(rig, rig, [](Eigen::Vector2d p) { return Eigen::Vector2d(-p.y(), p.x()); }, {0, 3, 4, 2, 1});
   const double rest_up = Raw(rig, {0.5, 0.5})[0], rest_down = Raw(rig, {0.5, -0.5})[0];
   MESSAGE("snake: mirror x " << mirror_x << ", mirror y " << mirror_y << ", quarter turn " << quarter
-          << "; rest at (0.5, 0.5) " << rest_up << ", at (0.5, -0.5) " << rest_down);
+                             << "; rest at (0.5, 0.5) " << rest_up << ", at (0.5, -0.5) " << rest_down);
   CHECK(mirror_x <= 1e-9);
   CHECK(mirror_y <= 1e-9);
   CHECK(quarter <= 1e-9);
@@ -161,8 +161,10 @@ TEST_CASE("pose space: a mirrored or quarter-turned layout gets the same weights
     for (const auto& p : base) mirrored.emplace_back(-p.x(), p.y()), turned.emplace_back(-p.y(), p.x());
     const Rig a = LayoutRig(base), m = LayoutRig(mirrored), t = LayoutRig(turned);
     const std::vector<int> same = {0, 1, 2, 3, 4, 5};
-    const double dm = PermutedDifference(a, m, [](Eigen::Vector2d p) { return Eigen::Vector2d(-p.x(), p.y()); }, same);
-    const double dt = PermutedDifference(a, t, [](Eigen::Vector2d p) { return Eigen::Vector2d(-p.y(), p.x()); }, same);
+    const double dm = PermutedDifference(
+        a, m, [](Eigen::Vector2d p) { return Eigen::Vector2d(-p.x(), p.y()); }, same);
+    const double dt = PermutedDifference(
+        a, t, [](Eigen::Vector2d p) { return Eigen::Vector2d(-p.y(), p.x()); }, same);
     MESSAGE("random layout " << seed << ": mirrored " << dm << ", quarter turn " << dt);
     CHECK(dm <= 1e-9);
     CHECK(dt <= 1e-9);
@@ -174,7 +176,7 @@ TEST_CASE("pose space: inside the hull the weights stay within 0.05 of a thin-pl
   const Layout random = RandomLayout(7, 6);
   const double ds = ThinPlateDistance(snake), dg = ThinPlateDistance(gingerbread), dr = ThinPlateDistance(random);
   MESSAGE("largest distance from a thin-plate spline inside the hull: snake " << ds << ", gingerbread " << dg
-          << ", random 6 points " << dr);
+                                                                              << ", random 6 points " << dr);
   CHECK(ds <= 0.05);
   CHECK(dg <= 0.05);
   // Not met for uneven layouts: the field's gradient term (bake.epsilon 3,

@@ -104,7 +104,8 @@ TEST_CASE("16-bit and 32-bit solve indices give the same bits, single and batche
     CHECK(std::memcmp(out[0].data(), out[1].data(), out[0].size() * sizeof(double)) == 0);
     // Batched on the wide rig equals single on the narrow one.
     std::vector<double> weights, shears;
-    for (int c = 0; c < 9; ++c) weights.insert(weights.end(), raw.begin(), raw.end()), shears.insert(shears.end(), shear.begin(), shear.end());
+    for (int c = 0; c < 9; ++c)
+      weights.insert(weights.end(), raw.begin(), raw.end()), shears.insert(shears.end(), shear.begin(), shear.end());
     std::vector<double> batch(9 * 2 * V), workspace(wide.batch_workspace_size());
     MorphBatchJob bj;
     bj.rig = &wide;
@@ -114,6 +115,7 @@ TEST_CASE("16-bit and 32-bit solve indices give the same bits, single and batche
     bj.workspace = {workspace.data(), workspace.size()};
     bj.positions = {batch.data(), batch.size()};
     REQUIRE(bj.Run());
-    for (int c = 0; c < 9; ++c) CHECK(std::memcmp(batch.data() + c * 2 * V, out[0].data(), 2 * V * sizeof(double)) == 0);
+    for (int c = 0; c < 9; ++c)
+      CHECK(std::memcmp(batch.data() + c * 2 * V, out[0].data(), 2 * V * sizeof(double)) == 0);
   }
 }

@@ -28,7 +28,8 @@ inline Rig Bake(bake::RigDescription desc) {
 
 inline double MaxVertexDistance(const std::vector<double>& x, const std::vector<Eigen::Vector2d>& q) {
   double worst = 0;
-  for (std::size_t v = 0; v < q.size(); ++v) worst = std::max(worst, std::hypot(x[2 * v] - q[v].x(), x[2 * v + 1] - q[v].y()));
+  for (std::size_t v = 0; v < q.size(); ++v)
+    worst = std::max(worst, std::hypot(x[2 * v] - q[v].x(), x[2 * v + 1] - q[v].y()));
   return worst;
 }
 

@@ -78,7 +78,8 @@ TEST_CASE("sheet --textured: each base pose is drawn as its own drawing, the in-
   // The background shows where no triangle is: the sheet's corner.
   CHECK(sheet.rgba[0] == 237);
   // Linear sampling gives another, smoother sheet of the same size.
-  const bake::RgbaImage linear = bake::TexturedSheet(pip.rig, drawings, 3, 2, bake::EvalOptions{}, TextureFilter::kLinear, 160);
+  const bake::RgbaImage linear =
+      bake::TexturedSheet(pip.rig, drawings, 3, 2, bake::EvalOptions{}, TextureFilter::kLinear, 160);
   CHECK(linear.width == sheet.width);
   CHECK(linear.rgba != sheet.rgba);
 }
@@ -89,7 +90,8 @@ TEST_CASE("posemorph-bake sheet --textured writes a PNG, and refuses what it can
   fs::remove_all(dir);
   fs::create_directories(dir);
   const fs::path rig = dir / "pip.pmrig", out = dir / "sheet.png";
-  std::ofstream(rig, std::ios::binary).write(reinterpret_cast<const char*>(pip.bytes.data()), std::streamsize(pip.bytes.size()));
+  std::ofstream(rig, std::ios::binary)
+      .write(reinterpret_cast<const char*>(pip.bytes.data()), std::streamsize(pip.bytes.size()));
   auto run = [](const std::vector<std::string>& args, std::string* text) {
     std::ostringstream o, e;
     const int status = bake::RunBakeCommand(args, o, e);
@@ -97,7 +99,9 @@ TEST_CASE("posemorph-bake sheet --textured writes a PNG, and refuses what it can
     return status;
   };
   std::string text;
-  CHECK(run({"sheet", rig.string(), "--textured", "--images", pip.images, "--columns", "2", "--rows", "1", "-o", out.string()}, &text) == 0);
+  CHECK(run({"sheet", rig.string(), "--textured", "--images", pip.images, "--columns", "2", "--rows", "1", "-o",
+             out.string()},
+            &text) == 0);
   CHECK(text.find("wrote " + out.string() + " (800 x 320: 5 poses, then 2x1 samples, drawings sampled linear)") == 0);
   // The PNG reads back at that size.
   png_image image;

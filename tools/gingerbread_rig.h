@@ -36,8 +36,10 @@ inline bake::RigDescription GingerbreadRig() {
       if (!InGingerbread(x0 + (i + 0.5) * h, y0 + (j + 0.5) * h)) continue;
       const std::uint32_t a = vertex(i, j), b = vertex(i + 1, j), c = vertex(i + 1, j + 1), d = vertex(i, j + 1);
       // Alternate the diagonal so the mesh has no preferred shear direction.
-      if ((i + j) % 2) rig.triangles.push_back({a, b, c}), rig.triangles.push_back({a, c, d});
-      else rig.triangles.push_back({a, b, d}), rig.triangles.push_back({b, c, d});
+      if ((i + j) % 2)
+        rig.triangles.push_back({a, b, c}), rig.triangles.push_back({a, c, d});
+      else
+        rig.triangles.push_back({a, b, d}), rig.triangles.push_back({b, c, d});
     }
   rest.point = {0, 0};
   rig.poses.push_back(rest);
@@ -59,17 +61,30 @@ inline bake::RigDescription GingerbreadRig() {
     }
     rig.poses.push_back(p);
   };
-  deformed("wave", 1, 0.3, {{left_foot, left_foot}, {right_foot, right_foot}, {left_hand, {-2.2, 1.4}},
-                            {right_hand, {1.7, 3.7}}, {head, {0.15, 4.05}}});
-  deformed("cheer", 0, 1, {{left_foot, {-0.8, -1.5}}, {right_foot, {0.8, -1.5}}, {left_hand, {-1.8, 3.9}},
-                           {right_hand, {1.8, 3.9}}, {head, {0, 4.2}}});
-  deformed("lean", -1, 0.3, {{left_foot, left_foot}, {right_foot, right_foot}, {head, {-1.4, 3.7}},
-                             {hips, {0.1, 0.35}}});
-  deformed("crouch", 0, -1, {{left_foot, {-0.7, -1.5}}, {right_foot, {0.7, -1.5}}, {head, {0, 3.1}},
-                             {left_hand, {-2.1, 0.9}}, {right_hand, {2.1, 0.9}}});
+  deformed("wave", 1, 0.3,
+           {{left_foot, left_foot},
+            {right_foot, right_foot},
+            {left_hand, {-2.2, 1.4}},
+            {right_hand, {1.7, 3.7}},
+            {head, {0.15, 4.05}}});
+  deformed("cheer", 0, 1,
+           {{left_foot, {-0.8, -1.5}},
+            {right_foot, {0.8, -1.5}},
+            {left_hand, {-1.8, 3.9}},
+            {right_hand, {1.8, 3.9}},
+            {head, {0, 4.2}}});
+  deformed("lean", -1, 0.3,
+           {{left_foot, left_foot}, {right_foot, right_foot}, {head, {-1.4, 3.7}}, {hips, {0.1, 0.35}}});
+  deformed("crouch", 0, -1,
+           {{left_foot, {-0.7, -1.5}},
+            {right_foot, {0.7, -1.5}},
+            {head, {0, 3.1}},
+            {left_hand, {-2.1, 0.9}},
+            {right_hand, {2.1, 0.9}}});
   rig.parameters.grid_resolution = 64;
   rig.parameters.sigma = 0.25;
-  rig.paths.push_back({"dance", true, true, {{0, 0, 0}, {0.6, 1, 0.3}, {1.2, 0, 1}, {1.8, -1, 0.3}, {2.4, 0, -1}, {3, 0, 0}}});
+  rig.paths.push_back(
+      {"dance", true, true, {{0, 0, 0}, {0.6, 1, 0.3}, {1.2, 0, 1}, {1.8, -1, 0.3}, {2.4, 0, -1}, {3, 0, 0}}});
   return rig;
 }
 

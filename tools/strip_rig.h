@@ -15,9 +15,9 @@ namespace posemorph::samples {
 struct StripShape {
   double length = 10;
   double width = 1;
-  int segments = 40;                          // quads along the body
-  int across = 4;                             // quads across it
-  std::function<double(double)> taper;        // width factor at arclength fraction s in [0, 1]
+  int segments = 40;                    // quads along the body
+  int across = 4;                       // quads across it
+  std::function<double(double)> taper;  // width factor at arclength fraction s in [0, 1]
 };
 
 // Vertex positions of the strip bent by curvature kappa(s) (radians per unit
@@ -81,10 +81,12 @@ inline bake::RigDescription SnakeRig() {
   rig.poses.push_back(StripPose("right", 1, 0, shape, [=](double) { return -Degrees(120) / L; }));
   // Curvature ramping up to the tail (a clothoid): 300 degrees in all.
   rig.poses.push_back(StripPose("curl", 0, 1, shape, [=](double s) { return 2 * Degrees(300) * s / (L * L); }));
-  rig.poses.push_back(StripPose("wave", 0, -1, shape, [=](double s) { return Degrees(75) * 2 * M_PI / L * std::sin(2 * M_PI * s / L); }));
+  rig.poses.push_back(StripPose("wave", 0, -1, shape,
+                                [=](double s) { return Degrees(75) * 2 * M_PI / L * std::sin(2 * M_PI * s / L); }));
   rig.parameters.grid_resolution = 64;
   rig.parameters.sigma = 0.25;
-  rig.paths.push_back({"slither", true, true, {{0, -0.9, 0}, {0.5, 0, -0.9}, {1, 0.9, 0}, {1.5, 0, -0.9}, {2, -0.9, 0}}});
+  rig.paths.push_back(
+      {"slither", true, true, {{0, -0.9, 0}, {0.5, 0, -0.9}, {1, 0.9, 0}, {1.5, 0, -0.9}, {2, -0.9, 0}}});
   rig.paths.push_back({"curl-up", false, false, {{0, 0, 0}, {1, 0, 1}, {1.5, 0.3, 1.2}, {2.5, 0, 0}}});
   return rig;
 }

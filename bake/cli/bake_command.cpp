@@ -60,8 +60,8 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
       << report.seconds * 1e3 << " ms; max pose reproduction error " << report.max_reproduction_error
       << " of the rig size\n";
   if (report.compact_report.fell_back)
-    err << "posemorph-bake: warning: " << args.positional << ": no compact encoding stays within " << report.max_error_px
-        << " px of the exact rig; wrote the exact encoding (" << report.bytes << " bytes)\n";
+    err << "posemorph-bake: warning: " << args.positional << ": no compact encoding stays within "
+        << report.max_error_px << " px of the exact rig; wrote the exact encoding (" << report.bytes << " bytes)\n";
   if (report.compact) {
     const CompactReport& c = report.compact_report;
     out << "compact encoding: " << report.bytes << " bytes (exact " << report.exact_bytes << "); max vertex error "
@@ -72,7 +72,8 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   const InbetweenCheck& ib = report.inbetweens;
   out << "in-betweens: " << ib.frames << " frames (pose hull: grid " << ib.grid << ", edges, every two poses; paths), "
       << "smallest triangle area " << ib.min_area_ratio << " of its smallest in a pose (triangle " << ib.min_triangle
-      << " at (" << ib.min_at.x() << ", " << ib.min_at.y() << ")); " << ib.folds.size() << " folded triangles; " << ib.seconds * 1e3 << " ms\n";
+      << " at (" << ib.min_at.x() << ", " << ib.min_at.y() << ")); " << ib.folds.size() << " folded triangles; "
+      << ib.seconds * 1e3 << " ms\n";
   for (const std::string& w : report.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
   const MappingReport& m = report.mapping;
   for (const std::string& w : rig.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";

@@ -68,8 +68,10 @@ int RunBakeCommand(const std::vector<std::string>& a, std::ostream& out, std::os
     return BakeCommand(a, 0, out, err);
   } catch (const UsageError& e) {
     // One line naming the problem; the whole usage only when nothing was given.
-    if (a.empty()) err << kUsage;
-    else err << "posemorph-bake: " << Printable(e.what()) << " (posemorph-bake --help lists the commands and options)\n";
+    if (a.empty())
+      err << kUsage;
+    else
+      err << "posemorph-bake: " << Printable(e.what()) << " (posemorph-bake --help lists the commands and options)\n";
     return 2;
   } catch (const BakeError& e) {
     err << "posemorph-bake: error: " << Printable(e.what()) << "\n";

@@ -12,7 +12,9 @@
 
 namespace posemorph::bake::cli {
 
-std::vector<unsigned char> ReadBytes(const std::string& path) { return ReadInputFile(path, kMaxRigFileBytes, "a baked rig"); }
+std::vector<unsigned char> ReadBytes(const std::string& path) {
+  return ReadInputFile(path, kMaxRigFileBytes, "a baked rig");
+}
 
 Rig LoadRigFile(const std::string& path) {
   const std::vector<unsigned char> bytes = ReadBytes(path);
@@ -89,7 +91,8 @@ std::string Printable(const std::string& message) {
   }
   const std::size_t keep = 480;
   if (s.size() > 2 * keep + 40)
-    s = s.substr(0, keep) + " [... " + std::to_string(s.size() - 2 * keep) + " characters ...] " + s.substr(s.size() - keep);
+    s = s.substr(0, keep) + " [... " + std::to_string(s.size() - 2 * keep) + " characters ...] " +
+        s.substr(s.size() - keep);
   return s;
 }
 

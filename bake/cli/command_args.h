@@ -51,10 +51,10 @@ struct Args {
   }
 };
 
-std::vector<unsigned char> ReadBytes(const std::string& path);  // a rig file, within kMaxRigFileBytes
-Rig LoadRigFile(const std::string& path);                       // throws BakeError naming the file
+std::vector<unsigned char> ReadBytes(const std::string& path);     // a rig file, within kMaxRigFileBytes
+Rig LoadRigFile(const std::string& path);                          // throws BakeError naming the file
 void WriteText(const std::string& path, const std::string& text);  // atomically
-std::string Extension(const std::string& path);                 // lower case, without the dot; "" if none
+std::string Extension(const std::string& path);                    // lower case, without the dot; "" if none
 // A finite number, nothing after it; UsageError naming the flag otherwise.
 double ParseNumber(const std::string& flag, const std::string& s);
 int ParseCount(const std::string& flag, const std::string& s, int lo, int hi);

@@ -32,7 +32,8 @@ int DeformCommand(const std::vector<std::string>& a, std::size_t from, std::ostr
   if (!output || !name) throw UsageError("deform needs --pose NAME and -o MESH.json");
   const RigDescription rig = ReadRigDescription(args.positional);
   const PoseMeshes meshes = ResolvePoseMeshes(rig);
-  const auto it = std::find_if(rig.poses.begin(), rig.poses.end(), [&](const PoseDescription& p) { return p.name == *name; });
+  const auto it =
+      std::find_if(rig.poses.begin(), rig.poses.end(), [&](const PoseDescription& p) { return p.name == *name; });
   if (it == rig.poses.end()) throw BakeError(args.positional, "has no pose named '" + *name + "'");
   const Points& vertices = meshes.poses[std::size_t(it - rig.poses.begin())].vertices;
   // The same mesh-file format a description's "mesh" reads, so the pose can be
@@ -44,7 +45,8 @@ int DeformCommand(const std::vector<std::string>& a, std::size_t from, std::ostr
     json << (v ? ", [" : "[") << vertices[v].x() << ", " << vertices[v].y() << "]";
   json << "],\n \"triangles\": [";
   for (std::size_t t = 0; t < meshes.triangles.size(); ++t)
-    json << (t ? ", [" : "[") << meshes.triangles[t][0] << ", " << meshes.triangles[t][1] << ", " << meshes.triangles[t][2] << "]";
+    json << (t ? ", [" : "[") << meshes.triangles[t][0] << ", " << meshes.triangles[t][1] << ", "
+         << meshes.triangles[t][2] << "]";
   json << "]}\n";
   WriteText(*output, json.str());
   out << "wrote " << *output << " (pose '" << *name << "', " << vertices.size() << " vertices"

@@ -26,8 +26,8 @@
 namespace posemorph::bake::cli {
 
 int EvalCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
-  const Args args = Args::Parse(a, from, {"-o", "--at", "--path", "--time", "--frames", "--sigma"},
-                                {"--no-shear-limit", "--linear"});
+  const Args args =
+      Args::Parse(a, from, {"-o", "--at", "--path", "--time", "--frames", "--sigma"}, {"--no-shear-limit", "--linear"});
   if (args.positional.empty()) throw UsageError("no rig file given");
   const std::string* output = args.Get("-o");
   if (!output) throw UsageError("eval needs -o OUT.svg|.json|.obj");
@@ -76,7 +76,9 @@ int EvalCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   }
   if (ext == "obj" && frames.size() != 1) throw UsageError("an OBJ file holds one frame; use --time or --at");
   const std::string title = args.positional + (at ? " at " + *at : " path " + *path_name);
-  WriteText(*output, ext == "svg" ? FramesSvg(rig, frames, title) : ext == "json" ? FramesJson(rig, frames) : FrameObj(rig, frames[0]));
+  WriteText(*output, ext == "svg"    ? FramesSvg(rig, frames, title)
+                     : ext == "json" ? FramesJson(rig, frames)
+                                     : FrameObj(rig, frames[0]));
   out << "wrote " << *output << " (" << frames.size() << (frames.size() == 1 ? " frame)\n" : " frames)\n");
   return 0;
 }

@@ -40,24 +40,44 @@ double MedianLoadMicroseconds(const std::vector<unsigned char>& bytes) {
 
 // What a section holds and at what precision, from its tag and header.
 std::string DescribeSection(std::uint32_t tag, const unsigned char* d, std::uint64_t size) {
-  auto u32 = [&](std::size_t at) { std::uint32_t v = 0; if (at + 4 <= size) std::memcpy(&v, d + at, 4); return v; };
-  auto f64 = [&](std::size_t at) { double v = 0; if (at + 8 <= size) std::memcpy(&v, d + at, 8); return v; };
+  auto u32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    if (at + 4 <= size) std::memcpy(&v, d + at, 4);
+    return v;
+  };
+  auto f64 = [&](std::size_t at) {
+    double v = 0;
+    if (at + 8 <= size) std::memcpy(&v, d + at, 8);
+    return v;
+  };
   std::ostringstream s;
   namespace f = format;
-  if (tag == f::kQuantPositions) s << "positions: step " << f64(0) << " rig units, differences Exp-Golomb coded (order " << u32(8) << ")";
-  else if (tag == f::kQuantTriangles) s << "vertex indices: differences Exp-Golomb coded (order " << u32(0) << ")";
-  else if (tag == f::kQuantPermutation) s << u32(0) << "-bit fill-reducing order (factor computed at load)";
-  else if (tag == f::kQuantTurns) s << u32(4) << "-bit whole turns of the rotation angles (angles, stretches computed at load)";
-  else if (tag == f::kQuantGrid) s << "weight grid: step " << f64(0) << ", predicted, Exp-Golomb coded, " << u32(8) << " poses stored";
-  else if (tag == f::kAffineUVs) s << "uvs as affine maps of a pose's positions";
+  if (tag == f::kQuantPositions)
+    s << "positions: step " << f64(0) << " rig units, differences Exp-Golomb coded (order " << u32(8) << ")";
+  else if (tag == f::kQuantTriangles)
+    s << "vertex indices: differences Exp-Golomb coded (order " << u32(0) << ")";
+  else if (tag == f::kQuantPermutation)
+    s << u32(0) << "-bit fill-reducing order (factor computed at load)";
+  else if (tag == f::kQuantTurns)
+    s << u32(4) << "-bit whole turns of the rotation angles (angles, stretches computed at load)";
+  else if (tag == f::kQuantGrid)
+    s << "weight grid: step " << f64(0) << ", predicted, Exp-Golomb coded, " << u32(8) << " poses stored";
+  else if (tag == f::kAffineUVs)
+    s << "uvs as affine maps of a pose's positions";
   else if (tag == f::kCompactInfo)
     s << "error budget " << f64(0) << " px; measured max " << f64(8) << " px, at the pose points " << f64(16) << " px ("
       << f64(24) << " px per rig unit)";
-  else if (tag == f::kMeta) s << "counts, grid geometry";
-  else if (tag == f::kTriangles || tag == f::kPermutation || tag == f::kFactorColumns || tag == f::kFactorRows || tag == f::kPaths) s << "u32";
-  else if (tag == f::kUVs) s << "f32 uvs";
-  else if (tag == f::kStrings) s << "names and image references";
-  else s << "f64";
+  else if (tag == f::kMeta)
+    s << "counts, grid geometry";
+  else if (tag == f::kTriangles || tag == f::kPermutation || tag == f::kFactorColumns || tag == f::kFactorRows ||
+           tag == f::kPaths)
+    s << "u32";
+  else if (tag == f::kUVs)
+    s << "f32 uvs";
+  else if (tag == f::kStrings)
+    s << "names and image references";
+  else
+    s << "f64";
   return s.str();
 }
 
@@ -122,7 +142,8 @@ int InfoCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   out << "  in-betweens: smallest triangle area " << ib.min_area_ratio << " of its smallest in a pose in the pose hull"
       << " (triangle " << ib.min_triangle << " at (" << ib.min_at.x() << ", " << ib.min_at.y() << "); " << ib.frames
       << " frames); " << ib.FoldsInHull() << " triangles fold in the hull";
-  if (ib.folds.size() > ib.FoldsInHull()) out << ", " << ib.folds.size() - ib.FoldsInHull() << " only on paths outside it";
+  if (ib.folds.size() > ib.FoldsInHull())
+    out << ", " << ib.folds.size() - ib.FoldsInHull() << " only on paths outside it";
   out << "\n";
   for (const InbetweenFold& f : ib.folds) out << "    " << DescribeFold(rig, f) << "\n";
   for (std::uint32_t i = 0; i < N; ++i) {

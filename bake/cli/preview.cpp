@@ -16,8 +16,8 @@ struct Rgb {
 };
 
 // Colour-blind-safe palette (Okabe-Ito), repeated for more poses.
-const Rgb kPalette[] = {{0, 114, 178}, {230, 159, 0}, {0, 158, 115}, {204, 121, 167},
-                        {86, 180, 233}, {213, 94, 0}, {240, 228, 66}, {90, 90, 90}};
+const Rgb kPalette[] = {{0, 114, 178},  {230, 159, 0}, {0, 158, 115},  {204, 121, 167},
+                        {86, 180, 233}, {213, 94, 0},  {240, 228, 66}, {90, 90, 90}};
 
 Rgb Mix(const std::vector<double>& w) {
   Rgb c{0, 0, 0};
@@ -39,11 +39,16 @@ std::string Hex(Rgb c) {
 std::string Escape(const std::string& s) {
   std::string out;
   for (char c : s) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
   }
   return out;
 }
@@ -52,7 +57,9 @@ std::string Name(StringView v) { return std::string(v.data, v.size); }
 
 struct Box {
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  void Add(double x, double y) { x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y); }
+  void Add(double x, double y) {
+    x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+  }
   void Add(const std::vector<double>& p) {
     for (std::size_t k = 0; k + 1 < p.size(); k += 2) Add(p[k], p[k + 1]);
   }
@@ -72,15 +79,16 @@ double CommonExtent(const std::vector<const std::vector<double>*>& frames) {
 
 // One <path> with every triangle: filled with the blend colour, thin edges,
 // centred on (cx, cy), `extent` mesh units to 2 half pixels, y up.
-void MeshPath(std::ostringstream& svg, const Rig& rig, const std::vector<double>& p, double extent, double cx, double cy,
-              double half, const std::string& fill) {
+void MeshPath(std::ostringstream& svg, const Rig& rig, const std::vector<double>& p, double extent, double cx,
+              double cy, double half, const std::string& fill) {
   Box box;
   box.Add(p);
   const double scale = 2 * half / extent;
   const double mx = 0.5 * (box.x0 + box.x1), my = 0.5 * (box.y0 + box.y1);
   auto X = [&](std::uint32_t v) { return cx + (p[2 * v] - mx) * scale; };
   auto Y = [&](std::uint32_t v) { return cy - (p[2 * v + 1] - my) * scale; };
-  svg << "<path fill=\"" << fill << "\" fill-opacity=\"0.85\" stroke=\"#222\" stroke-width=\"0.3\" stroke-linejoin=\"round\" d=\"";
+  svg << "<path fill=\"" << fill
+      << "\" fill-opacity=\"0.85\" stroke=\"#222\" stroke-width=\"0.3\" stroke-linejoin=\"round\" d=\"";
   svg.precision(2);
   svg << std::fixed;
   const auto tris = rig.triangles();
@@ -94,14 +102,14 @@ void MeshPath(std::ostringstream& svg, const Rig& rig, const std::vector<double>
 }
 
 void SvgHeader(std::ostringstream& svg, double w, double h, const std::string& title) {
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << w << "\" height=\"" << h << "\" viewBox=\"0 0 " << w << ' ' << h
-      << "\" font-family=\"sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"#fafafa\"/>\n"
+  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << w << "\" height=\"" << h << "\" viewBox=\"0 0 " << w
+      << ' ' << h << "\" font-family=\"sans-serif\">\n<rect width=\"100%\" height=\"100%\" fill=\"#fafafa\"/>\n"
       << "<text x=\"12\" y=\"24\" font-size=\"16\" font-weight=\"bold\">" << Escape(title) << "</text>\n";
 }
 
 void Label(std::ostringstream& svg, double x, double y, const std::string& text, int size = 10) {
-  svg << "<text x=\"" << x << "\" y=\"" << y << "\" font-size=\"" << size << "\" text-anchor=\"middle\">" << Escape(text)
-      << "</text>\n";
+  svg << "<text x=\"" << x << "\" y=\"" << y << "\" font-size=\"" << size << "\" text-anchor=\"middle\">"
+      << Escape(text) << "</text>\n";
 }
 
 }  // namespace
@@ -173,9 +181,11 @@ std::string FrameObj(const Rig& rig, const Frame& f) {
   std::ostringstream obj;
   obj.precision(17);
   obj << "# posemorph frame at pose-space point (" << f.x << ", " << f.y << ")\n";
-  for (std::size_t k = 0; k + 1 < f.positions.size(); k += 2) obj << "v " << f.positions[k] << ' ' << f.positions[k + 1] << " 0\n";
+  for (std::size_t k = 0; k + 1 < f.positions.size(); k += 2)
+    obj << "v " << f.positions[k] << ' ' << f.positions[k + 1] << " 0\n";
   for (std::uint32_t t = 0; t < rig.triangle_count(); ++t)
-    obj << "f " << rig.triangles()[3 * t] + 1 << ' ' << rig.triangles()[3 * t + 1] + 1 << ' ' << rig.triangles()[3 * t + 2] + 1 << '\n';
+    obj << "f " << rig.triangles()[3 * t] + 1 << ' ' << rig.triangles()[3 * t + 1] + 1 << ' '
+        << rig.triangles()[3 * t + 2] + 1 << '\n';
   return obj.str();
 }
 
@@ -198,7 +208,8 @@ std::vector<std::array<double, 2>> SheetPoints(const Rig& rig, int columns, int 
   return out;
 }
 
-std::string ContactSheetSvg(const Rig& rig, const std::string& title, int columns, int rows, const EvalOptions& options) {
+std::string ContactSheetSvg(const Rig& rig, const std::string& title, int columns, int rows,
+                            const EvalOptions& options) {
   const std::uint32_t N = rig.pose_count();
   const auto pts = rig.pose_points();
   std::array<double, 4> sampled{};
@@ -253,10 +264,11 @@ std::string ContactSheetSvg(const Rig& rig, const std::string& title, int column
     }
   svg << "<rect x=\"" << MX(sx0) << "\" y=\"" << MY(sy1) << "\" width=\"" << (sx1 - sx0) * mscale << "\" height=\""
       << std::max(2.0, (sy1 - sy0) * mscale) << "\" fill=\"none\" stroke=\"#000\" stroke-dasharray=\"4 3\"/>\n";
-  for (const Frame& f : samples) svg << "<circle cx=\"" << MX(f.x) << "\" cy=\"" << MY(f.y) << "\" r=\"1.5\" fill=\"#000\"/>\n";
+  for (const Frame& f : samples)
+    svg << "<circle cx=\"" << MX(f.x) << "\" cy=\"" << MY(f.y) << "\" r=\"1.5\" fill=\"#000\"/>\n";
   for (std::uint32_t i = 0; i < N; ++i) {
-    svg << "<circle cx=\"" << MX(pts[2 * i]) << "\" cy=\"" << MY(pts[2 * i + 1]) << "\" r=\"5\" fill=\"#fff\" stroke=\"" << Hex(kPalette[i % 8])
-        << "\" stroke-width=\"3\"/>\n";
+    svg << "<circle cx=\"" << MX(pts[2 * i]) << "\" cy=\"" << MY(pts[2 * i + 1]) << "\" r=\"5\" fill=\"#fff\" stroke=\""
+        << Hex(kPalette[i % 8]) << "\" stroke-width=\"3\"/>\n";
     Label(svg, MX(pts[2 * i]), MY(pts[2 * i + 1]) - 8, bases[i].label);
   }
   Label(svg, mx0 + map / 2, my0 + map + 16, "pose space: colour = weights, dashed = sampled area", 10);

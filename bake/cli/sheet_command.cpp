@@ -34,7 +34,8 @@ int SheetCommand(const std::vector<std::string>& a, std::size_t from, std::ostre
   const bool textured = args.switches.count("--textured") > 0;
   if (!output || Extension(*output) != (textured ? "png" : "svg"))
     throw UsageError(textured ? "sheet --textured needs -o OUT.png" : "sheet needs -o OUT.svg");
-  if (!textured && (args.Get("--images") || args.Get("--filter"))) throw UsageError("--images and --filter go with --textured");
+  if (!textured && (args.Get("--images") || args.Get("--filter")))
+    throw UsageError("--images and --filter go with --textured");
   const int columns = args.Get("--columns") ? ParseCount("--columns", *args.Get("--columns"), 2, 32) : 7;
   const int rows = args.Get("--rows") ? ParseCount("--rows", *args.Get("--rows"), 1, 32) : 5;
   const Rig rig = LoadRigFile(args.positional);
@@ -56,7 +57,8 @@ int SheetCommand(const std::vector<std::string>& a, std::size_t from, std::ostre
         << (filter == TextureFilter::kNearest ? "nearest" : "linear") << ")\n";
     return 0;
   }
-  WriteText(*output, ContactSheetSvg(rig, args.positional + ": poses across pose space", columns, rows, ReadEvalOptions(args)));
+  WriteText(*output,
+            ContactSheetSvg(rig, args.positional + ": poses across pose space", columns, rows, ReadEvalOptions(args)));
   out << "wrote " << *output << " (" << rig.pose_count() << " poses, " << columns << "x" << rows << " samples)\n";
   return 0;
 }

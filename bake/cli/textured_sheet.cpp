@@ -84,23 +84,25 @@ std::vector<RgbaImage> ReadPoseDrawings(const Rig& rig, const std::string& rig_f
   if (rig.uvs(0).size == 0) throw BakeError(rig_file, "has no uvs: --textured needs a rig baked from drawings");
   for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
     const std::string ref = Name(rig.pose_image(i));
-    if (ref.empty()) throw BakeError(rig_file, "pose '" + Name(rig.pose_name(i)) + "' has no drawing: --textured needs one per pose");
+    if (ref.empty())
+      throw BakeError(rig_file, "pose '" + Name(rig.pose_name(i)) + "' has no drawing: --textured needs one per pose");
     if (!SafeReference(ref))
-      throw BakeError(rig_file, "pose '" + Name(rig.pose_name(i)) + "': image reference '" + ref +
-                                    "' leaves the images folder");
+      throw BakeError(rig_file,
+                      "pose '" + Name(rig.pose_name(i)) + "': image reference '" + ref + "' leaves the images folder");
     const std::string path = (std::filesystem::path(images) / ref).string();
     out.push_back(DecodeRgba(ReadInputFile(path, kMaxTextFileBytes, "a drawing"), path));
     const DrawingCanvas c = rig.pose_canvas(i);
     if (c.width > 0 && (double(out.back().width) != c.width || double(out.back().height) != c.height))
       throw BakeError(path, "is " + std::to_string(out.back().width) + " x " + std::to_string(out.back().height) +
-                                " pixels; the rig was baked from a drawing of " + std::to_string(long(c.width)) + " x " +
-                                std::to_string(long(c.height)));
+                                " pixels; the rig was baked from a drawing of " + std::to_string(long(c.width)) +
+                                " x " + std::to_string(long(c.height)));
   }
   return out;
 }
 
 RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, int columns, int rows,
-                        const EvalOptions& options, TextureFilter filter, std::uint32_t cell, TexturedSheetLayout* layout) {
+                        const EvalOptions& options, TextureFilter filter, std::uint32_t cell,
+                        TexturedSheetLayout* layout) {
   const std::uint32_t N = rig.pose_count(), V = rig.vertex_count(), T = rig.triangle_count();
   const auto pts = rig.pose_points();
   std::vector<Frame> frames;
@@ -175,8 +177,8 @@ RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, 
   for (std::size_t p = 0; p < covered.size(); ++p) {
     const double a = std::clamp(acc[p * 4 + 3], 0.0, 1.0);
     for (int ch = 0; ch < 3; ++ch)
-      sheet.rgba[p * 4 + std::size_t(ch)] =
-          static_cast<unsigned char>(std::lround(255 * std::clamp(acc[p * 4 + std::size_t(ch)] + (1 - a) * background[ch], 0.0, 1.0)));
+      sheet.rgba[p * 4 + std::size_t(ch)] = static_cast<unsigned char>(
+          std::lround(255 * std::clamp(acc[p * 4 + std::size_t(ch)] + (1 - a) * background[ch], 0.0, 1.0)));
     sheet.rgba[p * 4 + 3] = 255;
   }
   return sheet;

@@ -27,10 +27,10 @@ struct RgbaImage {
 std::vector<RgbaImage> ReadPoseDrawings(const Rig& rig, const std::string& rig_file, const std::string& images);
 
 struct TexturedSheetLayout {
-  std::uint32_t cell = 0;             // pixels per cell side
+  std::uint32_t cell = 0;               // pixels per cell side
   std::uint32_t columns = 0, rows = 0;  // rows of the pose-space grid (after the base row)
-  double scale = 0;                   // pixels per rig unit
-  double centre_x = 0, centre_y = 0;  // rig point at each cell's centre
+  double scale = 0;                     // pixels per rig unit
+  double centre_x = 0, centre_y = 0;    // rig point at each cell's centre
 };
 
 // Row 0: the base poses at their points; rows 1..: SheetPoints(columns, rows).

@@ -58,13 +58,16 @@ struct ArapDeformer::Factors {
   SparseMatrix g_fh, h_fh;
 };
 
-ArapDeformer::ArapDeformer(Points rest, Triangles triangles, std::vector<std::uint32_t> handles, const std::string& file)
+ArapDeformer::ArapDeformer(Points rest, Triangles triangles, std::vector<std::uint32_t> handles,
+                           const std::string& file)
     : rest_(std::move(rest)), triangles_(std::move(triangles)), handles_(std::move(handles)), factors_(new Factors) {
   const std::size_t V = rest_.size();
   if (handles_.size() < 2)
     throw BakeError(file, "a deformation needs at least 2 handles, got " + std::to_string(handles_.size()));
   for (std::size_t a = 0; a < handles_.size(); ++a) {
-    if (handles_[a] >= V) throw BakeError(file, "handle " + std::to_string(a) + " names vertex " + std::to_string(handles_[a]) + " of " + std::to_string(V));
+    if (handles_[a] >= V)
+      throw BakeError(file, "handle " + std::to_string(a) + " names vertex " + std::to_string(handles_[a]) + " of " +
+                                std::to_string(V));
     for (std::size_t b = 0; b < a; ++b)
       if (handles_[a] == handles_[b])
         throw BakeError(file, "handles " + std::to_string(b) + " and " + std::to_string(a) + " both hold vertex " +
@@ -165,7 +168,8 @@ void ArapDeformer::Deform(const std::vector<Eigen::Vector2d>& targets, Points* o
   const Eigen::MatrixXd x = f.h_ff.solve(b_free - f.h_fh * q2);
   out->resize(V);
   for (std::size_t v = 0; v < V; ++v)
-    (*out)[v] = f.p2.is_handle[v] ? Eigen::Vector2d(q2.row(f.p2.index[v]).transpose()) : Eigen::Vector2d(x.row(f.p2.index[v]).transpose());
+    (*out)[v] = f.p2.is_handle[v] ? Eigen::Vector2d(q2.row(f.p2.index[v]).transpose())
+                                  : Eigen::Vector2d(x.row(f.p2.index[v]).transpose());
 }
 
 bool HandleVertex(const Points& mesh, const Triangles& triangles, const Eigen::Vector2d& point, double tolerance,

@@ -69,8 +69,8 @@ ArapSystem BuildArapSystem(const Points& rest, const Triangles& triangles, const
   // areas): say so with the areas, not the solver's symptom.
   auto precision_problem = [&](const std::string& symptom) {
     std::ostringstream s;
-    s << "pose 0's mesh cannot be solved as-rigidly-as-possible (" << symptom
-      << "): its triangle areas range from " << smallest_area << " to " << largest_area
+    s << "pose 0's mesh cannot be solved as-rigidly-as-possible (" << symptom << "): its triangle areas range from "
+      << smallest_area << " to " << largest_area
       << "; triangles this thin or this unequal are beyond double precision (rescale the mesh or remove slivers)";
     return BakeError(file, s.str());
   };
@@ -79,8 +79,7 @@ ArapSystem BuildArapSystem(const Points& rest, const Triangles& triangles, const
   for (std::size_t k = 0; k < n; ++k) {
     if (!(d[k] > 0) || !std::isfinite(d[k]))
       throw precision_problem("pivot " + std::to_string(k) + " of " + std::to_string(n) + " for vertex " +
-                              std::to_string(sys.order[k] + 1) + " is " + std::to_string(d[k]) +
-                              ", not positive");
+                              std::to_string(sys.order[k] + 1) + " is " + std::to_string(d[k]) + ", not positive");
     sys.inv_diagonal.push_back(1.0 / d[k]);
   }
   Eigen::SparseMatrix<double> L = ldlt.matrixL();

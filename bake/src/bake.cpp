@@ -31,20 +31,21 @@ namespace {
 CompactSettings CompactSettingsFor(const BakeParameters& parameters, const PoseMeshes& meshes) {
   CompactSettings settings;
   settings.max_error_px = parameters.max_error_px;
-  settings.pixels_per_unit = HasCanvases(meshes)                ? 1.0
+  settings.pixels_per_unit = HasCanvases(meshes)              ? 1.0
                              : parameters.pixels_per_unit > 0 ? parameters.pixels_per_unit
                                                               : 1024.0 / RigBoundingBoxDiagonal(meshes);
   return settings;
 }
 
 // A fold inside the pose hull fails the bake unless folds are allowed.
-void RefuseFolds(const RigDescription& description, const ReproductionCheck& written, const InbetweenCheck& inbetweens) {
+void RefuseFolds(const RigDescription& description, const ReproductionCheck& written,
+                 const InbetweenCheck& inbetweens) {
   const std::size_t n = inbetweens.FoldsInHull();
   if (n == 0 || description.parameters.allow_folds) return;
-  throw BakeError(description.file, "the in-betweens fold: " + std::to_string(n) +
-                                        (n == 1 ? " triangle turns" : " triangles turn") + " over (the worst: " +
-                                        DescribeFold(written.rig, inbetweens.folds[0]) +
-                                        "); add a landmark there, or bake with --allow-folds (bake.allow_folds) to write it anyway");
+  throw BakeError(description.file,
+                  "the in-betweens fold: " + std::to_string(n) + (n == 1 ? " triangle turns" : " triangles turn") +
+                      " over (the worst: " + DescribeFold(written.rig, inbetweens.folds[0]) +
+                      "); add a landmark there, or bake with --allow-folds (bake.allow_folds) to write it anyway");
 }
 
 // Folds that were allowed, or found only on paths outside the hull: ten, then a count.
@@ -78,7 +79,8 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
   PoseMeshes meshes = DeformPoses(description, drawings);
   BakeStage validate_stage("validating the rig");
   meshes.triangles = OrientTriangles(meshes);
-  if (const std::optional<std::string> problem = ValidateRig(meshes, description.paths)) throw BakeError(file, *problem);
+  if (const std::optional<std::string> problem = ValidateRig(meshes, description.paths))
+    throw BakeError(file, *problem);
   const PoseAnalysis analysis = AnalysePoses(meshes);
   BakeStage arap_stage("building and factoring the ARAP system");
   const ArapSystem system = BuildArapSystem(meshes.poses[0].vertices, meshes.triangles, file);
@@ -95,9 +97,10 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
       description.parameters.compact ? CompactRig(exact, compact_settings, file, &compact) : exact;
   const bool is_compact = description.parameters.compact && !compact.fell_back;
   BakeStage check_stage("checking the baked rig");
-  const double tolerance = std::max(1e-6, is_compact ? compact_settings.max_error_px / compact_settings.pixels_per_unit /
-                                                           RigBoundingBoxDiagonal(meshes)
-                                                     : 0.0);
+  const double tolerance = std::max(
+      1e-6, is_compact
+                ? compact_settings.max_error_px / compact_settings.pixels_per_unit / RigBoundingBoxDiagonal(meshes)
+                : 0.0);
   const ReproductionCheck written = CheckReproduction(bytes, meshes, tolerance, file);
   BakeStage inbetween_stage("checking the in-betweens for folds");
   InbetweenCheck inbetweens = CheckInbetweens(written.rig, file);
@@ -143,8 +146,10 @@ void WriteFileAtomic(const std::string& path, const std::vector<unsigned char>& 
   std::size_t written = 0;
   while (ok && written < bytes.size()) {
     const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
-    if (n <= 0) ok = false;
-    else written += std::size_t(n);
+    if (n <= 0)
+      ok = false;
+    else
+      written += std::size_t(n);
   }
   ok = ok && ::fsync(fd) == 0;
   ok = (::close(fd) == 0) && ok;

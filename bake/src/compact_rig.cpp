@@ -193,7 +193,8 @@ struct Encoder {
 
     std::vector<std::uint64_t> tri_codes;
     for (std::uint64_t k = 0; k < 3 * T; ++k)
-      tri_codes.push_back(fmt::ZigZag(std::int64_t(exact.triangles()[k]) - (k >= 3 ? std::int64_t(exact.triangles()[k - 3]) : 0)));
+      tri_codes.push_back(
+          fmt::ZigZag(std::int64_t(exact.triangles()[k]) - (k >= 3 ? std::int64_t(exact.triangles()[k - 3]) : 0)));
     const unsigned tri_k = BestOrder(tri_codes);
     std::vector<unsigned char> qtri;
     Append(qtri, std::uint32_t(tri_k));
@@ -214,14 +215,16 @@ struct Encoder {
     std::vector<unsigned char> qtrn;
     {
       std::int32_t lo = 0, hi = 0;
-      if (!turns.empty()) lo = *std::min_element(turns.begin(), turns.end()), hi = *std::max_element(turns.begin(), turns.end());
+      if (!turns.empty())
+        lo = *std::min_element(turns.begin(), turns.end()), hi = *std::max_element(turns.begin(), turns.end());
       const unsigned bits = hi == lo ? 0 : BitsFor(std::uint64_t(std::int64_t(hi) - lo));
       Append(qtrn, lo);
       Append(qtrn, std::uint32_t(bits));
       BitWriter bw;
       for (std::uint64_t k = 0; k < T * N && bits; ++k) bw.Put(std::uint64_t(std::int64_t(turns[k]) - lo), bits);
       qtrn.insert(qtrn.end(), bw.bytes().begin(), bw.bytes().end());
-      note(fmt::kQuantTurns, qtrn.size(), bits ? std::to_string(bits) + "-bit whole turns" : "no turns (all " + std::to_string(lo) + ")");
+      note(fmt::kQuantTurns, qtrn.size(),
+           bits ? std::to_string(bits) + "-bit whole turns" : "no turns (all " + std::to_string(lo) + ")");
     }
     w.Add(fmt::kQuantTurns, qtrn);
 
@@ -244,7 +247,8 @@ struct Encoder {
         for (unsigned o = 1; o <= 2; ++o)
           for (std::uint64_t y = 0; y <= g.cells_y; ++y)
             for (std::uint64_t x = 0; x < row; ++x)
-              by_order[o - 1].push_back(fmt::ZigZag(qc[y * row + x] - fmt::GridCornerPrediction(qc.data(), row, x, y, o)));
+              by_order[o - 1].push_back(
+                  fmt::ZigZag(qc[y * row + x] - fmt::GridCornerPrediction(qc.data(), row, x, y, o)));
         const unsigned k1 = BestOrder(by_order[0]), k2 = BestOrder(by_order[1]);
         std::uint64_t bits1 = 0, bits2 = 0;
         for (std::uint64_t u : by_order[0]) bits1 += GolombBits(u, k1);
@@ -254,8 +258,8 @@ struct Encoder {
         for (std::uint64_t y = 0; y < g.cells_y && !g.centre_weights.empty(); ++y)
           for (std::uint64_t x = 0; x < g.cells_x; ++x) {
             const std::int64_t value = std::llround(g.centre_weights[(y * g.cells_x + x) * N + i] / weight_step);
-            const std::int64_t pred =
-                fmt::GridCentrePrediction(qc[y * row + x], qc[y * row + x + 1], qc[(y + 1) * row + x], qc[(y + 1) * row + x + 1]);
+            const std::int64_t pred = fmt::GridCentrePrediction(qc[y * row + x], qc[y * row + x + 1],
+                                                                qc[(y + 1) * row + x], qc[(y + 1) * row + x + 1]);
             centre_codes.push_back(fmt::ZigZag(value - pred));
           }
         const unsigned kc = BestOrder(corner_codes), kz = centre_codes.empty() ? 0 : BestOrder(centre_codes);
@@ -266,8 +270,8 @@ struct Encoder {
       for (std::uint32_t p : params) Append(qgrd, p);
       qgrd.insert(qgrd.end(), bw.bytes().begin(), bw.bytes().end());
       char what[160];
-      std::snprintf(what, sizeof(what), "weights step %.3g, predicted, Exp-Golomb; %u of %llu poses stored%s", weight_step,
-                    coded, (unsigned long long)N, derive_last_pose ? " (the last is 1 - the others)" : "");
+      std::snprintf(what, sizeof(what), "weights step %.3g, predicted, Exp-Golomb; %u of %llu poses stored%s",
+                    weight_step, coded, (unsigned long long)N, derive_last_pose ? " (the last is 1 - the others)" : "");
       note(fmt::kQuantGrid, qgrd.size(), what);
       w.Add(fmt::kQuantGrid, qgrd);
     }
@@ -369,7 +373,8 @@ std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_by
   const std::vector<Eigen::Vector2d> samples = SamplePoints(exact);
   std::vector<std::vector<double>> reference(samples.size());
   for (std::size_t s = 0; s < samples.size(); ++s)
-    if (!EvaluateFrame(exact, samples[s], reference[s])) throw BakeError(file, "internal error: the exact rig does not evaluate");
+    if (!EvaluateFrame(exact, samples[s], reference[s]))
+      throw BakeError(file, "internal error: the exact rig does not evaluate");
 
   const double budget = settings.max_error_px / settings.pixels_per_unit;  // rig units
   // Largest distance a vertex travels between poses (centroids aligned): how
@@ -379,7 +384,8 @@ std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_by
     const Span<const double> p = exact.pose_positions(std::uint32_t(i)), r = exact.pose_positions(0);
     const double* c = exact.pose_centroids().data;
     for (std::uint64_t v = 0; v < V; ++v)
-      reach = std::max(reach, std::hypot((p[2 * v] - c[2 * i]) - (r[2 * v] - c[0]), (p[2 * v + 1] - c[2 * i + 1]) - (r[2 * v + 1] - c[1])));
+      reach = std::max(reach, std::hypot((p[2 * v] - c[2 * i]) - (r[2 * v] - c[0]),
+                                         (p[2 * v + 1] - c[2 * i + 1]) - (r[2 * v + 1] - c[1])));
   }
   reach = std::max(reach, 0.05 * exact.size());
 
@@ -463,7 +469,8 @@ std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_by
   // The measured encoding again, now with its record of budget and error
   // (QINF, which the loader does not read).
   enc.turns = t.turns;
-  t.bytes = enc.Encode(ps, ws, &rep, {settings.max_error_px, rep.max_error_px, rep.pose_error_px, settings.pixels_per_unit});
+  t.bytes =
+      enc.Encode(ps, ws, &rep, {settings.max_error_px, rep.max_error_px, rep.pose_error_px, settings.pixels_per_unit});
   rep.samples = std::uint32_t(samples.size());
   rep.position_step_px = ps * settings.pixels_per_unit;
   rep.weight_step = ws;

@@ -17,7 +17,9 @@ PoseMeshes DeformPoses(const RigDescription& rig, const MappedDrawings& drawings
     for (std::size_t k = 0; k < drawings.poses.size(); ++k) meshes.poses[drawings.poses[k]] = drawings.meshes[k];
   }
   const std::size_t N = rig.poses.size();
-  auto fail = [&](std::size_t i, const std::string& problem) { throw BakeError(rig.file, PoseLabel(rig.poses[i].name, i) + ": " + problem); };
+  auto fail = [&](std::size_t i, const std::string& problem) {
+    throw BakeError(rig.file, PoseLabel(rig.poses[i].name, i) + ": " + problem);
+  };
 
   std::vector<char> done(N, 0);
   std::size_t remaining = 0;
@@ -25,7 +27,8 @@ PoseMeshes DeformPoses(const RigDescription& rig, const MappedDrawings& drawings
     done[i] = !rig.poses[i].deformed;
     remaining += rig.poses[i].deformed;
   }
-  if (remaining == N && N > 0) throw BakeError(rig.file, "every pose is made by deformation; at least one needs vertices");
+  if (remaining == N && N > 0)
+    throw BakeError(rig.file, "every pose is made by deformation; at least one needs vertices");
   if (remaining == 0) return meshes;
 
   std::vector<std::size_t> source(N, 0);
@@ -52,7 +55,9 @@ PoseMeshes DeformPoses(const RigDescription& rig, const MappedDrawings& drawings
       const std::size_t V = mesh.size();
       for (std::size_t t = 0; t < triangles.size(); ++t)
         for (std::uint32_t v : triangles[t])
-          if (v >= V) fail(i, "its source '" + from.name + "' has " + std::to_string(V) + " vertices, triangle " + std::to_string(t) + " uses vertex " + std::to_string(v));
+          if (v >= V)
+            fail(i, "its source '" + from.name + "' has " + std::to_string(V) + " vertices, triangle " +
+                        std::to_string(t) + " uses vertex " + std::to_string(v));
       Eigen::AlignedBox2d box;
       for (const auto& p : mesh) box.extend(p);
       const double size = box.diagonal().norm();
@@ -63,19 +68,24 @@ PoseMeshes DeformPoses(const RigDescription& rig, const MappedDrawings& drawings
         const HandleDescription& hd = deform.handles[h];
         std::uint32_t v = hd.vertex;
         if (hd.by_vertex) {
-          if (v >= V) fail(i, "handle " + std::to_string(h) + " names vertex " + std::to_string(v) + ", but '" + from.name + "' has " + std::to_string(V));
+          if (v >= V)
+            fail(i, "handle " + std::to_string(h) + " names vertex " + std::to_string(v) + ", but '" + from.name +
+                        "' has " + std::to_string(V));
         } else if (!HandleVertex(mesh, triangles, hd.at, 1e-3 * size, &v)) {
           std::ostringstream s;
-          s << "handle " << h << " at (" << hd.at.x() << ", " << hd.at.y() << ") lies outside the mesh of '" << from.name << "'";
+          s << "handle " << h << " at (" << hd.at.x() << ", " << hd.at.y() << ") lies outside the mesh of '"
+            << from.name << "'";
           fail(i, s.str());
         }
         for (std::size_t k = 0; k < handles.size(); ++k)
           if (handles[k] == v)
-            fail(i, "handles " + std::to_string(k) + " and " + std::to_string(h) + " coincide (both grab vertex " + std::to_string(v) + ")");
+            fail(i, "handles " + std::to_string(k) + " and " + std::to_string(h) + " coincide (both grab vertex " +
+                        std::to_string(v) + ")");
         handles.push_back(v);
         targets.push_back(hd.to);
       }
-      if (handles.size() < 2) fail(i, "a deformation needs at least 2 handles, this one has " + std::to_string(handles.size()));
+      if (handles.size() < 2)
+        fail(i, "a deformation needs at least 2 handles, this one has " + std::to_string(handles.size()));
 
       try {
         ArapDeformer(mesh, triangles, handles).Deform(targets, &pose.vertices);
@@ -101,7 +111,9 @@ PoseMeshes DeformPoses(const RigDescription& rig, const MappedDrawings& drawings
     }
     if (!progress)
       for (std::size_t i = 0; i < N; ++i)
-        if (!done[i]) fail(i, "deformation sources form a cycle ('" + rig.poses[i].name + "' <- '" + rig.poses[i].deform.from + "' <- ...)");
+        if (!done[i])
+          fail(i, "deformation sources form a cycle ('" + rig.poses[i].name + "' <- '" + rig.poses[i].deform.from +
+                      "' <- ...)");
   }
   return meshes;
 }

@@ -116,7 +116,8 @@ std::string DescribeFold(const Rig& rig, const InbetweenFold& fold) {
   for (std::size_t k = 0; k < shown; ++k) {
     const std::uint32_t i = order[k];
     const double* p = rig.pose_positions(i).data;
-    const double cx = (p[2 * t[0]] + p[2 * t[1]] + p[2 * t[2]]) / 3, cy = (p[2 * t[0] + 1] + p[2 * t[1] + 1] + p[2 * t[2] + 1]) / 3;
+    const double cx = (p[2 * t[0]] + p[2 * t[1]] + p[2 * t[2]]) / 3,
+                 cy = (p[2 * t[0] + 1] + p[2 * t[1] + 1] + p[2 * t[2] + 1]) / 3;
     const bool drawn = rig.pose_canvas(i).width > 0;  // drawing units, y down, as landmarks are given
     s << (k ? ", " : "") << "(" << Number(cx) << ", " << Number(drawn ? -cy : cy) << ") in "
       << (drawn && rig.pose_image(i).size ? Name(rig.pose_image(i)) : "'" + Name(rig.pose_name(i)) + "'");

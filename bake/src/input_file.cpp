@@ -30,8 +30,8 @@ std::vector<unsigned char> ReadInputFile(const std::string& path, std::uint64_t 
   }
   if (std::uint64_t(st.st_size) > limit) {
     std::fclose(f);
-    throw BakeError(path, "is " + std::to_string(st.st_size) + " bytes, more than the limit of " + std::to_string(limit) +
-                              " for " + what + named);
+    throw BakeError(path, "is " + std::to_string(st.st_size) + " bytes, more than the limit of " +
+                              std::to_string(limit) + " for " + what + named);
   }
   std::vector<unsigned char> bytes(std::size_t(st.st_size));
   const std::size_t got = bytes.empty() ? 0 : std::fread(bytes.data(), 1, bytes.size(), f);

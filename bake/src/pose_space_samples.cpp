@@ -50,7 +50,8 @@ std::vector<PoseSpaceSample> SamplePoseSpace(const Rig& rig, const PoseSpaceSamp
   const std::vector<Eigen::Vector2d> hull = ConvexHull(pts);
   for (std::size_t e = 0; e < hull.size(); ++e) {
     const Eigen::Vector2d a = hull[e], b = hull[(e + 1) % hull.size()];
-    for (int k = 1; k < sampling.per_edge; ++k) out.push_back({a + (b - a) * (double(k) / sampling.per_edge), -1, true});
+    for (int k = 1; k < sampling.per_edge; ++k)
+      out.push_back({a + (b - a) * (double(k) / sampling.per_edge), -1, true});
   }
   Eigen::AlignedBox2d box;
   for (const auto& p : pts) box.extend(p);

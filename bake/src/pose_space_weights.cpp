@@ -39,10 +39,14 @@ GridLocation Locate(const WeightGrid& g, const Eigen::Vector2d& p) {
     loc.vertex[0] = a, loc.vertex[1] = b, loc.vertex[2] = c;
     loc.lambda[0] = la, loc.lambda[1] = lb, loc.lambda[2] = lc;
   };
-  if (d1 >= 0 && d2 <= 0) set(v00, -d2, v10, d1, 2 * fy);        // bottom
-  else if (d1 >= 0) set(v10, d1, v11, d2, 2 * (1 - fx));          // right
-  else if (d2 >= 0) set(v11, d2, v01, -d1, 2 * (1 - fy));         // top
-  else set(v01, -d1, v00, -d2, 2 * fx);                           // left
+  if (d1 >= 0 && d2 <= 0)
+    set(v00, -d2, v10, d1, 2 * fy);  // bottom
+  else if (d1 >= 0)
+    set(v10, d1, v11, d2, 2 * (1 - fx));  // right
+  else if (d2 >= 0)
+    set(v11, d2, v01, -d1, 2 * (1 - fy));  // top
+  else
+    set(v01, -d1, v00, -d2, 2 * fx);  // left
   return loc;
 }
 
@@ -148,8 +152,8 @@ WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, con
   // here is a layout beyond the grid's precision: say which layout.
   auto layout_problem = [&](const std::string& symptom) {
     std::ostringstream s;
-    s << "the pose-space weights cannot be solved for these pose points (" << symptom << "): "
-      << N << " points on a " << g.cells_x << " x " << g.cells_y << " grid of cell size " << g.cell
+    s << "the pose-space weights cannot be solved for these pose points (" << symptom << "): " << N << " points on a "
+      << g.cells_x << " x " << g.cells_y << " grid of cell size " << g.cell
       << "; move points that nearly coincide apart, or change bake.grid_resolution (now " << params.grid_resolution
       << ")";
     return BakeError(file, s.str());

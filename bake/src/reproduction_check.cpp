@@ -18,14 +18,15 @@ ReproductionCheck CheckReproduction(const std::vector<unsigned char>& bytes, con
   std::vector<double> x;
   double worst = 0;
   for (const PoseMesh& pose : meshes.poses) {
-    if (!EvaluateFrame(check.rig, pose.point, x)) throw BakeError(file, "internal error: the baked rig does not evaluate");
+    if (!EvaluateFrame(check.rig, pose.point, x))
+      throw BakeError(file, "internal error: the baked rig does not evaluate");
     for (std::size_t v = 0; v < pose.vertices.size(); ++v)
       worst = std::max(worst, (Eigen::Vector2d(x[2 * v], x[2 * v + 1]) - pose.vertices[v]).norm());
   }
   check.max_error = worst / RigBoundingBoxDiagonal(meshes);
   if (!(check.max_error <= tolerance))
-    throw BakeError(file, "internal error: the baked rig reproduces its poses only to " + std::to_string(check.max_error) +
-                              " of its size");
+    throw BakeError(file, "internal error: the baked rig reproduces its poses only to " +
+                              std::to_string(check.max_error) + " of its size");
   return check;
 }
 

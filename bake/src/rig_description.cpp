@@ -92,8 +92,8 @@ json ParseJson(const std::string& text, const std::string& file) {
 }
 
 std::string ReadText(const std::string& path, const std::string& referenced_from) {
-  const std::vector<unsigned char> bytes =
-      ReadInputFile(path, kMaxTextFileBytes, referenced_from.empty() ? "a rig description" : "a mesh file", referenced_from);
+  const std::vector<unsigned char> bytes = ReadInputFile(
+      path, kMaxTextFileBytes, referenced_from.empty() ? "a rig description" : "a mesh file", referenced_from);
   return std::string(bytes.begin(), bytes.end());
 }
 
@@ -112,22 +112,25 @@ void WarnUnknownKeys(const json& object, const std::string& where, std::initiali
 }
 
 void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std::string>* warnings) {
-  WarnUnknownKeys(root, "", {"posemorph", "name", "filter", "poses", "triangles", "mapping", "bake", "paths"}, file, warnings);
+  WarnUnknownKeys(root, "", {"posemorph", "name", "filter", "poses", "triangles", "mapping", "bake", "paths"}, file,
+                  warnings);
   if (root.contains("mapping"))
     WarnUnknownKeys(root["mapping"], "mapping",
                     {"simplify_tolerance", "max_edge_length", "min_angle", "alpha_threshold", "curve_tolerance",
                      "spacing", "landmark_distance", "max_steiner_points", "max_vertices"},
                     file, warnings);
   if (root.contains("bake"))
-    WarnUnknownKeys(root["bake"], "bake",
-                    {"grid_resolution", "margin", "epsilon", "sigma", "precision", "max_error", "pixels_per_unit", "allow_folds"}, file,
-                    warnings);
+    WarnUnknownKeys(
+        root["bake"], "bake",
+        {"grid_resolution", "margin", "epsilon", "sigma", "precision", "max_error", "pixels_per_unit", "allow_folds"},
+        file, warnings);
   const json& poses = root["poses"];
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const std::string w = "poses[" + std::to_string(i) + "]";
-    WarnUnknownKeys(poses[i], w,
-                    {"name", "point", "drawing", "origin", "outline", "landmarks", "vertices", "mesh", "deform", "uvs", "image"},
-                    file, warnings);
+    WarnUnknownKeys(
+        poses[i], w,
+        {"name", "point", "drawing", "origin", "outline", "landmarks", "vertices", "mesh", "deform", "uvs", "image"},
+        file, warnings);
     if (poses[i].contains("deform")) {
       const json& d = poses[i]["deform"];
       WarnUnknownKeys(d, w + ".deform", {"from", "handles"}, file, warnings);
@@ -173,9 +176,11 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
     if (!jp.contains("point")) r.Fail(w, "missing \"point\" (its place in pose space)");
     pose.point = r.Point(jp["point"], w + ".point");
     if (int(jp.contains("vertices")) + int(jp.contains("mesh")) + int(jp.contains("deform")) +
-            int(jp.contains("drawing")) + int(jp.contains("outline")) != 1)
-      r.Fail(w, "give exactly one of \"vertices\", \"mesh\" (a mesh file), \"deform\", \"drawing\" (PNG or SVG) "
-                "or \"outline\"");
+            int(jp.contains("drawing")) + int(jp.contains("outline")) !=
+        1)
+      r.Fail(w,
+             "give exactly one of \"vertices\", \"mesh\" (a mesh file), \"deform\", \"drawing\" (PNG or SVG) "
+             "or \"outline\"");
     if (jp.contains("drawing") || jp.contains("outline")) {
       pose.drawn = true;
       if (jp.contains("drawing")) {
@@ -186,12 +191,14 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
         if (pose.outline.size() < 3) r.Fail(w + ".outline", "needs at least 3 points");
       }
       if (!jp.contains("landmarks"))
-        r.Fail(w, "missing \"landmarks\": [[x, y], ...] on the outline; the first is the start point every pose shares");
+        r.Fail(w,
+               "missing \"landmarks\": [[x, y], ...] on the outline; the first is the start point every pose shares");
       pose.landmarks = r.Points(r.Array(jp, "landmarks", w), w + ".landmarks");
       if (pose.landmarks.empty()) r.Fail(w + ".landmarks", "needs at least the start point");
       if (jp.contains("uvs")) r.Fail(w + ".uvs", "a drawn pose gets its uvs from its drawing; remove them");
       if (jp.contains("origin")) {
-        if (!jp.contains("drawing")) r.Fail(w + ".origin", "only a drawing has an origin (an outline is in rig coordinates)");
+        if (!jp.contains("drawing"))
+          r.Fail(w + ".origin", "only a drawing has an origin (an outline is in rig coordinates)");
         pose.origin = r.Point(jp["origin"], w + ".origin");
         if (!(std::abs(pose.origin.x()) <= 1e9 && std::abs(pose.origin.y()) <= 1e9))
           r.Fail(w + ".origin", "must lie within +-1e9 drawing units");
@@ -213,8 +220,10 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
           r.Fail(wh, "expected {\"at\": [x, y], \"to\": [x, y]} or {\"vertex\": index, \"to\": [x, y]}");
         HandleDescription handle;
         handle.by_vertex = jh.contains("vertex");
-        if (handle.by_vertex) handle.vertex = r.Index(jh["vertex"], wh + ".vertex");
-        else handle.at = r.Point(jh["at"], wh + ".at");
+        if (handle.by_vertex)
+          handle.vertex = r.Index(jh["vertex"], wh + ".vertex");
+        else
+          handle.at = r.Point(jh["at"], wh + ".at");
         handle.to = r.Point(jh["to"], wh + ".to");
         pose.deform.handles.push_back(handle);
       }
@@ -239,7 +248,8 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
     }
     if (jp.contains("image")) pose.image = r.String(jp["image"], w + ".image");
     if (jp.contains("uvs")) {
-      for (const Eigen::Vector2d& uv : r.Points(r.Array(jp, "uvs", w), w + ".uvs")) pose.uvs.push_back(uv.cast<float>());
+      for (const Eigen::Vector2d& uv : r.Points(r.Array(jp, "uvs", w), w + ".uvs"))
+        pose.uvs.push_back(uv.cast<float>());
     }
     rig.poses.push_back(std::move(pose));
   }
@@ -289,7 +299,8 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
       if (!b["grid_resolution"].is_number_integer()) r.Fail("bake.grid_resolution", "expected an integer");
       const auto v = b["grid_resolution"].get<long long>();
       // 256 bakes within 1 GB (the snake: 690 MB, 6 s; 384 took 1.75 GB, 18 s).
-      if (v < 2 || v > 256) r.Fail("bake.grid_resolution", "must be in 2..256 (finer grids need more than 1 GB to bake)");
+      if (v < 2 || v > 256)
+        r.Fail("bake.grid_resolution", "must be in 2..256 (finer grids need more than 1 GB to bake)");
       p.grid_resolution = int(v);
     }
     if (b.contains("margin")) p.margin = r.Number(b["margin"], "bake.margin");

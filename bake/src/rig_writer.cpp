@@ -21,7 +21,9 @@ void AppendString(std::vector<unsigned char>& out, const std::string& s) {
 
 std::vector<unsigned char> RigWriter::Finish() const {
   namespace fmt = format;
-  auto align = [](std::uint64_t v) { return (v + fmt::kSectionAlignment - 1) / fmt::kSectionAlignment * fmt::kSectionAlignment; };
+  auto align = [](std::uint64_t v) {
+    return (v + fmt::kSectionAlignment - 1) / fmt::kSectionAlignment * fmt::kSectionAlignment;
+  };
   std::uint64_t at = align(fmt::kHeaderSize + sections_.size() * fmt::kSectionEntrySize);
   std::vector<std::uint64_t> offsets;
   for (const Section& s : sections_) {

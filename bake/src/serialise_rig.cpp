@@ -36,7 +36,8 @@ bool HasCanvases(const PoseMeshes& meshes) {
 }
 
 std::vector<unsigned char> SerialiseRig(const RigDescription& description, const PoseMeshes& meshes,
-                                        const PoseAnalysis& analysis, const ArapSystem& system, const WeightGrid& grid) {
+                                        const PoseAnalysis& analysis, const ArapSystem& system,
+                                        const WeightGrid& grid) {
   const std::size_t V = meshes.poses[0].vertices.size(), T = meshes.triangles.size(), N = meshes.poses.size();
   fmt::Meta meta{};
   meta.vertex_count = std::uint32_t(V);
@@ -81,10 +82,11 @@ std::vector<unsigned char> SerialiseRig(const RigDescription& description, const
   for (const PoseMesh& p : meshes.poses) AppendString(strings, p.image);
   for (const auto& path : description.paths) {
     AppendString(strings, path.name);
-    const std::uint32_t entry[2] = {std::uint32_t(path.keys.size()),
-                                    (path.loop ? fmt::kPathFlagLoop : 0u) |
-                                        (std::uint32_t(path.catmull_rom ? PathInterpolation::kCatmullRom : PathInterpolation::kLinear)
-                                         << fmt::kPathInterpolationShift)};
+    const std::uint32_t entry[2] = {
+        std::uint32_t(path.keys.size()),
+        (path.loop ? fmt::kPathFlagLoop : 0u) |
+            (std::uint32_t(path.catmull_rom ? PathInterpolation::kCatmullRom : PathInterpolation::kLinear)
+             << fmt::kPathInterpolationShift)};
     const auto* e = reinterpret_cast<const unsigned char*>(entry);
     path_table.insert(path_table.end(), e, e + sizeof(entry));
     for (const auto& k : path.keys) keys.insert(keys.end(), k.begin(), k.end());

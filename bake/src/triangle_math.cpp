@@ -15,7 +15,9 @@ Eigen::Matrix2d EdgeMatrix(const Points& p, const std::array<std::uint32_t, 3>& 
   return E;
 }
 
-double SignedArea(const Points& p, const std::array<std::uint32_t, 3>& t) { return 0.5 * EdgeMatrix(p, t).determinant(); }
+double SignedArea(const Points& p, const std::array<std::uint32_t, 3>& t) {
+  return 0.5 * EdgeMatrix(p, t).determinant();
+}
 
 PolarSplit PolarDecompose(const Eigen::Matrix2d& A) {
   PolarSplit out;

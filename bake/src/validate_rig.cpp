@@ -23,25 +23,33 @@ std::uint32_t FindRoot(std::vector<std::uint32_t>& parent, std::uint32_t v) {
 std::string CheckCounts(const PoseMeshes& rig) {
   const std::size_t N = rig.poses.size();
   if (N < 2) return "a rig needs at least 2 poses, this one has " + std::to_string(N);
-  if (N > format::kMaxPoses) return "at most " + std::to_string(format::kMaxPoses) + " poses are supported, got " + std::to_string(N);
+  if (N > format::kMaxPoses)
+    return "at most " + std::to_string(format::kMaxPoses) + " poses are supported, got " + std::to_string(N);
   const std::size_t V = rig.poses[0].vertices.size();
-  if (V < 3) return PoseLabel(rig.poses[0].name, 0) + " has " + std::to_string(V) + " vertices; a mesh needs at least 3";
+  if (V < 3)
+    return PoseLabel(rig.poses[0].name, 0) + " has " + std::to_string(V) + " vertices; a mesh needs at least 3";
   if (V > format::kMaxVertices) return "too many vertices: " + std::to_string(V);
   if (rig.triangles.empty()) return "the triangle list is empty";
-  if (rig.triangles.size() > format::kMaxTriangles) return "too many triangles: " + std::to_string(rig.triangles.size());
+  if (rig.triangles.size() > format::kMaxTriangles)
+    return "too many triangles: " + std::to_string(rig.triangles.size());
   for (std::size_t i = 0; i < N; ++i) {
     const PoseMesh& p = rig.poses[i];
     if (p.vertices.size() != V)
-      return PoseLabel(rig.poses[i].name, i) + " has " + std::to_string(p.vertices.size()) + " vertices, pose 0 has " + std::to_string(V);
+      return PoseLabel(rig.poses[i].name, i) + " has " + std::to_string(p.vertices.size()) + " vertices, pose 0 has " +
+             std::to_string(V);
     if (!p.uvs.empty() && p.uvs.size() != V)
-      return PoseLabel(rig.poses[i].name, i) + " has " + std::to_string(p.uvs.size()) + " uvs for " + std::to_string(V) + " vertices";
+      return PoseLabel(rig.poses[i].name, i) + " has " + std::to_string(p.uvs.size()) + " uvs for " +
+             std::to_string(V) + " vertices";
     for (std::size_t j = 0; j < i; ++j)
-      if (rig.poses[j].name == p.name) return PoseLabel(rig.poses[i].name, i) + ": the name is used by pose " + std::to_string(j) + " too";
+      if (rig.poses[j].name == p.name)
+        return PoseLabel(rig.poses[i].name, i) + ": the name is used by pose " + std::to_string(j) + " too";
   }
-  const bool any_uvs = std::any_of(rig.poses.begin(), rig.poses.end(), [](const PoseMesh& p) { return !p.uvs.empty(); });
+  const bool any_uvs =
+      std::any_of(rig.poses.begin(), rig.poses.end(), [](const PoseMesh& p) { return !p.uvs.empty(); });
   if (any_uvs)
     for (std::size_t i = 0; i < N; ++i)
-      if (rig.poses[i].uvs.empty()) return PoseLabel(rig.poses[i].name, i) + " has no uvs, but other poses do; give all or none";
+      if (rig.poses[i].uvs.empty())
+        return PoseLabel(rig.poses[i].name, i) + " has no uvs, but other poses do; give all or none";
   return {};
 }
 
@@ -52,9 +60,12 @@ std::string CheckIndices(const PoseMeshes& rig) {
   for (std::size_t t = 0; t < rig.triangles.size(); ++t) {
     const auto& tri = rig.triangles[t];
     for (std::uint32_t v : tri)
-      if (v >= V) return "triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) + ", but there are only " + std::to_string(V);
+      if (v >= V)
+        return "triangle " + std::to_string(t) + " uses vertex " + std::to_string(v) + ", but there are only " +
+               std::to_string(V);
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2])
-      return "triangle " + std::to_string(t) + " repeats a vertex (" + std::to_string(tri[0]) + ", " + std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")";
+      return "triangle " + std::to_string(t) + " repeats a vertex (" + std::to_string(tri[0]) + ", " +
+             std::to_string(tri[1]) + ", " + std::to_string(tri[2]) + ")";
     std::array<std::uint32_t, 3> key = tri;
     std::sort(key.begin(), key.end());
     if (!seen.insert(key).second) return "triangle " + std::to_string(t) + " appears twice in the triangle list";
@@ -74,9 +85,9 @@ std::string CheckManifold(const PoseMeshes& rig) {
         std::vector<std::size_t>& list = edge_triangles[{a, b}];
         list.push_back(t);
         if (list.size() > 2)
-          return "the mesh is not manifold: edge (" + std::to_string(a) + ", " + std::to_string(b) + ") borders triangles " +
-               std::to_string(list[0]) + ", " + std::to_string(list[1]) + " and " + std::to_string(list[2]) +
-               " (an edge borders at most two)";
+          return "the mesh is not manifold: edge (" + std::to_string(a) + ", " + std::to_string(b) +
+                 ") borders triangles " + std::to_string(list[0]) + ", " + std::to_string(list[1]) + " and " +
+                 std::to_string(list[2]) + " (an edge borders at most two)";
       }
   }
   return {};
@@ -97,7 +108,8 @@ std::string CheckConnected(const PoseMeshes& rig) {
   for (std::size_t v = 0; v < V; ++v) {
     if (!used[v]) return "vertex " + std::to_string(v) + " is used by no triangle";
     if (FindRoot(parent, std::uint32_t(v)) != FindRoot(parent, 0))
-      return "the mesh falls apart: vertex " + std::to_string(v) + " is not connected to vertex 0 (a rig is one connected mesh)";
+      return "the mesh falls apart: vertex " + std::to_string(v) +
+             " is not connected to vertex 0 (a rig is one connected mesh)";
   }
   return {};
 }
@@ -110,9 +122,11 @@ std::string CheckFinite(const PoseMeshes& rig) {
     const PoseMesh& p = rig.poses[i];
     if (!p.point.allFinite()) return PoseLabel(rig.poses[i].name, i) + ": pose-space point is not finite";
     for (std::size_t v = 0; v < V; ++v)
-      if (!p.vertices[v].allFinite()) return PoseLabel(rig.poses[i].name, i) + ": vertex " + std::to_string(v) + " is not finite";
+      if (!p.vertices[v].allFinite())
+        return PoseLabel(rig.poses[i].name, i) + ": vertex " + std::to_string(v) + " is not finite";
     for (std::size_t v = 0; v < p.uvs.size(); ++v)
-      if (!p.uvs[v].allFinite()) return PoseLabel(rig.poses[i].name, i) + ": uv " + std::to_string(v) + " is not finite";
+      if (!p.uvs[v].allFinite())
+        return PoseLabel(rig.poses[i].name, i) + ": uv " + std::to_string(v) + " is not finite";
   }
   return {};
 }
@@ -137,7 +151,8 @@ std::string CheckAreas(const PoseMeshes& rig) {
       }
       if (a < 0) {
         std::ostringstream s;
-        s << PoseLabel(rig.poses[i].name, i) << ": triangle " << t << " is flipped (signed area " << a << ", pose 0 is counter-clockwise)";
+        s << PoseLabel(rig.poses[i].name, i) << ": triangle " << t << " is flipped (signed area " << a
+          << ", pose 0 is counter-clockwise)";
         return s.str();
       }
     }
@@ -155,7 +170,8 @@ std::string CheckPosePoints(const PoseMeshes& rig) {
     const Eigen::Vector2d& p = rig.poses[i].point;
     if (!(std::fabs(p.x()) <= format::kMaxPathValue) || !(std::fabs(p.y()) <= format::kMaxPathValue)) {
       std::ostringstream s;
-      s << PoseLabel(rig.poses[i].name, i) << ": pose-space point (" << p.x() << ", " << p.y() << ") lies beyond +-1e12";
+      s << PoseLabel(rig.poses[i].name, i) << ": pose-space point (" << p.x() << ", " << p.y()
+        << ") lies beyond +-1e12";
       return s.str();
     }
     point_box.extend(p);
@@ -163,8 +179,9 @@ std::string CheckPosePoints(const PoseMeshes& rig) {
   for (std::size_t i = 0; i < N; ++i)
     for (std::size_t j = 0; j < i; ++j)
       if (rig.poses[i].point == rig.poses[j].point)
-        return PoseLabel(rig.poses[i].name, i) + " and " + PoseLabel(rig.poses[j].name, j) + " share the pose-space point (" +
-             std::to_string(rig.poses[i].point.x()) + ", " + std::to_string(rig.poses[i].point.y()) + ")";
+        return PoseLabel(rig.poses[i].name, i) + " and " + PoseLabel(rig.poses[j].name, j) +
+               " share the pose-space point (" + std::to_string(rig.poses[i].point.x()) + ", " +
+               std::to_string(rig.poses[i].point.y()) + ")";
   if (!(point_box.sizes().maxCoeff() >= 1e-6)) {
     std::ostringstream s;
     s << "the pose-space points span only " << point_box.sizes().maxCoeff()
@@ -181,12 +198,12 @@ std::string CheckFormatLimits(const PoseMeshes& rig, const std::vector<PathDescr
   // baking a rig the runtime would not load.
   if (paths.size() > format::kMaxPaths)
     return "paths: " + std::to_string(paths.size()) + " paths, more than the rig format's limit of " +
-         std::to_string(format::kMaxPaths);
+           std::to_string(format::kMaxPaths);
   std::size_t keys = 0;
   for (const PathDescription& path : paths) keys += path.keys.size();
   if (keys > format::kMaxPathKeys)
     return "paths: " + std::to_string(keys) + " keys in all, more than the rig format's limit of " +
-         std::to_string(format::kMaxPathKeys);
+           std::to_string(format::kMaxPathKeys);
   std::size_t string_bytes = 0, longest = 0;
   std::string longest_name;
   auto count = [&](const std::string& text, const std::string& what) {
@@ -200,8 +217,8 @@ std::string CheckFormatLimits(const PoseMeshes& rig, const std::vector<PathDescr
   for (std::size_t k = 0; k < paths.size(); ++k) count(paths[k].name, "paths[" + std::to_string(k) + "].name");
   if (string_bytes > format::kMaxStringBytes)
     return "pose names, image references and path names take " + std::to_string(string_bytes) +
-         " bytes, more than the rig format's limit of " + std::to_string(format::kMaxStringBytes) + " (the longest, " +
-         longest_name + ", has " + std::to_string(longest) + ")";
+           " bytes, more than the rig format's limit of " + std::to_string(format::kMaxStringBytes) +
+           " (the longest, " + longest_name + ", has " + std::to_string(longest) + ")";
   return {};
 }
 

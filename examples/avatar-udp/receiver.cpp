@@ -37,8 +37,10 @@ int main(int argc, char** argv) {
                wire::Get32(m + 12) == rig.vertex_count();
       std::memcpy(reply, agreed ? "OKAY" : "DIFF", 4);
       answer(4);
-      if (!agreed) return std::fprintf(stderr, "avatar_receiver: the sender holds another rig (CRC-32 %08x, ours %08x)\n",
-                                       wire::Get32(m + 4), rig.checksum()), 1;
+      if (!agreed)
+        return std::fprintf(stderr, "avatar_receiver: the sender holds another rig (CRC-32 %08x, ours %08x)\n",
+                            wire::Get32(m + 4), rig.checksum()),
+               1;
     } else if (wire::Is(m, std::size_t(n), "FRAM") && n == wire::kFrameBytes && agreed) {
       const std::uint64_t h = avatar.DrawPacked(m + 8);  // a game would render avatar.job.output[0] now
       std::memcpy(reply, "ACKN", 4);

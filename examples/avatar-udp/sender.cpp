@@ -54,7 +54,8 @@ int main(int argc, char** argv) {
   const ssize_t hello = Ask(s, to, m, 16, answer, sizeof answer, "OKAY", "DIFF");
   if (hello < 0) return std::fprintf(stderr, "avatar_sender: no receiver answers on 127.0.0.1:%d\n", port), 1;
   if (wire::Is(answer, std::size_t(hello), "DIFF"))
-    return std::fprintf(stderr, "avatar_sender: the receiver holds another rig (ours: CRC-32 %08x)\n", rig.checksum()), 1;
+    return std::fprintf(stderr, "avatar_sender: the receiver holds another rig (ours: CRC-32 %08x)\n", rig.checksum()),
+           1;
 
   wire::Avatar avatar(rig);
   const posemorph::PathView p = rig.path(std::uint32_t(path));
@@ -81,8 +82,9 @@ int main(int argc, char** argv) {
   std::memcpy(m, "DONE", 4);
   sendto(s, m, 4, 0, reinterpret_cast<const sockaddr*>(&to), sizeof to);
   close(s);
-  std::printf("avatar_sender: %d of %d frames drawn bit for bit alike by both peers; %zu bytes per frame "
-              "(4 point + 4 sequence + 4 tag), %zu with UDP and IPv4 headers\n",
-              matched, frames, wire::kFrameBytes, wire::kFrameBytes + 8 + 20);
+  std::printf(
+      "avatar_sender: %d of %d frames drawn bit for bit alike by both peers; %zu bytes per frame "
+      "(4 point + 4 sequence + 4 tag), %zu with UDP and IPv4 headers\n",
+      matched, frames, wire::kFrameBytes, wire::kFrameBytes + 8 + 20);
   return matched == frames ? 0 : 1;
 }

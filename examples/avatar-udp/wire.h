@@ -38,7 +38,9 @@ inline void Put32(unsigned char* p, std::uint32_t v) {
 inline std::uint32_t Get32(const unsigned char* p) {
   return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
 }
-inline bool Is(const unsigned char* m, std::size_t n, const char tag[4]) { return n >= 4 && std::memcmp(m, tag, 4) == 0; }
+inline bool Is(const unsigned char* m, std::size_t n, const char tag[4]) {
+  return n >= 4 && std::memcmp(m, tag, 4) == 0;
+}
 
 // FNV-1a over the bytes of the positions: equal hashes <=> (practically) equal bits.
 inline std::uint64_t Hash(const float* x, std::size_t n) {
@@ -100,7 +102,8 @@ inline bool LoadRigFile(const char* program, const std::string& path, posemorph:
   std::ifstream in(path, std::ios::binary);
   const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   posemorph::Error err;
-  if (!in.good() && bytes.empty()) return std::fprintf(stderr, "%s: %s: cannot read the file\n", program, path.c_str()), false;
+  if (!in.good() && bytes.empty())
+    return std::fprintf(stderr, "%s: %s: cannot read the file\n", program, path.c_str()), false;
   if (!posemorph::LoadRig(bytes.data(), bytes.size(), rig, &err))
     return std::fprintf(stderr, "%s: %s: %s\n", program, path.c_str(), err.message), false;
   return true;

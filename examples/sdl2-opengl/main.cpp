@@ -99,17 +99,28 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const char* v = i + 1 < argc ? argv[i + 1] : nullptr;
-    if (a[0] != '-') rig_path = a;
-    else if (!v) return Fail("usage: sdl2_opengl RIG.pmrig --images DIR [--crowd K] [--filter nearest|linear] "
-                             "[--size WxH] [--at X,Y] [--frames N --screenshot OUT.png]");
-    else if (a == "--images") images = v, ++i;
-    else if (a == "--crowd") crowd = std::clamp(std::atoi(v), 1, 10000), ++i;
-    else if (a == "--frames") frames = std::max(0, std::atoi(v)), ++i;
-    else if (a == "--screenshot") screenshot = v, ++i;
-    else if (a == "--filter") filter = v, ++i;
-    else if (a == "--size" && std::sscanf(v, "%dx%d", &width, &height) == 2) ++i;
-    else if (a == "--at" && std::sscanf(v, "%lf,%lf", &at_x, &at_y) == 2) ++i;
-    else return Fail("unknown or bad option " + a);
+    if (a[0] != '-')
+      rig_path = a;
+    else if (!v)
+      return Fail(
+          "usage: sdl2_opengl RIG.pmrig --images DIR [--crowd K] [--filter nearest|linear] "
+          "[--size WxH] [--at X,Y] [--frames N --screenshot OUT.png]");
+    else if (a == "--images")
+      images = v, ++i;
+    else if (a == "--crowd")
+      crowd = std::clamp(std::atoi(v), 1, 10000), ++i;
+    else if (a == "--frames")
+      frames = std::max(0, std::atoi(v)), ++i;
+    else if (a == "--screenshot")
+      screenshot = v, ++i;
+    else if (a == "--filter")
+      filter = v, ++i;
+    else if (a == "--size" && std::sscanf(v, "%dx%d", &width, &height) == 2)
+      ++i;
+    else if (a == "--at" && std::sscanf(v, "%lf,%lf", &at_x, &at_y) == 2)
+      ++i;
+    else
+      return Fail("unknown or bad option " + a);
   }
 
   // 1. The rig (shared by every character) and its drawings.
@@ -120,7 +131,8 @@ int main(int argc, char** argv) {
   if (!in.good() && bytes.empty()) return Fail(rig_path + ": cannot read the file");
   if (!LoadRig(bytes.data(), bytes.size(), &rig, &err)) return Fail(rig_path + ": " + err.message);
   const std::uint32_t N = rig.pose_count(), V = rig.vertex_count();
-  if (N > K) std::printf("%s has %u poses: each character blends its %d most weighted drawings\n", rig_path.c_str(), N, K);
+  if (N > K)
+    std::printf("%s has %u poses: each character blends its %d most weighted drawings\n", rig_path.c_str(), N, K);
   const DrawingCanvas canvas = rig.pose_canvas(0);
   if (canvas.width <= 0 || rig.uvs(0).size == 0) return Fail(rig_path + ": the rig was not baked from drawings");
 
@@ -137,13 +149,15 @@ int main(int argc, char** argv) {
   GLuint texture, uvs, positions, indices, vao;
   glGenTextures(1, &texture);
   glBindTexture(GL_TEXTURE_2D_ARRAY, texture);
-  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, GLsizei(w), GLsizei(h), GLsizei(N), 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, GLsizei(w), GLsizei(h), GLsizei(N), 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               nullptr);
   for (std::uint32_t i = 0; i < N; ++i) {
     const StringView name = rig.pose_image(i);
     std::vector<unsigned char> rgba;
     std::string problem;
     if (!ReadDrawing(images + "/" + std::string(name.data, name.size), w, h, &rgba, &problem)) return Fail(problem);
-    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, GLint(i), GLsizei(w), GLsizei(h), 1, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, GLint(i), GLsizei(w), GLsizei(h), 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                    rgba.data());
   }
   // Nearest for pixel art: --filter, else the rig's hint (its description's "filter").
   const bool nearest = filter.empty() ? rig.texture_filter() == TextureFilter::kNearest : filter == "nearest";
@@ -198,7 +212,8 @@ int main(int argc, char** argv) {
   glUniform2f(glGetUniformLocation(program, "view_offset"), float(-centre_x * 2 * zoom / width),
               float(-centre_y * 2 * zoom / height));
   const int path = rig.path_count() > 0 ? 0 : -1;
-  const GLint weights_at = glGetUniformLocation(program, "weights"), layers_at = glGetUniformLocation(program, "layers");
+  const GLint weights_at = glGetUniformLocation(program, "weights"),
+              layers_at = glGetUniformLocation(program, "layers");
   const GLint linear_at = glGetUniformLocation(program, "linear");
   const GLint translation_at = glGetUniformLocation(program, "translation");
 
@@ -269,8 +284,8 @@ int main(int argc, char** argv) {
     }
     SDL_GL_SwapWindow(window);
   }
-  std::printf("%d frames of %zu character(s) on %s; the runtime took %.3f ms per frame for all of them\n", frame,
-              count, reinterpret_cast<const char*>(glGetString(GL_RENDERER)), 1e3 * eval_seconds / std::max(frame, 1));
+  std::printf("%d frames of %zu character(s) on %s; the runtime took %.3f ms per frame for all of them\n", frame, count,
+              reinterpret_cast<const char*>(glGetString(GL_RENDERER)), 1e3 * eval_seconds / std::max(frame, 1));
   SDL_Quit();
   return glGetError() == GL_NO_ERROR ? 0 : Fail("OpenGL reported an error");
 }

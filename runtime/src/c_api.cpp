@@ -20,9 +20,8 @@ struct pm_rig {
 namespace {
 // An in-place handle sits at the start of the caller's memory, the rig's
 // arrays after it.
-constexpr std::size_t kHandleBytes =
-    (sizeof(pm_rig) + posemorph::kRigMemoryAlignment - 1) / posemorph::kRigMemoryAlignment *
-    posemorph::kRigMemoryAlignment;
+constexpr std::size_t kHandleBytes = (sizeof(pm_rig) + posemorph::kRigMemoryAlignment - 1) /
+                                     posemorph::kRigMemoryAlignment * posemorph::kRigMemoryAlignment;
 static_assert(PM_RIG_MEMORY_ALIGNMENT == posemorph::kRigMemoryAlignment, "published alignment");
 
 template <typename T>
@@ -116,14 +115,17 @@ int pm_rig_load_in_place(const void* bytes, size_t size, void* memory, size_t me
 
 void pm_rig_free(pm_rig* rig) {
   if (!rig) return;
-  if (rig->in_place) rig->~pm_rig();  // the memory is the caller's
-  else delete rig;
+  if (rig->in_place)
+    rig->~pm_rig();  // the memory is the caller's
+  else
+    delete rig;
 }
 
 void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info) {
   if (!rig || !info) return;
   const posemorph::Rig& r = rig->rig;
-  *info = pm_rig_info{r.vertex_count(), r.triangle_count(), r.pose_count(), r.path_count(), r.default_sigma(), r.size()};
+  *info =
+      pm_rig_info{r.vertex_count(), r.triangle_count(), r.pose_count(), r.path_count(), r.default_sigma(), r.size()};
 }
 
 const uint32_t* pm_rig_triangles(const pm_rig* rig) { return rig ? rig->rig.triangles().data : nullptr; }
@@ -158,8 +160,8 @@ int pm_rig_path_name(const pm_rig* rig, uint32_t path, char* out, size_t capacit
 int pm_rig_grid(const pm_rig* rig, pm_grid_info* out) {
   if (!rig || !out || !rig->rig.loaded()) return PM_ERROR_INVALID_ARGUMENT;
   const posemorph::PoseSpaceGrid& g = rig->rig.grid();
-  *out = pm_grid_info{g.origin_x, g.origin_y, g.origin_x + g.cell * g.cells_x, g.origin_y + g.cell * g.cells_y,
-                      g.cell, g.cells_x, g.cells_y};
+  *out = pm_grid_info{g.origin_x, g.origin_y, g.origin_x + g.cell * g.cells_x, g.origin_y + g.cell * g.cells_y, g.cell,
+                      g.cells_x,  g.cells_y};
   return PM_OK;
 }
 
@@ -326,8 +328,7 @@ void pm_draw_options_default(pm_draw_options* out) {
 }
 
 int pm_draw_list_buffers(const pm_rig* rig, size_t count, size_t* workspace_doubles, size_t* position_floats) {
-  if (!rig || count == 0 || count > posemorph::MaxDrawListCount(rig->rig))
-    return PM_ERROR_INVALID_ARGUMENT;
+  if (!rig || count == 0 || count > posemorph::MaxDrawListCount(rig->rig)) return PM_ERROR_INVALID_ARGUMENT;
   const posemorph::CharacterBuffers b = posemorph::CharacterBuffers::For(rig->rig, count);
   if (workspace_doubles) *workspace_doubles = b.workspace;
   if (position_floats) *position_floats = b.positions;
@@ -367,19 +368,20 @@ int pm_draw_lists(const pm_rig* rig, const pm_draw_options* options, size_t coun
     }
     return t;
   };
-  const bool ok = posemorph::detail::RunDrawLists(job, transform_at, [&](std::size_t k, const posemorph::DrawList& list) {
-    pm_draw_list& d = out[k];
-    d.positions = list.positions.data;
-    d.indices = list.indices.data;
-    d.vertex_count = r.vertex_count();
-    d.index_count = std::uint32_t(list.indices.size);
-    d.drawing_count = list.drawing_count;
-    for (std::uint32_t i = 0; i < PM_MAX_BLEND_DRAWINGS; ++i)
-      d.drawings[i] = {list.drawings[i].pose, list.drawings[i].weight, list.drawings[i].uvs};
-    const posemorph::Transform2D& t = list.transform;
-    d.transform = {t.a, t.b, t.c, t.d, t.tx, t.ty};
-    d.mirrored = list.mirrored ? 1 : 0;
-  });
+  const bool ok =
+      posemorph::detail::RunDrawLists(job, transform_at, [&](std::size_t k, const posemorph::DrawList& list) {
+        pm_draw_list& d = out[k];
+        d.positions = list.positions.data;
+        d.indices = list.indices.data;
+        d.vertex_count = r.vertex_count();
+        d.index_count = std::uint32_t(list.indices.size);
+        d.drawing_count = list.drawing_count;
+        for (std::uint32_t i = 0; i < PM_MAX_BLEND_DRAWINGS; ++i)
+          d.drawings[i] = {list.drawings[i].pose, list.drawings[i].weight, list.drawings[i].uvs};
+        const posemorph::Transform2D& t = list.transform;
+        d.transform = {t.a, t.b, t.c, t.d, t.tx, t.ty};
+        d.mirrored = list.mirrored ? 1 : 0;
+      });
   return ok ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
 }
 

@@ -37,8 +37,9 @@ std::uint32_t Crc32(const unsigned char* data, std::uint64_t size, std::uint32_t
     std::memcpy(&lo, data + i, 4);
     std::memcpy(&hi, data + i + 4, 4);
     lo ^= crc;
-    crc = kTables[7][lo & 0xFFu] ^ kTables[6][(lo >> 8) & 0xFFu] ^ kTables[5][(lo >> 16) & 0xFFu] ^ kTables[4][lo >> 24] ^
-          kTables[3][hi & 0xFFu] ^ kTables[2][(hi >> 8) & 0xFFu] ^ kTables[1][(hi >> 16) & 0xFFu] ^ kTables[0][hi >> 24];
+    crc = kTables[7][lo & 0xFFu] ^ kTables[6][(lo >> 8) & 0xFFu] ^ kTables[5][(lo >> 16) & 0xFFu] ^
+          kTables[4][lo >> 24] ^ kTables[3][hi & 0xFFu] ^ kTables[2][(hi >> 8) & 0xFFu] ^
+          kTables[1][(hi >> 16) & 0xFFu] ^ kTables[0][hi >> 24];
   }
   for (; i < size; ++i) crc = kTables[0][(crc ^ data[i]) & 0xFFu] ^ (crc >> 8);
   return ~crc;

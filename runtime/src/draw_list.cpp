@@ -44,7 +44,7 @@ std::uint32_t PickDrawings(Span<const double> w, std::uint32_t max_drawings, Spa
   double weight[kMaxBlendDrawings] = {};
   std::uint32_t count = 0;
   for (std::uint32_t i = 0; i < w.size; ++i) {  // insertion into a short list, largest first
-    const double wi = w[i] > 0 ? w[i] : 0.0;   // also maps NaN to 0
+    const double wi = w[i] > 0 ? w[i] : 0.0;    // also maps NaN to 0
     std::uint32_t at = count;
     while (at > 0 && weight[at - 1] < wi) --at;
     if (at >= K) continue;

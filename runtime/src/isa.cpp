@@ -19,8 +19,8 @@ struct IsaEntry {
   const char* name;
 };
 constexpr IsaEntry kIsaNames[] = {
-    {Isa::kAuto, "auto"}, {Isa::kScalar, "scalar"}, {Isa::kSse2, "sse2"},          {Isa::kAvx2, "avx2"},
-    {Isa::kAvx512, "avx512"}, {Isa::kNeon, "neon"}, {Isa::kWasmSimd, "wasm-simd"},
+    {Isa::kAuto, "auto"},     {Isa::kScalar, "scalar"}, {Isa::kSse2, "sse2"},          {Isa::kAvx2, "avx2"},
+    {Isa::kAvx512, "avx512"}, {Isa::kNeon, "neon"},     {Isa::kWasmSimd, "wasm-simd"},
 };
 
 #if defined(POSEMORPH_KERNELS_X86)
@@ -75,19 +75,26 @@ namespace detail {
 
 const KernelTable* CompiledKernels(Isa isa) {
   switch (isa) {
-    case Isa::kScalar: return &scalar::kKernels;
+    case Isa::kScalar:
+      return &scalar::kKernels;
 #if defined(POSEMORPH_KERNELS_X86)
-    case Isa::kSse2: return &sse2::kKernels;
-    case Isa::kAvx2: return &avx2::kKernels;
-    case Isa::kAvx512: return &avx512::kKernels;
+    case Isa::kSse2:
+      return &sse2::kKernels;
+    case Isa::kAvx2:
+      return &avx2::kKernels;
+    case Isa::kAvx512:
+      return &avx512::kKernels;
 #endif
 #if defined(POSEMORPH_KERNELS_NEON)
-    case Isa::kNeon: return &neon::kKernels;
+    case Isa::kNeon:
+      return &neon::kKernels;
 #endif
 #if defined(POSEMORPH_KERNELS_WASM_SIMD)
-    case Isa::kWasmSimd: return &wasm_simd::kKernels;
+    case Isa::kWasmSimd:
+      return &wasm_simd::kKernels;
 #endif
-    default: return nullptr;
+    default:
+      return nullptr;
   }
 }
 
@@ -111,8 +118,8 @@ bool SelectKernels(Isa requested, const KernelTable** out, Error* err) {
   if (!IsaAvailable(isa)) {
     if (err) {
       err->code = ErrorCode::kUnsupportedIsa;
-      std::snprintf(err->message, sizeof(err->message), "code path %s is %s (this build and CPU run: %s)",
-                    IsaName(isa), CompiledKernels(isa) ? "not supported by this CPU" : "not compiled into this build",
+      std::snprintf(err->message, sizeof(err->message), "code path %s is %s (this build and CPU run: %s)", IsaName(isa),
+                    CompiledKernels(isa) ? "not supported by this CPU" : "not compiled into this build",
                     AvailableIsaNames());
     }
     return false;

@@ -32,7 +32,6 @@ bool MorphBatchJob::Validate() const {
   return true;
 }
 
-
 bool MorphBatchJob::Run() const {
   if (!Validate()) return false;
   if (count == 0) return true;  // nothing to do: the spans may all be empty
@@ -47,8 +46,8 @@ bool MorphBatchJob::Run() const {
   const std::size_t min_lanes = (3 * width + 7) / 8;
   const std::uintptr_t base = reinterpret_cast<std::uintptr_t>(workspace.data);
   const std::uintptr_t aligned = (base + 63) / 64 * 64;
-  double* x = reinterpret_cast<double*>(aligned);  // 2V x width
-  double* y = x + v2 * width;                      // 2(V-1) x width
+  double* x = reinterpret_cast<double*>(aligned);            // 2V x width
+  double* y = x + v2 * width;                                // 2(V-1) x width
   alignas(64) double W[64 * kMaxLanes], WS[64 * kMaxLanes];  // N <= 64, the format's limit
   for (std::size_t g = 0; g < count; g += width) {
     const std::size_t lanes = count - g < width ? count - g : width;

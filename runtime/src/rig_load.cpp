@@ -29,9 +29,21 @@ namespace fmt = format;
 
 constexpr auto Fail = detail::LoadFail;
 
-std::uint16_t ReadU16(const unsigned char* p) { std::uint16_t v; std::memcpy(&v, p, 2); return v; }
-std::uint32_t ReadU32(const unsigned char* p) { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
-std::uint64_t ReadU64(const unsigned char* p) { std::uint64_t v; std::memcpy(&v, p, 8); return v; }
+std::uint16_t ReadU16(const unsigned char* p) {
+  std::uint16_t v;
+  std::memcpy(&v, p, 2);
+  return v;
+}
+std::uint32_t ReadU32(const unsigned char* p) {
+  std::uint32_t v;
+  std::memcpy(&v, p, 4);
+  return v;
+}
+std::uint64_t ReadU64(const unsigned char* p) {
+  std::uint64_t v;
+  std::memcpy(&v, p, 8);
+  return v;
+}
 
 void TagName(std::uint32_t tag, char out[5]) {
   for (int i = 0; i < 4; ++i) {
@@ -84,8 +96,8 @@ struct Parser {
     const Section* s = table.Find(tag);
     if (!s) return Fail(err, ErrorCode::kBadLayout, "missing section %s", name);
     if (s->size != expected)
-      return Fail(err, ErrorCode::kBadLayout, "section %s is %llu bytes, the counts imply %llu",
-                  name, (unsigned long long)s->size, (unsigned long long)expected);
+      return Fail(err, ErrorCode::kBadLayout, "section %s is %llu bytes, the counts imply %llu", name,
+                  (unsigned long long)s->size, (unsigned long long)expected);
     *out = bytes + s->offset;
     return true;
   }
@@ -104,8 +116,7 @@ Span<const T> CopyInto(ArenaLayout& arena, const unsigned char* src, std::uint64
 // NaN positions.
 bool CheckFinite(Span<const double> values, const char* what, Error* err, double limit = format::kMaxMagnitude) {
   for (std::size_t i = 0; i < values.size; ++i) {
-    if (!std::isfinite(values[i]))
-      return Fail(err, ErrorCode::kBadValue, "%s[%zu] is not a finite number", what, i);
+    if (!std::isfinite(values[i])) return Fail(err, ErrorCode::kBadValue, "%s[%zu] is not a finite number", what, i);
     if (!(std::fabs(values[i]) <= limit))
       return Fail(err, ErrorCode::kBadValue, "%s[%zu] is %g, beyond the limit of %g", what, i, values[i], limit);
   }
@@ -165,9 +176,7 @@ Span<const float> Rig::uvs(std::uint32_t pose) const {
   return {uvs_.data + std::size_t(pose) * 2 * vertex_count_, 2 * std::size_t(vertex_count_)};
 }
 
-StringView Rig::pose_name(std::uint32_t pose) const {
-  return pose < pose_count_ ? strings_[pose] : StringView{};
-}
+StringView Rig::pose_name(std::uint32_t pose) const { return pose < pose_count_ ? strings_[pose] : StringView{}; }
 
 StringView Rig::pose_image(std::uint32_t pose) const {
   return pose < pose_count_ ? strings_[pose_count_ + pose] : StringView{};
@@ -244,8 +253,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
 
   // Header.
   if (size < fmt::kHeaderSize)
-    return Fail(err, ErrorCode::kTruncated, "%zu bytes is shorter than the %u-byte header", size,
-                fmt::kHeaderSize);
+    return Fail(err, ErrorCode::kTruncated, "%zu bytes is shorter than the %u-byte header", size, fmt::kHeaderSize);
   if (std::memcmp(bytes, fmt::kMagic, sizeof(fmt::kMagic)) != 0)
     return Fail(err, ErrorCode::kBadMagic, "not a posemorph rig (bad magic)");
   const std::uint16_t major = ReadU16(bytes + fmt::kOffVersionMajor);
@@ -257,8 +265,8 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
                 ReadU32(bytes + fmt::kOffHeaderSize), fmt::kHeaderSize);
   const std::uint64_t file_size = ReadU64(bytes + fmt::kOffFileSize);
   if (file_size > size)
-    return Fail(err, ErrorCode::kTruncated, "header says %llu bytes, only %zu given",
-                (unsigned long long)file_size, size);
+    return Fail(err, ErrorCode::kTruncated, "header says %llu bytes, only %zu given", (unsigned long long)file_size,
+                size);
   if (file_size < size)
     return Fail(err, ErrorCode::kBadLayout, "header says %llu bytes, %zu given (trailing bytes)",
                 (unsigned long long)file_size, size);
@@ -268,16 +276,14 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
     if (bytes[i] != 0) return Fail(err, ErrorCode::kBadLayout, "reserved header byte %u is not zero", i);
   const std::uint32_t section_count = ReadU32(bytes + fmt::kOffSectionCount);
   if (section_count == 0 || section_count > fmt::kMaxSections)
-    return Fail(err, ErrorCode::kBadLayout, "section count %u outside 1..%u", section_count,
-                fmt::kMaxSections);
+    return Fail(err, ErrorCode::kBadLayout, "section count %u outside 1..%u", section_count, fmt::kMaxSections);
   const std::uint64_t table_end = fmt::kHeaderSize + std::uint64_t(section_count) * fmt::kSectionEntrySize;
   if (table_end > size) return Fail(err, ErrorCode::kTruncated, "section table runs past the end");
   if (options.verify_checksum) {
     const std::uint32_t stored = ReadU32(bytes + fmt::kOffChecksum);
     const std::uint32_t actual = fmt::Crc32(bytes + fmt::kHeaderSize, size - fmt::kHeaderSize);
     if (stored != actual)
-      return Fail(err, ErrorCode::kBadChecksum, "checksum mismatch (stored %08x, computed %08x)",
-                  stored, actual);
+      return Fail(err, ErrorCode::kBadChecksum, "checksum mismatch (stored %08x, computed %08x)", stored, actual);
   }
 
   // Section table: in bounds, aligned, after the table, no two overlapping.
@@ -307,8 +313,8 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   fmt::Meta meta;
   std::memcpy(&meta, p, sizeof(meta));
   static_assert(sizeof(fmt::Meta) == fmt::kMetaSize, "Meta layout");
-  const std::uint64_t V = meta.vertex_count, T = meta.triangle_count, N = meta.pose_count,
-                      P = meta.path_count, nnz = meta.factor_nonzeros;
+  const std::uint64_t V = meta.vertex_count, T = meta.triangle_count, N = meta.pose_count, P = meta.path_count,
+                      nnz = meta.factor_nonzeros;
   if (V < 3 || V > fmt::kMaxVertices)
     return Fail(err, V < 3 ? ErrorCode::kBadValue : ErrorCode::kTooLarge, "vertex count %llu outside 3..%u",
                 (unsigned long long)V, fmt::kMaxVertices);
@@ -318,20 +324,20 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   if (N < 2 || N > fmt::kMaxPoses)
     return Fail(err, N < 2 ? ErrorCode::kBadValue : ErrorCode::kTooLarge, "pose count %llu outside 2..%u",
                 (unsigned long long)N, fmt::kMaxPoses);
-  if (P > fmt::kMaxPaths) return Fail(err, ErrorCode::kTooLarge, "path count %llu above %u", (unsigned long long)P, fmt::kMaxPaths);
+  if (P > fmt::kMaxPaths)
+    return Fail(err, ErrorCode::kTooLarge, "path count %llu above %u", (unsigned long long)P, fmt::kMaxPaths);
   if (meta.grid_cells_x < 1 || meta.grid_cells_y < 1 || meta.grid_cells_x > fmt::kMaxGridCells ||
       meta.grid_cells_y > fmt::kMaxGridCells)
-    return Fail(err, ErrorCode::kTooLarge, "weight grid %ux%u outside 1..%u cells per axis",
-                meta.grid_cells_x, meta.grid_cells_y, fmt::kMaxGridCells);
+    return Fail(err, ErrorCode::kTooLarge, "weight grid %ux%u outside 1..%u cells per axis", meta.grid_cells_x,
+                meta.grid_cells_y, fmt::kMaxGridCells);
   if (nnz > fmt::kMaxFactorNonzeros)
     return Fail(err, ErrorCode::kTooLarge, "factor has %llu nonzeros, above %u", (unsigned long long)nnz,
                 fmt::kMaxFactorNonzeros);
-  if ((meta.flags & ~(fmt::kMetaFlagHasUVs | fmt::kMetaFlagGridCentres | fmt::kMetaFlagCompact |
-                      fmt::kMetaFlagNearestFilter)) != 0)
+  if ((meta.flags &
+       ~(fmt::kMetaFlagHasUVs | fmt::kMetaFlagGridCentres | fmt::kMetaFlagCompact | fmt::kMetaFlagNearestFilter)) != 0)
     return Fail(err, ErrorCode::kBadVersion, "unknown META flags 0x%x", meta.flags);
-  if (!std::isfinite(meta.grid_origin_x) || !std::isfinite(meta.grid_origin_y) ||
-      !std::isfinite(meta.grid_cell_size) || !(meta.grid_cell_size > 0) ||
-      !std::isfinite(meta.grid_cell_size * meta.grid_cells_x) ||
+  if (!std::isfinite(meta.grid_origin_x) || !std::isfinite(meta.grid_origin_y) || !std::isfinite(meta.grid_cell_size) ||
+      !(meta.grid_cell_size > 0) || !std::isfinite(meta.grid_cell_size * meta.grid_cells_x) ||
       !std::isfinite(meta.grid_cell_size * meta.grid_cells_y) ||
       !std::isfinite(meta.grid_origin_x + meta.grid_cell_size * meta.grid_cells_x) ||
       !std::isfinite(meta.grid_origin_y + meta.grid_cell_size * meta.grid_cells_y))
@@ -350,10 +356,9 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   const bool compact = (meta.flags & fmt::kMetaFlagCompact) != 0;
 
   // Sections with sizes implied by the counts.
-  const unsigned char *tris = nullptr, *poses = nullptr, *points, *cents = nullptr, *masses = nullptr,
-                      *grads = nullptr, *angles = nullptr, *shears = nullptr, *perm = nullptr, *lcol = nullptr,
-                      *lrow = nullptr, *lval = nullptr, *dinv = nullptr, *wgrid = nullptr, *uvs = nullptr, *paths,
-                      *strs, *pkeys;
+  const unsigned char *tris = nullptr, *poses = nullptr, *points, *cents = nullptr, *masses = nullptr, *grads = nullptr,
+                      *angles = nullptr, *shears = nullptr, *perm = nullptr, *lcol = nullptr, *lrow = nullptr,
+                      *lval = nullptr, *dinv = nullptr, *wgrid = nullptr, *uvs = nullptr, *paths, *strs, *pkeys;
   if (!compact &&
       (!parser.Get(fmt::kTriangles, T * 12, &tris) || !parser.Get(fmt::kPosePositions, N * V * 16, &poses) ||
        !parser.Get(fmt::kPoseCentroids, N * 16, &cents) || !parser.Get(fmt::kVertexMasses, V * 8, &masses) ||
@@ -366,8 +371,8 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   if (!parser.Get(fmt::kPosePoints, N * 16, &points) || !parser.Get(fmt::kPaths, P * fmt::kPathEntrySize, &paths))
     return false;
   detail::CompactLayout packed;
-  const detail::CompactCounts packed_counts{V, T, N, n, nnz, meta.grid_cells_x, meta.grid_cells_y,
-                                            grid_centres > 0, file_size};
+  const detail::CompactCounts packed_counts{
+      V, T, N, n, nnz, meta.grid_cells_x, meta.grid_cells_y, grid_centres > 0, file_size};
   bool affine_uvs = false;
   if (compact) {
     auto bytes_of = [&](std::uint32_t tag) {
@@ -460,8 +465,10 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
       rig.factor_.inv_diagonal = {decoded.factor.inv_diagonal, std::size_t(n)};
       rig.grid_.weights = {decoded.grid_corners, std::size_t(grid_corners * N)};
       if (decoded.grid_centres) rig.grid_.centre_weights = {decoded.grid_centres, std::size_t(grid_centres * N)};
-      if (affine_uvs) rig.uvs_ = {decoded.uvs, std::size_t(N * V * 2)};
-      else if (has_uvs) rig.uvs_ = CopyInto<float>(arena, uvs, N * V * 2);
+      if (affine_uvs)
+        rig.uvs_ = {decoded.uvs, std::size_t(N * V * 2)};
+      else if (has_uvs)
+        rig.uvs_ = CopyInto<float>(arena, uvs, N * V * 2);
       // Scratch, used once at load.
       decoded.grid_scratch = arena.Take<std::int64_t>(grid_corners);
       decoded.seen = arena.Take<unsigned char>(n);
@@ -478,24 +485,24 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
       f.work = arena.Take<double>(n);
       f.pivot = arena.Take<double>(n);
     } else {
-    rig.triangles_ = CopyInto<std::uint32_t>(arena, tris, T * 3);
-    rig.pose_positions_ = CopyInto<double>(arena, poses, N * V * 2);
-    rig.pose_points_ = CopyInto<double>(arena, points, N * 2);
-    rig.pose_centroids_ = CopyInto<double>(arena, cents, N * 2);
-    rig.vertex_masses_ = CopyInto<double>(arena, masses, V);
-    rig.gradients_ = CopyInto<double>(arena, grads, T * 6);
-    rig.angles_ = CopyInto<double>(arena, angles, T * N);
-    rig.shears_ = CopyInto<double>(arena, shears, T * N * 3);
-    rig.factor_.order = CopyInto<std::uint32_t>(arena, perm, n);
-    rig.factor_.col_start = CopyInto<std::uint32_t>(arena, lcol, n + 1);
-    rig.factor_.row = CopyInto<std::uint32_t>(arena, lrow, nnz);
-    rig.factor_.value = CopyInto<double>(arena, lval, nnz);
-    rig.factor_.inv_diagonal = CopyInto<double>(arena, dinv, n);
-    const Span<const double> grid_all = CopyInto<double>(arena, wgrid, grid_vertices * N);
-    rig.grid_.weights = {grid_all.data, std::size_t(grid_corners * N)};
-    if (grid_centres && grid_all.data)  // (null while the arena is only being measured)
-      rig.grid_.centre_weights = {grid_all.data + grid_corners * N, std::size_t(grid_centres * N)};
-    if (has_uvs) rig.uvs_ = CopyInto<float>(arena, uvs, N * V * 2);
+      rig.triangles_ = CopyInto<std::uint32_t>(arena, tris, T * 3);
+      rig.pose_positions_ = CopyInto<double>(arena, poses, N * V * 2);
+      rig.pose_points_ = CopyInto<double>(arena, points, N * 2);
+      rig.pose_centroids_ = CopyInto<double>(arena, cents, N * 2);
+      rig.vertex_masses_ = CopyInto<double>(arena, masses, V);
+      rig.gradients_ = CopyInto<double>(arena, grads, T * 6);
+      rig.angles_ = CopyInto<double>(arena, angles, T * N);
+      rig.shears_ = CopyInto<double>(arena, shears, T * N * 3);
+      rig.factor_.order = CopyInto<std::uint32_t>(arena, perm, n);
+      rig.factor_.col_start = CopyInto<std::uint32_t>(arena, lcol, n + 1);
+      rig.factor_.row = CopyInto<std::uint32_t>(arena, lrow, nnz);
+      rig.factor_.value = CopyInto<double>(arena, lval, nnz);
+      rig.factor_.inv_diagonal = CopyInto<double>(arena, dinv, n);
+      const Span<const double> grid_all = CopyInto<double>(arena, wgrid, grid_vertices * N);
+      rig.grid_.weights = {grid_all.data, std::size_t(grid_corners * N)};
+      if (grid_centres && grid_all.data)  // (null while the arena is only being measured)
+        rig.grid_.centre_weights = {grid_all.data + grid_corners * N, std::size_t(grid_centres * N)};
+      if (has_uvs) rig.uvs_ = CopyInto<float>(arena, uvs, N * V * 2);
     }
     if (canvases) rig.canvases_ = CopyInto<double>(arena, canvases, N * 4);
     const Span<const char> chars = CopyInto<char>(arena, strs, strings_section->size);
@@ -518,7 +525,8 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
       // A compact rig expands at load; bound how far, so that a small hostile
       // file cannot claim a huge arena (legitimate rigs expand 10-30x).
       if (compact && arena.used > fmt::kMaxCompactExpansion * file_size + (std::uint64_t(1) << 20))
-        return Fail(err, ErrorCode::kTooLarge, "a compact rig of %llu bytes would need %llu bytes in memory (at most %u times its size)",
+        return Fail(err, ErrorCode::kTooLarge,
+                    "a compact rig of %llu bytes would need %llu bytes in memory (at most %u times its size)",
                     (unsigned long long)file_size, (unsigned long long)arena.used, fmt::kMaxCompactExpansion);
       if (arena.used > std::uint64_t(SIZE_MAX / 2))
         return Fail(err, ErrorCode::kTooLarge, "the rig needs %llu bytes in memory, more than this target addresses",
@@ -535,10 +543,12 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
     // Strings: u32 length + bytes, one after another, exactly filling STRS.
     std::uint64_t at = 0;
     for (std::uint64_t i = 0; i < string_count; ++i) {
-      if (chars.size - at < 4) return Fail(err, ErrorCode::kBadValue, "string table truncated at string %llu", (unsigned long long)i);
+      if (chars.size - at < 4)
+        return Fail(err, ErrorCode::kBadValue, "string table truncated at string %llu", (unsigned long long)i);
       const std::uint32_t len = ReadU32(reinterpret_cast<const unsigned char*>(chars.data + at));
       at += 4;
-      if (len > chars.size - at) return Fail(err, ErrorCode::kBadValue, "string %llu runs past the string table", (unsigned long long)i);
+      if (len > chars.size - at)
+        return Fail(err, ErrorCode::kBadValue, "string %llu runs past the string table", (unsigned long long)i);
       strings[i] = StringView{chars.data + at, len};
       at += len;
     }
@@ -576,15 +586,18 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
     std::memset(seen, 0, n);
     for (std::uint64_t k = 0; k < n; ++k) {
       const std::uint32_t v = rig.factor_.order[k];
-      if (v >= n || seen[v]) return Fail(err, ErrorCode::kBadValue, "permutation is not a permutation (entry %llu)", (unsigned long long)k);
+      if (v >= n || seen[v])
+        return Fail(err, ErrorCode::kBadValue, "permutation is not a permutation (entry %llu)", (unsigned long long)k);
       seen[v] = 1;
     }
     // L strictly lower, columns in order, rows increasing within a column: the
     // triangular solves then touch only rows j < i < n.
     const auto& col = rig.factor_.col_start;
-    if (col[0] != 0 || col[n] != nnz) return Fail(err, ErrorCode::kBadValue, "factor column pointers do not span the nonzeros");
+    if (col[0] != 0 || col[n] != nnz)
+      return Fail(err, ErrorCode::kBadValue, "factor column pointers do not span the nonzeros");
     for (std::uint64_t j = 0; j < n; ++j) {
-      if (col[j] > col[j + 1]) return Fail(err, ErrorCode::kBadValue, "factor column %llu has negative length", (unsigned long long)j);
+      if (col[j] > col[j + 1])
+        return Fail(err, ErrorCode::kBadValue, "factor column %llu has negative length", (unsigned long long)j);
       for (std::uint32_t q = col[j]; q < col[j + 1]; ++q) {
         const std::uint32_t r = rig.factor_.row[q];
         if (r <= j || r >= n || (q > col[j] && r <= rig.factor_.row[q - 1]))
@@ -632,12 +645,14 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
     }
     for (std::uint64_t j = 0; j < n; ++j)
       if (!(rig.factor_.inv_diagonal[j] > 0) || !std::isfinite(rig.factor_.inv_diagonal[j]))
-        return Fail(err, ErrorCode::kBadValue, "factor diagonal %llu is not positive and finite", (unsigned long long)j);
+        return Fail(err, ErrorCode::kBadValue, "factor diagonal %llu is not positive and finite",
+                    (unsigned long long)j);
 
     // Numbers.
-    if (!CheckFinite(rig.pose_positions_, "pose positions", err) || !CheckFinite(rig.pose_points_, "pose points", err) ||
-        !CheckFinite(rig.pose_centroids_, "pose centroids", err) || !CheckFinite(rig.vertex_masses_, "vertex masses", err) ||
-        !CheckFinite(rig.gradients_, "gradients", err) ||
+    if (!CheckFinite(rig.pose_positions_, "pose positions", err) ||
+        !CheckFinite(rig.pose_points_, "pose points", err) ||
+        !CheckFinite(rig.pose_centroids_, "pose centroids", err) ||
+        !CheckFinite(rig.vertex_masses_, "vertex masses", err) || !CheckFinite(rig.gradients_, "gradients", err) ||
         !CheckFinite(rig.angles_, "angles", err, fmt::kMaxAngle) ||
         !CheckFinite(rig.shears_, "stretches", err, fmt::kMaxStretch) ||
         !CheckFinite(rig.factor_.value, "factor values", err) ||
@@ -675,17 +690,28 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
 
 const char* ErrorCodeName(ErrorCode code) {
   switch (code) {
-    case ErrorCode::kOk: return "ok";
-    case ErrorCode::kInvalidArgument: return "invalid argument";
-    case ErrorCode::kTruncated: return "truncated";
-    case ErrorCode::kBadMagic: return "bad magic";
-    case ErrorCode::kBadVersion: return "unsupported version";
-    case ErrorCode::kBadChecksum: return "bad checksum";
-    case ErrorCode::kBadLayout: return "bad layout";
-    case ErrorCode::kBadValue: return "bad value";
-    case ErrorCode::kTooLarge: return "too large";
-    case ErrorCode::kOutOfMemory: return "out of memory";
-    case ErrorCode::kUnsupportedIsa: return "unsupported code path";
+    case ErrorCode::kOk:
+      return "ok";
+    case ErrorCode::kInvalidArgument:
+      return "invalid argument";
+    case ErrorCode::kTruncated:
+      return "truncated";
+    case ErrorCode::kBadMagic:
+      return "bad magic";
+    case ErrorCode::kBadVersion:
+      return "unsupported version";
+    case ErrorCode::kBadChecksum:
+      return "bad checksum";
+    case ErrorCode::kBadLayout:
+      return "bad layout";
+    case ErrorCode::kBadValue:
+      return "bad value";
+    case ErrorCode::kTooLarge:
+      return "too large";
+    case ErrorCode::kOutOfMemory:
+      return "out of memory";
+    case ErrorCode::kUnsupportedIsa:
+      return "unsupported code path";
   }
   return "unknown";
 }

@@ -55,49 +55,50 @@ using namespace posemorph::test;
 
 TEST_CASE("a frame performs zero heap allocations") {
   for (const char* name : {"snake", "snake.compact"}) {
-  const Rig rig = LoadTestRig(name);
-  const std::uint32_t N = rig.pose_count();
-  std::vector<double> raw(N), shear(N), tex(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
-  std::vector<float> xf(x.size());
-  const int slither = rig.FindPath("slither");
+    const Rig rig = LoadTestRig(name);
+    const std::uint32_t N = rig.pose_count();
+    std::vector<double> raw(N), shear(N), tex(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
+    std::vector<float> xf(x.size());
+    const int slither = rig.FindPath("slither");
 
-  g_allocations = 0;
-  g_counting = true;
-  bool ok = true;
-  for (int frame = 0; frame < 500; ++frame) {
-    double px, py;
-    ok &= SamplePath(rig, std::uint32_t(slither), frame / 60.0, &px, &py);
-    unsigned char wire[4];
-    PackPoint(QuantizePoint(rig.grid(), px, py), wire);
-    DequantizePoint(rig.grid(), UnpackPoint(wire), &px, &py);
-    WeightsJob wj;
-    wj.rig = &rig, wj.x = px, wj.y = py, wj.sigma = 0.4;
-    wj.raw = MakeSpan(raw), wj.shear = MakeSpan(shear), wj.texture = MakeSpan(tex);
-    ok &= wj.Run();
-    MorphJob mj;
-    mj.rig = &rig, mj.weights = MakeSpan(raw), mj.shear_weights = MakeSpan(shear);
-    mj.workspace = MakeSpan(work), mj.positions = MakeSpan(x), mj.positions_f32 = MakeSpan(xf);
-    mj.interpolation = frame % 2 ? Interpolation::kRigid : Interpolation::kLinear;
-    ok &= mj.Run();
-  }
-  g_counting = false;
-  CHECK(ok);
-  CHECK(g_allocations.load() == 0);
+    g_allocations = 0;
+    g_counting = true;
+    bool ok = true;
+    for (int frame = 0; frame < 500; ++frame) {
+      double px, py;
+      ok &= SamplePath(rig, std::uint32_t(slither), frame / 60.0, &px, &py);
+      unsigned char wire[4];
+      PackPoint(QuantizePoint(rig.grid(), px, py), wire);
+      DequantizePoint(rig.grid(), UnpackPoint(wire), &px, &py);
+      WeightsJob wj;
+      wj.rig = &rig, wj.x = px, wj.y = py, wj.sigma = 0.4;
+      wj.raw = MakeSpan(raw), wj.shear = MakeSpan(shear), wj.texture = MakeSpan(tex);
+      ok &= wj.Run();
+      MorphJob mj;
+      mj.rig = &rig, mj.weights = MakeSpan(raw), mj.shear_weights = MakeSpan(shear);
+      mj.workspace = MakeSpan(work), mj.positions = MakeSpan(x), mj.positions_f32 = MakeSpan(xf);
+      mj.interpolation = frame % 2 ? Interpolation::kRigid : Interpolation::kLinear;
+      ok &= mj.Run();
+    }
+    g_counting = false;
+    CHECK(ok);
+    CHECK(g_allocations.load() == 0);
 
-  // A batch of 20 characters (two full groups and a partial one) too.
-  const std::size_t count = 20;
-  std::vector<double> bw, bws, bwork(rig.batch_workspace_size()), bx(count * x.size());
-  for (std::size_t k = 0; k < count; ++k) bw.insert(bw.end(), raw.begin(), raw.end()), bws.insert(bws.end(), shear.begin(), shear.end());
-  MorphBatchJob batch;
-  batch.rig = &rig, batch.count = count;
-  batch.weights = MakeSpan(bw), batch.shear_weights = MakeSpan(bws);
-  batch.workspace = MakeSpan(bwork), batch.positions = MakeSpan(bx);
-  g_allocations = 0;
-  g_counting = true;
-  for (int frame = 0; frame < 50; ++frame) ok &= batch.Run();
-  g_counting = false;
-  CHECK(ok);
-  CHECK(g_allocations.load() == 0);
+    // A batch of 20 characters (two full groups and a partial one) too.
+    const std::size_t count = 20;
+    std::vector<double> bw, bws, bwork(rig.batch_workspace_size()), bx(count * x.size());
+    for (std::size_t k = 0; k < count; ++k)
+      bw.insert(bw.end(), raw.begin(), raw.end()), bws.insert(bws.end(), shear.begin(), shear.end());
+    MorphBatchJob batch;
+    batch.rig = &rig, batch.count = count;
+    batch.weights = MakeSpan(bw), batch.shear_weights = MakeSpan(bws);
+    batch.workspace = MakeSpan(bwork), batch.positions = MakeSpan(bx);
+    g_allocations = 0;
+    g_counting = true;
+    for (int frame = 0; frame < 50; ++frame) ok &= batch.Run();
+    g_counting = false;
+    CHECK(ok);
+    CHECK(g_allocations.load() == 0);
   }
 }
 
@@ -188,32 +189,33 @@ TEST_CASE("loading in place allocates nothing at all, in C++ and through the C A
   // The exact rig, and the compact one (whose factor, angles and grid are
   // computed at load, in the caller's memory too).
   for (const char* name : {"snake", "snake.compact"}) {
-  const std::string rig_name = name;
-  CAPTURE(rig_name);
-  const std::vector<unsigned char> bytes = TestRigBytes(name);
-  std::size_t needed = 0, c_needed = 0;
-  REQUIRE(RigMemorySize(bytes.data(), bytes.size(), &needed, nullptr));
-  REQUIRE(pm_rig_memory_size(bytes.data(), bytes.size(), &c_needed, nullptr) == PM_OK);
-  std::vector<unsigned char> memory_block(needed + kRigMemoryAlignment), c_memory_block(c_needed + kRigMemoryAlignment);
-  auto align = [](std::vector<unsigned char>& v) {
-    const std::uintptr_t p = reinterpret_cast<std::uintptr_t>(v.data());
-    return v.data() + (kRigMemoryAlignment - p % kRigMemoryAlignment) % kRigMemoryAlignment;
-  };
-  unsigned char* memory = align(memory_block);
-  unsigned char* c_memory = align(c_memory_block);
-  Rig rig;
-  pm_rig* c_rig = nullptr;
-  g_allocations = 0;
-  g_counting = true;
-  std::size_t again = 0;
-  const bool sized = RigMemorySize(bytes.data(), bytes.size(), &again, nullptr);
-  const bool loaded = LoadRigInPlace(bytes.data(), bytes.size(), memory, needed, &rig, nullptr);
-  const int c_status = pm_rig_load_in_place(bytes.data(), bytes.size(), c_memory, c_needed, &c_rig, nullptr);
-  g_counting = false;
-  CHECK(sized);
-  CHECK(loaded);
-  CHECK(c_status == PM_OK);
-  CHECK(g_allocations.load() == 0);
-  pm_rig_free(c_rig);
+    const std::string rig_name = name;
+    CAPTURE(rig_name);
+    const std::vector<unsigned char> bytes = TestRigBytes(name);
+    std::size_t needed = 0, c_needed = 0;
+    REQUIRE(RigMemorySize(bytes.data(), bytes.size(), &needed, nullptr));
+    REQUIRE(pm_rig_memory_size(bytes.data(), bytes.size(), &c_needed, nullptr) == PM_OK);
+    std::vector<unsigned char> memory_block(needed + kRigMemoryAlignment),
+        c_memory_block(c_needed + kRigMemoryAlignment);
+    auto align = [](std::vector<unsigned char>& v) {
+      const std::uintptr_t p = reinterpret_cast<std::uintptr_t>(v.data());
+      return v.data() + (kRigMemoryAlignment - p % kRigMemoryAlignment) % kRigMemoryAlignment;
+    };
+    unsigned char* memory = align(memory_block);
+    unsigned char* c_memory = align(c_memory_block);
+    Rig rig;
+    pm_rig* c_rig = nullptr;
+    g_allocations = 0;
+    g_counting = true;
+    std::size_t again = 0;
+    const bool sized = RigMemorySize(bytes.data(), bytes.size(), &again, nullptr);
+    const bool loaded = LoadRigInPlace(bytes.data(), bytes.size(), memory, needed, &rig, nullptr);
+    const int c_status = pm_rig_load_in_place(bytes.data(), bytes.size(), c_memory, c_needed, &c_rig, nullptr);
+    g_counting = false;
+    CHECK(sized);
+    CHECK(loaded);
+    CHECK(c_status == PM_OK);
+    CHECK(g_allocations.load() == 0);
+    pm_rig_free(c_rig);
   }
 }

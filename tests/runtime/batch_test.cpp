@@ -31,7 +31,8 @@ Crowd RandomCrowd(const Rig& rig, std::size_t count, unsigned seed) {
   return c;
 }
 
-std::vector<double> RunBatch(const Rig& rig, const Crowd& c, std::size_t begin, std::size_t end, std::vector<float>* f32 = nullptr) {
+std::vector<double> RunBatch(const Rig& rig, const Crowd& c, std::size_t begin, std::size_t end,
+                             std::vector<float>* f32 = nullptr) {
   const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
   std::vector<double> work(rig.batch_workspace_size()), x((end - begin) * v2);
   MorphBatchJob job;
@@ -76,39 +77,39 @@ TEST_CASE("a batch gives each character exactly what MorphJob gives it") {
 
 TEST_CASE("splitting a crowd across threads changes no bit") {
   for (const char* name : {"snake", "snake.compact"}) {
-  const Rig rig = LoadTestRig(name);
-  const std::size_t count = 100, v2 = 2 * std::size_t(rig.vertex_count());
-  const Crowd crowd = RandomCrowd(rig, count, 42);
-  const std::vector<double> whole = RunBatch(rig, crowd, 0, count);
-  for (std::size_t threads : {2u, 3u, 7u}) {
-    std::vector<std::vector<double>> parts(threads);
-    std::vector<std::thread> pool;
-    for (std::size_t t = 0; t < threads; ++t) {
-      auto part = [&, t] {
-        const std::size_t begin = count * t / threads, end = count * (t + 1) / threads;
-        std::vector<double> work(rig.batch_workspace_size()), x((end - begin) * v2);
-        MorphBatchJob job;
-        job.rig = &rig, job.count = end - begin;
-        job.weights = {crowd.w.data() + begin * rig.pose_count(), job.count * rig.pose_count()};
-        job.shear_weights = {crowd.ws.data() + begin * rig.pose_count(), job.count * rig.pose_count()};
-        job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
-        job.Run();
-        parts[t] = std::move(x);
-      };
+    const Rig rig = LoadTestRig(name);
+    const std::size_t count = 100, v2 = 2 * std::size_t(rig.vertex_count());
+    const Crowd crowd = RandomCrowd(rig, count, 42);
+    const std::vector<double> whole = RunBatch(rig, crowd, 0, count);
+    for (std::size_t threads : {2u, 3u, 7u}) {
+      std::vector<std::vector<double>> parts(threads);
+      std::vector<std::thread> pool;
+      for (std::size_t t = 0; t < threads; ++t) {
+        auto part = [&, t] {
+          const std::size_t begin = count * t / threads, end = count * (t + 1) / threads;
+          std::vector<double> work(rig.batch_workspace_size()), x((end - begin) * v2);
+          MorphBatchJob job;
+          job.rig = &rig, job.count = end - begin;
+          job.weights = {crowd.w.data() + begin * rig.pose_count(), job.count * rig.pose_count()};
+          job.shear_weights = {crowd.ws.data() + begin * rig.pose_count(), job.count * rig.pose_count()};
+          job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
+          job.Run();
+          parts[t] = std::move(x);
+        };
 #if defined(__EMSCRIPTEN__) && !defined(__EMSCRIPTEN_PTHREADS__)
-      part();  // WebAssembly built without threads: the same ranges, one after another
+        part();  // WebAssembly built without threads: the same ranges, one after another
 #else
-      pool.emplace_back(part);
+        pool.emplace_back(part);
 #endif
+      }
+      for (auto& th : pool) th.join();
+      std::vector<double> joined;
+      for (const auto& p : parts) joined.insert(joined.end(), p.begin(), p.end());
+      CAPTURE(threads);
+      REQUIRE(joined.size() == whole.size());
+      CHECK(SameBits(joined.data(), whole.data(), whole.size()));
     }
-    for (auto& th : pool) th.join();
-    std::vector<double> joined;
-    for (const auto& p : parts) joined.insert(joined.end(), p.begin(), p.end());
-    CAPTURE(threads);
-    REQUIRE(joined.size() == whole.size());
-    CHECK(SameBits(joined.data(), whole.data(), whole.size()));
   }
-}
 }
 
 TEST_CASE("a batch can write only the single-precision copy") {

@@ -131,8 +131,9 @@ TEST_CASE("compact sample rigs stay within 0.01 drawing pixels of the exact rigs
   };
   // Pip: no larger than its five drawings (55,769 bytes of PNG); the other
   // samples: at most 1/6 of the exact encoding.
-  const Target targets[] = {{"pip", 1.0, 55769}, {"sprout", 1.0 / 6, ~0ull}, {"snake", 1.0 / 6, ~0ull},
-                            {"gingerbread", 1.0 / 6, ~0ull}, {"worm-line", 1.0 / 6, ~0ull}, {"small", 1.0, ~0ull}};
+  const Target targets[] = {{"pip", 1.0, 55769},           {"sprout", 1.0 / 6, ~0ull},
+                            {"snake", 1.0 / 6, ~0ull},     {"gingerbread", 1.0 / 6, ~0ull},
+                            {"worm-line", 1.0 / 6, ~0ull}, {"small", 1.0, ~0ull}};
   for (const Target& target : targets) {
     const std::string name = target.name;
     CAPTURE(name);
@@ -149,7 +150,8 @@ TEST_CASE("compact sample rigs stay within 0.01 drawing pixels of the exact rigs
       const std::vector<double> a = MorphAt(exact, samples[s].first, samples[s].second);
       const std::vector<double> b = MorphAt(compact, samples[s].first, samples[s].second);
       double e = 0;
-      for (std::size_t v = 0; v < a.size() / 2; ++v) e = std::max(e, std::hypot(a[2 * v] - b[2 * v], a[2 * v + 1] - b[2 * v + 1]));
+      for (std::size_t v = 0; v < a.size() / 2; ++v)
+        e = std::max(e, std::hypot(a[2 * v] - b[2 * v], a[2 * v + 1] - b[2 * v + 1]));
       worst = std::max(worst, e * ppu);
       if (s < exact.pose_count()) worst_pose = std::max(worst_pose, e * ppu);
     }
@@ -183,17 +185,20 @@ TEST_CASE("a compact rig's derived arrays match the exact rig's") {
     const std::uint32_t* v = exact.triangles().data + 3 * t;
     double longest = 0;
     for (int k = 0; k < 3; ++k)
-      longest = std::max(longest, std::hypot(r[2 * v[k]] - r[2 * v[(k + 1) % 3]], r[2 * v[k] + 1] - r[2 * v[(k + 1) % 3] + 1]));
+      longest = std::max(longest,
+                         std::hypot(r[2 * v[k]] - r[2 * v[(k + 1) % 3]], r[2 * v[k] + 1] - r[2 * v[(k + 1) % 3] + 1]));
     const double area = 0.5 * std::fabs((r[2 * v[1]] - r[2 * v[0]]) * (r[2 * v[2] + 1] - r[2 * v[0] + 1]) -
                                         (r[2 * v[2]] - r[2 * v[0]]) * (r[2 * v[1] + 1] - r[2 * v[0] + 1]));
     const double altitude = 2 * area / longest;
     for (std::uint32_t i = 0; i < N; ++i) {
       angle_px = std::max(angle_px, altitude * std::fabs(exact.angles()[t * N + i] - compact.angles()[t * N + i]));
       for (int k = 0; k < 3; ++k)
-        stretch_px = std::max(stretch_px, altitude * std::fabs(exact.shears()[3 * (t * N + i) + k] - compact.shears()[3 * (t * N + i) + k]));
+        stretch_px = std::max(stretch_px, altitude * std::fabs(exact.shears()[3 * (t * N + i) + k] -
+                                                               compact.shears()[3 * (t * N + i) + k]));
     }
   }
-  for (std::size_t k = 0; k < exact.vertex_masses().size; ++k) mass += std::fabs(exact.vertex_masses()[k] - compact.vertex_masses()[k]);
+  for (std::size_t k = 0; k < exact.vertex_masses().size; ++k)
+    mass += std::fabs(exact.vertex_masses()[k] - compact.vertex_masses()[k]);
   MESSAGE("pip: angle change x altitude " << angle_px << " px, stretch change x altitude " << stretch_px
                                           << " px, masses moved " << mass << " of 1");
   CHECK(angle_px < 0.05);
@@ -218,44 +223,57 @@ TEST_CASE("hostile compact sections are refused with the section named") {
   for (double step : {0.0, -1.0, std::nan(""), HUGE_VAL})
     expect([&](auto& b) { Poke(b, qpos.offset, step); }, "section QPOS: step");
   expect([&](auto& b) { Poke(b, qpos.offset + 8, std::uint32_t(33)); }, "section QPOS: code order 33 above 20");
-  expect([&](auto& b) { Poke(b, qpos.offset + 16 + 16 * 5, std::uint64_t(0)); }, "section QPOS: vertex 0 of pose 0: code runs past");
+  expect([&](auto& b) { Poke(b, qpos.offset + 16 + 16 * 5, std::uint64_t(0)); },
+         "section QPOS: vertex 0 of pose 0: code runs past");
   expect([&](auto& b) { Poke(b, qpos.offset + 16, std::nan("")); }, "section QPOS: origin of pose 0");
-  expect([&](auto& b) { Poke(b, qtri.offset + 8, std::uint64_t(0)); }, "section QTRI: triangle 0 has a vertex index outside 0..459");
+  expect([&](auto& b) { Poke(b, qtri.offset + 8, std::uint64_t(0)); },
+         "section QTRI: triangle 0 has a vertex index outside 0..459");
   expect([&](auto& b) { Poke(b, qtri.offset, std::uint32_t(21)); }, "section QTRI: code order 21 above 20");
-  expect([&](auto& b) {
-    std::uint32_t w;
-    std::memcpy(&w, b.data() + qprm.offset + 8, 4);
-    const std::uint32_t first = w & 0x1FF;
-    Poke(b, qprm.offset + 8, std::uint32_t((w & ~(0x1FFu << 9)) | (first << 9)));  // entry 1 = entry 0
-  }, "section QPRM: not a permutation");
+  expect(
+      [&](auto& b) {
+        std::uint32_t w;
+        std::memcpy(&w, b.data() + qprm.offset + 8, 4);
+        const std::uint32_t first = w & 0x1FF;
+        Poke(b, qprm.offset + 8, std::uint32_t((w & ~(0x1FFu << 9)) | (first << 9)));  // entry 1 = entry 0
+      },
+      "section QPRM: not a permutation");
   expect([&](auto& b) { Poke(b, qtrn.offset + 4, std::uint32_t(40)); }, "section QTRN: bit width 40");
   expect([&](auto& b) { Poke(b, qtrn.offset, std::int32_t(2000)); }, "angles[0] is");
-  for (double step : {0.0, std::nan(""), -HUGE_VAL}) expect([&](auto& b) { Poke(b, qgrd.offset, step); }, "section QGRD: step");
+  for (double step : {0.0, std::nan(""), -HUGE_VAL})
+    expect([&](auto& b) { Poke(b, qgrd.offset, step); }, "section QGRD: step");
   expect([&](auto& b) { Poke(b, qgrd.offset + 8, std::uint32_t(2)); }, "section QGRD: 2 coded poses for 5 poses");
   expect([&](auto& b) { Poke(b, qgrd.offset + 16, std::uint32_t(21)); }, "section QGRD: code parameters of pose 0");
   expect([&](auto& b) { Poke(b, qgrd.offset + 32, std::uint64_t(0)); }, "section QGRD: pose 0, corner");
-  expect([&](auto& b) {
-    for (std::uint64_t k = qgrd.offset + 32; k < qgrd.offset + qgrd.size; ++k) b[k] = 0xFF;  // every code a single bit
-    Reseal(b);
-  }, "section QGRD has");
+  expect(
+      [&](auto& b) {
+        for (std::uint64_t k = qgrd.offset + 32; k < qgrd.offset + qgrd.size; ++k)
+          b[k] = 0xFF;  // every code a single bit
+        Reseal(b);
+      },
+      "section QGRD has");
   expect([&](auto& b) { Poke(b, quva.offset, std::uint32_t(5)); }, "section QUVA: pose 0 names source pose 5 of 5");
   expect([&](auto& b) { Poke(b, quva.offset + 8, HUGE_VAL); }, "section QUVA: coefficient 0 of pose 0");
-  expect([&](auto& b) {
-    Poke(b, quva.offset + 8, 1e15);
-    Poke(b, quva.offset + 16, 1e15);
-    Poke(b, qpos.offset + 16, 9e14);  // pose 0's origin
-    Poke(b, qpos.offset + 24, 9e14);
-  }, "section QUVA: uv of vertex");
-  expect([&](auto& b) {
-    std::uint32_t nnz;
-    std::memcpy(&nnz, b.data() + meta.offset + 24, 4);
-    Poke(b, meta.offset + 24, nnz + 1);
-  }, "META declares");
+  expect(
+      [&](auto& b) {
+        Poke(b, quva.offset + 8, 1e15);
+        Poke(b, quva.offset + 16, 1e15);
+        Poke(b, qpos.offset + 16, 9e14);  // pose 0's origin
+        Poke(b, qpos.offset + 24, 9e14);
+      },
+      "section QUVA: uv of vertex");
+  expect(
+      [&](auto& b) {
+        std::uint32_t nnz;
+        std::memcpy(&nnz, b.data() + meta.offset + 24, 4);
+        Poke(b, meta.offset + 24, nnz + 1);
+      },
+      "META declares");
   expect([&](auto& b) { Poke(b, meta.offset + 24, std::uint32_t(1u << 27)); }, "factor nonzeros for a compact file");
   // A pose count the other sections do not have.
   expect([&](auto& b) { Poke(b, meta.offset + 8, std::uint32_t(64)); }, "section PPNT is");
   // Every vertex at its pose's origin (a step too small to move it): no area.
-  expect([&](auto& b) { Poke(b, qpos.offset, 1e-300); }, "section QPOS: triangle 0 is not counter-clockwise with positive area in pose 0");
+  expect([&](auto& b) { Poke(b, qpos.offset, 1e-300); },
+         "section QPOS: triangle 0 is not counter-clockwise with positive area in pose 0");
 }
 
 TEST_CASE("mutated compact rigs with a valid checksum load safely or are refused") {
@@ -274,6 +292,7 @@ TEST_CASE("mutated compact rigs with a valid checksum load safely or are refused
       Reseal(bad);
       loaded += LoadAndCheckFinite(bad);
     }
-    MESSAGE(std::string(name) << ": " << trials << " mutated rigs with a valid checksum, " << loaded << " loaded and gave finite frames");
+    MESSAGE(std::string(name) << ": " << trials << " mutated rigs with a valid checksum, " << loaded
+                              << " loaded and gave finite frames");
   }
 }

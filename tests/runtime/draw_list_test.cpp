@@ -21,7 +21,8 @@ std::vector<double> PointsOnPath(const Rig& rig, std::size_t count) {
   std::vector<double> p(2 * count);
   const PathView path = rig.path(0);
   const double t0 = path.keys.data[0], t1 = path.keys.data[path.keys.size - 3];
-  for (std::size_t k = 0; k < count; ++k) SamplePath(path, t0 + (t1 - t0) * double(k) / double(count), &p[2 * k], &p[2 * k + 1]);
+  for (std::size_t k = 0; k < count; ++k)
+    SamplePath(path, t0 + (t1 - t0) * double(k) / double(count), &p[2 * k], &p[2 * k + 1]);
   return p;
 }
 
@@ -231,9 +232,9 @@ TEST_CASE("CharacterBuffers: every size from the rig, one block bound to a job")
   CHECK(b.draw_lists == 6);
   std::vector<double> block((b.bytes + sizeof(double) - 1) / sizeof(double) + 1);
   DrawListJob job;
-  CHECK(!b.Bind(rig, block.data(), b.bytes - 1, &job));  // too short
+  CHECK(!b.Bind(rig, block.data(), b.bytes - 1, &job));                                    // too short
   CHECK(!b.Bind(rig, reinterpret_cast<unsigned char*>(block.data()) + 4, b.bytes, &job));  // misaligned
-  CHECK(!b.Bind(LoadTestRig("snake"), block.data(), b.bytes, &job));  // sized for another rig
+  CHECK(!b.Bind(LoadTestRig("snake"), block.data(), b.bytes, &job));                       // sized for another rig
   REQUIRE(b.Bind(rig, block.data(), block.size() * sizeof(double), &job));
   const std::vector<double> points = PointsOnPath(rig, 6);
   job.points = MakeSpan(points);
@@ -269,8 +270,8 @@ TEST_CASE("C API: pm_draw_lists gives what DrawListJob gives") {
   CHECK(pm_draw_lists(rig, &o, 5, points.data(), t, work.data(), work.size(), positions.data(), positions.size(), out,
                       5) == PM_ERROR_INVALID_ARGUMENT);
   o.max_drawings = 4;
-  REQUIRE(pm_draw_lists(rig, &o, 5, points.data(), t, work.data(), work.size(), positions.data(), positions.size(),
-                        out, 5) == PM_OK);
+  REQUIRE(pm_draw_lists(rig, &o, 5, points.data(), t, work.data(), work.size(), positions.data(), positions.size(), out,
+                        5) == PM_OK);
   Lists l(cpp, points, 4);
   REQUIRE(l.job.Run());
   CHECK(positions == l.positions);

@@ -22,8 +22,9 @@ namespace {
 
 // The exact rigs and their compact encodings (derived at load: the same
 // bits on every target too).
-const char* const kSampleRigs[] = {"snake", "worm-line", "gingerbread", "pip", "sprout", "snake.compact", "worm-line.compact",
-                                   "gingerbread.compact", "pip.compact", "sprout.compact"};
+const char* const kSampleRigs[] = {"snake",       "worm-line",     "gingerbread",       "pip",
+                                   "sprout",      "snake.compact", "worm-line.compact", "gingerbread.compact",
+                                   "pip.compact", "sprout.compact"};
 
 // FNV-1a, 64 bits, over the bytes of every value in order.
 struct Fnv64 {
@@ -33,7 +34,9 @@ struct Fnv64 {
     for (std::size_t i = 0; i < size; ++i) h = (h ^ p[i]) * 0x100000001b3ull;
   }
   template <typename T>
-  void Add(const std::vector<T>& v) { Add(v.data(), v.size() * sizeof(T)); }
+  void Add(const std::vector<T>& v) {
+    Add(v.data(), v.size() * sizeof(T));
+  }
 };
 
 std::string Hex(std::uint64_t v) {

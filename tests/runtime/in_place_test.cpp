@@ -85,12 +85,14 @@ TEST_CASE("the C API loads in place too: handle and arrays in the caller's memor
   pm_rig* rig = nullptr;
   CHECK(pm_rig_load_in_place(bytes.data(), bytes.size(), memory.at(0), needed - 1, &rig, &err) != PM_OK);
   CHECK(rig == nullptr);
-  CHECK(pm_rig_load_in_place(bytes.data(), bytes.size(), memory.at(4), needed, &rig, &err) == PM_ERROR_INVALID_ARGUMENT);
+  CHECK(pm_rig_load_in_place(bytes.data(), bytes.size(), memory.at(4), needed, &rig, &err) ==
+        PM_ERROR_INVALID_ARGUMENT);
   REQUIRE(pm_rig_load_in_place(bytes.data(), bytes.size(), memory.at(0), needed, &rig, &err) == PM_OK);
   CHECK(reinterpret_cast<unsigned char*>(rig) == memory.at(0));
   pm_rig_info info;
   pm_rig_get_info(rig, &info);
-  std::vector<double> w(info.pose_count), ws(info.pose_count), work(pm_morph_workspace_size(rig)), x(2 * info.vertex_count);
+  std::vector<double> w(info.pose_count), ws(info.pose_count), work(pm_morph_workspace_size(rig)),
+      x(2 * info.vertex_count);
   CHECK(pm_weights(rig, 0.3, -0.2, 0, 1, w.data(), ws.data(), nullptr, w.size()) == PM_OK);
   CHECK(pm_morph(rig, w.data(), ws.data(), 0, work.data(), work.size(), x.data(), nullptr, x.size()) == PM_OK);
   const Rig owned = LoadTestRig("snake");

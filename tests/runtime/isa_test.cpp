@@ -89,7 +89,9 @@ TEST_CASE("POSEMORPH_ISA chooses the path, and an unknown value fails the load")
     CHECK(pm_rig_load(bytes.data(), bytes.size(), &c_rig, &c_err) == PM_ERROR_UNSUPPORTED_ISA);
     CHECK(c_rig == nullptr);
   }
-  if (saved) setenv("POSEMORPH_ISA", restore.c_str(), 1);
-  else unsetenv("POSEMORPH_ISA");
+  if (saved)
+    setenv("POSEMORPH_ISA", restore.c_str(), 1);
+  else
+    unsetenv("POSEMORPH_ISA");
 }
 #endif

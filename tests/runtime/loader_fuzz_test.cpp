@@ -81,8 +81,10 @@ TEST_CASE("every single-byte change is rejected by the checksum, and safe withou
       // The checksum field covers bytes 64.., so a change inside the header
       // itself can only be caught by the header's own checks.
       const bool in_header = i < format::kHeaderSize;
-      if (!in_header || i >= format::kOffChecksum) CHECK_FALSE(LoadAndUse(bad, true));
-      else LoadAndUse(bad, true);
+      if (!in_header || i >= format::kOffChecksum)
+        CHECK_FALSE(LoadAndUse(bad, true));
+      else
+        LoadAndUse(bad, true);
       loaded_without_checksum += LoadAndUse(bad, false);
       ++tried;
     }

@@ -96,7 +96,8 @@ inline double MinAreaRatio(const Rig& rig, const std::vector<double>& x) {
   const double* r = rig.pose_positions(0).data;
   double worst = 1e300;
   auto area = [&](const double* p, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-    return 0.5 * ((p[2 * b] - p[2 * a]) * (p[2 * c + 1] - p[2 * a + 1]) - (p[2 * c] - p[2 * a]) * (p[2 * b + 1] - p[2 * a + 1]));
+    return 0.5 * ((p[2 * b] - p[2 * a]) * (p[2 * c + 1] - p[2 * a + 1]) -
+                  (p[2 * c] - p[2 * a]) * (p[2 * b + 1] - p[2 * a + 1]));
   };
   for (std::uint32_t k = 0; k < rig.triangle_count(); ++k) {
     const std::uint32_t a = t[3 * k], b = t[3 * k + 1], c = t[3 * k + 2];

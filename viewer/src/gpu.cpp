@@ -8,19 +8,19 @@ namespace posemorph::viewer {
 
 void VkCheck(VkResult result, const char* call) {
   if (result == VK_SUCCESS) return;
-  const char* what = result == VK_ERROR_OUT_OF_HOST_MEMORY     ? "out of host memory"
-                     : result == VK_ERROR_OUT_OF_DEVICE_MEMORY ? "out of GPU memory"
-                     : result == VK_ERROR_DEVICE_LOST          ? "the GPU device was lost"
+  const char* what = result == VK_ERROR_OUT_OF_HOST_MEMORY      ? "out of host memory"
+                     : result == VK_ERROR_OUT_OF_DEVICE_MEMORY  ? "out of GPU memory"
+                     : result == VK_ERROR_DEVICE_LOST           ? "the GPU device was lost"
                      : result == VK_ERROR_INITIALIZATION_FAILED ? "initialisation failed"
                      : result == VK_ERROR_TOO_MANY_OBJECTS      ? "too many objects"
                      : result == VK_ERROR_FORMAT_NOT_SUPPORTED  ? "format not supported"
-                                                               : "failed";
+                                                                : "failed";
   throw GpuError(std::string("Vulkan ") + call + ": " + what + " (VkResult " + std::to_string(int(result)) + ")");
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL Gpu::OnMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
-                                              VkDebugUtilsMessageTypeFlagsEXT, const VkDebugUtilsMessengerCallbackDataEXT* data,
-                                              void* self) {
+                                              VkDebugUtilsMessageTypeFlagsEXT,
+                                              const VkDebugUtilsMessengerCallbackDataEXT* data, void* self) {
   if (severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT) {
     ++static_cast<Gpu*>(self)->messages_;
     std::fprintf(stderr, "posemorph-view: validation: %s\n", data->pMessage);
@@ -53,7 +53,8 @@ bool Gpu::Init(const GpuOptions& options, std::string* error) {
   app.pApplicationName = "posemorph-view";
   app.apiVersion = VK_API_VERSION_1_3;
   VkDebugUtilsMessengerCreateInfoEXT messenger{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-  messenger.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+  messenger.messageSeverity =
+      VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
   messenger.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
                           VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
   messenger.pfnUserCallback = &Gpu::OnMessage;
@@ -89,8 +90,9 @@ bool Gpu::Init(const GpuOptions& options, std::string* error) {
     vkGetPhysicalDeviceQueueFamilyProperties(d, &qn, qs.data());
     for (std::uint32_t q = 0; q < qn; ++q) {
       if (!(qs[q].queueFlags & VK_QUEUE_GRAPHICS_BIT)) continue;
-      const int rank = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU ? 2
-                       : p.deviceType == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU ? 1 : 0;
+      const int rank = p.deviceType == VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU     ? 2
+                       : p.deviceType == VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU ? 1
+                                                                                : 0;
       if (rank > best_rank) best_rank = rank, physical_ = d, family_ = q, device_name_ = p.deviceName;
       break;
     }
@@ -211,7 +213,8 @@ Image Gpu::CreateImage(VkFormat format, std::uint32_t width, std::uint32_t heigh
   VkCheck(vkBindImageMemory(device_, im.image, im.memory, 0), "vkBindImageMemory");
   VkImageViewCreateInfo vci{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   vci.image = im.image;
-  vci.viewType = layers > 1 || (usage & VK_IMAGE_USAGE_SAMPLED_BIT) ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+  vci.viewType =
+      layers > 1 || (usage & VK_IMAGE_USAGE_SAMPLED_BIT) ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
   vci.format = format;
   vci.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, layers};
   VkCheck(vkCreateImageView(device_, &vci, nullptr, &im.view), "vkCreateImageView");

@@ -22,9 +22,9 @@ struct GpuError : std::runtime_error {
 void VkCheck(VkResult result, const char* call);
 
 struct GpuOptions {
-  bool validation = false;              // enable VK_LAYER_KHRONOS_validation; its messages are counted
+  bool validation = false;                       // enable VK_LAYER_KHRONOS_validation; its messages are counted
   std::vector<const char*> instance_extensions;  // e.g. what GLFW needs for a surface
-  bool swapchain = false;               // enable VK_KHR_swapchain on the device
+  bool swapchain = false;                        // enable VK_KHR_swapchain on the device
 };
 
 struct Buffer {

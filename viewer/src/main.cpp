@@ -52,7 +52,8 @@ const char* kUsage =
 // A usage error: one line naming the option and what it wants (the whole
 // usage only when nothing was given, and on --help).
 int Usage(const std::string& problem) {
-  std::fprintf(stderr, "posemorph-view: %s (posemorph-view --help lists the options)\n", Printable(problem, 1000).c_str());
+  std::fprintf(stderr, "posemorph-view: %s (posemorph-view --help lists the options)\n",
+               Printable(problem, 1000).c_str());
   return 2;
 }
 
@@ -65,12 +66,15 @@ bool ParseTransform(const std::string& text, Transform2D* out) {
     const std::size_t end = std::min(text.find(',', at), text.size());
     const std::string item = text.substr(at, end - at);
     char tail = 0;
-    if (item == "flip") flip = true;
+    if (item == "flip")
+      flip = true;
     else if (std::sscanf(item.c_str(), "move=%lf:%lf%c", &x, &y, &tail) == 2) {
     } else if (std::sscanf(item.c_str(), "rotate=%lf%c", &degrees, &tail) == 1) {
     } else if (std::sscanf(item.c_str(), "scale=%lf:%lf%c", &sx, &sy, &tail) == 2) {
-    } else if (std::sscanf(item.c_str(), "scale=%lf%c", &sx, &tail) == 1) sy = sx;
-    else return false;
+    } else if (std::sscanf(item.c_str(), "scale=%lf%c", &sx, &tail) == 1)
+      sy = sx;
+    else
+      return false;
     at = end + 1;
   }
   const double limit = 1e6;
@@ -161,59 +165,79 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
     if (a == "-h" || a == "--help") return std::fputs(kUsage, stdout), 0;
     auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
     const char* v = nullptr;
-    if (a == "--headless") headless = true;
-    else if (a == "--validation") validation = true;
-    else if (a == "--no-shear-limit") scene.shear_limit = false;
-    else if (a == "--linear") scene.linear = true;
-    else if (a == "--wireframe") scene.wireframe = true;
-    else if (a == "--compare") scene.compare_linear = true;
-    else if (a == "--bases") scene.show_bases = true;
-    else if (a == "-o" && (v = value())) output = v;
-    else if (a == "--smoke-test" && (v = value())) window.smoke_test = v;
-    else if (a == "--description" && (v = value())) window.description = v;
-    else if (a == "--images" && (v = value())) images = v;
-    else if (a == "--path" && (v = value())) scene.path = v;
+    if (a == "--headless")
+      headless = true;
+    else if (a == "--validation")
+      validation = true;
+    else if (a == "--no-shear-limit")
+      scene.shear_limit = false;
+    else if (a == "--linear")
+      scene.linear = true;
+    else if (a == "--wireframe")
+      scene.wireframe = true;
+    else if (a == "--compare")
+      scene.compare_linear = true;
+    else if (a == "--bases")
+      scene.show_bases = true;
+    else if (a == "-o" && (v = value()))
+      output = v;
+    else if (a == "--smoke-test" && (v = value()))
+      window.smoke_test = v;
+    else if (a == "--description" && (v = value()))
+      window.description = v;
+    else if (a == "--images" && (v = value()))
+      images = v;
+    else if (a == "--path" && (v = value()))
+      scene.path = v;
     else if (a == "--time" && (v = value())) {
       if (!ParseNumber(v, -1e9, 1e9, &scene.time)) return Usage("--time wants seconds, a finite number");
     } else if (a == "--sigma" && (v = value())) {
       if (!ParseNumber(v, 0, 1, &scene.sigma)) return Usage("--sigma wants a number in 0..1");
     } else if (a == "--frames" && (v = value())) {
       if (!ParseCount(v, 1, 100000, &frames)) return Usage("--frames wants a count in 1..100000");
-    }
-    else if (a == "--crowd" && (v = value())) {
+    } else if (a == "--crowd" && (v = value())) {
       if (!ParseCount(v, 1, 100000, &scene.crowd)) return Usage("--crowd wants a count in 1..100000");
     } else if (a == "--seed" && (v = value())) {
       if (!ParseCount(v, 0, 0x7fffffff, &scene.seed)) return Usage("--seed wants a whole number >= 0");
     } else if (a == "--drawings" && (v = value())) {
       if (!ParseCount(v, 1, kDrawingsPerCharacter, &scene.max_drawings)) return Usage("--drawings wants 1..8");
     } else if (a == "--filter" && (v = value())) {
-      if (std::strcmp(v, "linear") == 0) scene.filter = 0;
-      else if (std::strcmp(v, "nearest") == 0) scene.filter = 1;
-      else return Usage("--filter wants linear or nearest");
+      if (std::strcmp(v, "linear") == 0)
+        scene.filter = 0;
+      else if (std::strcmp(v, "nearest") == 0)
+        scene.filter = 1;
+      else
+        return Usage("--filter wants linear or nearest");
     } else if (a == "--blend" && (v = value())) {
-      if (std::strcmp(v, "exact") == 0) blend = Blend::kExact;
-      else if (std::strcmp(v, "over") == 0) blend = Blend::kSequentialOver;
-      else return Usage("--blend wants exact or over");
+      if (std::strcmp(v, "exact") == 0)
+        blend = Blend::kExact;
+      else if (std::strcmp(v, "over") == 0)
+        blend = Blend::kSequentialOver;
+      else
+        return Usage("--blend wants exact or over");
     } else if (a == "--transform" && (v = value())) {
       if (!ParseTransform(v, &scene.transform))
         return Usage("--transform wants move=X:Y,rotate=DEGREES,scale=S|SX:SY,flip (any of them, finite, scale not 0)");
     } else if (a == "--camera" && (v = value())) {
       char tail = 0;
-      if (std::strcmp(v, "1:1") == 0) camera_mode = CameraMode::kOneToOne;
+      if (std::strcmp(v, "1:1") == 0)
+        camera_mode = CameraMode::kOneToOne;
       else if (std::sscanf(v, "%lf,%lf,%lf%c", &given_camera.centre.x, &given_camera.centre.y, &given_camera.zoom,
                            &tail) == 3 &&
                std::isfinite(given_camera.centre.x) && std::isfinite(given_camera.centre.y) &&
                given_camera.zoom >= Camera::kMinZoom && given_camera.zoom <= Camera::kMaxZoom)
         camera_mode = CameraMode::kGiven;
-      else return Usage("--camera wants X,Y,ZOOM (ZOOM pixels per world unit, 1/256..256) or 1:1");
-    }
-    else if (a == "--size" && (v = value())) {
+      else
+        return Usage("--camera wants X,Y,ZOOM (ZOOM pixels per world unit, 1/256..256) or 1:1");
+    } else if (a == "--size" && (v = value())) {
       if (std::sscanf(v, "%ux%u", &width, &height) != 2 || width == 0 || height == 0 || width > 8192 || height > 8192)
         return Usage("--size wants WxH, each 1..8192");
     } else if (a == "--at" && (v = value())) {
       if (std::sscanf(v, "%lf,%lf", &scene.x, &scene.y) != 2) return Usage("--at wants X,Y");
-    } else if (!a.empty() && a[0] != '-' && rig_path.empty()) rig_path = a;
-    else return Usage("unknown or incomplete argument \"" + a + "\"");
+    } else if (!a.empty() && a[0] != '-' && rig_path.empty())
+      rig_path = a;
+    else
+      return Usage("unknown or incomplete argument \"" + a + "\"");
   }
   if (rig_path.empty()) return Usage("no rig given");
   if (images.empty()) {

@@ -204,7 +204,8 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   indices_ = gpu.CreateBuffer(4ull * index_count_, VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
   std::memcpy(indices_.mapped, rig.triangles().data, 4ull * index_count_);
   uvs_ = gpu.CreateBuffer(8ull * V * N, storage);
-  for (std::uint32_t i = 0; i < N; ++i) std::memcpy(static_cast<char*>(uvs_.mapped) + 8ull * V * i, rig.uvs(i).data, 8ull * V);
+  for (std::uint32_t i = 0; i < N; ++i)
+    std::memcpy(static_cast<char*>(uvs_.mapped) + 8ull * V * i, rig.uvs(i).data, 8ull * V);
   positions_ = gpu.CreateBuffer(8ull * V * max_instances, storage);
   instances_ = gpu.CreateBuffer(sizeof(Instance) * max_instances, storage);
 
@@ -388,7 +389,8 @@ void OffscreenTarget::Init(Gpu& gpu, std::uint32_t width, std::uint32_t height) 
   gpu_ = &gpu;
   width_ = width;
   height_ = height;
-  color_ = gpu.CreateImage(kFormat, width, height, 1, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  color_ =
+      gpu.CreateImage(kFormat, width, height, 1, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   readback_ = gpu.CreateBuffer(4ull * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 }
 

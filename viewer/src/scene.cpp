@@ -93,8 +93,8 @@ void CrowdLayout(const Rig& rig, std::uint32_t count, std::uint32_t seed, Transf
   }
 }
 
-bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, SceneScratch& scratch,
-                  SceneBounds* bounds, std::uint32_t* count, std::string* error) {
+bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, SceneScratch& scratch, SceneBounds* bounds,
+                  std::uint32_t* count, std::string* error) {
   const std::uint32_t V = rig.vertex_count(), K = SceneCharacters(rig, scene);
   if (K > renderer.max_instances()) {
     *error = "a scene of " + std::to_string(K) + " characters is more than the renderer holds (" +
@@ -154,9 +154,8 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
     job.output = {scratch.lists.data() + first, n};
     return job.Run();
   };
-  const bool ok = scene.compare_linear
-                      ? run(0, 1, Interpolation::kRigid) && run(1, 1, Interpolation::kLinear)
-                      : run(0, K, scene.linear ? Interpolation::kLinear : Interpolation::kRigid);
+  const bool ok = scene.compare_linear ? run(0, 1, Interpolation::kRigid) && run(1, 1, Interpolation::kLinear)
+                                       : run(0, K, scene.linear ? Interpolation::kLinear : Interpolation::kRigid);
   if (!ok) {
     *error = "the draw-list job refused the scene";
     return false;

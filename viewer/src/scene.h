@@ -12,15 +12,15 @@
 namespace posemorph::viewer {
 
 struct Scene {
-  double x = 0, y = 0;        // pose-space point (when path is empty)
-  std::string path;           // a path of the rig: characters follow it
-  double time = 0;            // seconds along the path
-  double sigma = -1;          // texture sharpening; < 0: the rig's default
+  double x = 0, y = 0;  // pose-space point (when path is empty)
+  std::string path;     // a path of the rig: characters follow it
+  double time = 0;      // seconds along the path
+  double sigma = -1;    // texture sharpening; < 0: the rig's default
   bool shear_limit = true;
-  bool linear = false;        // linear vertex blending instead of rigid (the paper's comparison)
-  std::uint32_t crowd = 1;    // characters: > 1 lays them out on a ground line (see CrowdLayout)
-  std::uint32_t seed = 1;     // the crowd layout's random positions, sizes and facings
-  Transform2D transform;      // a single character's place in the world
+  bool linear = false;      // linear vertex blending instead of rigid (the paper's comparison)
+  std::uint32_t crowd = 1;  // characters: > 1 lays them out on a ground line (see CrowdLayout)
+  std::uint32_t seed = 1;   // the crowd layout's random positions, sizes and facings
+  Transform2D transform;    // a single character's place in the world
   std::uint32_t max_drawings = kDrawingsPerCharacter;  // K drawings blended per character
   bool wireframe = false;
   bool compare_linear = false;  // two characters: rigid (left) and linear (right) at the same point
@@ -57,8 +57,8 @@ void CrowdLayout(const Rig& rig, std::uint32_t count, std::uint32_t seed, Transf
 // the renderer's buffers (positions and instances, in draw order) and
 // returns where they are. False with a message for an unknown path or more
 // characters than the renderer holds.
-bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, SceneScratch& scratch,
-                  SceneBounds* bounds, std::uint32_t* count, std::string* error);
+bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, SceneScratch& scratch, SceneBounds* bounds,
+                  std::uint32_t* count, std::string* error);
 
 // The rectangle of rig space that holds every pose of one character (with a 6% margin).
 View CharacterBounds(const Rig& rig);

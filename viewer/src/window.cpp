@@ -65,8 +65,8 @@ struct Gesture {
 
 // Colours of the poses in the pad (dominant pose of the weight field).
 ImU32 PoseColour(std::uint32_t i, int alpha) {
-  static const unsigned char palette[8][3] = {{66, 133, 244}, {234, 67, 53}, {251, 188, 5}, {52, 168, 83},
-                                             {171, 71, 188}, {0, 172, 193}, {255, 112, 67}, {124, 179, 66}};
+  static const unsigned char palette[8][3] = {{66, 133, 244}, {234, 67, 53}, {251, 188, 5},  {52, 168, 83},
+                                              {171, 71, 188}, {0, 172, 193}, {255, 112, 67}, {124, 179, 66}};
   const unsigned char* c = palette[i % 8];
   return IM_COL32(c[0], c[1], c[2], alpha);
 }
@@ -159,9 +159,8 @@ bool Viewer::CreateSwapchain() {
   int fw = 0, fh = 0;
   glfwGetFramebufferSize(window_, &fw, &fh);
   if (fw == 0 || fh == 0) return false;  // minimised
-  VkExtent2D extent = caps.currentExtent.width != 0xFFFFFFFFu
-                          ? caps.currentExtent
-                          : VkExtent2D{std::uint32_t(fw), std::uint32_t(fh)};
+  VkExtent2D extent =
+      caps.currentExtent.width != 0xFFFFFFFFu ? caps.currentExtent : VkExtent2D{std::uint32_t(fw), std::uint32_t(fh)};
   if (extent.width == 0 || extent.height == 0) return false;
   std::uint32_t n = 0;
   vkGetPhysicalDeviceSurfaceFormatsKHR(gpu_.physical(), surface_, &n, nullptr);
@@ -170,7 +169,8 @@ bool Viewer::CreateSwapchain() {
   VkSurfaceFormatKHR chosen = formats[0];
   for (const auto& f : formats)  // UNORM like the headless frames, so both look the same
     if (f.format == VK_FORMAT_B8G8R8A8_UNORM || f.format == VK_FORMAT_R8G8B8A8_UNORM) chosen = f;
-  const std::uint32_t count = std::min(caps.maxImageCount ? caps.maxImageCount : 8u, std::max(caps.minImageCount + 1, 2u));
+  const std::uint32_t count =
+      std::min(caps.maxImageCount ? caps.maxImageCount : 8u, std::max(caps.minImageCount + 1, 2u));
   VkSwapchainCreateInfoKHR ci{VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR};
   ci.surface = surface_;
   ci.minImageCount = count;
@@ -178,8 +178,7 @@ bool Viewer::CreateSwapchain() {
   ci.imageColorSpace = chosen.colorSpace;
   ci.imageExtent = extent;
   ci.imageArrayLayers = 1;
-  ci.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT |
-                  (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
+  ci.imageUsage = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | (caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
   ci.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
   ci.preTransform = caps.currentTransform;
   ci.compositeAlpha = VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR;
@@ -336,9 +335,8 @@ void Viewer::ChangeDescription(const char* what, const std::function<std::string
 std::string FreshName(const nlohmann::json& d, const char* list, const std::string& stem, int* counter) {
   std::string name;
   do name = stem + "-" + std::to_string(++*counter);
-  while (d.contains(list) && std::any_of(d[list].begin(), d[list].end(), [&](const nlohmann::json& e) {
-           return e.value("name", "") == name;
-         }));
+  while (d.contains(list) && std::any_of(d[list].begin(), d[list].end(),
+                                         [&](const nlohmann::json& e) { return e.value("name", "") == name; }));
   return name;
 }
 
@@ -416,7 +414,8 @@ bool Viewer::EditScene(SceneBounds* bounds, std::uint32_t* count) {
   edit_.current = edit_.rest;
   if (edit_.handles.size() >= 2) {
     try {
-      if (!edit_.deformer) edit_.deformer = std::make_unique<bake::ArapDeformer>(edit_.rest, RigTriangles(rig_), edit_.handles);
+      if (!edit_.deformer)
+        edit_.deformer = std::make_unique<bake::ArapDeformer>(edit_.rest, RigTriangles(rig_), edit_.handles);
       edit_.deformer->Deform(edit_.targets, &edit_.current);
     } catch (const bake::BakeError& e) {
       status_ = e.what();
@@ -424,7 +423,8 @@ bool Viewer::EditScene(SceneBounds* bounds, std::uint32_t* count) {
     }
   }
   float* out = renderer_->positions();
-  for (std::uint32_t v = 0; v < V; ++v) out[2 * v] = float(edit_.current[v].x()), out[2 * v + 1] = float(edit_.current[v].y());
+  for (std::uint32_t v = 0; v < V; ++v)
+    out[2 * v] = float(edit_.current[v].x()), out[2 * v + 1] = float(edit_.current[v].y());
   DrawList list;  // the edited pose's own drawing, where the character stands unmoved
   list.drawing_count = 1;
   list.drawings[0].pose = std::uint32_t(edit_.pose);
@@ -470,8 +470,10 @@ void Viewer::CameraInput(std::int32_t x0, std::uint32_t w, std::uint32_t h) {
   }
   const bool space = window_ && glfwGetKey(window_, GLFW_KEY_SPACE) == GLFW_PRESS;
   const bool pan_button = io.MouseDown[1] || io.MouseDown[2] || (space && io.MouseDown[0]);
-  if (!pan_button) panning_ = false;
-  else if (inside && !panning_ && (io.MouseClicked[1] || io.MouseClicked[2] || io.MouseClicked[0])) panning_ = true;
+  if (!pan_button)
+    panning_ = false;
+  else if (inside && !panning_ && (io.MouseClicked[1] || io.MouseClicked[2] || io.MouseClicked[0]))
+    panning_ = true;
   if (panning_ && (io.MouseDelta.x != 0 || io.MouseDelta.y != 0)) {
     camera_ = Pan(camera_, {io.MouseDelta.x, io.MouseDelta.y});
     fit_ = Fit::kNone;
@@ -511,7 +513,7 @@ void Viewer::BuildUi() {
 
   if (rig_.path_count() > 0) {
     ImGui::Separator();
-  ImGui::TextUnformatted("Stored paths");
+    ImGui::TextUnformatted("Stored paths");
     std::vector<std::string> names;
     for (std::uint32_t i = 0; i < rig_.path_count(); ++i)
       names.emplace_back(rig_.path(i).name.data, rig_.path(i).name.size);
@@ -562,7 +564,8 @@ void Viewer::Frame(bool screenshot) {
   // The characters: the runtime, timed, then into the GPU buffers.
   Scene shown = scene_;
   if (play_path_ && rig_.path_count() > 0) {
-    shown.path = std::string(rig_.path(std::uint32_t(path_index_)).name.data, rig_.path(std::uint32_t(path_index_)).name.size);
+    shown.path =
+        std::string(rig_.path(std::uint32_t(path_index_)).name.data, rig_.path(std::uint32_t(path_index_)).name.size);
     shown.time = clock_;
     SamplePath(rig_, std::uint32_t(path_index_), clock_, &scene_.x, &scene_.y);
   } else if (gesture_.playing && gesture_.keys.size() > 1) {
@@ -581,8 +584,8 @@ void Viewer::Frame(bool screenshot) {
   std::uint32_t count = 0;
   std::string problem;
   const auto t0 = std::chrono::steady_clock::now();
-  const bool prepared =
-      edit_.on ? EditScene(&bounds, &count) : PrepareScene(rig_, shown, *renderer_, scratch_, &bounds, &count, &problem);
+  const bool prepared = edit_.on ? EditScene(&bounds, &count)
+                                 : PrepareScene(rig_, shown, *renderer_, scratch_, &bounds, &count, &problem);
   eval_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (!prepared) status_ = problem, count = 0;
   const std::uint32_t view_w = sc_.extent.width > kPanelWidth ? sc_.extent.width - std::uint32_t(kPanelWidth) : 1;
@@ -666,9 +669,8 @@ int Viewer::Run() {
     return 1;
   }
   glfwSetWindowUserPointer(window_, this);
-  glfwSetFramebufferSizeCallback(window_, [](GLFWwindow* w, int, int) {
-    static_cast<Viewer*>(glfwGetWindowUserPointer(w))->resized_ = true;
-  });
+  glfwSetFramebufferSizeCallback(
+      window_, [](GLFWwindow* w, int, int) { static_cast<Viewer*>(glfwGetWindowUserPointer(w))->resized_ = true; });
   GpuOptions go;
   go.validation = options_.validation;
   go.swapchain = true;
@@ -678,7 +680,8 @@ int Viewer::Run() {
   std::string problem;
   int status = 0;
   if (!gpu_.Init(go, &problem) || glfwCreateWindowSurface(gpu_.instance(), window_, nullptr, &surface_) != VK_SUCCESS) {
-    std::fprintf(stderr, "posemorph-view: error: %s\n", problem.empty() ? "cannot create a window surface" : problem.c_str());
+    std::fprintf(stderr, "posemorph-view: error: %s\n",
+                 problem.empty() ? "cannot create a window surface" : problem.c_str());
     glfwDestroyWindow(window_);
     glfwTerminate();
     return 1;
@@ -844,9 +847,11 @@ int Viewer::Run() {
           std::fprintf(stderr, "posemorph-view: error: %s\n", problem.c_str());
           status = 1;
         } else {
-          std::printf("wrote %s (%ux%u window, %u frames, pad dragged to (%.3f, %.3f), %u character(s), %.1f fps at %ux%u, %s)\n",
-                      options_.smoke_test.c_str(), sc_.extent.width, sc_.extent.height, smoke_frame_, scene_.x,
-                      scene_.y, SceneCharacters(rig_, scene_), fps, options_.width, options_.height, gpu_.device_name().c_str());
+          std::printf(
+              "wrote %s (%ux%u window, %u frames, pad dragged to (%.3f, %.3f), %u character(s), %.1f fps at %ux%u, "
+              "%s)\n",
+              options_.smoke_test.c_str(), sc_.extent.width, sc_.extent.height, smoke_frame_, scene_.x, scene_.y,
+              SceneCharacters(rig_, scene_), fps, options_.width, options_.height, gpu_.device_name().c_str());
           std::printf("camera: zoom %.4g pixels per unit at (%.2f, %.2f), %s\n", camera_.zoom, camera_.centre.x,
                       camera_.centre.y, fit_ == Fit::kNone ? "zoomed and panned by the user" : "fitted");
         }

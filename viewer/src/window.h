@@ -11,9 +11,9 @@ namespace posemorph::viewer {
 struct WindowOptions {
   std::uint32_t width = 1280, height = 760;
   bool validation = false;
-  std::string smoke_test;        // non-empty: drive the pad for `smoke_frames` frames, save this screenshot, exit
+  std::string smoke_test;  // non-empty: drive the pad for `smoke_frames` frames, save this screenshot, exit
   std::uint32_t smoke_frames = 60;
-  std::string description;       // rig description to save recorded gestures into
+  std::string description;  // rig description to save recorded gestures into
 };
 
 // Runs until the window closes; returns the process exit status.

@@ -80,8 +80,7 @@ double NearestArcLength(const Polygon& outline, const Point& q, double* distance
 }
 
 CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
-                                     const std::vector<std::vector<Point>>& landmarks,
-                                     const MatchingParameters& prm) {
+                                     const std::vector<std::vector<Point>>& landmarks, const MatchingParameters& prm) {
   const std::size_t N = outlines.size(), L = landmarks[0].size();
   std::vector<std::vector<double>> s(N, std::vector<double>(L));  // landmark arc lengths, unwrapped increasing
   std::vector<double> perimeter(N);
@@ -104,7 +103,8 @@ CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
   out.spacing = spacing;
   for (std::size_t k = 0; k < L; ++k) {
     const double len0 = (k + 1 < L ? s[0][k + 1] : s[0][0] + perimeter[0]) - s[0][k];
-    const std::size_t m = std::max<std::size_t>(4, std::size_t(std::lround(std::min(len0 / spacing, double(kMaxMatchedSamples)))));
+    const std::size_t m =
+        std::max<std::size_t>(4, std::size_t(std::lround(std::min(len0 / spacing, double(kMaxMatchedSamples)))));
     out.landmarks.push_back(out.at[0].size());
     const double h0 = len0 / double(m) * prm.bending_scale;
     std::vector<double> theta0(m + 1);
@@ -143,9 +143,12 @@ CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
         sum[j] += double(q), count[j] += 1;
         if (j == 0 && q == 0) break;
         const unsigned char step = from[j * W + q];
-        if (step == 0) --j, --q;
-        else if (step == 1) --j;
-        else --q;
+        if (step == 0)
+          --j, --q;
+        else if (step == 1)
+          --j;
+        else
+          --q;
       }
       std::vector<double> u(m);
       for (std::size_t j = 0; j < m; ++j) u[j] = sum[j] / count[j] / double(m);

@@ -25,7 +25,8 @@ struct EdgeMap {
   explicit EdgeMap(const std::vector<Tri>& tris) {
     for (std::size_t t = 0; t < tris.size(); ++t)
       for (int e = 0; e < 3; ++e) {
-        auto [it, fresh] = at.try_emplace(Key(tris[t][e], tris[t][(e + 1) % 3]), std::array<std::size_t, 2>{kNone, kNone});
+        auto [it, fresh] =
+            at.try_emplace(Key(tris[t][e], tris[t][(e + 1) % 3]), std::array<std::size_t, 2>{kNone, kNone});
         (void)fresh;
         it->second[it->second[0] == kNone ? 0 : 1] = t;
       }

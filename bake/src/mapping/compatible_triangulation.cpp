@@ -32,9 +32,11 @@ struct Work {
   void Spend(std::uint64_t steps) {
     used += steps;
     if (used > kMaxTriangulationWork)
-      throw BakeError("", *what + ": the boundaries are too intricate to triangulate compatibly within the bake's "
-                                  "limit of " + std::to_string(kMaxTriangulationWork) +
-                                  " steps; raise mapping.simplify_tolerance or add landmarks where the poses differ");
+      throw BakeError("", *what +
+                              ": the boundaries are too intricate to triangulate compatibly within the bake's "
+                              "limit of " +
+                              std::to_string(kMaxTriangulationWork) +
+                              " steps; raise mapping.simplify_tolerance or add landmarks where the poses differ");
   }
 };
 
@@ -127,9 +129,9 @@ constexpr int kUnreachable = std::numeric_limits<int>::max() / 4;
 
 struct LinkPaths {  // one pose's shortest link paths between piece vertices through candidates
   std::vector<Point> cand;
-  std::vector<int> steiner;       // n x n: Steiner points needed, or kUnreachable
-  std::vector<int> first, last;   // n x n: candidate entered from a, candidate leaving to b
-  std::vector<int> dist, next;    // c x c Floyd-Warshall over candidates
+  std::vector<int> steiner;      // n x n: Steiner points needed, or kUnreachable
+  std::vector<int> first, last;  // n x n: candidate entered from a, candidate leaving to b
+  std::vector<int> dist, next;   // c x c Floyd-Warshall over candidates
 };
 
 LinkPaths ComputeLinkPaths(const View& v, Work& work) {
@@ -276,7 +278,8 @@ CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const
           while (path.size() < std::size_t(k) + 2) {
             std::size_t longest = 0;
             for (std::size_t j = 0; j + 1 < path.size(); ++j)
-              if ((path[j + 1] - path[j]).squaredNorm() > (path[longest + 1] - path[longest]).squaredNorm()) longest = j;
+              if ((path[j + 1] - path[j]).squaredNorm() > (path[longest + 1] - path[longest]).squaredNorm())
+                longest = j;
             path.insert(path.begin() + std::ptrdiff_t(longest + 1), Snap((path[longest] + path[longest + 1]) / 2));
           }
           // Both halves must be simple polygons with area in this pose.
@@ -300,8 +303,9 @@ CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const
         break;
       }
       if (!found)
-        throw BakeError("", what + ": the drawings cannot be triangulated compatibly (no chord joins the same two "
-                                   "boundary points inside every pose)");
+        throw BakeError("", what +
+                                ": the drawings cannot be triangulated compatibly (no chord joins the same two "
+                                "boundary points inside every pose)");
     }
     Piece left(piece.begin() + std::ptrdiff_t(A), piece.begin() + std::ptrdiff_t(B) + 1);
     left.insert(left.end(), chain.rbegin(), chain.rend());

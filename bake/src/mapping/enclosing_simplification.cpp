@@ -28,8 +28,8 @@ struct PoseState {
   const OutlineEdges* edges = nullptr;
   std::vector<double> cumulative;  // arc length at each outline vertex (size n + 1)
   double perimeter = 0;
-  std::vector<double> at;          // per corresponding point, unwrapped arc length
-  Polygon pos;                     // current vertex positions (grid)
+  std::vector<double> at;  // per corresponding point, unwrapped arc length
+  Polygon pos;             // current vertex positions (grid)
 
   // Outline vertex indices strictly between arc lengths s0 < s1 (s1 may wrap past the perimeter).
   template <typename F>
@@ -64,8 +64,8 @@ struct Linked {
 
 // Does the segment (p, q) meet any alive polygon edge other than those at
 // its own vertices u, v (indices), or fold back onto its neighbours?
-bool HitsPolygon(const PoseState& st, const Linked& L, std::size_t u, std::size_t v, const Point& p,
-                 const Point& q, std::size_t start) {
+bool HitsPolygon(const PoseState& st, const Linked& L, std::size_t u, std::size_t v, const Point& p, const Point& q,
+                 std::size_t start) {
   const Point lo = p.cwiseMin(q), hi = p.cwiseMax(q);
   std::size_t e = start;
   do {
@@ -231,7 +231,8 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
         }
       }
       if (all_ok && IsSimplePolygon(s.pos)) break;
-      if (attempt == 30) throw BakeError("", "pose " + std::to_string(i) + ": cannot build a polygon enclosing the outline");
+      if (attempt == 30)
+        throw BakeError("", "pose " + std::to_string(i) + ": cannot build a polygon enclosing the outline");
     }
   }
 
@@ -340,8 +341,8 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
   auto priority = [&](std::size_t j, double error) {
     double shortest = kInf;
     for (std::size_t i = 0; i < N; ++i)
-      shortest = std::min({shortest, (st[i].pos[j] - st[i].pos[L.prev[j]]).norm(),
-                           (st[i].pos[j] - st[i].pos[L.next[j]]).norm()});
+      shortest = std::min(
+          {shortest, (st[i].pos[j] - st[i].pos[L.prev[j]]).norm(), (st[i].pos[j] - st[i].pos[L.next[j]]).norm()});
     return error * std::clamp(shortest / short_edge, 0.05, 1.0);
   };
   using Entry = std::tuple<double, std::size_t, std::uint32_t>;

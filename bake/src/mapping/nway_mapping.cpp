@@ -43,8 +43,8 @@ bool EndsWith(std::string s, const std::string& suffix) {
 }
 
 struct DrawnPose {
-  std::size_t index = 0;       // in rig.poses
-  Polygon outline;             // rig coordinates (y up), counter-clockwise
+  std::size_t index = 0;  // in rig.poses
+  Polygon outline;        // rig coordinates (y up), counter-clockwise
   std::vector<Point> landmarks;
   // uv = ((x - origin.x) / size.x, (-y - origin.y) / size.y) for drawings (rows go down)
   bool from_drawing = false;
@@ -72,9 +72,9 @@ Polygon WithoutRepeats(const Polygon& p) {
 
 namespace bake::mapping {
 
-MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines, const std::vector<std::vector<Point>>& rig_landmarks,
-                          const MappingParameters& prm, const std::vector<std::string>& labels,
-                          const std::string& file) {
+MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
+                          const std::vector<std::vector<Point>>& rig_landmarks, const MappingParameters& prm,
+                          const std::vector<std::string>& labels, const std::string& file) {
   const std::size_t N = rig_outlines.size();
   auto fail = [&](std::size_t k, const std::string& problem) -> void {
     throw BakeError(file, labels[k] + ": " + problem);
@@ -138,11 +138,13 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines, const std::v
       double rel = std::fmod(at[l] - at[0], perimeter);
       if (rel < 0) rel += perimeter;
       if (!(rel > previous))
-        fail(k, at.size() >= 3 && Clockwise(at, perimeter)
-                    ? std::string("landmarks are out of order: they go clockwise around the shape as seen in the drawing; "
-                                  "give them counter-clockwise, from landmark 0, in the same order in every pose")
-                    : "landmark " + std::to_string(l) + " is out of order or coincides with another: landmarks go "
-                      "counter-clockwise around the shape as seen in the drawing, in the same order in every pose");
+        fail(k,
+             at.size() >= 3 && Clockwise(at, perimeter)
+                 ? std::string("landmarks are out of order: they go clockwise around the shape as seen in the drawing; "
+                               "give them counter-clockwise, from landmark 0, in the same order in every pose")
+                 : "landmark " + std::to_string(l) +
+                       " is out of order or coincides with another: landmarks go "
+                       "counter-clockwise around the shape as seen in the drawing, in the same order in every pose");
       previous = rel;
     }
     st.landmarks.push_back(std::move(on));
@@ -153,7 +155,8 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines, const std::v
   mp.spacing = prm.spacing * grid.scale;
   st.matched = MatchBoundaries(st.outlines, st.landmarks, mp);
   if (st.matched.spacing > mp.spacing)
-    st.warnings.push_back(labels[0] + ": the outline is " + Format(CumulativeArcLength(st.outlines[0]).back() / grid.scale) +
+    st.warnings.push_back(labels[0] + ": the outline is " +
+                          Format(CumulativeArcLength(st.outlines[0]).back() / grid.scale) +
                           " long; it is matched at a spacing of " + Format(st.matched.spacing / grid.scale) +
                           " instead of mapping.spacing " + Format(prm.spacing) + " (at most " +
                           std::to_string(kMaxMatchedSamples) + " samples)");
@@ -229,19 +232,21 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
         if (io.dropped_components > 0) {
           // Only the largest part is mapped: a separate eye or a loose hand
           // is left out of the mesh (and drawn only where the mesh covers it).
-          auto share = [&](std::size_t pixels) { return Format(100.0 * double(pixels) / double(io.shape_pixels)) + "%"; };
+          auto share = [&](std::size_t pixels) {
+            return Format(100.0 * double(pixels) / double(io.shape_pixels)) + "%";
+          };
           std::string parts;
           const std::size_t n = io.dropped_parts.size();
           if (n == 1) {
-            parts = "a separate part of " + std::to_string(io.dropped_parts[0]) + " pixels (" + share(io.dropped_parts[0]) +
-                    " of the drawing)";
+            parts = "a separate part of " + std::to_string(io.dropped_parts[0]) + " pixels (" +
+                    share(io.dropped_parts[0]) + " of the drawing)";
           } else {
             parts = std::to_string(n) + " separate parts of " + std::to_string(io.dropped_pixels) + " pixels (" +
                     share(io.dropped_pixels) + " of the drawing; the largest " + std::to_string(io.dropped_parts[0]) +
                     " pixels, " + share(io.dropped_parts[0]) + ")";
           }
-          report.warnings.push_back(rig.file + ": " + PoseLabel(pose.name, d.index) + ": " +
-                                    pose.drawing_path + ": dropped " + parts +
+          report.warnings.push_back(rig.file + ": " + PoseLabel(pose.name, d.index) + ": " + pose.drawing_path +
+                                    ": dropped " + parts +
                                     ": only the largest part is meshed; join the parts in the drawing to keep them");
         }
         for (const Point& p : io.outline) raw.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
@@ -259,7 +264,8 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
       fail(d, e.what());
     }
     if (d.from_drawing)
-      for (const Point& p : pose.landmarks) d.landmarks.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
+      for (const Point& p : pose.landmarks)
+        d.landmarks.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
     if (raw.size() > mapping::kMaxOutlinePoints)
       fail(d, (d.from_drawing ? pose.drawing_path + ": " : std::string()) + "the outline has " +
                   std::to_string(raw.size()) + " points, more than the limit of " +
@@ -306,8 +312,10 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
       const Point p = grid.FromGrid(g);
       pose.vertices.push_back(p);
       Point uv;
-      if (d.from_drawing) uv = Point((p.x() - d.origin.x()) / d.size.x(), (-p.y() - d.origin.y()) / d.size.y());
-      else uv = Point((p.x() - box.min().x()) / box.sizes().x(), (box.max().y() - p.y()) / box.sizes().y());
+      if (d.from_drawing)
+        uv = Point((p.x() - d.origin.x()) / d.size.x(), (-p.y() - d.origin.y()) / d.size.y());
+      else
+        uv = Point((p.x() - box.min().x()) / box.sizes().x(), (box.max().y() - p.y()) / box.sizes().y());
       pose.uvs.push_back(uv.cast<float>());
     }
     if (d.from_drawing) {

@@ -31,8 +31,8 @@ struct Mask {
 // row's maximal spans of that value) joined by union-find where they overlap
 // the row above: memory and time go with the number of runs, not pixels.
 struct Run {
-  int x0, x1;             // [x0, x1) in one row
-  std::uint32_t parent;   // union-find; a root is its component's first run
+  int x0, x1;            // [x0, x1) in one row
+  std::uint32_t parent;  // union-find; a root is its component's first run
 };
 struct RunComponents {
   std::vector<Run> runs;                 // row by row, left to right
@@ -71,11 +71,20 @@ RunComponents Components(const Mask& m, unsigned char value) {
     const std::size_t a_end = c.row_start[y], b_end = c.runs.size();
     while (a < a_end && b < b_end) {
       const Run &up = c.runs[a], &here = c.runs[b];
-      if (up.x1 <= here.x0) { ++a; continue; }
-      if (here.x1 <= up.x0) { ++b; continue; }
+      if (up.x1 <= here.x0) {
+        ++a;
+        continue;
+      }
+      if (here.x1 <= up.x0) {
+        ++b;
+        continue;
+      }
       const std::uint32_t ra = Root(c.runs, std::uint32_t(a)), rb = Root(c.runs, std::uint32_t(b));
       if (ra != rb) c.runs[std::max(ra, rb)].parent = std::min(ra, rb);  // the earlier run stays the root
-      if (c.runs[a].x1 < c.runs[b].x1) ++a; else ++b;
+      if (c.runs[a].x1 < c.runs[b].x1)
+        ++a;
+      else
+        ++b;
     }
   }
   c.row_start.push_back(c.runs.size());
@@ -121,8 +130,10 @@ std::size_t ClosePinches(Mask& m) {
   for (int y = 0; y + 1 < m.h; ++y)
     for (int x = 0; x + 1 < m.w; ++x) {
       const unsigned char a = m.at(x, y), b = m.at(x + 1, y), c = m.at(x, y + 1), d = m.at(x + 1, y + 1);
-      if (a && d && !b && !c) m.at(x + 1, y) = 1, ++changed;
-      else if (b && c && !a && !d) m.at(x, y) = 1, ++changed;
+      if (a && d && !b && !c)
+        m.at(x + 1, y) = 1, ++changed;
+      else if (b && c && !a && !d)
+        m.at(x, y) = 1, ++changed;
     }
   return changed;
 }
@@ -235,8 +246,8 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
   return result;
 }
 
-static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char>& file, const std::string& path, int* width,
-                                                 int* height) {
+static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char>& file, const std::string& path,
+                                                 int* width, int* height) {
   png_image image;
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;
@@ -244,8 +255,9 @@ static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char
     throw BakeError(path, std::string("cannot read PNG: ") + image.message);
   if (!(image.format & PNG_FORMAT_FLAG_ALPHA)) {
     png_image_free(&image);
-    throw BakeError(path, "has no alpha channel (and no transparent colour): the bake takes the character's shape from "
-                          "alpha; save the drawing with transparency");
+    throw BakeError(path,
+                    "has no alpha channel (and no transparent colour): the bake takes the character's shape from "
+                    "alpha; save the drawing with transparency");
   }
   image.format = PNG_FORMAT_GA;  // grey + alpha: only the alpha is used
   // The header's size, checked before anything is decoded: a small file can
@@ -254,8 +266,8 @@ static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char
       std::uint64_t(image.width) * image.height > kMaxDrawingPixels) {
     png_image_free(&image);
     throw BakeError(path, "PNG size " + std::to_string(image.width) + " x " + std::to_string(image.height) +
-                              " is outside 1..16384 per side or above the limit of " + std::to_string(kMaxDrawingPixels) +
-                              " pixels");
+                              " is outside 1..16384 per side or above the limit of " +
+                              std::to_string(kMaxDrawingPixels) + " pixels");
   }
   std::vector<unsigned char> ga(PNG_IMAGE_SIZE(image));
   if (!png_image_finish_read(&image, nullptr, ga.data(), 0, nullptr)) {

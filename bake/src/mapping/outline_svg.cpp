@@ -131,22 +131,28 @@ Polygon FlattenSvgPath(const std::string& d, double tol, const std::string& file
         out.push_back(cur);
         break;
       }
-      case 'C': case 'S': {
+      case 'C':
+      case 'S': {
         Point c1;
         const char pu = char(std::toupper(static_cast<unsigned char>(previous)));
-        if (up == 'C') c1 = pt();
-        else c1 = (pu == 'C' || pu == 'S') ? Point(2 * cur - last_control) : cur;
+        if (up == 'C')
+          c1 = pt();
+        else
+          c1 = (pu == 'C' || pu == 'S') ? Point(2 * cur - last_control) : cur;
         const Point c2 = pt(), end = pt();
         FlattenCubic(cur, c1, c2, end, tol, 0, out);
         last_control = c2;
         cur = end;
         break;
       }
-      case 'Q': case 'T': {
+      case 'Q':
+      case 'T': {
         Point c;
         const char pu = char(std::toupper(static_cast<unsigned char>(previous)));
-        if (up == 'Q') c = pt();
-        else c = (pu == 'Q' || pu == 'T') ? Point(2 * cur - last_control) : cur;
+        if (up == 'Q')
+          c = pt();
+        else
+          c = (pu == 'Q' || pu == 'T') ? Point(2 * cur - last_control) : cur;
         const Point end = pt();
         FlattenCubic(cur, cur + 2.0 / 3 * (c - cur), end + 2.0 / 3 * (c - end), end, tol, 0, out);
         last_control = c;
@@ -184,10 +190,12 @@ SvgOutline OutlineFromSvgText(const std::string& text, double tol, const std::st
   SvgOutline result;
   if (const char* vb = root->Attribute("viewBox")) {
     std::string t(vb);
-    for (char& c : t) if (c == ',') c = ' ';
+    for (char& c : t)
+      if (c == ',') c = ' ';
     std::istringstream nums(t);
     double x, y, w, h;
-    if (!(nums >> x >> y >> w >> h) || !(w > 0) || !(h > 0)) throw BakeError(file, "viewBox is not \"x y width height\"");
+    if (!(nums >> x >> y >> w >> h) || !(w > 0) || !(h > 0))
+      throw BakeError(file, "viewBox is not \"x y width height\"");
     result.canvas_origin = Point(x, y);
     result.canvas_size = Point(w, h);
   } else {

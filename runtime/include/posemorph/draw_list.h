@@ -66,8 +66,8 @@ struct DrawList {
   Span<const std::uint32_t> indices;  // 3 x T, the rig's triangles (counter-clockwise in pose 0)
   std::uint32_t drawing_count = 0;    // 1..max_drawings
   BlendedDrawing drawings[kMaxBlendDrawings];
-  Transform2D transform;              // rig units -> world
-  bool mirrored = false;              // transform.mirrors(): triangles are clockwise in the world
+  Transform2D transform;  // rig units -> world
+  bool mirrored = false;  // transform.mirrors(): triangles are clockwise in the world
 };
 
 // Draw lists for `count` characters sharing one rig, each at its own
@@ -83,16 +83,16 @@ struct DrawList {
 // grid, NaN replaced), so any values give a finite frame.
 struct PM_API DrawListJob {
   const Rig* rig = nullptr;
-  std::size_t count = 1;                // characters
-  Span<const double> points;            // count x (x, y), pose space
-  Span<const Transform2D> transforms;   // count, or empty: identity for all
-  double sigma = -1;                    // texture sharpening in [0, 1]; < 0 or NaN: the rig's default
+  std::size_t count = 1;               // characters
+  Span<const double> points;           // count x (x, y), pose space
+  Span<const Transform2D> transforms;  // count, or empty: identity for all
+  double sigma = -1;                   // texture sharpening in [0, 1]; < 0 or NaN: the rig's default
   bool shear_limit = true;
   Interpolation interpolation = Interpolation::kRigid;
   std::uint32_t max_drawings = kMaxBlendDrawings;  // K: drawings a renderer blends per character
-  Span<double> workspace;               // DrawListWorkspaceSize(*rig, count) doubles
-  Span<float> positions;                // count x 2V floats
-  Span<DrawList> output;                // count
+  Span<double> workspace;                          // DrawListWorkspaceSize(*rig, count) doubles
+  Span<float> positions;                           // count x 2V floats
+  Span<DrawList> output;                           // count
 
   bool Validate() const;
   bool Run() const;

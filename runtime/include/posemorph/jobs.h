@@ -18,10 +18,10 @@ namespace posemorph {
 struct PM_API WeightsJob {
   const Rig* rig = nullptr;
   double x = 0, y = 0;
-  double sigma = 0;           // texture sharpening in [0, 1] (clamped)
-  bool shear_limit = true;    // false: shear = raw
-  Span<double> raw;           // N: sum 1, may be negative or > 1
-  Span<double> shear;         // N, optional: phi(w) renormalised (phi = clamped smoothstep)
+  double sigma = 0;         // texture sharpening in [0, 1] (clamped)
+  bool shear_limit = true;  // false: shear = raw
+  Span<double> raw;         // N: sum 1, may be negative or > 1
+  Span<double> shear;       // N, optional: phi(w) renormalised (phi = clamped smoothstep)
   // N, optional: sharpened cross-fade weights w'', always a convex
   // combination (from phi(w), also when shear_limit is off) and continuous
   // in sigma up to and including 1.
@@ -48,9 +48,9 @@ struct PM_API MorphJob {
   Span<const double> weights;        // N raw weights (rotation angles, centroid)
   Span<const double> shear_weights;  // N (shear/scale); pass weights again for no limiting
   Interpolation interpolation = Interpolation::kRigid;
-  Span<double> workspace;            // rig->morph_workspace_size() doubles
-  Span<double> positions;            // 2 x V, interleaved x, y
-  Span<float> positions_f32;         // optional 2 x V copy for the GPU
+  Span<double> workspace;     // rig->morph_workspace_size() doubles
+  Span<double> positions;     // 2 x V, interleaved x, y
+  Span<float> positions_f32;  // optional 2 x V copy for the GPU
 
   bool Validate() const;
   bool Run() const;

@@ -83,8 +83,8 @@ PM_API int pm_rig_load_in_place(const void* bytes, size_t size, void* memory, si
                                 pm_error* err);
 PM_API void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info);
 /* The rig's own arrays, read-only, valid while the rig is. */
-PM_API const uint32_t* pm_rig_triangles(const pm_rig* rig);            /* 3 x triangle_count */
-PM_API const float* pm_rig_uvs(const pm_rig* rig, uint32_t pose);     /* 2 x vertex_count, or NULL */
+PM_API const uint32_t* pm_rig_triangles(const pm_rig* rig);                   /* 3 x triangle_count */
+PM_API const float* pm_rig_uvs(const pm_rig* rig, uint32_t pose);             /* 2 x vertex_count, or NULL */
 PM_API const double* pm_rig_pose_positions(const pm_rig* rig, uint32_t pose); /* 2 x vertex_count, or NULL */
 PM_API int pm_rig_pose_point(const pm_rig* rig, uint32_t pose, double* x, double* y);
 
@@ -100,7 +100,7 @@ PM_API int pm_rig_path_name(const pm_rig* rig, uint32_t path, char* out, size_t 
  * [min_x, max_x] x [min_y, max_y]; points beyond are clamped to it. */
 typedef struct pm_grid_info {
   double min_x, min_y, max_x, max_y;
-  double cell;                 /* square cell edge */
+  double cell; /* square cell edge */
   uint32_t cells_x, cells_y;
 } pm_grid_info;
 PM_API int pm_rig_grid(const pm_rig* rig, pm_grid_info* out);
@@ -143,8 +143,8 @@ PM_API int pm_rig_format_version(const pm_rig* rig, uint32_t* major, uint32_t* m
 /* Weights at a pose-space point. raw is required; shear and texture may be
  * NULL; each given array holds `capacity` doubles, at least pose_count.
  * sigma in [0,1] sharpens the texture blend. */
-PM_API int pm_weights(const pm_rig* rig, double x, double y, double sigma, int shear_limit,
-               double* raw, double* shear, double* texture, size_t capacity);
+PM_API int pm_weights(const pm_rig* rig, double x, double y, double sigma, int shear_limit, double* raw, double* shear,
+                      double* texture, size_t capacity);
 
 /* Doubles of workspace pm_morph needs. */
 PM_API size_t pm_morph_workspace_size(const pm_rig* rig);
@@ -167,8 +167,8 @@ PM_API int pm_morph(const pm_rig* rig, const double* weights, const double* shea
  * count x 2 x vertex_count. */
 PM_API size_t pm_batch_workspace_size(const pm_rig* rig);
 PM_API int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const double* shear_weights,
-                   double* workspace, size_t workspace_capacity, double* positions, float* positions_f32,
-                   size_t positions_capacity);
+                          double* workspace, size_t workspace_capacity, double* positions, float* positions_f32,
+                          size_t positions_capacity);
 
 /* Draw lists: everything a renderer needs for `count` characters of one
  * rig at their pose-space points (posemorph/draw_list.h has the C++ form
@@ -184,24 +184,24 @@ PM_API void pm_transform_make(double x, double y, double radians, double scale_x
                               pm_transform* out);
 #define PM_MAX_BLEND_DRAWINGS 8
 typedef struct pm_blended_drawing {
-  uint32_t pose;     /* whose drawing (pm_rig_pose_image) */
-  float weight;      /* the picked drawings' weights sum to 1 */
-  const float* uvs;  /* that pose's uvs (2 x vertex_count), or NULL */
+  uint32_t pose;    /* whose drawing (pm_rig_pose_image) */
+  float weight;     /* the picked drawings' weights sum to 1 */
+  const float* uvs; /* that pose's uvs (2 x vertex_count), or NULL */
 } pm_blended_drawing;
 typedef struct pm_draw_list {
-  const float* positions;   /* 2 x vertex_count floats, rig units: a slice of the caller's positions */
-  const uint32_t* indices;  /* 3 x triangle_count (counter-clockwise in pose 0) */
+  const float* positions;  /* 2 x vertex_count floats, rig units: a slice of the caller's positions */
+  const uint32_t* indices; /* 3 x triangle_count (counter-clockwise in pose 0) */
   uint32_t vertex_count, index_count;
-  uint32_t drawing_count;   /* 1..max_drawings */
+  uint32_t drawing_count; /* 1..max_drawings */
   pm_blended_drawing drawings[PM_MAX_BLEND_DRAWINGS];
   pm_transform transform;
-  int mirrored;             /* the transform mirrors: triangles are clockwise in the world */
+  int mirrored; /* the transform mirrors: triangles are clockwise in the world */
 } pm_draw_list;
 typedef struct pm_draw_options {
-  double sigma;           /* texture sharpening in [0, 1]; < 0: the rig's default */
-  int shear_limit;        /* 1 (default): the paper's shear limiting */
-  int linear;             /* 1: linear vertex blending (for comparison) */
-  uint32_t max_drawings;  /* K in 1..8: drawings the renderer blends per character */
+  double sigma;          /* texture sharpening in [0, 1]; < 0: the rig's default */
+  int shear_limit;       /* 1 (default): the paper's shear limiting */
+  int linear;            /* 1: linear vertex blending (for comparison) */
+  uint32_t max_drawings; /* K in 1..8: drawings the renderer blends per character */
 } pm_draw_options;
 /* sigma -1, shear_limit 1, linear 0, max_drawings 8. */
 PM_API void pm_draw_options_default(pm_draw_options* out);
@@ -212,8 +212,8 @@ PM_API int pm_draw_list_buffers(const pm_rig* rig, size_t count, size_t* workspa
  * options NULL: the defaults; out: count lists. Rigid characters equal
  * pm_morph_batch (one character: pm_morph) bit for bit. */
 PM_API int pm_draw_lists(const pm_rig* rig, const pm_draw_options* options, size_t count, const double* points,
-                         const pm_transform* transforms, double* workspace, size_t workspace_capacity,
-                         float* positions, size_t positions_capacity, pm_draw_list* out, size_t out_capacity);
+                         const pm_transform* transforms, double* workspace, size_t workspace_capacity, float* positions,
+                         size_t positions_capacity, pm_draw_list* out, size_t out_capacity);
 /* The max_drawings (1..8) largest of pose_count texture weights, largest
  * first, renormalised (as pm_draw_lists picks them; uvs NULL). Returns the
  * number written to out (capacity entries). */

@@ -57,10 +57,10 @@ struct Factor {
   // Built at load for the two gather loops of the solve: the strict lower
   // triangle by rows (forward), and indices pre-doubled to address the
   // interleaved x, y pairs directly.
-  Span<const std::uint32_t> row_start;   // n + 1
-  Span<const std::uint32_t> row_col2;    // nnz: 2 x column, row by row (when the 16-bit copy is empty)
-  Span<const double> row_value;          // nnz
-  Span<const std::uint32_t> col_row2;    // nnz: 2 x row, column by column (as `row`)
+  Span<const std::uint32_t> row_start;  // n + 1
+  Span<const std::uint32_t> row_col2;   // nnz: 2 x column, row by row (when the 16-bit copy is empty)
+  Span<const double> row_value;         // nnz
+  Span<const std::uint32_t> col_row2;   // nnz: 2 x row, column by column (as `row`)
   // The same two index arrays in 16 bits when 2n < 65536 (most rigs), in
   // place of the 32-bit ones: the solve streams fewer bytes. Empty otherwise.
   Span<const std::uint16_t> row_col2_16, col_row2_16;
@@ -107,17 +107,17 @@ class PM_API Rig {
   std::uint32_t path_count() const { return path_count_; }
 
   Span<const std::uint32_t> triangles() const { return triangles_; }  // 3 x T
-  Span<const double> pose_positions(std::uint32_t pose) const;       // 2 x V, interleaved
-  Span<const double> pose_points() const { return pose_points_; }    // 2 x N
+  Span<const double> pose_positions(std::uint32_t pose) const;        // 2 x V, interleaved
+  Span<const double> pose_points() const { return pose_points_; }     // 2 x N
   Span<const double> pose_centroids() const { return pose_centroids_; }
   Span<const double> vertex_masses() const { return vertex_masses_; }  // sum 1
-  Span<const double> gradients() const { return gradients_; }    // 6 x T: area * D^T E^-1
-  Span<const double> angles() const { return angles_; }          // N x T (triangle-major)
-  Span<const double> shears() const { return shears_; }          // 3N x T: S11, S12, S22
+  Span<const double> gradients() const { return gradients_; }          // 6 x T: area * D^T E^-1
+  Span<const double> angles() const { return angles_; }                // N x T (triangle-major)
+  Span<const double> shears() const { return shears_; }                // 3N x T: S11, S12, S22
   // The same angles and stretches regrouped at load for SIMD: per block of 8
   // triangles, per pose, the 8 values of alpha, S11, S12, S22 (4N x 8 per block).
   Span<const double> blend_blocks() const { return blend_blocks_; }
-  Span<const float> uvs(std::uint32_t pose) const;                // 2 x V, or empty
+  Span<const float> uvs(std::uint32_t pose) const;  // 2 x V, or empty
   StringView pose_name(std::uint32_t pose) const;
   StringView pose_image(std::uint32_t pose) const;  // reference as written by the bake; may be empty
   DrawingCanvas pose_canvas(std::uint32_t pose) const;
@@ -159,7 +159,7 @@ class PM_API Rig {
   Span<const double> pose_positions_, pose_points_, pose_centroids_, vertex_masses_;
   Span<const double> gradients_, angles_, shears_, blend_blocks_;
   Span<const float> uvs_;
-  Span<const double> canvases_;  // 4N, or empty
+  Span<const double> canvases_;     // 4N, or empty
   Span<const StringView> strings_;  // N names, N images, P path names
   Span<const PathView> paths_;
   PoseSpaceGrid grid_;

@@ -28,8 +28,8 @@ constexpr std::uint32_t kOffFlags = 28;
 constexpr std::uint32_t kOffChecksum = 32;
 
 constexpr std::uint32_t Tag(char a, char b, char c, char d) {
-  return std::uint32_t(std::uint8_t(a)) | std::uint32_t(std::uint8_t(b)) << 8 |
-         std::uint32_t(std::uint8_t(c)) << 16 | std::uint32_t(std::uint8_t(d)) << 24;
+  return std::uint32_t(std::uint8_t(a)) | std::uint32_t(std::uint8_t(b)) << 8 | std::uint32_t(std::uint8_t(c)) << 16 |
+         std::uint32_t(std::uint8_t(d)) << 24;
 }
 
 // Section tags.
@@ -128,11 +128,11 @@ constexpr std::uint32_t kMaxCompactExpansion = 256;
 constexpr std::uint32_t kMaxGolombZeros = 40;
 // Magnitude limits on stored numbers, so that every evaluation of a rig that
 // loads stays finite (with the weight limit of the jobs, jobs.h).
-constexpr double kMaxAngle = 1e4;          // radians (about 1,600 turns)
-constexpr double kMaxStretch = 1e4;        // entries of the symmetric stretch S
-constexpr double kMaxGridWeight = 1e4;     // baked pose-space weights
-constexpr double kMaxPathValue = 1e12;     // path key times and coordinates
-constexpr double kMaxMagnitude = 1e15;     // everything else (positions, gradients, factor, ...)
+constexpr double kMaxAngle = 1e4;       // radians (about 1,600 turns)
+constexpr double kMaxStretch = 1e4;     // entries of the symmetric stretch S
+constexpr double kMaxGridWeight = 1e4;  // baked pose-space weights
+constexpr double kMaxPathValue = 1e12;  // path key times and coordinates
+constexpr double kMaxMagnitude = 1e15;  // everything else (positions, gradients, factor, ...)
 
 PM_API std::uint32_t Crc32(const unsigned char* data, std::uint64_t size, std::uint32_t crc = 0);
 

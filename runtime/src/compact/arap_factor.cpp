@@ -34,7 +34,8 @@ bool Rest(const double* p, const std::uint32_t* tri, std::uint64_t t, RestTriang
   const double e00 = a[0] - c[0], e10 = a[1] - c[1], e01 = b[0] - c[0], e11 = b[1] - c[1];
   const double det = e00 * e11 - e01 * e10;
   if (!(det > 0) || !std::isfinite(det))
-    return Fail(err, ErrorCode::kBadValue, "section QPOS: triangle %llu is not counter-clockwise with positive area in pose 0",
+    return Fail(err, ErrorCode::kBadValue,
+                "section QPOS: triangle %llu is not counter-clockwise with positive area in pose 0",
                 (unsigned long long)t);
   // E^-T = [[e11, -e10], [-e01, e00]] / det; D = [[1, 0, -1], [0, 1, -1]].
   const double i00 = e11 / det, i01 = -e10 / det, i10 = -e01 / det, i11 = e00 / det;
@@ -110,7 +111,8 @@ bool BuildArapFactor(const double* positions, std::uint64_t V, const std::uint32
         ++b.col_start[i + 1];
         b.flag[i] = std::uint32_t(k);
         if (++found > nnz)
-          return Fail(err, ErrorCode::kBadValue, "section QPRM: the factor has more nonzeros than the %llu META declares",
+          return Fail(err, ErrorCode::kBadValue,
+                      "section QPRM: the factor has more nonzeros than the %llu META declares",
                       (unsigned long long)nnz);
       }
     }
@@ -125,7 +127,8 @@ bool BuildArapFactor(const double* positions, std::uint64_t V, const std::uint32
     b.col_start[k + 1] += b.col_start[k];
   }
   if (work > format::kMaxCompactFactorWork)
-    return Fail(err, ErrorCode::kTooLarge, "section QPRM: factoring this rig takes %llu operations, above the limit of %llu",
+    return Fail(err, ErrorCode::kTooLarge,
+                "section QPRM: factoring this rig takes %llu operations, above the limit of %llu",
                 (unsigned long long)work, (unsigned long long)format::kMaxCompactFactorWork);
 
   // Up-looking LDL^T: row k of L solves L(0:k, 0:k) D l = K(0:k, k) over the

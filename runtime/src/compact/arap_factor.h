@@ -15,24 +15,24 @@ namespace posemorph::detail {
 // Scratch and outputs, all carved from the rig's arena by the loader.
 struct ArapFactorBuffers {
   // Outputs.
-  double* vertex_masses;          // V, sum 1
-  double* gradients;              // 6T: area * (E^-T D)^T, row-major 3x2
-  std::uint32_t* col_start;       // n + 1
-  std::uint32_t* row;             // nnz
-  double* value;                  // nnz
-  double* inv_diagonal;           // n
+  double* vertex_masses;     // V, sum 1
+  double* gradients;         // 6T: area * (E^-T D)^T, row-major 3x2
+  std::uint32_t* col_start;  // n + 1
+  std::uint32_t* row;        // nnz
+  double* value;             // nnz
+  double* inv_diagonal;      // n
   // Scratch.
-  std::uint32_t* position;        // n: inverse of the order
-  std::uint32_t* parent;          // n: elimination tree
-  std::uint32_t* flag;            // n
-  std::uint32_t* path;            // n
-  std::uint32_t* stack;           // n
-  std::uint32_t* fill;            // n: next free slot per column of L
-  std::uint32_t* entry_start;     // n + 1: the upper part of K by column
-  std::uint32_t* entry_row;       // 6T
-  double* entry_value;            // 6T
-  double* work;                   // n: dense row of the up-looking pass
-  double* pivot;                  // n: D
+  std::uint32_t* position;     // n: inverse of the order
+  std::uint32_t* parent;       // n: elimination tree
+  std::uint32_t* flag;         // n
+  std::uint32_t* path;         // n
+  std::uint32_t* stack;        // n
+  std::uint32_t* fill;         // n: next free slot per column of L
+  std::uint32_t* entry_start;  // n + 1: the upper part of K by column
+  std::uint32_t* entry_row;    // 6T
+  double* entry_value;         // 6T
+  double* work;                // n: dense row of the up-looking pass
+  double* pivot;               // n: D
 };
 
 // Entries of K's upper part at most 6 per triangle (3 diagonal, 3 edges).

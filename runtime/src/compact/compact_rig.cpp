@@ -18,13 +18,23 @@ namespace fmt = format;
 
 constexpr auto Fail = LoadFail;
 
-std::uint32_t U32(const unsigned char* p) { std::uint32_t v; std::memcpy(&v, p, 4); return v; }
-double F64(const unsigned char* p) { double v; std::memcpy(&v, p, 8); return v; }
+std::uint32_t U32(const unsigned char* p) {
+  std::uint32_t v;
+  std::memcpy(&v, p, 4);
+  return v;
+}
+double F64(const unsigned char* p) {
+  double v;
+  std::memcpy(&v, p, 8);
+  return v;
+}
 
 // A packed array header: u32 width, u32 zero (QTRI, QPRM).
 bool PackedHeader(const char* tag, const SectionBytes& s, std::uint64_t count, unsigned* width, Error* err) {
   if (!s.data) return Fail(err, ErrorCode::kBadLayout, "missing section %s", tag);
-  if (s.size < 8) return Fail(err, ErrorCode::kBadLayout, "section %s is %llu bytes, shorter than its header", tag, (unsigned long long)s.size);
+  if (s.size < 8)
+    return Fail(err, ErrorCode::kBadLayout, "section %s is %llu bytes, shorter than its header", tag,
+                (unsigned long long)s.size);
   *width = U32(s.data);
   if (*width < 1 || *width > 32 || U32(s.data + 4) != 0)
     return Fail(err, ErrorCode::kBadValue, "section %s: bit width %u outside 1..32 or reserved field set", tag, *width);
@@ -124,18 +134,20 @@ bool ReadCompactLayout(const SectionBytes& qpos, const SectionBytes& qtri, const
     for (std::uint64_t i = 0; i < c.N; ++i) {
       const unsigned char* e = quva.data + 56 * i;
       if (U32(e) >= c.N || U32(e + 4) != 0)
-        return Fail(err, ErrorCode::kBadValue, "section QUVA: pose %llu names source pose %u of %llu", (unsigned long long)i,
-                    U32(e), (unsigned long long)c.N);
+        return Fail(err, ErrorCode::kBadValue, "section QUVA: pose %llu names source pose %u of %llu",
+                    (unsigned long long)i, U32(e), (unsigned long long)c.N);
       for (int k = 0; k < 6; ++k)
         if (!FiniteWithin(F64(e + 8 + 8 * k), fmt::kMaxMagnitude))
-          return Fail(err, ErrorCode::kBadValue, "section QUVA: coefficient %d of pose %llu is not finite", k, (unsigned long long)i);
+          return Fail(err, ErrorCode::kBadValue, "section QUVA: coefficient %d of pose %llu is not finite", k,
+                      (unsigned long long)i);
     }
     L.affine_uvs = quva;
     L.has_affine_uvs = true;
   }
 
   if (c.nnz > std::uint64_t(fmt::kMaxCompactNonzerosPerByte) * c.file_size)
-    return Fail(err, ErrorCode::kTooLarge, "META: %llu factor nonzeros for a compact file of %llu bytes (at most %u per byte)",
+    return Fail(err, ErrorCode::kTooLarge,
+                "META: %llu factor nonzeros for a compact file of %llu bytes (at most %u per byte)",
                 (unsigned long long)c.nnz, (unsigned long long)c.file_size, fmt::kMaxCompactNonzerosPerByte);
   *out = L;
   return true;
@@ -150,7 +162,8 @@ bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const Compact
       const std::int64_t previous = k >= 3 ? std::int64_t(o.triangles[k - 3]) : 0;
       const std::int64_t value = previous + fmt::UnZigZag(r.ReadGolomb(L.triangle_k, fmt::kMaxGolombZeros));
       if (r.overrun || value < 0 || value >= std::int64_t(V))
-        return Fail(err, ErrorCode::kBadValue, "section QTRI: triangle %llu has a vertex index outside 0..%llu or runs past the section",
+        return Fail(err, ErrorCode::kBadValue,
+                    "section QTRI: triangle %llu has a vertex index outside 0..%llu or runs past the section",
                     (unsigned long long)(k / 3), (unsigned long long)(V - 1));
       o.triangles[k] = std::uint32_t(value);
     }
@@ -159,8 +172,8 @@ bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const Compact
     for (std::uint64_t t = 0; t < T; ++t) {
       const std::uint32_t a = o.triangles[3 * t], b = o.triangles[3 * t + 1], d = o.triangles[3 * t + 2];
       if (a >= V || b >= V || d >= V)
-        return Fail(err, ErrorCode::kBadValue, "section QTRI: triangle %llu has a vertex index >= %llu", (unsigned long long)t,
-                    (unsigned long long)V);
+        return Fail(err, ErrorCode::kBadValue, "section QTRI: triangle %llu has a vertex index >= %llu",
+                    (unsigned long long)t, (unsigned long long)V);
       if (a == b || b == d || a == d)
         return Fail(err, ErrorCode::kBadValue, "section QTRI: triangle %llu repeats a vertex", (unsigned long long)t);
     }
@@ -189,13 +202,14 @@ bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const Compact
         qx += fmt::UnZigZag(r.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
         qy += fmt::UnZigZag(r.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
         if (r.overrun || qx < 0 || qy < 0 || qx > kMaxPositionCode || qy > kMaxPositionCode)
-          return Fail(err, ErrorCode::kBadValue, "section QPOS: vertex %llu of pose %llu: code runs past the section or out of range",
+          return Fail(err, ErrorCode::kBadValue,
+                      "section QPOS: vertex %llu of pose %llu: code runs past the section or out of range",
                       (unsigned long long)v, (unsigned long long)i);
         o.positions[k] = ox + L.position_step * double(qx);
         o.positions[k + 1] = oy + L.position_step * double(qy);
         if (!FiniteWithin(o.positions[k], fmt::kMaxMagnitude) || !FiniteWithin(o.positions[k + 1], fmt::kMaxMagnitude))
-          return Fail(err, ErrorCode::kBadValue, "section QPOS: vertex %llu of pose %llu is beyond %g", (unsigned long long)v,
-                      (unsigned long long)i, fmt::kMaxMagnitude);
+          return Fail(err, ErrorCode::kBadValue, "section QPOS: vertex %llu of pose %llu is beyond %g",
+                      (unsigned long long)v, (unsigned long long)i, fmt::kMaxMagnitude);
       }
     }
     if ((r.position() + 7) / 8 != r.size_bits() / 8)
@@ -274,19 +288,21 @@ bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const Compact
             pred = fmt::GridCornerPrediction(q, row, x, y, order);
           }
           if (!next(k_corner, pred, &q[y * row + x]))
-            return Fail(err, ErrorCode::kBadValue, "section QGRD: pose %u, corner (%llu, %llu): code runs past the section or out of range",
-                        i, (unsigned long long)x, (unsigned long long)y);
+            return Fail(err, ErrorCode::kBadValue,
+                        "section QGRD: pose %u, corner (%llu, %llu): code runs past the section or out of range", i,
+                        (unsigned long long)x, (unsigned long long)y);
           o.grid_corners[(y * row + x) * N + i] = L.grid_step * double(q[y * row + x]);
         }
       if (!o.grid_centres) continue;
       for (std::uint64_t y = 0; y < cy; ++y)
         for (std::uint64_t x = 0; x < cx; ++x) {
-          const std::int64_t pred =
-              fmt::GridCentrePrediction(q[y * row + x], q[y * row + x + 1], q[(y + 1) * row + x], q[(y + 1) * row + x + 1]);
+          const std::int64_t pred = fmt::GridCentrePrediction(q[y * row + x], q[y * row + x + 1], q[(y + 1) * row + x],
+                                                              q[(y + 1) * row + x + 1]);
           std::int64_t value;
           if (!next(k_centre, pred, &value))
-            return Fail(err, ErrorCode::kBadValue, "section QGRD: pose %u, centre (%llu, %llu): code runs past the section or out of range",
-                        i, (unsigned long long)x, (unsigned long long)y);
+            return Fail(err, ErrorCode::kBadValue,
+                        "section QGRD: pose %u, centre (%llu, %llu): code runs past the section or out of range", i,
+                        (unsigned long long)x, (unsigned long long)y);
           o.grid_centres[(y * cx + x) * N + i] = L.grid_step * double(value);
         }
     }

@@ -36,11 +36,23 @@ struct KernelTable {
 const KernelTable* CompiledKernels(Isa isa);
 
 // One declaration per path; each is defined only where it is compiled.
-namespace scalar { extern const KernelTable kKernels; }
-namespace sse2 { extern const KernelTable kKernels; }
-namespace avx2 { extern const KernelTable kKernels; }
-namespace avx512 { extern const KernelTable kKernels; }
-namespace neon { extern const KernelTable kKernels; }
-namespace wasm_simd { extern const KernelTable kKernels; }
+namespace scalar {
+extern const KernelTable kKernels;
+}
+namespace sse2 {
+extern const KernelTable kKernels;
+}
+namespace avx2 {
+extern const KernelTable kKernels;
+}
+namespace avx512 {
+extern const KernelTable kKernels;
+}
+namespace neon {
+extern const KernelTable kKernels;
+}
+namespace wasm_simd {
+extern const KernelTable kKernels;
+}
 
 }  // namespace posemorph::detail

@@ -32,8 +32,7 @@ POSEMORPH_KERNEL_INLINE void TargetMatrix(T c, T s, T s11, T s12, T s22, T* a11,
 
 // Row k of a triangle's gradient operator pulls vertex k by A's rows.
 template <typename T>
-POSEMORPH_KERNEL_INLINE void AddToRhs(const std::uint32_t* tri, const double* grad, T a11, T a12, T a21, T a22,
-                                      T* b) {
+POSEMORPH_KERNEL_INLINE void AddToRhs(const std::uint32_t* tri, const double* grad, T a11, T a12, T a21, T a22, T* b) {
   for (int k = 0; k < 3; ++k) {
     const double g0 = grad[2 * k], g1 = grad[2 * k + 1];
     b[2 * tri[k]] += g0 * a11 + g1 * a12;
@@ -104,8 +103,10 @@ POSEMORPH_KERNEL_INLINE void SolvePinnedWith(const Factor& f, const I* row_col2,
 
 template <typename T>
 POSEMORPH_KERNEL_INLINE void SolvePinnedKernel(const Factor& f, const T* bf, T* y, T* xf) {
-  if (f.row_col2_16.size) SolvePinnedWith(f, f.row_col2_16.data, f.col_row2_16.data, bf, y, xf);
-  else SolvePinnedWith(f, f.row_col2.data, f.col_row2.data, bf, y, xf);
+  if (f.row_col2_16.size)
+    SolvePinnedWith(f, f.row_col2_16.data, f.col_row2_16.data, bf, y, xf);
+  else
+    SolvePinnedWith(f, f.row_col2.data, f.col_row2.data, bf, y, xf);
 }
 
 // Moves the mass-weighted centroid of x (2V) to sum_i w_i c_i.

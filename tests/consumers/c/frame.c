@@ -30,7 +30,9 @@ int main(int argc, char** argv) {
   double* ws = malloc(sizeof(double) * info.pose_count);
   double* work = malloc(sizeof(double) * pm_morph_workspace_size(rig));
   double* x = malloc(sizeof(double) * 2 * info.vertex_count);
-  if (pm_weights(rig, px, py, 0, 1, w, ws, NULL, info.pose_count) != PM_OK || pm_morph(rig, w, ws, 0, work, pm_morph_workspace_size(rig), x, NULL, 2 * (size_t)info.vertex_count) != PM_OK) return 1;
+  if (pm_weights(rig, px, py, 0, 1, w, ws, NULL, info.pose_count) != PM_OK ||
+      pm_morph(rig, w, ws, 0, work, pm_morph_workspace_size(rig), x, NULL, 2 * (size_t)info.vertex_count) != PM_OK)
+    return 1;
   unsigned long long h = 0xcbf29ce484222325ull;
   for (uint32_t k = 0; k < 2 * info.vertex_count; ++k) {
     const unsigned char* p = (const unsigned char*)&x[k];

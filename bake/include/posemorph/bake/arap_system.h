@@ -13,9 +13,9 @@
 namespace posemorph::bake {
 
 struct ArapSystem {
-  std::vector<double> gradients;       // 6 per triangle: area * (E^-T D)^T, 3 x 2 row-major
-  std::vector<double> vertex_masses;   // lumped rest areas, sum 1
-  Eigen::SparseMatrix<double> K;       // pinned system, (V-1) x (V-1), both triangles
+  std::vector<double> gradients;      // 6 per triangle: area * (E^-T D)^T, 3 x 2 row-major
+  std::vector<double> vertex_masses;  // lumped rest areas, sum 1
+  Eigen::SparseMatrix<double> K;      // pinned system, (V-1) x (V-1), both triangles
   // P K P^T = L D L^T with order[k'] = k.
   std::vector<std::uint32_t> order;
   std::vector<std::uint32_t> col_start, row;

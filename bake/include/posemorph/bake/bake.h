@@ -20,14 +20,14 @@ struct BakeReport {
   std::uint64_t bytes = 0;
   double max_reproduction_error = 0;  // at the pose points, relative to the rig size (checked by the runtime)
   double seconds = 0;
-  bool compact = false;            // the encoding written
-  std::uint64_t exact_bytes = 0;   // size of the exact encoding
-  double max_error_px = 0;         // the budget (compact)
-  double pixels_per_unit = 0;      // drawing pixels per rig unit used for it
-  CompactReport compact_report;    // what the compact encoding reached
-  InbetweenCheck inbetweens;       // the rig written, evaluated over the pose hull and the paths
+  bool compact = false;               // the encoding written
+  std::uint64_t exact_bytes = 0;      // size of the exact encoding
+  double max_error_px = 0;            // the budget (compact)
+  double pixels_per_unit = 0;         // drawing pixels per rig unit used for it
+  CompactReport compact_report;       // what the compact encoding reached
+  InbetweenCheck inbetweens;          // the rig written, evaluated over the pose hull and the paths
   std::vector<std::string> warnings;  // "FILE: ..." (folds, when allowed)
-  MappingReport mapping;             // what mapping the drawings made (mapped: false when none is drawn)
+  MappingReport mapping;              // what mapping the drawings made (mapped: false when none is drawn)
 };
 
 // The paper's pipeline, one step per header: map the drawings

@@ -28,14 +28,14 @@ struct CompactSection {
 };
 
 struct CompactReport {
-  double max_error_px = 0;       // over every sampled frame (hull, paths, pose points)
-  double pose_error_px = 0;      // at the pose points
-  std::uint32_t samples = 0;     // frames compared
-  double position_step_px = 0;   // quantisation step of positions
-  double weight_step = 0;        // quantisation step of the weight grid
-  std::uint32_t trials = 0;      // encodings tried
+  double max_error_px = 0;      // over every sampled frame (hull, paths, pose points)
+  double pose_error_px = 0;     // at the pose points
+  std::uint32_t samples = 0;    // frames compared
+  double position_step_px = 0;  // quantisation step of positions
+  double weight_step = 0;       // quantisation step of the weight grid
+  std::uint32_t trials = 0;     // encodings tried
   bool affine_uvs = false;
-  bool fell_back = false;        // no encoding within budget: the exact bytes were returned
+  bool fell_back = false;  // no encoding within budget: the exact bytes were returned
   std::vector<CompactSection> sections;
 };
 

@@ -21,16 +21,16 @@ namespace posemorph::bake {
 
 struct InbetweenFold {
   std::uint32_t triangle = 0;
-  double area_ratio = 0;       // the most inverted the triangle gets (<= 0)
-  Eigen::Vector2d at{0, 0};    // the pose-space point where it does
-  std::int32_t path = -1;      // the path that point lies on, or -1
-  bool in_hull = true;         // the point is inside the pose points' convex hull
+  double area_ratio = 0;     // the most inverted the triangle gets (<= 0)
+  Eigen::Vector2d at{0, 0};  // the pose-space point where it does
+  std::int32_t path = -1;    // the path that point lies on, or -1
+  bool in_hull = true;       // the point is inside the pose points' convex hull
 };
 
 struct InbetweenCheck {
-  std::size_t frames = 0;      // frames evaluated
-  int grid = 0;                // grid cells per side of the pose points' bounding box
-  double min_area_ratio = 0;   // over the frames in the hull (pose points and paths inside it included)
+  std::size_t frames = 0;     // frames evaluated
+  int grid = 0;               // grid cells per side of the pose points' bounding box
+  double min_area_ratio = 0;  // over the frames in the hull (pose points and paths inside it included)
   Eigen::Vector2d min_at{0, 0};
   std::uint32_t min_triangle = 0;
   // One per folded triangle: those folding inside the hull first (where

@@ -23,13 +23,13 @@ struct MappingReport {
   double min_angle_degrees = 0;               // over all triangles and drawn poses
   double simplification_error = 0;            // drawing units
   double seconds = 0;
-  std::vector<std::string> warnings;          // "FILE: ...", e.g. specks dropped from a drawing
+  std::vector<std::string> warnings;  // "FILE: ...", e.g. specks dropped from a drawing
 };
 
 struct MappedDrawings {
-  Triangles triangles;               // shared by every drawn pose; empty when none is drawn
-  std::vector<std::size_t> poses;    // the drawn poses' indices in the description
-  std::vector<PoseMesh> meshes;      // one per entry of `poses`: vertices, uvs into its drawing, image, canvas
+  Triangles triangles;             // shared by every drawn pose; empty when none is drawn
+  std::vector<std::size_t> poses;  // the drawn poses' indices in the description
+  std::vector<PoseMesh> meshes;    // one per entry of `poses`: vertices, uvs into its drawing, image, canvas
   MappingReport report;
 };
 

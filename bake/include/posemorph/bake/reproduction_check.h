@@ -13,8 +13,8 @@
 namespace posemorph::bake {
 
 struct ReproductionCheck {
-  Rig rig;                  // the bytes, loaded (the in-between check evaluates it next)
-  double max_error = 0;     // largest vertex distance at the pose points, relative to the rig size
+  Rig rig;               // the bytes, loaded (the in-between check evaluates it next)
+  double max_error = 0;  // largest vertex distance at the pose points, relative to the rig size
 };
 
 // Throws BakeError(file, "internal error: ...") when the bytes do not load,

@@ -32,16 +32,16 @@ struct PoseDescription {
   std::string name;
   Eigen::Vector2d point = Eigen::Vector2d::Zero();
   std::vector<Eigen::Vector2d> vertices;
-  std::string image;                      // as written in the description
-  std::vector<Eigen::Vector2f> uvs;       // empty, or one per vertex
-  bool deformed = false;                  // vertices come from `deform` (deform_poses.h)
+  std::string image;                 // as written in the description
+  std::vector<Eigen::Vector2f> uvs;  // empty, or one per vertex
+  bool deformed = false;             // vertices come from `deform` (deform_poses.h)
   DeformDescription deform;
   // A drawn pose: its mesh comes from N-way mapping (map_drawings.h).
   bool drawn = false;
-  std::string drawing;                      // PNG or SVG as written; empty for an outline
-  std::string drawing_path;                 // resolved against the description's folder
-  std::vector<Eigen::Vector2d> outline;     // given directly (rig coordinates, y up)
-  std::vector<Eigen::Vector2d> landmarks;   // corresponding boundary points; the first is the start point
+  std::string drawing;                     // PNG or SVG as written; empty for an outline
+  std::string drawing_path;                // resolved against the description's folder
+  std::vector<Eigen::Vector2d> outline;    // given directly (rig coordinates, y up)
+  std::vector<Eigen::Vector2d> landmarks;  // corresponding boundary points; the first is the start point
   // The drawing point (drawing units, y down) that becomes the rig origin, so
   // that drawings on canvases of different sizes or offsets line up; (0, 0)
   // by default: the drawing's own origin.
@@ -74,7 +74,7 @@ struct BakeParameters {
   // Weight of the gradient term relative to the biharmonic one; the field
   // levels out beyond about spread * sqrt(3 / epsilon) from the points.
   double epsilon = 3.0;
-  double sigma = 0.25;       // default texture sharpening
+  double sigma = 0.25;  // default texture sharpening
   // Encoding (issue: compact rigs): compact within max_error drawing pixels of
   // the exact rig for every vertex of every frame in the pose hull and along
   // the paths, or exact doubles. Pixels per rig unit: 1 when the poses come
@@ -104,7 +104,6 @@ struct RigDescription {
 // Reads and parses a description; relative mesh paths resolve against its
 // folder. Throws BakeError naming the file and the problem.
 RigDescription ReadRigDescription(const std::string& path);
-RigDescription ParseRigDescription(const std::string& json_text, const std::string& file,
-                                   const std::string& base_dir);
+RigDescription ParseRigDescription(const std::string& json_text, const std::string& file, const std::string& base_dir);
 
 }  // namespace posemorph::bake

@@ -19,7 +19,7 @@ Eigen::Matrix2d EdgeMatrix(const Points& p, const std::array<std::uint32_t, 3>& 
 double SignedArea(const Points& p, const std::array<std::uint32_t, 3>& t);
 
 struct PolarSplit {
-  double alpha = 0;                            // rotation angle in (-pi, pi]
+  double alpha = 0;                                 // rotation angle in (-pi, pi]
   Eigen::Matrix2d S = Eigen::Matrix2d::Identity();  // symmetric stretch
 };
 // A = R(alpha) S with alpha = atan2(A21 - A12, A11 + A22). Needs det(A) > 0.

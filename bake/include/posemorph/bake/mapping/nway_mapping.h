@@ -26,7 +26,7 @@ using Polygon = std::vector<Point>;  // closed implicitly
 // --- Outlines -------------------------------------------------------------
 
 struct ImageOutline {
-  Polygon outline;           // pixel units, y down (image rows); either orientation
+  Polygon outline;  // pixel units, y down (image rows); either orientation
   int width = 0, height = 0;
   int dropped_components = 0;  // separate parts smaller than the kept shape
   std::size_t dropped_pixels = 0;
@@ -40,16 +40,17 @@ struct ImageOutline {
 // sub-pixel). Throws BakeError naming the file.
 ImageOutline OutlineFromPng(const std::string& path, double alpha_threshold);
 // The same from a PNG already in memory (`file` names it in messages).
-ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double alpha_threshold, const std::string& file);
+ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double alpha_threshold,
+                                 const std::string& file);
 // The alpha channel of a PNG (any colour type), row by row. Throws BakeError naming the file.
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height);
-ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width, int height,
-                              double alpha_threshold, const std::string& file);
+ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width, int height, double alpha_threshold,
+                              const std::string& file);
 
 struct SvgOutline {
-  Polygon outline;             // user units, y down; either orientation
-  Point canvas_origin{0, 0};   // viewBox origin (or 0, 0)
-  Point canvas_size{0, 0};     // viewBox size (or width, height)
+  Polygon outline;            // user units, y down; either orientation
+  Point canvas_origin{0, 0};  // viewBox origin (or 0, 0)
+  Point canvas_size{0, 0};    // viewBox size (or width, height)
 };
 // The element with id="outline" if there is one, else the first <path> or
 // <polygon>: M/L/H/V/C/Q/Z (absolute and relative) and polygon points; curves
@@ -91,15 +92,15 @@ constexpr std::size_t kMaxTracedBorder = 1000000;
 constexpr std::uint64_t kMaxTriangulationWork = std::uint64_t(4) << 30;
 constexpr std::size_t kMaxLandmarks = 512;
 struct MatchingParameters {
-  double spacing = 1.0;          // arc length between samples on pose 0's outline
-  double stretch_cost = 0.05;    // per unmatched step, against bending differences in radians
-  int bending_scale = 3;         // turning angle measured over +-this many samples
+  double spacing = 1.0;        // arc length between samples on pose 0's outline
+  double stretch_cost = 0.05;  // per unmatched step, against bending differences in radians
+  int bending_scale = 3;       // turning angle measured over +-this many samples
 };
 struct CorrespondedBoundary {
-  std::vector<Polygon> points;              // per pose, M corresponding points on its outline
-  std::vector<std::vector<double>> at;      // per pose, their arc-length positions (from the outline's vertex 0)
-  std::vector<std::size_t> landmarks;       // index of each landmark among the M points
-  double spacing = 0;                       // the spacing used: parameters.spacing, or more on long outlines
+  std::vector<Polygon> points;          // per pose, M corresponding points on its outline
+  std::vector<std::vector<double>> at;  // per pose, their arc-length positions (from the outline's vertex 0)
+  std::vector<std::size_t> landmarks;   // index of each landmark among the M points
+  double spacing = 0;                   // the spacing used: parameters.spacing, or more on long outlines
 };
 // outlines: CCW; landmarks[i][k]: the k-th user point of pose i (the first is
 // the start point), already on outline i. Pose 0 is the parameter domain.
@@ -115,10 +116,10 @@ Point PointAtArcLength(const Polygon& outline, double s);
 // --- Simplification ---------------------------------------------------------
 
 struct SimplifiedBoundary {
-  std::vector<Polygon> polygons;     // per pose, K vertices, simple, CCW, enclosing the outline
-  std::vector<std::size_t> kept;     // index among the M corresponding points of each vertex
+  std::vector<Polygon> polygons;       // per pose, K vertices, simple, CCW, enclosing the outline
+  std::vector<std::size_t> kept;       // index among the M corresponding points of each vertex
   std::vector<std::size_t> landmarks;  // index among the K vertices of each landmark
-  double max_error = 0;              // largest distance added between outline and polygon
+  double max_error = 0;                // largest distance added between outline and polygon
 };
 // Greedily removes corresponding N-tuples with the smallest error (maximum over
 // poses) while it stays <= tolerance, sliding neighbours outward so every
@@ -129,10 +130,10 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
 // --- Compatible triangulation -------------------------------------------------
 
 struct CompatibleMesh {
-  std::vector<Polygon> vertices;  // per pose, one position per vertex
+  std::vector<Polygon> vertices;                      // per pose, one position per vertex
   std::vector<std::array<std::size_t, 3>> triangles;  // shared, CCW in every pose
-  std::size_t boundary_vertices = 0;  // vertices 0..boundary_vertices-1 are the polygon's, in order
-  std::size_t steiner_points = 0;     // interior vertices the triangulation added
+  std::size_t boundary_vertices = 0;                  // vertices 0..boundary_vertices-1 are the polygon's, in order
+  std::size_t steiner_points = 0;                     // interior vertices the triangulation added
 };
 // Splits all N polygons along chords valid in every pose (stage I), through
 // one Steiner point per pose (II) or the fewest over shortest link paths
@@ -142,8 +143,8 @@ CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const
                                      std::size_t max_steiner_points);
 
 struct RefinementParameters {
-  double max_edge_length = 0;   // 0: no splitting for length
-  double min_angle_goal = 20;   // degrees; triangles below it get their longest edge split (bounded)
+  double max_edge_length = 0;  // 0: no splitting for length
+  double min_angle_goal = 20;  // degrees; triangles below it get their longest edge split (bounded)
   int rounds = 4;
   std::size_t max_vertices = 20000;  // no split beyond this many vertices
 };
@@ -160,13 +161,13 @@ double MinAngleDegrees(const CompatibleMesh& mesh);  // over all triangles and p
 // --- All stages -------------------------------------------------------------
 
 struct MappingStages {
-  double grid_scale = 1;                        // grid units per rig unit (a power of two)
-  std::vector<Polygon> outlines;                // grid, counter-clockwise, simple
-  std::vector<std::vector<Point>> landmarks;    // on the outlines, grid
+  double grid_scale = 1;                      // grid units per rig unit (a power of two)
+  std::vector<Polygon> outlines;              // grid, counter-clockwise, simple
+  std::vector<std::vector<Point>> landmarks;  // on the outlines, grid
   CorrespondedBoundary matched;
   SimplifiedBoundary simplified;
-  CompatibleMesh mesh;                          // grid
-  std::vector<std::string> warnings;            // limits that changed what was asked (e.g. a coarser spacing)
+  CompatibleMesh mesh;                // grid
+  std::vector<std::string> warnings;  // limits that changed what was asked (e.g. a coarser spacing)
 };
 // Outlines and landmarks in rig coordinates (y up, any orientation); labels
 // name each pose in messages. The driver behind MapDrawings, exposed so
