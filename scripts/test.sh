@@ -10,11 +10,14 @@
 # (install + find_package, pkg-config from C, add_subdirectory without the
 # bake's dependencies, a shared library: scripts/consumer-test.sh), and the
 # runtime's own tests built for aarch64 (qemu), Windows (wine) and
-# WebAssembly (node): scripts/cross-test.sh.
+# WebAssembly (node): scripts/cross-test.sh. First the guard rails: the
+# layout (scripts/check-format.sh), warnings as errors in every build, and
+# clang-tidy (scripts/check-tidy.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 jobs=$(nproc)
+scripts/check-format.sh  # the layout (.clang-format)
 
 # The x86-64 paths to force besides the default one. A path the CPU lacks
 # would fail every load with a clear error; it is left out here instead.
@@ -32,6 +35,10 @@ build() {
 
 for preset in release clang; do
   build "$preset"
+  if [ "$preset" = release ]; then
+    echo "== clang-tidy (.clang-tidy) on the runtime, the bake and the viewer"
+    scripts/check-tidy.sh build/release
+  fi
   echo "== $preset: every test, default path"
   ctest --preset "$preset" -j"$jobs"
   for isa in "${forced[@]}"; do

@@ -178,7 +178,7 @@ bool HandleVertex(const Points& mesh, const Triangles& triangles, const Eigen::V
   double best = std::numeric_limits<double>::infinity();
   std::size_t best_triangle = 0;
   for (std::size_t t = 0; t < triangles.size(); ++t) {
-    const Eigen::Vector2d a = mesh[triangles[t][0]], b = mesh[triangles[t][1]], c = mesh[triangles[t][2]];
+    const Eigen::Vector2d &a = mesh[triangles[t][0]], &b = mesh[triangles[t][1]], &c = mesh[triangles[t][2]];
     auto side = [](const Eigen::Vector2d& p, const Eigen::Vector2d& q, const Eigen::Vector2d& r) {
       return (q.x() - p.x()) * (r.y() - p.y()) - (r.x() - p.x()) * (q.y() - p.y());
     };

@@ -49,7 +49,7 @@ std::vector<PoseSpaceSample> SamplePoseSpace(const Rig& rig, const PoseSpaceSamp
   for (const auto& p : pts) out.push_back({p, -1, true});
   const std::vector<Eigen::Vector2d> hull = ConvexHull(pts);
   for (std::size_t e = 0; e < hull.size(); ++e) {
-    const Eigen::Vector2d a = hull[e], b = hull[(e + 1) % hull.size()];
+    const Eigen::Vector2d &a = hull[e], &b = hull[(e + 1) % hull.size()];
     for (int k = 1; k < sampling.per_edge; ++k)
       out.push_back({a + (b - a) * (double(k) / sampling.per_edge), -1, true});
   }

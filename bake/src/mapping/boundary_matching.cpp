@@ -68,7 +68,7 @@ double NearestArcLength(const Polygon& outline, const Point& q, double* distance
   const std::vector<double> c = CumulativeArcLength(outline);
   double best = std::numeric_limits<double>::infinity(), at = 0;
   for (std::size_t i = 0; i < outline.size(); ++i) {
-    const Point a = outline[i], b = outline[(i + 1) % outline.size()];
+    const Point &a = outline[i], &b = outline[(i + 1) % outline.size()];
     const Point ab = b - a;
     const double l2 = ab.squaredNorm();
     const double t = l2 > 0 ? std::clamp((q - a).dot(ab) / l2, 0.0, 1.0) : 0.0;

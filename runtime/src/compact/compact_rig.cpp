@@ -130,7 +130,7 @@ bool ReadCompactLayout(const SectionBytes& qpos, const SectionBytes& qtri, const
   if (quva.data) {
     if (quva.size != 56 * c.N)
       return Fail(err, ErrorCode::kBadLayout, "section QUVA is %llu bytes, the counts imply %llu",
-                  (unsigned long long)quva.size, (unsigned long long)(56 * c.N));
+                  (unsigned long long)quva.size, 56ull * c.N);
     for (std::uint64_t i = 0; i < c.N; ++i) {
       const unsigned char* e = quva.data + 56 * i;
       if (U32(e) >= c.N || U32(e + 4) != 0)
