@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "geometry.h"
+#include "posemorph/bake/mapping/boundary_matching.h"
 
 namespace posemorph::bake::mapping {
 namespace {

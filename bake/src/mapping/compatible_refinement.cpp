@@ -9,6 +9,7 @@
 #include <unordered_map>
 
 #include "geometry.h"
+#include "posemorph/bake/mapping/compatible_refinement.h"
 
 namespace posemorph::bake::mapping {
 namespace {

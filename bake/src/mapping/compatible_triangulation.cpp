@@ -15,6 +15,7 @@
 #include <string>
 
 #include "geometry.h"
+#include "posemorph/bake/mapping/compatible_triangulation.h"
 #include "posemorph/bake/error.h"
 
 namespace posemorph::bake::mapping {

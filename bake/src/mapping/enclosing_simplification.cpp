@@ -15,6 +15,7 @@
 #include <queue>
 
 #include "geometry.h"
+#include "posemorph/bake/mapping/enclosing_simplification.h"
 #include "posemorph/bake/error.h"
 
 namespace posemorph::bake::mapping {

@@ -14,6 +14,7 @@
 #include <unordered_map>
 
 #include "geometry.h"
+#include "posemorph/bake/mapping/outline_image.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/input_file.h"
 

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "geometry.h"
+#include "posemorph/bake/mapping/outline_svg.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/input_file.h"
 

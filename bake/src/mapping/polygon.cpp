@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "geometry.h"
+#include "posemorph/bake/mapping/polygon.h"
 
 namespace posemorph::bake::mapping {
 

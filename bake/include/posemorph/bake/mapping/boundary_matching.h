@@ -1,0 +1,33 @@
+// SPDX-License-Identifier: MIT
+// Stage 2 of N-way mapping: dense corresponding points on every pose's outline, by dynamic programming between
+// landmarks (paper section 3.1).
+#pragma once
+#include <vector>
+
+#include "posemorph/bake/mapping/polygon.h"
+
+namespace posemorph::bake::mapping {
+
+struct MatchingParameters {
+  double spacing = 1.0;        // arc length between samples on pose 0's outline
+  double stretch_cost = 0.05;  // per unmatched step, against bending differences in radians
+  int bending_scale = 3;       // turning angle measured over +-this many samples
+};
+struct CorrespondedBoundary {
+  std::vector<Polygon> points;          // per pose, M corresponding points on its outline
+  std::vector<std::vector<double>> at;  // per pose, their arc-length positions (from the outline's vertex 0)
+  std::vector<std::size_t> landmarks;   // index of each landmark among the M points
+  double spacing = 0;                   // the spacing used: parameters.spacing, or more on long outlines
+};
+// outlines: CCW; landmarks[i][k]: the k-th user point of pose i (the first is
+// the start point), already on outline i. Pose 0 is the parameter domain.
+CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
+                                     const std::vector<std::vector<Point>>& landmarks,
+                                     const MatchingParameters& parameters);
+// Arc length from vertex 0 at each vertex, closing edge included (size n + 1; the last is the perimeter).
+std::vector<double> CumulativeArcLength(const Polygon& outline);
+// Where on `outline` (arc length from vertex 0) the point nearest q lies, and how far it is.
+double NearestArcLength(const Polygon& outline, const Point& q, double* distance);
+Point PointAtArcLength(const Polygon& outline, double s);
+
+}  // namespace posemorph::bake::mapping

@@ -1,0 +1,26 @@
+// SPDX-License-Identifier: MIT
+// Stage 5 of N-way mapping: splits, flips and smoothing that raise the smallest angle in every pose.
+#pragma once
+#include <cstddef>
+
+#include "posemorph/bake/mapping/compatible_triangulation.h"
+
+namespace posemorph::bake::mapping {
+
+struct RefinementParameters {
+  double max_edge_length = 0;  // 0: no splitting for length
+  double min_angle_goal = 20;  // degrees; triangles below it get their longest edge split (bounded)
+  int rounds = 4;
+  std::size_t max_vertices = 20000;  // no split beyond this many vertices
+};
+// Edge splits, flips legal in all N meshes that raise the smallest angle over
+// all poses, and angle-based smoothing of interior vertices that never
+// inverts a triangle or lowers the local smallest angle. Boundary vertices
+// stay where they are (only new points on boundary edges are added).
+// Stops splitting at parameters.max_vertices; returns false when splitting
+// for max_edge_length stopped there (the edges are then longer than asked).
+bool RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& parameters);
+
+double MinAngleDegrees(const CompatibleMesh& mesh);  // over all triangles and poses
+
+}  // namespace posemorph::bake::mapping
