@@ -56,7 +56,7 @@ int EvalCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     const int index = rig.FindPath(path_name->c_str());
     if (index < 0) throw BakeError(args.positional, "has no path named '" + *path_name + "'");
     const PathView path = rig.path(std::uint32_t(index));
-    const double t0 = path.keys[0], t1 = path.keys[3 * (path.key_count() - 1)];
+    const double t0 = path.start_time(), t1 = path.end_time();
     std::vector<double> times;
     if (const std::string* t = args.Get("--time")) {
       if (args.Get("--frames")) throw UsageError("give --time or --frames, not both");

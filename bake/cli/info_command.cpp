@@ -158,7 +158,7 @@ int InfoCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   }
   for (std::uint32_t p = 0; p < rig.path_count(); ++p) {
     const PathView path = rig.path(p);
-    const double duration = path.keys[3 * (path.key_count() - 1)] - path.keys[0];
+    const double duration = path.end_time() - path.start_time();
     out << "  path '" << std::string(path.name.data, path.name.size) << "': " << path.key_count() << " keys, "
         << duration << " s, " << (path.interpolation == PathInterpolation::kCatmullRom ? "catmull-rom" : "linear")
         << (path.loop ? ", loops" : "") << "\n";

@@ -8,6 +8,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "posemorph/bake/pose_colours.h"
+
 namespace posemorph::bake {
 namespace {
 
@@ -15,14 +17,15 @@ struct Rgb {
   double r, g, b;
 };
 
-// Colour-blind-safe palette (Okabe-Ito), repeated for more poses.
-const Rgb kPalette[] = {{0, 114, 178},  {230, 159, 0}, {0, 158, 115},  {204, 121, 167},
-                        {86, 180, 233}, {213, 94, 0},  {240, 228, 66}, {90, 90, 90}};
+Rgb PoseRgb(std::size_t pose) {
+  const PoseColour c = PoseColourOf(std::uint32_t(pose));
+  return {double(c.r), double(c.g), double(c.b)};
+}
 
 Rgb Mix(const std::vector<double>& w) {
   Rgb c{0, 0, 0};
   for (std::size_t i = 0; i < w.size(); ++i) {
-    const Rgb& p = kPalette[i % 8];
+    const Rgb p = PoseRgb(i);
     const double wi = std::clamp(w[i], 0.0, 1.0);
     c.r += wi * p.r, c.g += wi * p.g, c.b += wi * p.b;
   }
@@ -238,7 +241,7 @@ std::string ContactSheetSvg(const Rig& rig, const std::string& title, int column
   // Base poses in a row, each in its own colour.
   for (std::uint32_t i = 0; i < N; ++i) {
     const double cx = 12 + (i + 0.5) * cell, cy = top + cell / 2;
-    MeshPath(svg, rig, bases[i].positions, extent, cx, cy, cell * 0.42, Hex(kPalette[i % 8]));
+    MeshPath(svg, rig, bases[i].positions, extent, cx, cy, cell * 0.42, Hex(PoseRgb(i)));
     Label(svg, cx, cy + cell / 2 + 12, bases[i].label);
   }
 
@@ -268,7 +271,7 @@ std::string ContactSheetSvg(const Rig& rig, const std::string& title, int column
     svg << "<circle cx=\"" << MX(f.x) << "\" cy=\"" << MY(f.y) << "\" r=\"1.5\" fill=\"#000\"/>\n";
   for (std::uint32_t i = 0; i < N; ++i) {
     svg << "<circle cx=\"" << MX(pts[2 * i]) << "\" cy=\"" << MY(pts[2 * i + 1]) << "\" r=\"5\" fill=\"#fff\" stroke=\""
-        << Hex(kPalette[i % 8]) << "\" stroke-width=\"3\"/>\n";
+        << Hex(PoseRgb(i)) << "\" stroke-width=\"3\"/>\n";
     Label(svg, MX(pts[2 * i]), MY(pts[2 * i + 1]) - 8, bases[i].label);
   }
   Label(svg, mx0 + map / 2, my0 + map + 16, "pose space: colour = weights, dashed = sampled area", 10);

@@ -67,7 +67,7 @@ std::vector<PoseSpaceSample> SamplePoseSpace(const Rig& rig, const PoseSpaceSamp
         out.push_back({pts[i] + (pts[j] - pts[i]) * (double(k) / sampling.per_pair), -1, true});
   for (std::uint32_t k = 0; k < rig.path_count(); ++k) {
     const PathView path = rig.path(k);
-    const double t0 = path.keys[0], t1 = path.keys[3 * (path.key_count() - 1)];
+    const double t0 = path.start_time(), t1 = path.end_time();
     for (int j = 0; j <= sampling.per_path; ++j) {
       double x, y;
       if (SamplePath(path, t0 + (t1 - t0) * j / sampling.per_path, &x, &y)) {

@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
 
   wire::Avatar avatar(rig);
   const posemorph::PathView p = rig.path(std::uint32_t(path));
-  const double t0 = p.keys.data[0], t1 = p.keys.data[p.keys.size - 3];
+  const double t0 = p.start_time(), t1 = p.end_time();
   int matched = 0;
   for (int f = 0; f < frames; ++f) {
     double x = 0, y = 0;

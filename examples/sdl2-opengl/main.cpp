@@ -229,7 +229,7 @@ int main(int argc, char** argv) {
       double* p = &points[2 * k];
       if (count > 1 && path >= 0) {
         const PathView pv = rig.path(std::uint32_t(path));
-        const double t0 = pv.keys.data[0], t1 = pv.keys.data[pv.keys.size - 3];
+        const double t0 = pv.start_time(), t1 = pv.end_time();
         SamplePath(pv, t0 + std::fmod(frame / 60.0 + (t1 - t0) * double(k) / double(count), t1 - t0), &p[0], &p[1]);
       } else if (!std::isnan(at_x)) {
         p[0] = at_x, p[1] = at_y;

@@ -36,7 +36,7 @@ bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emi
     wj.texture = {texture, n};
     if (!wj.Run()) return false;
     DrawList list;
-    list.positions = {job.positions.data + k * v2, v2};
+    list.positions = job.positions.subspan(k * v2, v2);
     list.indices = rig.triangles();
     list.drawing_count = PickDrawings({texture, n}, job.max_drawings, {list.drawings, kMaxBlendDrawings});
     for (std::uint32_t d = 0; d < list.drawing_count; ++d) {
@@ -66,7 +66,7 @@ bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emi
     mj.interpolation = job.interpolation;
     mj.workspace = {rest, rig.morph_workspace_size()};
     mj.positions = {rest + rig.morph_workspace_size(), v2};
-    mj.positions_f32 = {job.positions.data + k * v2, v2};
+    mj.positions_f32 = job.positions.subspan(k * v2, v2);
     if (!mj.Run()) return false;
   }
   return true;

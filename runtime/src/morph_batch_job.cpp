@@ -56,12 +56,12 @@ bool MorphBatchJob::Run() const {
       for (std::size_t k = g; k < count; ++k) {
         MorphJob one;
         one.rig = rig;
-        one.weights = {weights.data + k * N, N};
-        one.shear_weights = {shear_weights.data + k * N, N};
+        one.weights = weights.subspan(k * N, N);
+        one.shear_weights = shear_weights.subspan(k * N, N);
         one.workspace = {workspace.data, r.morph_workspace_size()};
-        one.positions = positions.size ? Span<double>(positions.data + k * v2, v2)
-                                       : Span<double>(workspace.data + r.morph_workspace_size(), v2);
-        if (positions_f32.size) one.positions_f32 = {positions_f32.data + k * v2, v2};
+        one.positions =
+            positions.size ? positions.subspan(k * v2, v2) : workspace.subspan(r.morph_workspace_size(), v2);
+        if (positions_f32.size) one.positions_f32 = positions_f32.subspan(k * v2, v2);
         one.Run();
       }
       break;

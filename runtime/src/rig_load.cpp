@@ -168,12 +168,12 @@ Isa Rig::isa() const { return kernels_ ? kernels_->isa : Isa::kAuto; }
 
 Span<const double> Rig::pose_positions(std::uint32_t pose) const {
   if (pose >= pose_count_) return {};
-  return {pose_positions_.data + std::size_t(pose) * 2 * vertex_count_, 2 * std::size_t(vertex_count_)};
+  return pose_positions_.subspan(std::size_t(pose) * 2 * vertex_count_, 2 * std::size_t(vertex_count_));
 }
 
 Span<const float> Rig::uvs(std::uint32_t pose) const {
   if (pose >= pose_count_ || uvs_.empty()) return {};
-  return {uvs_.data + std::size_t(pose) * 2 * vertex_count_, 2 * std::size_t(vertex_count_)};
+  return uvs_.subspan(std::size_t(pose) * 2 * vertex_count_, 2 * std::size_t(vertex_count_));
 }
 
 StringView Rig::pose_name(std::uint32_t pose) const { return pose < pose_count_ ? strings_[pose] : StringView{}; }
@@ -501,7 +501,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
       const Span<const double> grid_all = CopyInto<double>(arena, wgrid, grid_vertices * N);
       rig.grid_.weights = {grid_all.data, std::size_t(grid_corners * N)};
       if (grid_centres && grid_all.data)  // (null while the arena is only being measured)
-        rig.grid_.centre_weights = {grid_all.data + grid_corners * N, std::size_t(grid_centres * N)};
+        rig.grid_.centre_weights = grid_all.subspan(std::size_t(grid_corners * N), std::size_t(grid_centres * N));
       if (has_uvs) rig.uvs_ = CopyInto<float>(arena, uvs, N * V * 2);
     }
     if (canvases) rig.canvases_ = CopyInto<double>(arena, canvases, N * 4);
@@ -564,7 +564,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
       view.name = strings[2 * N + i];
       view.loop = (flags & fmt::kPathFlagLoop) != 0;
       view.interpolation = PathInterpolation(flags >> fmt::kPathInterpolationShift);
-      view.keys = {keys.data + key_at * 3, std::size_t(count) * 3};
+      view.keys = keys.subspan(std::size_t(key_at * 3), std::size_t(count) * 3);
       key_at += count;
       if (!CheckFinite(view.keys, "path key", err, fmt::kMaxPathValue)) return false;
       for (std::uint32_t k = 1; k < count; ++k)

@@ -56,7 +56,7 @@ std::vector<std::pair<double, double>> DenseSamples(const Rig& rig) {
     }
   for (std::uint32_t k = 0; k < rig.path_count(); ++k) {
     const PathView path = rig.path(k);
-    const double t0 = path.keys[0], t1 = path.keys[3 * (path.key_count() - 1)];
+    const double t0 = path.start_time(), t1 = path.end_time();
     for (int j = 0; j <= 256; ++j) {
       double x, y;
       if (SamplePath(path, t0 + (t1 - t0) * j / 256, &x, &y)) out.push_back({x, y});

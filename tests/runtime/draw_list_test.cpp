@@ -20,7 +20,7 @@ namespace {
 std::vector<double> PointsOnPath(const Rig& rig, std::size_t count) {
   std::vector<double> p(2 * count);
   const PathView path = rig.path(0);
-  const double t0 = path.keys.data[0], t1 = path.keys.data[path.keys.size - 3];
+  const double t0 = path.start_time(), t1 = path.end_time();
   for (std::size_t k = 0; k < count; ++k)
     SamplePath(path, t0 + (t1 - t0) * double(k) / double(count), &p[2 * k], &p[2 * k + 1]);
   return p;

@@ -284,7 +284,7 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
     const int p = rig.FindPath(scene.path.c_str());
     if (scene.path.empty() || p < 0) return Fail("--frames needs a --path the rig has");
     const PathView path = rig.path(std::uint32_t(p));
-    const double t0 = path.keys.data[0], t1 = path.keys.data[path.keys.size - 3];
+    const double t0 = path.start_time(), t1 = path.end_time();
     std::string stem = output;
     if (stem.size() > 4 && stem.compare(stem.size() - 4, 4, ".png") == 0) stem.resize(stem.size() - 4);
     for (std::uint32_t f = 0; f < frames; ++f) {

@@ -129,7 +129,7 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
       x = rig.pose_points().data[2 * k], y = rig.pose_points().data[2 * k + 1];
     } else if (path >= 0) {
       const PathView p = rig.path(std::uint32_t(path));
-      const double t0 = p.keys.data[0], t1 = p.keys.data[p.keys.size - 3];
+      const double t0 = p.start_time(), t1 = p.end_time();
       SamplePath(p, scene.time + (t1 - t0) * scratch.phases[k], &x, &y);
     }
     scratch.points[2 * k] = x, scratch.points[2 * k + 1] = y;

@@ -22,6 +22,8 @@
 #include <nlohmann/json.hpp>
 
 #include "posemorph/bake/arap_deformer.h"
+#include "posemorph/bake/bake.h"
+#include "posemorph/bake/pose_colours.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/jobs.h"
 #include "posemorph/path.h"
@@ -63,12 +65,11 @@ struct Gesture {
   double start = 0;
 };
 
-// Colours of the poses in the pad (dominant pose of the weight field).
+// Colours of the poses in the pad (dominant pose of the weight field): the
+// contact sheet's (pose_colours.h).
 ImU32 PoseColour(std::uint32_t i, int alpha) {
-  static const unsigned char palette[8][3] = {{66, 133, 244}, {234, 67, 53}, {251, 188, 5},  {52, 168, 83},
-                                              {171, 71, 188}, {0, 172, 193}, {255, 112, 67}, {124, 179, 66}};
-  const unsigned char* c = palette[i % 8];
-  return IM_COL32(c[0], c[1], c[2], alpha);
+  const bake::PoseColour c = bake::PoseColourOf(i);
+  return IM_COL32(c.r, c.g, c.b, alpha);
 }
 
 class Viewer {
@@ -311,7 +312,8 @@ void Viewer::Pad() {
 }
 
 // Reads the rig description, lets `change` add to it (returning what it
-// added), and writes it back through a temporary file and a rename.
+// added), and writes it back atomically (bake::WriteFileAtomic: a unique
+// temporary beside it, then a rename).
 void Viewer::ChangeDescription(const char* what, const std::function<std::string(nlohmann::json&)>& change) {
   if (options_.description.empty()) {
     status_ = std::string("start with --description RIG.json to save ") + what;
@@ -322,9 +324,8 @@ void Viewer::ChangeDescription(const char* what, const std::function<std::string
     if (!in) throw std::runtime_error("cannot open " + options_.description);
     nlohmann::json d = nlohmann::json::parse(in);
     const std::string added = change(d);
-    const std::string tmp = options_.description + ".tmp";
-    std::ofstream(tmp) << d.dump(2) << "\n";
-    if (std::rename(tmp.c_str(), options_.description.c_str()) != 0) throw std::runtime_error("cannot write " + tmp);
+    const std::string text = d.dump(2) + "\n";
+    bake::WriteFileAtomic(options_.description, std::vector<unsigned char>(text.begin(), text.end()));
     status_ = "saved " + added + " into " + options_.description + " (bake again to use it)";
   } catch (const std::exception& e) {
     status_ = std::string("cannot save: ") + e.what();

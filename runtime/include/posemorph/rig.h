@@ -31,6 +31,9 @@ struct PathView {
   PathInterpolation interpolation = PathInterpolation::kLinear;
   Span<const double> keys;  // 3 x key count: t0, x0, y0, t1, x1, y1, ...
   std::size_t key_count() const { return keys.size / 3; }
+  // The first and last key's times (a loaded path has at least one key); 0 for an empty view.
+  double start_time() const { return keys.size >= 3 ? keys.data[0] : 0.0; }
+  double end_time() const { return keys.size >= 3 ? keys.data[keys.size - 3] : 0.0; }
 };
 
 // The regular pose-space grid whose vertex values are the baked weights.

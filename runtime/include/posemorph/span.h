@@ -2,6 +2,7 @@
 // A pointer and a count: how the runtime takes caller-owned memory (C++17 has
 // no std::span). Never owns, never allocates.
 #pragma once
+#include <cassert>
 #include <cstddef>
 #include <type_traits>
 
@@ -24,6 +25,12 @@ struct Span {
   constexpr T* begin() const { return data; }
   constexpr T* end() const { return data + size; }
   constexpr bool empty() const { return size == 0; }
+  // The `count` elements from `offset`, which must lie within this span
+  // (asserted in debug builds; release builds trust the caller's Validate()).
+  constexpr Span subspan(std::size_t offset, std::size_t count) const {
+    assert(offset <= size && count <= size - offset);
+    return {data + offset, count};
+  }
 };
 
 template <typename Container>
