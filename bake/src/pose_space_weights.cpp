@@ -13,42 +13,11 @@
 namespace posemorph::bake {
 namespace {
 
-// Barycentric coordinates of a point in its grid triangle, with exactly the
-// arithmetic the runtime's WeightsJob uses, so that W(p_i) = e_i holds for the
-// values it computes, not just for the exact ones. Each cell is four
-// triangles meeting at its centre; node indices run over the corners
-// ((cells_x+1)(cells_y+1), row-major), then the cell centres.
-struct GridLocation {
-  std::uint32_t vertex[3];
-  double lambda[3];
-  std::uint32_t cell;
-};
-
-GridLocation Locate(const WeightGrid& g, const Eigen::Vector2d& p) {
-  const double u = std::clamp((p.x() - g.origin_x) / g.cell, 0.0, double(g.cells_x));
-  const double v = std::clamp((p.y() - g.origin_y) / g.cell, 0.0, double(g.cells_y));
-  const std::uint32_t i = u >= g.cells_x ? g.cells_x - 1 : std::uint32_t(u);
-  const std::uint32_t j = v >= g.cells_y ? g.cells_y - 1 : std::uint32_t(v);
-  const double fx = std::clamp(u - i, 0.0, 1.0), fy = std::clamp(v - j, 0.0, 1.0);
-  const std::uint32_t row = g.cells_x + 1, v00 = j * row + i, v10 = v00 + 1, v01 = v00 + row, v11 = v01 + 1;
-  GridLocation loc;
-  loc.cell = j * g.cells_x + i;
-  const std::uint32_t c = row * (g.cells_y + 1) + loc.cell;
-  const double d1 = fx - fy, d2 = fx + fy - 1;
-  auto set = [&](std::uint32_t a, double la, std::uint32_t b, double lb, double lc) {
-    loc.vertex[0] = a, loc.vertex[1] = b, loc.vertex[2] = c;
-    loc.lambda[0] = la, loc.lambda[1] = lb, loc.lambda[2] = lc;
-  };
-  if (d1 >= 0 && d2 <= 0)
-    set(v00, -d2, v10, d1, 2 * fy);  // bottom
-  else if (d1 >= 0)
-    set(v10, d1, v11, d2, 2 * (1 - fx));  // right
-  else if (d2 >= 0)
-    set(v11, d2, v01, -d1, 2 * (1 - fy));  // top
-  else
-    set(v01, -d1, v00, -d2, 2 * fx);  // left
-  return loc;
-}
+// The grid triangle holding a point, with exactly the arithmetic the
+// runtime's WeightsJob uses (grid_location.h), so that W(p_i) = e_i holds for
+// the values it computes, not just for the exact ones. Each cell is four
+// triangles meeting at its centre.
+GridLocation Locate(const WeightGrid& g, const Eigen::Vector2d& p) { return LocateInGrid(g, true, p.x(), p.y()); }
 
 }  // namespace
 
@@ -139,8 +108,8 @@ WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, con
                                 std::to_string(params.grid_resolution) + ") or move them apart");
     cell_owner[loc.cell] = std::uint32_t(i);
     for (int k = 0; k < 3; ++k) {
-      q.emplace_back(int(G + i), int(loc.vertex[k]), loc.lambda[k]);
-      q.emplace_back(int(loc.vertex[k]), int(G + i), loc.lambda[k]);
+      q.emplace_back(int(G + i), int(loc.node[k]), loc.lambda[k]);
+      q.emplace_back(int(loc.node[k]), int(G + i), loc.lambda[k]);
     }
   }
   Eigen::SparseMatrix<double> kkt(int(G + N), int(G + N));
@@ -180,9 +149,9 @@ WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, con
     const double norm = loc.lambda[0] * loc.lambda[0] + loc.lambda[1] * loc.lambda[1] + loc.lambda[2] * loc.lambda[2];
     for (std::size_t j = 0; j < N; ++j) {
       double value = 0;
-      for (int k = 0; k < 3; ++k) value += loc.lambda[k] * all[loc.vertex[k] * N + j];
+      for (int k = 0; k < 3; ++k) value += loc.lambda[k] * all[loc.node[k] * N + j];
       const double residual = (i == j ? 1.0 : 0.0) - value;
-      for (int k = 0; k < 3; ++k) all[loc.vertex[k] * N + j] += loc.lambda[k] / norm * residual;
+      for (int k = 0; k < 3; ++k) all[loc.node[k] * N + j] += loc.lambda[k] / norm * residual;
     }
   }
   g.weights.assign(all.begin(), all.begin() + std::ptrdiff_t(corners * N));

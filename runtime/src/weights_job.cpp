@@ -3,6 +3,7 @@
 // section 3), then the paper's shear limiting and texture sharpening.
 #include <cmath>
 
+#include "posemorph/grid_location.h"
 #include "posemorph/jobs.h"
 #include "posemorph/rig_format.h"
 
@@ -59,36 +60,16 @@ bool WeightsJob::Run() const {
 
   double px = std::isnan(x) ? rig->pose_points()[0] : x;
   double py = std::isnan(y) ? rig->pose_points()[1] : y;
-  const double u = Clamp((px - g.origin_x) / g.cell, 0, double(g.cells_x));
-  const double v = Clamp((py - g.origin_y) / g.cell, 0, double(g.cells_y));
-  const std::uint32_t i = u >= g.cells_x ? g.cells_x - 1 : std::uint32_t(u);
-  const std::uint32_t j = v >= g.cells_y ? g.cells_y - 1 : std::uint32_t(v);
-  const double fx = Clamp(u - i, 0, 1), fy = Clamp(v - j, 0, 1);
-
-  const std::size_t row = std::size_t(g.cells_x) + 1;
-  const double* w00 = g.weights.data + (std::size_t(j) * row + i) * n;
-  const double* w10 = w00 + n;
-  const double* w01 = w00 + row * n;
-  const double* w11 = w01 + n;
-  if (g.centre_weights.size != 0) {
-    // Format 1.2: the cell is four triangles meeting at its centre c; the
-    // diagonals fx = fy and fx + fy = 1 say which one holds the point.
-    const double* wc = g.centre_weights.data + (std::size_t(j) * g.cells_x + i) * n;
-    const double d1 = fx - fy, d2 = fx + fy - 1;
-    if (d1 >= 0 && d2 <= 0) {  // bottom: (0,0) (1,0) c
-      for (std::uint32_t k = 0; k < n; ++k) raw[k] = -d2 * w00[k] + d1 * w10[k] + 2 * fy * wc[k];
-    } else if (d1 >= 0) {  // right: (1,0) (1,1) c
-      for (std::uint32_t k = 0; k < n; ++k) raw[k] = d1 * w10[k] + d2 * w11[k] + 2 * (1 - fx) * wc[k];
-    } else if (d2 >= 0) {  // top: (1,1) (0,1) c
-      for (std::uint32_t k = 0; k < n; ++k) raw[k] = d2 * w11[k] - d1 * w01[k] + 2 * (1 - fy) * wc[k];
-    } else {  // left: (0,1) (0,0) c
-      for (std::uint32_t k = 0; k < n; ++k) raw[k] = -d1 * w01[k] - d2 * w00[k] + 2 * fx * wc[k];
-    }
-  } else if (fx >= fy) {  // before 1.2: each cell split on its (0,0)-(1,1) diagonal
-    for (std::uint32_t k = 0; k < n; ++k) raw[k] = (1 - fx) * w00[k] + (fx - fy) * w10[k] + fy * w11[k];
-  } else {
-    for (std::uint32_t k = 0; k < n; ++k) raw[k] = (1 - fy) * w00[k] + (fy - fx) * w01[k] + fx * w11[k];
-  }
+  // The grid triangle holding the point (grid_location.h: the bake solved the
+  // node weights for exactly these coordinates).
+  const GridLocation at = LocateInGrid(g, g.centre_weights.size != 0, px, py);
+  const std::size_t corners = g.corner_count();
+  const double* w[3];
+  for (int c = 0; c < 3; ++c)
+    w[c] = at.node[c] < corners ? g.weights.data + std::size_t(at.node[c]) * n
+                                : g.centre_weights.data + (at.node[c] - corners) * n;
+  const double l0 = at.lambda[0], l1 = at.lambda[1], l2 = at.lambda[2];
+  for (std::uint32_t k = 0; k < n; ++k) raw[k] = l0 * w[0][k] + l1 * w[1][k] + l2 * w[2][k];
 
   // phi(w) renormalised: always a convex combination. The shear output is
   // these, or the raw weights when limiting is off; the texture weights are

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "posemorph/error.h"
+#include "posemorph/grid_location.h"
 #include "posemorph/isa.h"
 #include "posemorph/span.h"
 
@@ -36,11 +37,9 @@ struct PathView {
   double end_time() const { return keys.size >= 3 ? keys.data[keys.size - 3] : 0.0; }
 };
 
-// The regular pose-space grid whose vertex values are the baked weights.
-struct PoseSpaceGrid {
-  double origin_x = 0, origin_y = 0;  // lower-left corner
-  double cell = 1;                    // square cell edge length
-  std::uint32_t cells_x = 0, cells_y = 0;
+// The regular pose-space grid whose vertex values are the baked weights
+// (its geometry and point location: grid_location.h).
+struct PoseSpaceGrid : GridGeometry {
   Span<const double> weights;  // (cells_x+1)*(cells_y+1) vertices x N, row-major in y then x
   // cells_x*cells_y cell centres x N, row-major in y then x (format 1.2): each
   // cell is four triangles meeting at its centre, a tessellation with the

@@ -10,12 +10,13 @@
 #include <Eigen/Core>
 
 #include "posemorph/bake/rig_description.h"
+#include "posemorph/grid_location.h"
 
 namespace posemorph::bake {
 
-struct WeightGrid {
-  double origin_x = 0, origin_y = 0, cell = 1;
-  std::uint32_t cells_x = 0, cells_y = 0;
+// The runtime's PoseSpaceGrid as the bake builds it: the same geometry type
+// (grid_location.h), its node weights in vectors.
+struct WeightGrid : GridGeometry {
   std::vector<double> weights;  // (cells_x+1)(cells_y+1) x N, row-major in y then x
   // cells_x * cells_y x N: each cell is four triangles meeting at its centre
   // (format 1.2; the runtime's PoseSpaceGrid::centre_weights).
