@@ -47,7 +47,7 @@ TEST_CASE("each pose is reproduced at its pose-space point") {
       for (bool shear_limit : {true, false}) {
         const std::vector<double> x =
             MorphAt(rig, original.poses[i].point.x(), original.poses[i].point.y(), shear_limit);
-        CHECK(MaxVertexDistance(x, original.poses[i].vertices) <= 1e-9 * rig.size());
+        CHECK(MaxVertexDistance(x, original.poses[i].vertices) <= 1e-9 * rig.bounding_box_diagonal());
       }
       // And from exact one-hot weights, in single precision for the GPU: the
       // float copy is the double result rounded, so within 2^-24 of each coordinate.
@@ -59,10 +59,10 @@ TEST_CASE("each pose is reproduced at its pose-space point") {
       job.rig = &rig, job.weights = MakeSpan(e), job.shear_weights = MakeSpan(e);
       job.workspace = MakeSpan(work), job.positions = MakeSpan(x), job.positions_f32 = MakeSpan(xf);
       REQUIRE(job.Run());
-      CHECK(MaxVertexDistance(x, original.poses[i].vertices) <= 1e-9 * rig.size());
+      CHECK(MaxVertexDistance(x, original.poses[i].vertices) <= 1e-9 * rig.bounding_box_diagonal());
       double float_error = 0;
       for (std::size_t k = 0; k < x.size(); ++k) float_error = std::max(float_error, std::abs(double(xf[k]) - x[k]));
-      CHECK(float_error <= 1e-6 * rig.size());
+      CHECK(float_error <= 1e-6 * rig.bounding_box_diagonal());
     }
   }
 }
@@ -135,7 +135,7 @@ TEST_CASE("N = 2 equals Alexa's closed form solved densely") {
     for (int v = 0; v < V; ++v)
       worst = std::max(worst, (Eigen::Vector2d(got[2 * v], got[2 * v + 1]) - (x.row(v).transpose() + shift)).norm());
     CAPTURE(t);
-    CHECK(worst <= 1e-9 * rig.size());
+    CHECK(worst <= 1e-9 * rig.bounding_box_diagonal());
   }
 }
 
@@ -150,14 +150,14 @@ TEST_CASE("a pose rotated by 170 degrees interpolates by rigid rotations only") 
     CAPTURE(t);
     const std::vector<double> w = {1 - t, t};
     double angle = 0;
-    CHECK(RigidFitError(Morph(rig, w, w), original.poses[0].vertices, rig.size(), &angle) <= 1e-9);
+    CHECK(RigidFitError(Morph(rig, w, w), original.poses[0].vertices, rig.bounding_box_diagonal(), &angle) <= 1e-9);
     // Angle t x 170 degrees, compared on the circle.
     CHECK(std::abs(std::remainder(angle - t * Degrees(170), 2 * M_PI)) <= 1e-9);
   }
   // Through the weight field too, shear limiting included: still rigid.
   for (double px = -0.5; px <= 1.5; px += 0.1) {
     double angle = 0;
-    CHECK(RigidFitError(MorphAt(rig, px, 0.3), original.poses[0].vertices, rig.size(), &angle) <= 1e-9);
+    CHECK(RigidFitError(MorphAt(rig, px, 0.3), original.poses[0].vertices, rig.bounding_box_diagonal(), &angle) <= 1e-9);
   }
 }
 

@@ -304,8 +304,8 @@ struct Encoder {
           // for uvs without a canvas): the decoded vertex moved by at most
           // half a step, and its uv follows it.
           const DrawingCanvas canvas = exact.pose_canvas(std::uint32_t(i));
-          const double w_px = canvas.width > 0 ? canvas.width : exact.size() * pixels_per_unit;
-          const double h_px = canvas.height > 0 ? canvas.height : exact.size() * pixels_per_unit;
+          const double w_px = canvas.width > 0 ? canvas.width : exact.bounding_box_diagonal() * pixels_per_unit;
+          const double h_px = canvas.height > 0 ? canvas.height : exact.bounding_box_diagonal() * pixels_per_unit;
           double worst = 0;
           for (std::uint64_t v = 0; v < V; ++v) {
             const double x = decoded[2 * (src * V + v)], y = decoded[2 * (src * V + v) + 1];
@@ -387,7 +387,7 @@ std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_by
       reach = std::max(reach, std::hypot((p[2 * v] - c[2 * i]) - (r[2 * v] - c[0]),
                                          (p[2 * v + 1] - c[2 * i + 1]) - (r[2 * v + 1] - c[1])));
   }
-  reach = std::max(reach, 0.05 * exact.size());
+  reach = std::max(reach, 0.05 * exact.bounding_box_diagonal());
 
   // Accepted at 90% of the budget: frames between the samples may come out
   // slightly worse than the worst sample.

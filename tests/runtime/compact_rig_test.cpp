@@ -19,7 +19,7 @@ namespace {
 
 // Drawing pixels per rig unit, as the bake counts them: 1 for drawn rigs,
 // else the rig's size taken as 1024 pixels.
-double PixelsPerUnit(const Rig& rig) { return rig.pose_canvas(0).width > 0 ? 1.0 : 1024.0 / rig.size(); }
+double PixelsPerUnit(const Rig& rig) { return rig.pose_canvas(0).width > 0 ? 1.0 : 1024.0 / rig.bounding_box_diagonal(); }
 
 // The pose points, a 41 x 41 grid over the bounding box of the pose points
 // kept where it lies inside their convex hull (or on its edges), and each

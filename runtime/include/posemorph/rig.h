@@ -133,7 +133,10 @@ class PM_API Rig {
   // How the drawings want to be sampled (the description's "filter"; pixel
   // art: nearest). A hint for renderers; linear for rigs before format 1.4.
   TextureFilter texture_filter() const { return texture_filter_; }
-  double size() const { return rig_size_; }  // bounding-box diagonal of pose 0
+  // The diagonal of pose 0's bounding box: the rig's scale, which relative
+  // tolerances multiply.
+  double bounding_box_diagonal() const { return rig_size_; }
+  [[deprecated("use bounding_box_diagonal()")]] double size() const { return rig_size_; }
 
   // Doubles a MorphJob needs as workspace.
   std::size_t morph_workspace_size() const { return 4 * std::size_t(vertex_count_); }
