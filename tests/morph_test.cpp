@@ -157,7 +157,8 @@ TEST_CASE("a pose rotated by 170 degrees interpolates by rigid rotations only") 
   // Through the weight field too, shear limiting included: still rigid.
   for (double px = -0.5; px <= 1.5; px += 0.1) {
     double angle = 0;
-    CHECK(RigidFitError(MorphAt(rig, px, 0.3), original.poses[0].vertices, rig.bounding_box_diagonal(), &angle) <= 1e-9);
+    CHECK(RigidFitError(MorphAt(rig, px, 0.3), original.poses[0].vertices, rig.bounding_box_diagonal(), &angle) <=
+          1e-9);
   }
 }
 

@@ -106,8 +106,9 @@ int InfoCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
       << " (fill " << double(l_strict + V - 1) / double(k_lower) << "x)\n"
       << "  weight grid: " << g.cells_x << " x " << g.cells_y << " cells of " << g.cell << ", origin (" << g.origin_x
       << ", " << g.origin_y << ")\n"
-      << "  rig size " << rig.bounding_box_diagonal() << ", default sigma " << rig.default_sigma() << ", drawings sampled "
-      << (rig.texture_filter() == TextureFilter::kNearest ? "nearest (pixel art)" : "linear") << "\n"
+      << "  rig size " << rig.bounding_box_diagonal() << ", default sigma " << rig.default_sigma()
+      << ", drawings sampled " << (rig.texture_filter() == TextureFilter::kNearest ? "nearest (pixel art)" : "linear")
+      << "\n"
       << "  load " << MedianLoadMicroseconds(bytes) << " us (median of 21 loads on this machine)\n"
       << "  kernel path " << IsaName(rig.isa()) << " (this build and CPU run:";
   for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512, Isa::kNeon, Isa::kWasmSimd})

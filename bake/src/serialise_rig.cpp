@@ -101,7 +101,7 @@ std::vector<unsigned char> SerialiseRig(const RigDescription& description, const
   w.AddArray(fmt::kVertexMasses, system.vertex_masses);
   w.AddArray(fmt::kGradients, system.gradients);
   w.AddArray(fmt::kAngles, analysis.angles);
-  w.AddArray(fmt::kShears, analysis.stretches);
+  w.AddArray(fmt::kStretches, analysis.stretches);
   w.AddArray(fmt::kPermutation, system.order);
   w.AddArray(fmt::kFactorColumns, system.col_start);
   w.AddArray(fmt::kFactorRows, system.row);

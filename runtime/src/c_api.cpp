@@ -124,8 +124,8 @@ void pm_rig_free(pm_rig* rig) {
 void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info) {
   if (!rig || !info) return;
   const posemorph::Rig& r = rig->rig;
-  *info =
-      pm_rig_info{r.vertex_count(), r.triangle_count(), r.pose_count(), r.path_count(), r.default_sigma(), r.bounding_box_diagonal()};
+  *info = pm_rig_info{r.vertex_count(), r.triangle_count(), r.pose_count(),
+                      r.path_count(),   r.default_sigma(),  r.bounding_box_diagonal()};
 }
 
 const uint32_t* pm_rig_triangles(const pm_rig* rig) { return rig ? rig->rig.triangles().data : nullptr; }

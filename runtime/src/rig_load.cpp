@@ -146,7 +146,7 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   vertex_masses_ = std::exchange(other.vertex_masses_, {});
   gradients_ = std::exchange(other.gradients_, {});
   angles_ = std::exchange(other.angles_, {});
-  shears_ = std::exchange(other.shears_, {});
+  stretches_ = std::exchange(other.stretches_, {});
   blend_blocks_ = std::exchange(other.blend_blocks_, {});
   uvs_ = std::exchange(other.uvs_, {});
   canvases_ = std::exchange(other.canvases_, {});
@@ -363,7 +363,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
       (!parser.Get(fmt::kTriangles, T * 12, &tris) || !parser.Get(fmt::kPosePositions, N * V * 16, &poses) ||
        !parser.Get(fmt::kPoseCentroids, N * 16, &cents) || !parser.Get(fmt::kVertexMasses, V * 8, &masses) ||
        !parser.Get(fmt::kGradients, T * 48, &grads) || !parser.Get(fmt::kAngles, T * N * 8, &angles) ||
-       !parser.Get(fmt::kShears, T * N * 24, &shears) || !parser.Get(fmt::kPermutation, n * 4, &perm) ||
+       !parser.Get(fmt::kStretches, T * N * 24, &shears) || !parser.Get(fmt::kPermutation, n * 4, &perm) ||
        !parser.Get(fmt::kFactorColumns, (n + 1) * 4, &lcol) || !parser.Get(fmt::kFactorRows, nnz * 4, &lrow) ||
        !parser.Get(fmt::kFactorValues, nnz * 8, &lval) || !parser.Get(fmt::kFactorInvDiagonal, n * 8, &dinv) ||
        !parser.Get(fmt::kWeightGrid, grid_vertices * N * 8, &wgrid)))
@@ -457,7 +457,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
       rig.vertex_masses_ = {decoded.factor.vertex_masses, std::size_t(V)};
       rig.gradients_ = {decoded.factor.gradients, std::size_t(T * 6)};
       rig.angles_ = {decoded.angles, std::size_t(T * N)};
-      rig.shears_ = {decoded.stretches, std::size_t(T * N * 3)};
+      rig.stretches_ = {decoded.stretches, std::size_t(T * N * 3)};
       rig.factor_.order = {decoded.order, std::size_t(n)};
       rig.factor_.col_start = {decoded.factor.col_start, std::size_t(n + 1)};
       rig.factor_.row = {decoded.factor.row, std::size_t(nnz)};
@@ -492,7 +492,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
       rig.vertex_masses_ = CopyInto<double>(arena, masses, V);
       rig.gradients_ = CopyInto<double>(arena, grads, T * 6);
       rig.angles_ = CopyInto<double>(arena, angles, T * N);
-      rig.shears_ = CopyInto<double>(arena, shears, T * N * 3);
+      rig.stretches_ = CopyInto<double>(arena, shears, T * N * 3);
       rig.factor_.order = CopyInto<std::uint32_t>(arena, perm, n);
       rig.factor_.col_start = CopyInto<std::uint32_t>(arena, lcol, n + 1);
       rig.factor_.row = CopyInto<std::uint32_t>(arena, lrow, nnz);
@@ -629,9 +629,9 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
       for (std::uint64_t i = 0; i < N; ++i) {
         double* lane = blend + ((t / 8) * N + i) * 32 + t % 8;
         lane[0] = rig.angles_[t * N + i];
-        lane[8] = rig.shears_[(t * N + i) * 3];
-        lane[16] = rig.shears_[(t * N + i) * 3 + 1];
-        lane[24] = rig.shears_[(t * N + i) * 3 + 2];
+        lane[8] = rig.stretches_[(t * N + i) * 3];
+        lane[16] = rig.stretches_[(t * N + i) * 3 + 1];
+        lane[24] = rig.stretches_[(t * N + i) * 3 + 2];
       }
     rig.blend_blocks_ = {blend, std::size_t(blocks * 4 * N * 8)};
     rig.factor_.row_start = {row_start, std::size_t(n + 1)};
@@ -654,7 +654,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
         !CheckFinite(rig.pose_centroids_, "pose centroids", err) ||
         !CheckFinite(rig.vertex_masses_, "vertex masses", err) || !CheckFinite(rig.gradients_, "gradients", err) ||
         !CheckFinite(rig.angles_, "angles", err, fmt::kMaxAngle) ||
-        !CheckFinite(rig.shears_, "stretches", err, fmt::kMaxStretch) ||
+        !CheckFinite(rig.stretches_, "stretches", err, fmt::kMaxStretch) ||
         !CheckFinite(rig.factor_.value, "factor values", err) ||
         !CheckFinite(rig.grid_.weights, "weight grid", err, fmt::kMaxGridWeight) ||
         !CheckFinite(rig.grid_.centre_weights, "weight grid centres", err, fmt::kMaxGridWeight) ||

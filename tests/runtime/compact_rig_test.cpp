@@ -19,7 +19,9 @@ namespace {
 
 // Drawing pixels per rig unit, as the bake counts them: 1 for drawn rigs,
 // else the rig's size taken as 1024 pixels.
-double PixelsPerUnit(const Rig& rig) { return rig.pose_canvas(0).width > 0 ? 1.0 : 1024.0 / rig.bounding_box_diagonal(); }
+double PixelsPerUnit(const Rig& rig) {
+  return rig.pose_canvas(0).width > 0 ? 1.0 : 1024.0 / rig.bounding_box_diagonal();
+}
 
 // The pose points, a 41 x 41 grid over the bounding box of the pose points
 // kept where it lies inside their convex hull (or on its edges), and each
@@ -193,8 +195,8 @@ TEST_CASE("a compact rig's derived arrays match the exact rig's") {
     for (std::uint32_t i = 0; i < N; ++i) {
       angle_px = std::max(angle_px, altitude * std::fabs(exact.angles()[t * N + i] - compact.angles()[t * N + i]));
       for (int k = 0; k < 3; ++k)
-        stretch_px = std::max(stretch_px, altitude * std::fabs(exact.shears()[3 * (t * N + i) + k] -
-                                                               compact.shears()[3 * (t * N + i) + k]));
+        stretch_px = std::max(stretch_px, altitude * std::fabs(exact.stretches()[3 * (t * N + i) + k] -
+                                                               compact.stretches()[3 * (t * N + i) + k]));
     }
   }
   for (std::size_t k = 0; k < exact.vertex_masses().size; ++k)

@@ -98,7 +98,7 @@ TEST_CASE("finite but huge stored numbers are refused at load, naming the sectio
     const char* expect;
   };
   const Case cases[] = {
-      {format::kAngles, 1e53, "angles[0]"},          {format::kShears, -1e30, "stretches[0]"},
+      {format::kAngles, 1e53, "angles[0]"},          {format::kStretches, -1e30, "stretches[0]"},
       {format::kWeightGrid, 1e20, "weight grid[0]"}, {format::kPathKeys, 1e308, "path key[0]"},
       {format::kGradients, 1e200, "gradients[0]"},
   };

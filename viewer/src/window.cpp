@@ -804,7 +804,8 @@ int Viewer::Run() {
         edit_.handles = {0, far};
         edit_.targets = {Eigen::Vector2d(p.data[0], p.data[1]), Eigen::Vector2d(p.data[2 * far], p.data[2 * far + 1])};
       }
-      if (edit_.on && edit_.targets.size() == 2) edit_.targets[1].x() += 0.2 * rig_.bounding_box_diagonal() / options_.smoke_frames;
+      if (edit_.on && edit_.targets.size() == 2)
+        edit_.targets[1].x() += 0.2 * rig_.bounding_box_diagonal() / options_.smoke_frames;
     }
     ImGui::NewFrame();
     BuildUi();

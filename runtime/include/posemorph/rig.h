@@ -115,7 +115,9 @@ class PM_API Rig {
   Span<const double> vertex_masses() const { return vertex_masses_; }  // sum 1
   Span<const double> gradients() const { return gradients_; }          // 6 x T: area * D^T E^-1
   Span<const double> angles() const { return angles_; }                // N x T (triangle-major)
-  Span<const double> shears() const { return shears_; }                // 3N x T: S11, S12, S22
+  // The symmetric stretch S of each triangle in each pose, 3N x T: S11, S12, S22.
+  Span<const double> stretches() const { return stretches_; }
+  [[deprecated("use stretches()")]] Span<const double> shears() const { return stretches_; }
   // The same angles and stretches regrouped at load for SIMD: per block of 8
   // triangles, per pose, the 8 values of alpha, S11, S12, S22 (4N x 8 per block).
   Span<const double> blend_blocks() const { return blend_blocks_; }
@@ -162,7 +164,7 @@ class PM_API Rig {
   std::uint32_t vertex_count_ = 0, triangle_count_ = 0, pose_count_ = 0, path_count_ = 0;
   Span<const std::uint32_t> triangles_;
   Span<const double> pose_positions_, pose_points_, pose_centroids_, vertex_masses_;
-  Span<const double> gradients_, angles_, shears_, blend_blocks_;
+  Span<const double> gradients_, angles_, stretches_, blend_blocks_;
   Span<const float> uvs_;
   Span<const double> canvases_;     // 4N, or empty
   Span<const StringView> strings_;  // N names, N images, P path names

@@ -79,7 +79,7 @@ void Group(const Rig& rig, const double* w_in, const double* ws_in, double* x_ou
   const std::uint32_t* tri = rig.triangles().data;
   const double* grad = rig.gradients().data;
   const double* angle = rig.angles().data;
-  const double* shear = rig.shears().data;
+  const double* shear = rig.stretches().data;
   for (std::size_t t = 0; t < T; ++t) {
     Vec alpha, s11, s12, s22, s, c, a11, a12, a21, a22;
     BlendTriangle<Vec>(angle + t * N, shear + 3 * t * N, W, WS, N, &alpha, &s11, &s12, &s22);
