@@ -363,8 +363,8 @@ TEST_CASE("camera: fit, zoom about the cursor, pan, pixel-exact") {
 // Rig files are hostile input to the viewer too: image references must stay
 // inside the images folder, and drawings may not make the texture huge.
 TEST_CASE("drawings: image references stay inside the images folder, and sizes are bounded") {
-  for (const char* bad :
-       {"../../etc/passwd", "/etc/passwd", "a/../../b.png", "..", "a\\..\\b.png", "a\x1b[31m.png", ""})
+  for (const char* bad : {"../../etc/passwd", "/etc/passwd", "a/../../b.png", "..", "a\\..\\b.png", "a\x1b[31m.png", "",
+                          "c:/x.png", "x/..", "https://example.com/a.png"})
     CHECK_FALSE(ImageReferenceStaysInside(bad));
   for (const char* good : {"rest.png", "poses/rest.png", "a..b.png", "..a.png", "./rest.png"})
     CHECK(ImageReferenceStaysInside(good));

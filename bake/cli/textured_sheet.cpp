@@ -10,22 +10,12 @@
 
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/input_file.h"
+#include "posemorph/image_reference.h"
 
 namespace posemorph::bake {
 namespace {
 
 std::string Name(StringView v) { return std::string(v.data, v.size); }
-
-// A reference that stays inside the images folder.
-bool SafeReference(const std::string& ref) {
-  if (ref.empty() || ref[0] == '/' || ref.find('\\') != std::string::npos || ref.find(':') != std::string::npos)
-    return false;
-  for (unsigned char c : ref)
-    if (c < 0x20 || c == 0x7f) return false;
-  for (const auto& part : std::filesystem::path(ref))
-    if (part == "..") return false;
-  return true;
-}
 
 RgbaImage DecodeRgba(const std::vector<unsigned char>& file, const std::string& path) {
   png_image image;
@@ -86,7 +76,7 @@ std::vector<RgbaImage> ReadPoseDrawings(const Rig& rig, const std::string& rig_f
     const std::string ref = Name(rig.pose_image(i));
     if (ref.empty())
       throw BakeError(rig_file, "pose '" + Name(rig.pose_name(i)) + "' has no drawing: --textured needs one per pose");
-    if (!SafeReference(ref))
+    if (!ImageReferenceStaysInside(StringView{ref.data(), ref.size()}))
       throw BakeError(rig_file,
                       "pose '" + Name(rig.pose_name(i)) + "': image reference '" + ref + "' leaves the images folder");
     const std::string path = (std::filesystem::path(images) / ref).string();

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <string>
 
+#include "posemorph/image_reference.h"
 #include "posemorph/path.h"
 #include "posemorph/posemorph.h"
 #include "posemorph/rig_format.h"
@@ -194,4 +195,18 @@ TEST_CASE("a format 1.0 rig (no CANV section) still loads") {
   REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
   CHECK(rig.format_minor() == 0);
   CHECK(rig.pose_canvas(0).width == 0);
+}
+
+TEST_CASE("image references from a rig file must stay inside the folder of drawings") {
+  auto inside = [](const char* s) {
+    return posemorph::ImageReferenceStaysInside(posemorph::StringView{s, std::strlen(s)});
+  };
+  for (const char* bad : {"", "/etc/passwd", "..", "../a.png", "a/../../b.png", "x/..", "a\\b.png", "c:/x.png",
+                          "https://example.com/a.png", "a\x1b[31m.png", "a\x7f.png"})
+    CHECK_FALSE(inside(bad));
+  for (const char* good : {"rest.png", "poses/rest.png", "a..b.png", "..a.png", "./rest.png", "a/b/c.png"})
+    CHECK(inside(good));
+  CHECK_FALSE(posemorph::ImageReferenceStaysInside(posemorph::StringView{nullptr, 3}));
+  // A reference is its bytes, not a C string: an embedded NUL is a control character.
+  CHECK_FALSE(posemorph::ImageReferenceStaysInside(posemorph::StringView{"a\0b.png", 7}));
 }

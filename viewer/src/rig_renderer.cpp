@@ -33,21 +33,6 @@ FrameDifference CompareFrames(const std::vector<unsigned char>& a, const std::ve
   return r;
 }
 
-// Relative, without '..' components, backslashes or control characters:
-// image names come from the rig file, and a rig is hostile input.
-bool ImageReferenceStaysInside(const std::string& reference) {
-  if (reference.empty() || reference[0] == '/') return false;
-  for (unsigned char c : reference)
-    if (c < 0x20 || c == 0x7F || c == '\\') return false;
-  std::size_t start = 0;
-  while (start <= reference.size()) {
-    const std::size_t end = std::min(reference.find('/', start), reference.size());
-    if (reference.compare(start, end - start, "..") == 0) return false;
-    start = end + 1;
-  }
-  return true;
-}
-
 std::string Printable(const std::string& text, std::size_t max) {
   std::string out;
   for (unsigned char c : text.substr(0, max)) {

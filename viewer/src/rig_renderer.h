@@ -12,6 +12,7 @@
 #include "gpu.h"
 #include "gpu_layout.h"
 #include "posemorph/draw_list.h"
+#include "posemorph/image_reference.h"
 #include "posemorph/rig.h"
 
 namespace posemorph::viewer {
@@ -27,7 +28,11 @@ struct Drawings {
 // each at most this many pixels, and so the texture array they share. Image
 // references must stay inside `dir` (relative, no '..').
 constexpr std::uint64_t kMaxDrawingPixels = std::uint64_t(1) << 24;  // 4096 x 4096
-bool ImageReferenceStaysInside(const std::string& reference);
+// (posemorph/image_reference.h: the runtime's check, which the bake's
+// textured contact sheet uses too).
+inline bool ImageReferenceStaysInside(const std::string& reference) {
+  return posemorph::ImageReferenceStaysInside(StringView{reference.data(), reference.size()});
+}
 // Control characters as \xNN and at most `max` characters (then "..."):
 // names from a rig file or the command line, before they reach a terminal.
 std::string Printable(const std::string& text, std::size_t max = 200);
