@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: MIT
 #include "rig_renderer.h"
 
-#include <png.h>
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -14,138 +11,6 @@
 #include "skin.vert.h"
 
 namespace posemorph::viewer {
-
-FrameDifference CompareFrames(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b,
-                              std::vector<unsigned char>* diff) {
-  FrameDifference r;
-  r.pixels = std::min(a.size(), b.size()) / 4;
-  if (diff) diff->assign(4 * r.pixels, 255);
-  for (std::size_t p = 0; p < 4 * r.pixels; p += 4) {
-    int d = 0;
-    for (int c = 0; c < 4; ++c) d = std::max(d, std::abs(int(a[p + c]) - int(b[p + c])));
-    r.worst = std::max(r.worst, d);
-    if (d > 3) ++r.differing;
-    if (diff) {
-      const unsigned char v = (unsigned char)std::min(255, d * 8);
-      (*diff)[p + 1] = (unsigned char)(255 - v), (*diff)[p + 2] = (unsigned char)(255 - v);
-    }
-  }
-  return r;
-}
-
-std::string Printable(const std::string& text, std::size_t max) {
-  std::string out;
-  for (unsigned char c : text.substr(0, max)) {
-    if (c < 0x20 || c == 0x7F) {
-      char hex[8];
-      std::snprintf(hex, sizeof(hex), "\\x%02x", c);
-      out += hex;
-    } else {
-      out += char(c);
-    }
-  }
-  return text.size() > max ? out + "..." : out;
-}
-
-bool ReadPng(const std::string& path, std::vector<unsigned char>* rgba, std::uint32_t* width, std::uint32_t* height,
-             std::string* error) {
-  // A regular file (a pipe would block, a device never end), its size
-  // checked from the header before anything is decoded.
-  struct stat st;
-  if (::stat(path.c_str(), &st) != 0) {
-    *error = path + ": cannot open file";
-    return false;
-  }
-  if (!S_ISREG(st.st_mode)) {
-    *error = path + ": is not a regular file (a directory, device or pipe)";
-    return false;
-  }
-  png_image image;
-  std::memset(&image, 0, sizeof image);
-  image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, path.c_str())) {
-    *error = path + ": cannot read PNG: " + image.message;
-    return false;
-  }
-  if (std::uint64_t(image.width) * image.height > kMaxDrawingPixels) {
-    *error = path + ": PNG of " + std::to_string(image.width) + " x " + std::to_string(image.height) +
-             " pixels is above the limit of " + std::to_string(kMaxDrawingPixels) + " pixels";
-    png_image_free(&image);
-    return false;
-  }
-  image.format = PNG_FORMAT_RGBA;
-  rgba->assign(PNG_IMAGE_SIZE(image), 0);
-  if (!png_image_finish_read(&image, nullptr, rgba->data(), 0, nullptr)) {
-    *error = path + ": cannot decode PNG: " + image.message;
-    png_image_free(&image);
-    return false;
-  }
-  *width = image.width;
-  *height = image.height;
-  return true;
-}
-
-bool WritePng(const std::string& path, const unsigned char* rgba, std::uint32_t width, std::uint32_t height,
-              std::string* error) {
-  png_image image;
-  std::memset(&image, 0, sizeof image);
-  image.version = PNG_IMAGE_VERSION;
-  image.width = width;
-  image.height = height;
-  image.format = PNG_FORMAT_RGBA;
-  if (!png_image_write_to_file(&image, path.c_str(), 0, rgba, 0, nullptr)) {
-    *error = path + ": cannot write PNG: " + image.message;
-    return false;
-  }
-  return true;
-}
-
-bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::string* error) {
-  const std::uint32_t N = rig.pose_count();
-  if (rig.uvs(0).size == 0) {
-    *error = "the rig has no uvs, so there is nothing to draw its drawings with (bake it from drawings)";
-    return false;
-  }
-  std::vector<std::vector<unsigned char>> images(N);
-  std::vector<std::uint32_t> w(N), h(N);
-  for (std::uint32_t i = 0; i < N; ++i) {
-    const StringView name = rig.pose_image(i);
-    if (name.size == 0) {
-      *error = "pose " + std::to_string(i) + " has no image reference";
-      return false;
-    }
-    const std::string reference(name.data, name.size);
-    if (!ImageReferenceStaysInside(reference)) {
-      *error = "pose " + std::to_string(i) + ": image reference '" + Printable(reference) +
-               "' leaves the images folder (absolute, '..', or a control character); refusing to open it";
-      return false;
-    }
-    const std::string path = dir + "/" + reference;
-    if (!ReadPng(path, &images[i], &w[i], &h[i], error)) return false;
-  }
-  out->width = *std::max_element(w.begin(), w.end());
-  out->height = *std::max_element(h.begin(), h.end());
-  // All drawings are resampled to one size for the texture array: drawings
-  // of very different shapes (8192 x 1 and 1 x 8192) must not make it huge.
-  if (std::uint64_t(out->width) * out->height > kMaxDrawingPixels) {
-    *error = "the drawings (" + std::to_string(out->width) + " wide, " + std::to_string(out->height) +
-             " high at most) would share a texture of more than " + std::to_string(kMaxDrawingPixels) +
-             " pixels; draw the poses on canvases of one size";
-    return false;
-  }
-  out->rgba.assign(N, std::vector<unsigned char>(std::size_t(out->width) * out->height * 4));
-  for (std::uint32_t i = 0; i < N; ++i)
-    for (std::uint32_t y = 0; y < out->height; ++y)
-      for (std::uint32_t x = 0; x < out->width; ++x) {
-        // Nearest resampling to the common size (uvs are relative, so they still fit).
-        const std::uint32_t sx = x * w[i] / out->width, sy = y * h[i] / out->height;
-        const unsigned char* s = &images[i][(std::size_t(sy) * w[i] + sx) * 4];
-        unsigned char* d = &out->rgba[i][(std::size_t(y) * out->width + x) * 4];
-        for (int c = 0; c < 3; ++c) d[c] = (unsigned char)((s[c] * s[3] + 127) / 255);  // premultiply
-        d[3] = s[3];
-      }
-  return true;
-}
 
 Instance ToInstance(const DrawList& list) {
   Instance inst{};
@@ -362,46 +227,6 @@ void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const Camera&
     vkCmdPushConstants(cmd, layout_, stages, 0, sizeof push, &push);
     vkCmdDrawIndexed(cmd, index_count_, count, 0, 0, 0);
   }
-}
-
-OffscreenTarget::~OffscreenTarget() {
-  if (!gpu_) return;
-  gpu_->Destroy(color_);
-  gpu_->Destroy(readback_);
-}
-
-void OffscreenTarget::Init(Gpu& gpu, std::uint32_t width, std::uint32_t height) {
-  gpu_ = &gpu;
-  width_ = width;
-  height_ = height;
-  color_ =
-      gpu.CreateImage(kFormat, width, height, 1, VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT);
-  readback_ = gpu.CreateBuffer(4ull * width * height, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-}
-
-void OffscreenTarget::Render(const std::function<void(VkCommandBuffer)>& draw, const float background[4]) {
-  gpu_->RunOnce([&](VkCommandBuffer cmd) {
-    Transition(cmd, color_.image, 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
-    VkRenderingAttachmentInfo color{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    color.imageView = color_.view;
-    color.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    color.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    color.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    std::memcpy(color.clearValue.color.float32, background, 4 * sizeof(float));
-    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    ri.renderArea = {{0, 0}, {width_, height_}};
-    ri.layerCount = 1;
-    ri.colorAttachmentCount = 1;
-    ri.pColorAttachments = &color;
-    vkCmdBeginRendering(cmd, &ri);
-    draw(cmd);
-    vkCmdEndRendering(cmd);
-    Transition(cmd, color_.image, 1, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-    VkBufferImageCopy copy{};
-    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    copy.imageExtent = {width_, height_, 1};
-    vkCmdCopyImageToBuffer(cmd, color_.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, readback_.buffer, 1, &copy);
-  });
 }
 
 }  // namespace posemorph::viewer

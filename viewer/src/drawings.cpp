@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: MIT
+#include "drawings.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace posemorph::viewer {
+
+std::string Printable(const std::string& text, std::size_t max) {
+  std::string out;
+  for (unsigned char c : text.substr(0, max)) {
+    if (c < 0x20 || c == 0x7F) {
+      char hex[8];
+      std::snprintf(hex, sizeof(hex), "\\x%02x", c);
+      out += hex;
+    } else {
+      out += char(c);
+    }
+  }
+  return text.size() > max ? out + "..." : out;
+}
+
+bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::string* error) {
+  const std::uint32_t N = rig.pose_count();
+  if (rig.uvs(0).size == 0) {
+    *error = "the rig has no uvs, so there is nothing to draw its drawings with (bake it from drawings)";
+    return false;
+  }
+  std::vector<std::vector<unsigned char>> images(N);
+  std::vector<std::uint32_t> w(N), h(N);
+  for (std::uint32_t i = 0; i < N; ++i) {
+    const StringView name = rig.pose_image(i);
+    if (name.size == 0) {
+      *error = "pose " + std::to_string(i) + " has no image reference";
+      return false;
+    }
+    const std::string reference(name.data, name.size);
+    if (!ImageReferenceStaysInside(reference)) {
+      *error = "pose " + std::to_string(i) + ": image reference '" + Printable(reference) +
+               "' leaves the images folder (absolute, '..', or a control character); refusing to open it";
+      return false;
+    }
+    const std::string path = dir + "/" + reference;
+    if (!ReadPng(path, &images[i], &w[i], &h[i], error)) return false;
+  }
+  out->width = *std::max_element(w.begin(), w.end());
+  out->height = *std::max_element(h.begin(), h.end());
+  // All drawings are resampled to one size for the texture array: drawings
+  // of very different shapes (8192 x 1 and 1 x 8192) must not make it huge.
+  if (std::uint64_t(out->width) * out->height > kMaxDrawingPixels) {
+    *error = "the drawings (" + std::to_string(out->width) + " wide, " + std::to_string(out->height) +
+             " high at most) would share a texture of more than " + std::to_string(kMaxDrawingPixels) +
+             " pixels; draw the poses on canvases of one size";
+    return false;
+  }
+  out->rgba.assign(N, std::vector<unsigned char>(std::size_t(out->width) * out->height * 4));
+  for (std::uint32_t i = 0; i < N; ++i)
+    for (std::uint32_t y = 0; y < out->height; ++y)
+      for (std::uint32_t x = 0; x < out->width; ++x) {
+        // Nearest resampling to the common size (uvs are relative, so they still fit).
+        const std::uint32_t sx = x * w[i] / out->width, sy = y * h[i] / out->height;
+        const unsigned char* s = &images[i][(std::size_t(sy) * w[i] + sx) * 4];
+        unsigned char* d = &out->rgba[i][(std::size_t(y) * out->width + x) * 4];
+        for (int c = 0; c < 3; ++c) d[c] = (unsigned char)((s[c] * s[3] + 127) / 255);  // premultiply
+        d[3] = s[3];
+      }
+  return true;
+}
+
+}  // namespace posemorph::viewer

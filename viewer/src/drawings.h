@@ -1,0 +1,36 @@
+// SPDX-License-Identifier: MIT
+// A rig's drawings for the GPU: each pose's image, found by its reference
+// (checked: rig files are hostile input), premultiplied, resampled to one size.
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "png_io.h"
+#include "posemorph/image_reference.h"
+#include "posemorph/rig.h"
+
+namespace posemorph::viewer {
+
+// The rig's drawings, premultiplied RGBA8, all resampled to one size.
+struct Drawings {
+  std::uint32_t width = 0, height = 0;
+  std::vector<std::vector<unsigned char>> rgba;  // one per pose
+};
+// Reads each pose's image (rig.pose_image) from `dir`. False with a message
+// naming the file when one is missing or unreadable, or the rig has no uvs.
+// Limits on the drawings the viewer loads (rig files are hostile input):
+// kMaxDrawingPixels (png_io.h) each, and so the texture array they share.
+// Image references must stay inside `dir`:
+// (posemorph/image_reference.h: the runtime's check, which the bake's
+// textured contact sheet uses too).
+inline bool ImageReferenceStaysInside(const std::string& reference) {
+  return posemorph::ImageReferenceStaysInside(StringView{reference.data(), reference.size()});
+}
+// Control characters as \xNN and at most `max` characters (then "..."):
+// names from a rig file or the command line, before they reach a terminal.
+std::string Printable(const std::string& text, std::size_t max = 200);
+bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::string* error);
+
+}  // namespace posemorph::viewer
