@@ -1,0 +1,177 @@
+// SPDX-License-Identifier: MIT
+// One frame of the window: the ImGui panel, the characters, the pad and edit overlays, presentation.
+#include "window_impl.h"
+
+namespace posemorph::viewer::window_impl {
+
+void Viewer::BuildUi() {
+  ImGui::SetNextWindowPos(ImVec2(0, 0));
+  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, float(sc_.extent.height)));
+  ImGui::Begin("posemorph", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  Pad();
+  ImGui::Text("point (%.3f, %.3f)", scene_.x, scene_.y);
+
+  ImGui::Separator();
+  ImGui::TextUnformatted("Gesture");
+  if (!gesture_.recording && ImGui::Button("Record")) {
+    gesture_ = Gesture{};
+    gesture_.recording = true;
+    gesture_.start = clock_;
+  } else if (gesture_.recording && ImGui::Button("Stop")) {
+    gesture_.recording = false;
+  }
+  ImGui::SameLine();
+  if (ImGui::Button(gesture_.playing ? "Pause" : "Play") && gesture_.keys.size() > 1) {
+    gesture_.playing = !gesture_.playing;
+    gesture_.start = clock_;
+    play_path_ = false;
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Save") && gesture_.keys.size() > 1) SaveGesture();
+  ImGui::Text("%zu keys%s", gesture_.keys.size(), gesture_.recording ? ", recording" : "");
+
+  if (rig_.path_count() > 0) {
+    ImGui::Separator();
+    ImGui::TextUnformatted("Stored paths");
+    std::vector<std::string> names;
+    for (std::uint32_t i = 0; i < rig_.path_count(); ++i)
+      names.emplace_back(rig_.path(i).name.data, rig_.path(i).name.size);
+    if (ImGui::BeginCombo("path", names[std::size_t(path_index_)].c_str())) {
+      for (std::size_t i = 0; i < names.size(); ++i)
+        if (ImGui::Selectable(names[i].c_str(), int(i) == path_index_)) path_index_ = int(i);
+      ImGui::EndCombo();
+    }
+    ImGui::SameLine();
+    if (ImGui::Checkbox("play", &play_path_) && play_path_) gesture_.playing = false, clock_ = 0;
+  }
+
+  ImGui::Separator();
+  ImGui::TextUnformatted("Drawing");
+  float sigma = float(scene_.sigma < 0 ? rig_.default_sigma() : scene_.sigma);
+  if (ImGui::SliderFloat("sigma", &sigma, 0, 1)) scene_.sigma = sigma;
+  ImGui::Checkbox("shear limiting", &scene_.shear_limit);
+  ImGui::Checkbox("wireframe", &scene_.wireframe);
+  ImGui::Checkbox("rigid | linear side by side", &scene_.compare_linear);
+  ImGui::Checkbox("base drawings", &scene_.show_bases);
+  EditUi();
+  int crowd = int(scene_.crowd);
+  if (ImGui::SliderInt("crowd", &crowd, 1, int(kMaxCharacters))) scene_.crowd = std::uint32_t(crowd);
+  CameraUi();
+  ImGui::Text("%.1f fps, CPU %.3f ms per frame for %u character(s)", ImGui::GetIO().Framerate, eval_ms_,
+              SceneCharacters(rig_, scene_));
+  ImGui::TextWrapped("%s", gpu_.device_name().c_str());
+  if (!status_.empty()) ImGui::TextWrapped("%s", status_.c_str());
+  ImGui::End();
+}
+
+void Viewer::Frame(bool screenshot) {
+  VkDevice dev = gpu_.device();
+  VkCheck(vkWaitForFences(dev, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+  if (resized_ || sc_.handle == VK_NULL_HANDLE) {
+    resized_ = false;
+    if (!CreateSwapchain()) return;
+    ImGui_ImplVulkan_SetMinImageCount(std::uint32_t(sc_.images.size()));
+  }
+  std::uint32_t index = 0;
+  const VkResult acquired = vkAcquireNextImageKHR(dev, sc_.handle, UINT64_MAX, acquired_, VK_NULL_HANDLE, &index);
+  if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
+    resized_ = true;
+    return;
+  }
+  VkCheck(vkResetFences(dev, 1, &fence_), "vkResetFences");
+
+  // The characters: the runtime, timed, then into the GPU buffers.
+  Scene shown = scene_;
+  if (play_path_ && rig_.path_count() > 0) {
+    shown.path =
+        std::string(rig_.path(std::uint32_t(path_index_)).name.data, rig_.path(std::uint32_t(path_index_)).name.size);
+    shown.time = clock_;
+    SamplePath(rig_, std::uint32_t(path_index_), clock_, &scene_.x, &scene_.y);
+  } else if (gesture_.playing && gesture_.keys.size() > 1) {
+    const double length = gesture_.keys.back()[0];
+    const double t = length > 0 ? std::fmod(clock_ - gesture_.start, length) : 0;
+    std::size_t k = 1;
+    while (k + 1 < gesture_.keys.size() && gesture_.keys[k][0] < t) ++k;
+    const auto& a = gesture_.keys[k - 1];
+    const auto& b = gesture_.keys[k];
+    const double u = b[0] > a[0] ? std::clamp((t - a[0]) / (b[0] - a[0]), 0.0, 1.0) : 1.0;
+    scene_.x = shown.x = a[1] + u * (b[1] - a[1]);
+    scene_.y = shown.y = a[2] + u * (b[2] - a[2]);
+  }
+  if (!shown.path.empty() && shown.crowd <= 1) shown.path.clear();  // one character sits at the sampled point
+  SceneBounds bounds;
+  std::uint32_t count = 0;
+  std::string problem;
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool prepared = edit_.on ? EditScene(&bounds, &count)
+                                 : PrepareScene(rig_, shown, *renderer_, scratch_, &bounds, &count, &problem);
+  eval_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  if (!prepared) status_ = problem, count = 0;
+  const std::uint32_t view_w = sc_.extent.width > kPanelWidth ? sc_.extent.width - std::uint32_t(kPanelWidth) : 1;
+  if (prepared && (fit_ != Fit::kNone || one_to_one_)) {
+    camera_ = FitCamera(fit_ == Fit::kCharacter || edit_.on ? bounds.first : bounds.all, view_w, sc_.extent.height);
+    if (one_to_one_) camera_.zoom = 1, camera_ = PixelExact(camera_, view_w, sc_.extent.height), one_to_one_ = false;
+  }
+
+  VkCheck(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
+  VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+  bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+  VkCheck(vkBeginCommandBuffer(cmd_, &bi), "vkBeginCommandBuffer");
+  const VkImage image = sc_.images[index];
+  Transition(cmd_, image, 1, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL);
+  VkRenderingAttachmentInfo colour{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+  colour.imageView = sc_.views[index];
+  colour.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  colour.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+  colour.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  std::memcpy(colour.clearValue.color.float32, kBackground, sizeof kBackground);
+  VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+  ri.renderArea = {{0, 0}, sc_.extent};
+  ri.layerCount = 1;
+  ri.colorAttachmentCount = 1;
+  ri.pColorAttachments = &colour;
+  vkCmdBeginRendering(cmd_, &ri);
+  const std::int32_t x0 = std::int32_t(kPanelWidth);
+  if (count > 0 && sc_.extent.width > kPanelWidth + 8)
+    renderer_->Record(cmd_, count, camera_, view_w, sc_.extent.height, shown.wireframe, x0, 0);
+  vkCmdEndRendering(cmd_);
+  VkRenderPassBeginInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
+  rp.renderPass = ui_pass_;
+  rp.framebuffer = sc_.framebuffers[index];
+  rp.renderArea = {{0, 0}, sc_.extent};
+  vkCmdBeginRenderPass(cmd_, &rp, VK_SUBPASS_CONTENTS_INLINE);
+  ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), cmd_);
+  vkCmdEndRenderPass(cmd_);
+  if (screenshot) {
+    if (shot_.buffer) gpu_.Destroy(shot_);
+    shot_ = gpu_.CreateBuffer(4ull * sc_.extent.width * sc_.extent.height, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+    Transition(cmd_, image, 1, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+    VkBufferImageCopy copy{};
+    copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    copy.imageExtent = {sc_.extent.width, sc_.extent.height, 1};
+    vkCmdCopyImageToBuffer(cmd_, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, shot_.buffer, 1, &copy);
+    Transition(cmd_, image, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
+  }
+  VkCheck(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
+
+  const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+  si.waitSemaphoreCount = 1;
+  si.pWaitSemaphores = &acquired_;
+  si.pWaitDstStageMask = &wait_stage;
+  si.commandBufferCount = 1;
+  si.pCommandBuffers = &cmd_;
+  si.signalSemaphoreCount = 1;
+  si.pSignalSemaphores = &sc_.rendered[index];
+  VkCheck(vkQueueSubmit(gpu_.queue(), 1, &si, fence_), "vkQueueSubmit");
+  VkPresentInfoKHR pi{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+  pi.waitSemaphoreCount = 1;
+  pi.pWaitSemaphores = &sc_.rendered[index];
+  pi.swapchainCount = 1;
+  pi.pSwapchains = &sc_.handle;
+  pi.pImageIndices = &index;
+  const VkResult presented = vkQueuePresentKHR(gpu_.queue(), &pi);
+  if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) resized_ = true;
+}
+
+}  // namespace posemorph::viewer::window_impl

@@ -1,0 +1,148 @@
+// SPDX-License-Identifier: MIT
+// The interactive viewer's window class, shared by its files (window*.cpp,
+// one job each): the swapchain, the pad, edit mode, the camera controls,
+// saving into the description, the frame, and the main loop (window.cpp).
+#pragma once
+#define GLFW_INCLUDE_VULKAN
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_vulkan.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "posemorph/bake/arap_deformer.h"
+#include "posemorph/bake/bake.h"
+#include "posemorph/bake/pose_colours.h"
+#include "posemorph/bake/error.h"
+#include "posemorph/jobs.h"
+#include "posemorph/path.h"
+#include "window.h"
+
+namespace posemorph::viewer::window_impl {
+
+constexpr float kPanelWidth = 320;
+constexpr std::uint32_t kMaxCharacters = 400;
+const float kBackground[4] = {0.93f, 0.94f, 0.95f, 1.0f};
+
+struct Swapchain {
+  VkSwapchainKHR handle = VK_NULL_HANDLE;
+  VkFormat format = VK_FORMAT_UNDEFINED;
+  VkExtent2D extent{0, 0};
+  std::vector<VkImage> images;
+  std::vector<VkImageView> views;
+  std::vector<VkFramebuffer> framebuffers;
+  std::vector<VkSemaphore> rendered;  // one per image: presentation waits on it
+};
+
+// Edit mode: handles dragged on one base pose's mesh make a new pose
+// (as-rigid-as-possible shape manipulation, the bake's ArapDeformer).
+struct Edit {
+  bool on = false;
+  int pose = 0;
+  std::vector<std::uint32_t> handles;
+  std::vector<Eigen::Vector2d> targets;
+  std::unique_ptr<bake::ArapDeformer> deformer;  // for this handle set
+  bake::Points rest, current;
+  int dragging = -1;
+  int saved = 0;
+};
+
+struct Gesture {
+  std::vector<std::array<double, 3>> keys;  // t, x, y
+  bool recording = false, playing = false;
+  double start = 0;
+};
+
+ImU32 PoseColour(std::uint32_t i, int alpha);  // the pad's colour of pose i (pose_colours.h)
+
+class Viewer {
+ public:
+  Viewer(const Rig& rig, const Drawings& drawings, Scene scene, const WindowOptions& options)
+      : rig_(rig), drawings_(drawings), scene_(scene), options_(options) {}
+  int Run();
+
+ private:
+  bool CreateSwapchain();
+  void DestroySwapchain();
+  void BuildUi();
+  void Pad();
+  void Frame(bool screenshot);
+  void SaveGesture();
+  void EditUi();
+  void EditInput(std::int32_t x0, std::uint32_t w, std::uint32_t h);
+  bool EditScene(SceneBounds* bounds, std::uint32_t* count);
+  void CameraUi();
+  void CameraInput(std::int32_t x0, std::uint32_t w, std::uint32_t h);
+  void SavePose();
+  void ChangeDescription(const char* what, const std::function<std::string(nlohmann::json&)>& change);
+
+  const Rig& rig_;
+  const Drawings& drawings_;
+  Scene scene_;
+  WindowOptions options_;
+  GLFWwindow* window_ = nullptr;
+  Gpu gpu_;
+  VkSurfaceKHR surface_ = VK_NULL_HANDLE;
+  Swapchain sc_;
+  VkRenderPass ui_pass_ = VK_NULL_HANDLE;
+  VkDescriptorPool ui_pool_ = VK_NULL_HANDLE;
+  VkCommandBuffer cmd_ = VK_NULL_HANDLE;
+  VkFence fence_ = VK_NULL_HANDLE;
+  VkSemaphore acquired_ = VK_NULL_HANDLE;
+  std::unique_ptr<RigRenderer> renderer_;  // released before the device goes
+  SceneScratch scratch_;
+  Buffer shot_;
+  bool resized_ = false;
+  // Pad and playback state.
+  std::vector<ImU32> field_;  // dominant-pose colour per pad cell
+  int field_cells_ = 48;
+  double pad_x0_ = 0, pad_y0_ = 0, pad_span_ = 1;
+  Gesture gesture_;
+  int saved_gestures_ = 0;
+  std::string status_;
+  bool play_path_ = false;
+  int path_index_ = 0;
+  double clock_ = 0;
+  double eval_ms_ = 0;
+  std::uint32_t smoke_frame_ = 0;
+  Edit edit_;
+  // The camera: fitted to the scene every frame until the user zooms or pans.
+  enum class Fit { kAll, kCharacter, kNone } fit_ = Fit::kAll;
+  Camera camera_;
+  bool one_to_one_ = false;  // applied once the next frame's bounds are known
+  bool panning_ = false;
+};
+
+bake::Triangles RigTriangles(const Rig& rig);
+// A name "<stem>-K" that no entry of d[list] has yet.
+std::string FreshName(const nlohmann::json& d, const char* list, const std::string& stem, int* counter);
+
+// The same mapping as RigRenderer::Record: world <-> window pixels, for a
+// viewport at x0 (the edited character stands at the identity transform).
+struct ViewMap {
+  Camera camera;
+  std::int32_t x0;
+  std::uint32_t w, h;
+  double s() const { return camera.zoom; }
+  ImVec2 ToScreen(const Eigen::Vector2d& p) const {
+    const glm::dvec2 q = viewer::ToScreen(camera, {p.x(), p.y()}, w, h);
+    return ImVec2(float(q.x + x0), float(q.y));
+  }
+  Eigen::Vector2d ToRig(const ImVec2& q) const {
+    const glm::dvec2 p = ToWorld(camera, {q.x - x0, q.y}, w, h);
+    return {p.x, p.y};
+  }
+};
+
+}  // namespace posemorph::viewer::window_impl

@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: MIT
+// The pose-space pad: the weight field coloured by the dominant pose, the pose points, dragging the point, recording a gesture.
+#include "window_impl.h"
+
+namespace posemorph::viewer::window_impl {
+
+// Colours of the poses in the pad (dominant pose of the weight field): the
+// contact sheet's (pose_colours.h).
+ImU32 PoseColour(std::uint32_t i, int alpha) {
+  const bake::PoseColour c = bake::PoseColourOf(i);
+  return IM_COL32(c.r, c.g, c.b, alpha);
+}
+
+void Viewer::Pad() {
+  const PoseSpaceGrid& g = rig_.grid();
+  const float size = kPanelWidth - 24;
+  ImGui::TextUnformatted("Pose space (drag; beyond the points extrapolates)");
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImGui::InvisibleButton("pad", ImVec2(size, size));
+  const bool active = ImGui::IsItemActive();
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  auto to_screen = [&](double x, double y) {
+    return ImVec2(origin.x + float((x - pad_x0_) / pad_span_ * size),
+                  origin.y + float((1 - (y - pad_y0_) / pad_span_) * size));
+  };
+  // The weight field: each cell coloured by its dominant pose, stronger where it dominates more.
+  const float cell = size / float(field_cells_);
+  for (int j = 0; j < field_cells_; ++j)
+    for (int i = 0; i < field_cells_; ++i) {
+      const ImVec2 a(origin.x + i * cell, origin.y + (field_cells_ - 1 - j) * cell);
+      draw->AddRectFilled(a, ImVec2(a.x + cell + 1, a.y + cell + 1), field_[std::size_t(j) * field_cells_ + i]);
+    }
+  draw->AddRect(to_screen(g.origin_x, g.origin_y + g.cell * g.cells_y),
+                to_screen(g.origin_x + g.cell * g.cells_x, g.origin_y), IM_COL32(60, 60, 60, 160));
+  for (std::uint32_t i = 0; i < rig_.pose_count(); ++i) {
+    const ImVec2 p = to_screen(rig_.pose_points().data[2 * i], rig_.pose_points().data[2 * i + 1]);
+    draw->AddCircleFilled(p, 6, PoseColour(i, 255));
+    draw->AddCircle(p, 6, IM_COL32(30, 30, 30, 255));
+    const StringView name = rig_.pose_name(i);
+    draw->AddText(ImVec2(p.x + 8, p.y - 7), IM_COL32(20, 20, 20, 255), name.data, name.data + name.size);
+  }
+  if (gesture_.keys.size() > 1)
+    for (std::size_t k = 1; k < gesture_.keys.size(); ++k)
+      draw->AddLine(to_screen(gesture_.keys[k - 1][1], gesture_.keys[k - 1][2]),
+                    to_screen(gesture_.keys[k][1], gesture_.keys[k][2]), IM_COL32(40, 40, 40, 200), 2);
+  const ImVec2 cur = to_screen(scene_.x, scene_.y);
+  draw->AddCircle(cur, 9, IM_COL32(255, 255, 255, 255), 0, 3);
+  draw->AddCircle(cur, 11, IM_COL32(20, 20, 20, 255), 0, 1.5f);
+  if (active) {
+    const ImVec2 m = ImGui::GetIO().MousePos;
+    scene_.x = pad_x0_ + (m.x - origin.x) / size * pad_span_;
+    scene_.y = pad_y0_ + (1 - (m.y - origin.y) / size) * pad_span_;
+    scene_.path.clear();
+    play_path_ = false;
+    gesture_.playing = false;
+    if (gesture_.recording) gesture_.keys.push_back({clock_ - gesture_.start, scene_.x, scene_.y});
+  }
+}
+
+void Viewer::SaveGesture() {
+  ChangeDescription("gestures", [&](nlohmann::json& d) {
+    const std::string name = FreshName(d, "paths", "gesture", &saved_gestures_);
+    nlohmann::json keys = nlohmann::json::array();
+    double last = -1;
+    for (const auto& k : gesture_.keys)
+      if (k[0] > last + 1e-3) keys.push_back({k[0], k[1], k[2]}), last = k[0];
+    d["paths"].push_back({{"name", name}, {"loop", true}, {"interpolation", "linear"}, {"keys", keys}});
+    return "path \"" + name + "\"";
+  });
+}
+
+}  // namespace posemorph::viewer::window_impl
