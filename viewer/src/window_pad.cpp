@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// The pose-space pad: the weight field coloured by the dominant pose, the pose points, dragging the point, recording a gesture.
+// The pose-space pad: the weight field coloured by the dominant pose, the pose points, dragging the point, recording a
+// gesture.
 #include "window_impl.h"
 
 namespace posemorph::viewer::window_impl {

@@ -1,0 +1,113 @@
+// SPDX-License-Identifier: MIT
+// Rig's own code: moving, and the accessors over the arena the loader
+// (rig_load.cpp) filled.
+#include <cstring>
+#include <utility>
+
+#include "kernels/kernel_table.h"
+#include "posemorph/rig.h"
+
+namespace posemorph {
+
+Rig::Rig() = default;
+Rig::~Rig() = default;
+// A moved-from rig is empty (loaded() false, every span empty), never a
+// view into the arena its new owner holds.
+Rig::Rig(Rig&& other) noexcept { *this = std::move(other); }
+
+Rig& Rig::operator=(Rig&& other) noexcept {
+  if (this == &other) return *this;
+  arena_ = std::move(other.arena_);
+  arena_size_ = std::exchange(other.arena_size_, 0);
+  vertex_count_ = std::exchange(other.vertex_count_, 0);
+  triangle_count_ = std::exchange(other.triangle_count_, 0);
+  pose_count_ = std::exchange(other.pose_count_, 0);
+  path_count_ = std::exchange(other.path_count_, 0);
+  triangles_ = std::exchange(other.triangles_, {});
+  pose_positions_ = std::exchange(other.pose_positions_, {});
+  pose_points_ = std::exchange(other.pose_points_, {});
+  pose_centroids_ = std::exchange(other.pose_centroids_, {});
+  vertex_masses_ = std::exchange(other.vertex_masses_, {});
+  gradients_ = std::exchange(other.gradients_, {});
+  angles_ = std::exchange(other.angles_, {});
+  stretches_ = std::exchange(other.stretches_, {});
+  blend_blocks_ = std::exchange(other.blend_blocks_, {});
+  uvs_ = std::exchange(other.uvs_, {});
+  canvases_ = std::exchange(other.canvases_, {});
+  strings_ = std::exchange(other.strings_, {});
+  paths_ = std::exchange(other.paths_, {});
+  grid_ = std::exchange(other.grid_, {});
+  factor_ = std::exchange(other.factor_, {});
+  default_sigma_ = std::exchange(other.default_sigma_, 0);
+  texture_filter_ = std::exchange(other.texture_filter_, TextureFilter::kLinear);
+  rig_size_ = std::exchange(other.rig_size_, 0);
+  kernels_ = std::exchange(other.kernels_, nullptr);
+  checksum_ = std::exchange(other.checksum_, 0);
+  format_major_ = std::exchange(other.format_major_, 0);
+  format_minor_ = std::exchange(other.format_minor_, 0);
+  return *this;
+}
+
+Isa Rig::isa() const { return kernels_ ? kernels_->isa : Isa::kAuto; }
+
+Span<const double> Rig::pose_positions(std::uint32_t pose) const {
+  if (pose >= pose_count_) return {};
+  return pose_positions_.subspan(std::size_t(pose) * 2 * vertex_count_, 2 * std::size_t(vertex_count_));
+}
+
+Span<const float> Rig::uvs(std::uint32_t pose) const {
+  if (pose >= pose_count_ || uvs_.empty()) return {};
+  return uvs_.subspan(std::size_t(pose) * 2 * vertex_count_, 2 * std::size_t(vertex_count_));
+}
+
+StringView Rig::pose_name(std::uint32_t pose) const { return pose < pose_count_ ? strings_[pose] : StringView{}; }
+
+StringView Rig::pose_image(std::uint32_t pose) const {
+  return pose < pose_count_ ? strings_[pose_count_ + pose] : StringView{};
+}
+
+DrawingCanvas Rig::pose_canvas(std::uint32_t pose) const {
+  if (pose >= pose_count_ || canvases_.empty()) return {};
+  const double* c = canvases_.data + 4 * std::size_t(pose);
+  return {c[0], c[1], c[2], c[3]};
+}
+
+PathView Rig::path(std::uint32_t index) const { return index < path_count_ ? paths_[index] : PathView{}; }
+
+int Rig::FindPath(const char* name) const {
+  if (!name) return -1;
+  const std::size_t n = std::strlen(name);
+  for (std::uint32_t i = 0; i < path_count_; ++i)
+    if (paths_[i].name.size == n && std::memcmp(paths_[i].name.data, name, n) == 0) return int(i);
+  return -1;
+}
+
+const char* ErrorCodeName(ErrorCode code) {
+  switch (code) {
+    case ErrorCode::kOk:
+      return "ok";
+    case ErrorCode::kInvalidArgument:
+      return "invalid argument";
+    case ErrorCode::kTruncated:
+      return "truncated";
+    case ErrorCode::kBadMagic:
+      return "bad magic";
+    case ErrorCode::kBadVersion:
+      return "unsupported version";
+    case ErrorCode::kBadChecksum:
+      return "bad checksum";
+    case ErrorCode::kBadLayout:
+      return "bad layout";
+    case ErrorCode::kBadValue:
+      return "bad value";
+    case ErrorCode::kTooLarge:
+      return "too large";
+    case ErrorCode::kOutOfMemory:
+      return "out of memory";
+    case ErrorCode::kUnsupportedIsa:
+      return "unsupported code path";
+  }
+  return "unknown";
+}
+
+}  // namespace posemorph
