@@ -137,7 +137,6 @@ struct ArenaSource {
   std::size_t* needed = nullptr;
 };
 
-
 // The header's fields the later steps use.
 struct Header {
   std::uint16_t major = 0, minor = 0;

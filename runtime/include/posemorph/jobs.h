@@ -15,6 +15,10 @@ namespace posemorph {
 // Weights at a pose-space point. The point is clamped to the baked grid (the
 // field is constant beyond it); a NaN coordinate is replaced by pose 0's
 // coordinate, so any input gives a finite, defined result.
+//
+// Validate() fails (and Run() does nothing) when: rig is null or not loaded;
+// raw is null or shorter than N (the rig's pose count); shear or texture is
+// given (non-empty) but null or shorter than N.
 struct PM_API WeightsJob {
   const Rig* rig = nullptr;
   double x = 0, y = 0;
@@ -43,6 +47,13 @@ enum class Interpolation : std::uint8_t {
 };
 
 // Vertex positions for given weights.
+//
+// Validate() fails (and Run() does nothing) when: rig is null or not loaded;
+// weights or shear_weights is null or shorter than N; a weight is not finite
+// or above kMaxJobWeight in magnitude; workspace is null or shorter than
+// rig->morph_workspace_size(); positions is null or shorter than 2V;
+// positions_f32 is given but null or shorter than 2V; interpolation is not
+// one of the enum's values.
 struct PM_API MorphJob {
   const Rig* rig = nullptr;
   Span<const double> weights;        // N raw weights (rotation angles, centroid)
@@ -61,6 +72,14 @@ struct PM_API MorphJob {
 // once per group; every result equals what MorphJob gives for that character,
 // bit for bit. To use several threads, run one job per thread over disjoint
 // ranges of characters, each with its own workspace.
+//
+// Validate() fails (and Run() does nothing) when: rig is null or not loaded;
+// count is so large that count x (2V + N) overflows half of size_t; weights
+// or shear_weights is null or shorter than count x N; a weight is not finite
+// or above kMaxJobWeight in magnitude; workspace is null or shorter than
+// rig->batch_workspace_size(); neither positions nor positions_f32 is given;
+// one that is given is null or shorter than count x 2V. A count of 0 is valid
+// and does nothing, whatever the spans.
 struct PM_API MorphBatchJob {
   const Rig* rig = nullptr;
   std::size_t count = 0;             // characters

@@ -1,0 +1,199 @@
+// SPDX-License-Identifier: MIT
+// Validity tests in the ozz-animation manner: for every job, a valid job
+// runs, and each failure case listed in its header (jobs.h, draw_list.h)
+// makes Validate() false and Run() refuse without touching the outputs.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "posemorph/draw_list.h"
+#include "posemorph/jobs.h"
+#include "runtime_support.h"
+
+using namespace posemorph;
+using namespace posemorph::test;
+
+namespace {
+
+constexpr double kSentinel = -12345.0;
+
+struct WeightsBuffers {
+  std::vector<double> raw, shear, texture, out;
+};
+
+struct MorphBuffers {
+  std::vector<double> weights, limited, workspace, positions, out;
+  std::vector<float> f32;
+};
+
+}  // namespace
+
+TEST_CASE("WeightsJob: a valid job runs, and each failure case of its header is refused") {
+  const Rig rig = LoadTestRig("snake");
+  const std::size_t N = rig.pose_count();
+  WeightsBuffers fresh;
+  fresh.raw.assign(N, kSentinel), fresh.shear.assign(N, kSentinel), fresh.texture.assign(N, kSentinel);
+  auto valid = [&](WeightsJob& j, WeightsBuffers& b) {
+    j.rig = &rig;
+    j.x = 0.3, j.y = 0.2;
+    j.raw = MakeSpan(b.raw), j.shear = MakeSpan(b.shear), j.texture = MakeSpan(b.texture);
+  };
+  {
+    WeightsBuffers b = fresh;
+    WeightsJob j;
+    valid(j, b);
+    REQUIRE(j.Run());
+    double sum = 0;
+    for (double w : b.raw) sum += w;
+    CHECK(std::fabs(sum - 1) < 1e-12);
+  }
+  const Rig empty;
+  using F = std::function<void(WeightsJob&, WeightsBuffers&)>;
+  const std::vector<std::pair<const char*, F>> cases = {
+      {"null rig", [](WeightsJob& j, WeightsBuffers&) { j.rig = nullptr; }},
+      {"rig not loaded", [&](WeightsJob& j, WeightsBuffers&) { j.rig = &empty; }},
+      {"raw null", [](WeightsJob& j, WeightsBuffers&) { j.raw = {}; }},
+      {"raw short", [](WeightsJob& j, WeightsBuffers& b) { j.raw = {b.raw.data(), b.raw.size() - 1}; }},
+      {"shear given but null", [](WeightsJob& j, WeightsBuffers& b) { j.shear = {nullptr, b.shear.size()}; }},
+      {"shear short", [](WeightsJob& j, WeightsBuffers& b) { j.shear = {b.shear.data(), b.shear.size() - 1}; }},
+      {"texture given but null", [](WeightsJob& j, WeightsBuffers& b) { j.texture = {nullptr, b.texture.size()}; }},
+      {"texture short",
+       [](WeightsJob& j, WeightsBuffers& b) { j.texture = {b.texture.data(), b.texture.size() - 1}; }},
+  };
+  for (const auto& c : cases) {
+    const char* what = c.first;  // (Clang 14 cannot capture a structured binding)
+    CAPTURE(what);
+    WeightsBuffers b = fresh;
+    WeightsJob j;
+    valid(j, b);
+    REQUIRE(j.Validate());
+    c.second(j, b);
+    CHECK_FALSE(j.Validate());
+    CHECK_FALSE(j.Run());
+    for (const std::vector<double>* out : {&b.raw, &b.shear, &b.texture})
+      for (double v : *out) REQUIRE(v == kSentinel);
+  }
+}
+
+TEST_CASE("MorphJob: a valid job runs, and each failure case of its header is refused") {
+  const Rig rig = LoadTestRig("snake");
+  const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
+  MorphBuffers fresh;
+  fresh.weights.assign(N, 1.0 / double(N)), fresh.limited = fresh.weights;
+  fresh.workspace.assign(rig.morph_workspace_size(), 0);
+  fresh.positions.assign(v2, kSentinel);
+  fresh.f32.assign(v2, float(kSentinel));
+  auto valid = [&](MorphJob& j, MorphBuffers& b) {
+    j.rig = &rig;
+    j.weights = MakeSpan(b.weights), j.shear_weights = MakeSpan(b.limited);
+    j.workspace = MakeSpan(b.workspace), j.positions = MakeSpan(b.positions), j.positions_f32 = MakeSpan(b.f32);
+  };
+  {
+    MorphBuffers b = fresh;
+    MorphJob j;
+    valid(j, b);
+    REQUIRE(j.Run());
+    for (double v : b.positions) REQUIRE(std::isfinite(v));
+  }
+  const Rig empty;
+  using F = std::function<void(MorphJob&, MorphBuffers&)>;
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const std::vector<std::pair<const char*, F>> cases = {
+      {"null rig", [](MorphJob& j, MorphBuffers&) { j.rig = nullptr; }},
+      {"rig not loaded", [&](MorphJob& j, MorphBuffers&) { j.rig = &empty; }},
+      {"weights null", [](MorphJob& j, MorphBuffers&) { j.weights = {}; }},
+      {"weights short", [](MorphJob& j, MorphBuffers& b) { j.weights = {b.weights.data(), b.weights.size() - 1}; }},
+      {"shear weights null", [](MorphJob& j, MorphBuffers&) { j.shear_weights = {}; }},
+      {"shear weights short",
+       [](MorphJob& j, MorphBuffers& b) { j.shear_weights = {b.limited.data(), b.limited.size() - 1}; }},
+      {"a NaN weight", [nan](MorphJob&, MorphBuffers& b) { b.weights[1] = nan; }},
+      {"an infinite shear weight", [inf](MorphJob&, MorphBuffers& b) { b.limited[0] = -inf; }},
+      {"a weight above kMaxJobWeight", [](MorphJob&, MorphBuffers& b) { b.weights[0] = 2 * kMaxJobWeight; }},
+      {"workspace null", [](MorphJob& j, MorphBuffers&) { j.workspace = {}; }},
+      {"workspace short",
+       [](MorphJob& j, MorphBuffers& b) { j.workspace = {b.workspace.data(), b.workspace.size() - 1}; }},
+      {"positions null", [](MorphJob& j, MorphBuffers&) { j.positions = {}; }},
+      {"positions short",
+       [](MorphJob& j, MorphBuffers& b) { j.positions = {b.positions.data(), b.positions.size() - 1}; }},
+      {"float copy given but null", [](MorphJob& j, MorphBuffers& b) { j.positions_f32 = {nullptr, b.f32.size()}; }},
+      {"float copy short", [](MorphJob& j, MorphBuffers& b) { j.positions_f32 = {b.f32.data(), b.f32.size() - 1}; }},
+      {"unknown interpolation", [](MorphJob& j, MorphBuffers&) { j.interpolation = Interpolation(7); }},
+  };
+  for (const auto& c : cases) {
+    const char* what = c.first;  // (Clang 14 cannot capture a structured binding)
+    CAPTURE(what);
+    MorphBuffers b = fresh;
+    MorphJob j;
+    valid(j, b);
+    REQUIRE(j.Validate());
+    c.second(j, b);
+    CHECK_FALSE(j.Validate());
+    CHECK_FALSE(j.Run());
+    for (double v : b.positions) REQUIRE(v == kSentinel);
+    for (float v : b.f32) REQUIRE(v == float(kSentinel));
+  }
+}
+
+TEST_CASE("MorphBatchJob: a valid job runs, and each failure case of its header is refused") {
+  const Rig rig = LoadTestRig("snake");
+  const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count()), count = 3;
+  MorphBuffers fresh;
+  fresh.weights.assign(count * N, 1.0 / double(N)), fresh.limited = fresh.weights;
+  fresh.workspace.assign(rig.batch_workspace_size(), 0);
+  fresh.positions.assign(count * v2, kSentinel);
+  fresh.f32.assign(count * v2, float(kSentinel));
+  auto valid = [&](MorphBatchJob& j, MorphBuffers& b) {
+    j.rig = &rig;
+    j.count = count;
+    j.weights = MakeSpan(b.weights), j.shear_weights = MakeSpan(b.limited);
+    j.workspace = MakeSpan(b.workspace), j.positions = MakeSpan(b.positions), j.positions_f32 = MakeSpan(b.f32);
+  };
+  {
+    MorphBuffers b = fresh;
+    MorphBatchJob j;
+    valid(j, b);
+    REQUIRE(j.Run());
+    for (double v : b.positions) REQUIRE(std::isfinite(v));
+  }
+  const Rig empty;
+  using F = std::function<void(MorphBatchJob&, MorphBuffers&)>;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<std::pair<const char*, F>> cases = {
+      {"null rig", [](MorphBatchJob& j, MorphBuffers&) { j.rig = nullptr; }},
+      {"rig not loaded", [&](MorphBatchJob& j, MorphBuffers&) { j.rig = &empty; }},
+      {"count overflows", [](MorphBatchJob& j, MorphBuffers&) { j.count = std::size_t(-1) / 4; }},
+      {"weights null", [](MorphBatchJob& j, MorphBuffers&) { j.weights = {}; }},
+      {"weights short for the count", [](MorphBatchJob& j, MorphBuffers&) { ++j.count; }},
+      {"shear weights short",
+       [](MorphBatchJob& j, MorphBuffers& b) { j.shear_weights = {b.limited.data(), b.limited.size() - 1}; }},
+      {"a NaN weight of the last character", [nan](MorphBatchJob&, MorphBuffers& b) { b.weights.back() = nan; }},
+      {"a weight above kMaxJobWeight",
+       [](MorphBatchJob&, MorphBuffers& b) { b.limited[0] = -2 * kMaxJobWeight; }},
+      {"workspace short",
+       [](MorphBatchJob& j, MorphBuffers& b) { j.workspace = {b.workspace.data(), b.workspace.size() - 1}; }},
+      {"no output at all",
+       [](MorphBatchJob& j, MorphBuffers&) { j.positions = {}, j.positions_f32 = {}; }},
+      {"positions given but null",
+       [](MorphBatchJob& j, MorphBuffers& b) { j.positions = {nullptr, b.positions.size()}; }},
+      {"positions short",
+       [](MorphBatchJob& j, MorphBuffers& b) { j.positions = {b.positions.data(), b.positions.size() - 1}; }},
+      {"float copy short",
+       [](MorphBatchJob& j, MorphBuffers& b) { j.positions_f32 = {b.f32.data(), b.f32.size() - 1}; }},
+  };
+  for (const auto& c : cases) {
+    const char* what = c.first;  // (Clang 14 cannot capture a structured binding)
+    CAPTURE(what);
+    MorphBuffers b = fresh;
+    MorphBatchJob j;
+    valid(j, b);
+    REQUIRE(j.Validate());
+    c.second(j, b);
+    CHECK_FALSE(j.Validate());
+    CHECK_FALSE(j.Run());
+    for (double v : b.positions) REQUIRE(v == kSentinel);
+    for (float v : b.f32) REQUIRE(v == float(kSentinel));
+  }
+}
