@@ -56,12 +56,26 @@ TEST_CASE("WeightsJob: a valid job runs, and each failure case of its header is 
       {"null rig", [](WeightsJob& j, WeightsBuffers&) { j.rig = nullptr; }},
       {"rig not loaded", [&](WeightsJob& j, WeightsBuffers&) { j.rig = &empty; }},
       {"raw null", [](WeightsJob& j, WeightsBuffers&) { j.raw = {}; }},
-      {"raw short", [](WeightsJob& j, WeightsBuffers& b) { j.raw = {b.raw.data(), b.raw.size() - 1}; }},
-      {"shear given but null", [](WeightsJob& j, WeightsBuffers& b) { j.shear = {nullptr, b.shear.size()}; }},
-      {"shear short", [](WeightsJob& j, WeightsBuffers& b) { j.shear = {b.shear.data(), b.shear.size() - 1}; }},
-      {"texture given but null", [](WeightsJob& j, WeightsBuffers& b) { j.texture = {nullptr, b.texture.size()}; }},
+      {"raw short",
+       [](WeightsJob& j, WeightsBuffers& b) {
+         j.raw = {b.raw.data(), b.raw.size() - 1};
+       }},
+      {"shear given but null",
+       [](WeightsJob& j, WeightsBuffers& b) {
+         j.shear = {nullptr, b.shear.size()};
+       }},
+      {"shear short",
+       [](WeightsJob& j, WeightsBuffers& b) {
+         j.shear = {b.shear.data(), b.shear.size() - 1};
+       }},
+      {"texture given but null",
+       [](WeightsJob& j, WeightsBuffers& b) {
+         j.texture = {nullptr, b.texture.size()};
+       }},
       {"texture short",
-       [](WeightsJob& j, WeightsBuffers& b) { j.texture = {b.texture.data(), b.texture.size() - 1}; }},
+       [](WeightsJob& j, WeightsBuffers& b) {
+         j.texture = {b.texture.data(), b.texture.size() - 1};
+       }},
   };
   for (const auto& c : cases) {
     const char* what = c.first;  // (Clang 14 cannot capture a structured binding)
@@ -105,21 +119,36 @@ TEST_CASE("MorphJob: a valid job runs, and each failure case of its header is re
       {"null rig", [](MorphJob& j, MorphBuffers&) { j.rig = nullptr; }},
       {"rig not loaded", [&](MorphJob& j, MorphBuffers&) { j.rig = &empty; }},
       {"weights null", [](MorphJob& j, MorphBuffers&) { j.weights = {}; }},
-      {"weights short", [](MorphJob& j, MorphBuffers& b) { j.weights = {b.weights.data(), b.weights.size() - 1}; }},
+      {"weights short",
+       [](MorphJob& j, MorphBuffers& b) {
+         j.weights = {b.weights.data(), b.weights.size() - 1};
+       }},
       {"shear weights null", [](MorphJob& j, MorphBuffers&) { j.shear_weights = {}; }},
       {"shear weights short",
-       [](MorphJob& j, MorphBuffers& b) { j.shear_weights = {b.limited.data(), b.limited.size() - 1}; }},
+       [](MorphJob& j, MorphBuffers& b) {
+         j.shear_weights = {b.limited.data(), b.limited.size() - 1};
+       }},
       {"a NaN weight", [nan](MorphJob&, MorphBuffers& b) { b.weights[1] = nan; }},
       {"an infinite shear weight", [inf](MorphJob&, MorphBuffers& b) { b.limited[0] = -inf; }},
       {"a weight above kMaxJobWeight", [](MorphJob&, MorphBuffers& b) { b.weights[0] = 2 * kMaxJobWeight; }},
       {"workspace null", [](MorphJob& j, MorphBuffers&) { j.workspace = {}; }},
       {"workspace short",
-       [](MorphJob& j, MorphBuffers& b) { j.workspace = {b.workspace.data(), b.workspace.size() - 1}; }},
+       [](MorphJob& j, MorphBuffers& b) {
+         j.workspace = {b.workspace.data(), b.workspace.size() - 1};
+       }},
       {"positions null", [](MorphJob& j, MorphBuffers&) { j.positions = {}; }},
       {"positions short",
-       [](MorphJob& j, MorphBuffers& b) { j.positions = {b.positions.data(), b.positions.size() - 1}; }},
-      {"float copy given but null", [](MorphJob& j, MorphBuffers& b) { j.positions_f32 = {nullptr, b.f32.size()}; }},
-      {"float copy short", [](MorphJob& j, MorphBuffers& b) { j.positions_f32 = {b.f32.data(), b.f32.size() - 1}; }},
+       [](MorphJob& j, MorphBuffers& b) {
+         j.positions = {b.positions.data(), b.positions.size() - 1};
+       }},
+      {"float copy given but null",
+       [](MorphJob& j, MorphBuffers& b) {
+         j.positions_f32 = {nullptr, b.f32.size()};
+       }},
+      {"float copy short",
+       [](MorphJob& j, MorphBuffers& b) {
+         j.positions_f32 = {b.f32.data(), b.f32.size() - 1};
+       }},
       {"unknown interpolation", [](MorphJob& j, MorphBuffers&) { j.interpolation = Interpolation(7); }},
   };
   for (const auto& c : cases) {
@@ -168,20 +197,28 @@ TEST_CASE("MorphBatchJob: a valid job runs, and each failure case of its header 
       {"weights null", [](MorphBatchJob& j, MorphBuffers&) { j.weights = {}; }},
       {"weights short for the count", [](MorphBatchJob& j, MorphBuffers&) { ++j.count; }},
       {"shear weights short",
-       [](MorphBatchJob& j, MorphBuffers& b) { j.shear_weights = {b.limited.data(), b.limited.size() - 1}; }},
+       [](MorphBatchJob& j, MorphBuffers& b) {
+         j.shear_weights = {b.limited.data(), b.limited.size() - 1};
+       }},
       {"a NaN weight of the last character", [nan](MorphBatchJob&, MorphBuffers& b) { b.weights.back() = nan; }},
-      {"a weight above kMaxJobWeight",
-       [](MorphBatchJob&, MorphBuffers& b) { b.limited[0] = -2 * kMaxJobWeight; }},
+      {"a weight above kMaxJobWeight", [](MorphBatchJob&, MorphBuffers& b) { b.limited[0] = -2 * kMaxJobWeight; }},
       {"workspace short",
-       [](MorphBatchJob& j, MorphBuffers& b) { j.workspace = {b.workspace.data(), b.workspace.size() - 1}; }},
-      {"no output at all",
-       [](MorphBatchJob& j, MorphBuffers&) { j.positions = {}, j.positions_f32 = {}; }},
+       [](MorphBatchJob& j, MorphBuffers& b) {
+         j.workspace = {b.workspace.data(), b.workspace.size() - 1};
+       }},
+      {"no output at all", [](MorphBatchJob& j, MorphBuffers&) { j.positions = {}, j.positions_f32 = {}; }},
       {"positions given but null",
-       [](MorphBatchJob& j, MorphBuffers& b) { j.positions = {nullptr, b.positions.size()}; }},
+       [](MorphBatchJob& j, MorphBuffers& b) {
+         j.positions = {nullptr, b.positions.size()};
+       }},
       {"positions short",
-       [](MorphBatchJob& j, MorphBuffers& b) { j.positions = {b.positions.data(), b.positions.size() - 1}; }},
+       [](MorphBatchJob& j, MorphBuffers& b) {
+         j.positions = {b.positions.data(), b.positions.size() - 1};
+       }},
       {"float copy short",
-       [](MorphBatchJob& j, MorphBuffers& b) { j.positions_f32 = {b.f32.data(), b.f32.size() - 1}; }},
+       [](MorphBatchJob& j, MorphBuffers& b) {
+         j.positions_f32 = {b.f32.data(), b.f32.size() - 1};
+       }},
   };
   for (const auto& c : cases) {
     const char* what = c.first;  // (Clang 14 cannot capture a structured binding)
