@@ -2,25 +2,28 @@
 // The interactive viewer: a GLFW window with a Vulkan swapchain. The rig is
 // drawn with dynamic rendering, then Dear ImGui (its 1.86 Vulkan backend
 // wants a render pass) draws the panel on top: the pose-space pad, gestures,
-// stored paths, and the controls. This file: the main loop and the smoke
-// test it can run; the rest of the window is in window_*.cpp (window_impl.h).
+// stored paths, and the controls. This file: opening and closing the window
+// and the main loop; the smoke test's script is in window_smoke.cpp and the
+// rest of the window in window_*.cpp (window_impl.h).
 #include "window_impl.h"
 
 namespace posemorph::viewer {
 namespace window_impl {
 
-int Viewer::Run() {
+// The window, the device, the swapchain, the renderer and the frame's sync
+// objects. False (with a message) when any of them cannot be had.
+bool Viewer::Open() {
   glfwSetErrorCallback([](int, const char* text) { std::fprintf(stderr, "posemorph-view: GLFW: %s\n", text); });
   if (!glfwInit()) {
     std::fprintf(stderr, "posemorph-view: error: no display to open a window on (use --headless -o OUT.png)\n");
-    return 1;
+    return false;
   }
   glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
   window_ = glfwCreateWindow(int(options_.width), int(options_.height), "posemorph", nullptr, nullptr);
   if (!window_) {
     glfwTerminate();
     std::fprintf(stderr, "posemorph-view: error: cannot open a window\n");
-    return 1;
+    return false;
   }
   glfwSetWindowUserPointer(window_, this);
   glfwSetFramebufferSizeCallback(
@@ -32,24 +35,23 @@ int Viewer::Run() {
   const char** needed = glfwGetRequiredInstanceExtensions(&n);
   go.instance_extensions.assign(needed, needed + n);
   std::string problem;
-  int status = 0;
   if (!gpu_.Init(go, &problem) || glfwCreateWindowSurface(gpu_.instance(), window_, nullptr, &surface_) != VK_SUCCESS) {
     std::fprintf(stderr, "posemorph-view: error: %s\n",
                  problem.empty() ? "cannot create a window surface" : problem.c_str());
     glfwDestroyWindow(window_);
     glfwTerminate();
-    return 1;
+    return false;
   }
   VkBool32 present = VK_FALSE;
   vkGetPhysicalDeviceSurfaceSupportKHR(gpu_.physical(), gpu_.queue_family(), surface_, &present);
   if (!present || !CreateSwapchain()) {
     std::fprintf(stderr, "posemorph-view: error: the device cannot present to this window\n");
-    return 1;
+    return false;
   }
   renderer_ = std::make_unique<RigRenderer>();
   if (!renderer_->Init(gpu_, rig_, drawings_, sc_.format, kMaxCharacters, SceneFilter(rig_, scene_), &problem)) {
     std::fprintf(stderr, "posemorph-view: error: %s\n", problem.c_str());
-    return 1;
+    return false;
   }
   VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
   ai.commandPool = gpu_.command_pool();
@@ -61,7 +63,10 @@ int Viewer::Run() {
   VkCheck(vkCreateFence(gpu_.device(), &fi, nullptr, &fence_), "vkCreateFence");
   VkSemaphoreCreateInfo si{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
   VkCheck(vkCreateSemaphore(gpu_.device(), &si, nullptr, &acquired_), "vkCreateSemaphore");
+  return true;
+}
 
+void Viewer::InitUi() {
   // Dear ImGui on the window and the swapchain's render pass.
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
@@ -87,7 +92,9 @@ int Viewer::Run() {
   ImGui_ImplVulkan_Init(&ii, ui_pass_);
   gpu_.RunOnce([](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
   ImGui_ImplVulkan_DestroyFontUploadObjects();
+}
 
+void Viewer::BuildPadField() {
   // The pad's domain: the baked grid, a square around it; its weight-field colours.
   const PoseSpaceGrid& g = rig_.grid();
   const double gw = g.cell * g.cells_x, gh = g.cell * g.cells_y;
@@ -108,11 +115,16 @@ int Viewer::Run() {
       const std::uint32_t top = std::uint32_t(std::max_element(w.begin(), w.end()) - w.begin());
       field_[std::size_t(j) * field_cells_ + i] = PoseColour(top, int(60 + 120 * std::clamp(w[top], 0.0, 1.0)));
     }
+}
 
+int Viewer::Run() {
+  if (!Open()) return 1;
+  InitUi();
+  BuildPadField();
   const bool smoke = !options_.smoke_test.empty();
+  int status = 0;
   auto last = std::chrono::steady_clock::now();
-  auto timing_start = last;  // frames 10 .. half-way (before the resize), for the smoke test's fps
-  double fps = 0;
+  smoke_timing_start_ = last;
   while (!glfwWindowShouldClose(window_)) {
     glfwPollEvents();
     int fw = 0, fh = 0;
@@ -126,40 +138,7 @@ int Viewer::Run() {
     last = now;
     ImGui_ImplVulkan_NewFrame();
     ImGui_ImplGlfw_NewFrame();
-    if (smoke) {
-      // Drag the pad programmatically: press on it and move around a circle.
-      ImGuiIO& io = ImGui::GetIO();
-      const float size = kPanelWidth - 24, cx = 8 + 12 + size / 2, cy = 40 + size / 2;
-      const float a = float(smoke_frame_) / float(options_.smoke_frames) * 6.2831853f;
-      io.MousePos = ImVec2(cx + 0.3f * size * std::cos(a), cy + 0.3f * size * std::sin(a));
-      io.MouseDown[0] = smoke_frame_ > 0 && smoke_frame_ < options_.smoke_frames / 2;
-      // The camera: three wheel steps in at the middle of the view, then a right drag of 4 x 10 px.
-      if (smoke_frame_ == options_.smoke_frames / 2 + 2)
-        io.MousePos = ImVec2(kPanelWidth + (sc_.extent.width - kPanelWidth) / 2.0f, sc_.extent.height / 2.0f);
-      const std::uint32_t drag = smoke_frame_ - options_.smoke_frames / 2;
-      if (smoke_frame_ >= options_.smoke_frames / 2 + 3 && drag <= 7) {
-        io.MousePos = ImVec2(kPanelWidth + 100.0f + 10.0f * float(drag - 3), 300.0f);
-        io.MouseDown[1] = drag < 7;
-      }
-      // The drag is recorded as a gesture for the first half.
-      if (smoke_frame_ == 1) gesture_ = Gesture{}, gesture_.recording = true, gesture_.start = clock_;
-      if (smoke_frame_ == options_.smoke_frames / 2) gesture_.recording = false;
-      if (smoke_frame_ == options_.smoke_frames * 3 / 4 && rig_.vertex_count() > 2) {
-        // Then edit mode: pin vertex 0, drag the vertex farthest from it.
-        edit_.on = true;
-        const Span<const double> p = rig_.pose_positions(0);
-        std::uint32_t far = 1;
-        double best = 0;
-        for (std::uint32_t v = 1; v < rig_.vertex_count(); ++v) {
-          const double d = std::hypot(p.data[2 * v] - p.data[0], p.data[2 * v + 1] - p.data[1]);
-          if (d > best) best = d, far = v;
-        }
-        edit_.handles = {0, far};
-        edit_.targets = {Eigen::Vector2d(p.data[0], p.data[1]), Eigen::Vector2d(p.data[2 * far], p.data[2 * far + 1])};
-      }
-      if (edit_.on && edit_.targets.size() == 2)
-        edit_.targets[1].x() += 0.2 * rig_.bounding_box_diagonal() / options_.smoke_frames;
-    }
+    if (smoke) SmokeInput();
     ImGui::NewFrame();
     BuildUi();
     if (smoke && smoke_frame_ == options_.smoke_frames / 2 + 2) {
@@ -180,41 +159,18 @@ int Viewer::Run() {
       std::printf("%s\n", status_.c_str());
     }
     Frame(last_frame);
-    if (smoke && smoke_frame_ == 10) timing_start = std::chrono::steady_clock::now();
-    // Half-way, the smoke test resizes the window: the swapchain is rebuilt under validation.
-    if (smoke && smoke_frame_ == options_.smoke_frames / 2) {
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - timing_start).count();
-      if (smoke_frame_ > 10) fps = (smoke_frame_ - 10) / seconds;
-      glfwSetWindowSize(window_, int(options_.width) - 100, int(options_.height) - 60);
-    }
+    if (smoke) SmokeAfterFrame();
     if (smoke && ++smoke_frame_ >= options_.smoke_frames) {
-      VkCheck(vkWaitForFences(gpu_.device(), 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-      if (!shot_.buffer) {
-        std::fprintf(stderr, "posemorph-view: error: no frame was drawn\n");
-        status = 1;
-      } else {
-        // Swapchain images are BGRA or RGBA; the PNG wants RGBA.
-        std::vector<unsigned char> rgba(static_cast<unsigned char*>(shot_.mapped),
-                                        static_cast<unsigned char*>(shot_.mapped) + shot_.size);
-        if (sc_.format == VK_FORMAT_B8G8R8A8_UNORM || sc_.format == VK_FORMAT_B8G8R8A8_SRGB)
-          for (std::size_t p = 0; p < rgba.size(); p += 4) std::swap(rgba[p], rgba[p + 2]);
-        if (!WritePng(options_.smoke_test, rgba.data(), sc_.extent.width, sc_.extent.height, &problem)) {
-          std::fprintf(stderr, "posemorph-view: error: %s\n", problem.c_str());
-          status = 1;
-        } else {
-          std::printf(
-              "wrote %s (%ux%u window, %u frames, pad dragged to (%.3f, %.3f), %u character(s), %.1f fps at %ux%u, "
-              "%s)\n",
-              options_.smoke_test.c_str(), sc_.extent.width, sc_.extent.height, smoke_frame_, scene_.x, scene_.y,
-              SceneCharacters(rig_, scene_), fps, options_.width, options_.height, gpu_.device_name().c_str());
-          std::printf("camera: zoom %.4g pixels per unit at (%.2f, %.2f), %s\n", camera_.zoom, camera_.centre.x,
-                      camera_.centre.y, fit_ == Fit::kNone ? "zoomed and panned by the user" : "fitted");
-        }
-      }
+      status = WriteSmokeShot();
       break;
     }
   }
+  const int closed = Close();
+  return closed != 0 ? closed : status;
+}
 
+// Everything Open and InitUi made, in reverse; 3 when the validation layer spoke.
+int Viewer::Close() {
   VkCheck(vkDeviceWaitIdle(gpu_.device()), "vkDeviceWaitIdle");
   ImGui_ImplVulkan_Shutdown();
   ImGui_ImplGlfw_Shutdown();
@@ -233,7 +189,7 @@ int Viewer::Run() {
     std::fprintf(stderr, "posemorph-view: %d validation message(s)\n", gpu_.validation_messages());
     return 3;
   }
-  return status;
+  return 0;
 }
 
 }  // namespace window_impl

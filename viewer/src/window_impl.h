@@ -73,6 +73,13 @@ class Viewer {
   int Run();
 
  private:
+  bool Open();
+  void InitUi();
+  void BuildPadField();
+  int Close();
+  void SmokeInput();
+  void SmokeAfterFrame();
+  int WriteSmokeShot();
   bool CreateSwapchain();
   void DestroySwapchain();
   void BuildUi();
@@ -116,6 +123,8 @@ class Viewer {
   double clock_ = 0;
   double eval_ms_ = 0;
   std::uint32_t smoke_frame_ = 0;
+  std::chrono::steady_clock::time_point smoke_timing_start_{};
+  double smoke_fps_ = 0;  // frames 10 .. half-way (before the resize)
   Edit edit_;
   // The camera: fitted to the scene every frame until the user zooms or pans.
   enum class Fit { kAll, kCharacter, kNone } fit_ = Fit::kAll;
