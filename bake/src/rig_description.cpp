@@ -10,11 +10,25 @@
 
 #include <nlohmann/json.hpp>
 
+#include "description_json.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/input_file.h"
 #include "posemorph/rig_format.h"
 
 namespace posemorph::bake {
+
+nlohmann::json ParseDescriptionJson(const std::string& text, const std::string& file) {
+  try {
+    return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    // Drop nlohmann's "[json.exception.parse_error.101] " tag; keep its explanation.
+    std::string what = e.what();
+    const auto tag_end = what.find("] ");
+    if (what.rfind("[json.exception.", 0) == 0 && tag_end != std::string::npos) what.erase(0, tag_end + 2);
+    throw BakeError(file, "invalid JSON: " + what);
+  }
+}
+
 namespace {
 
 constexpr double kMaxCoordinate = 1e9;
@@ -79,18 +93,6 @@ struct Reader {
   }
 };
 
-json ParseJson(const std::string& text, const std::string& file) {
-  try {
-    return json::parse(text);
-  } catch (const json::exception& e) {
-    // Drop nlohmann's "[json.exception.parse_error.101] " tag; keep its explanation.
-    std::string what = e.what();
-    const auto tag_end = what.find("] ");
-    if (what.rfind("[json.exception.", 0) == 0 && tag_end != std::string::npos) what.erase(0, tag_end + 2);
-    throw BakeError(file, "invalid JSON: " + what);
-  }
-}
-
 std::string ReadText(const std::string& path, const std::string& referenced_from) {
   const std::vector<unsigned char> bytes = ReadInputFile(
       path, kMaxTextFileBytes, referenced_from.empty() ? "a rig description" : "a mesh file", referenced_from);
@@ -146,11 +148,228 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
                       file, warnings);
 }
 
+// A drawn pose: a drawing (PNG or SVG) or an outline, and its landmarks.
+void ParseDrawnPose(const Reader& r, const json& jp, const std::string& w, const std::string& base_dir,
+                    PoseDescription& pose) {
+  pose.drawn = true;
+  if (jp.contains("drawing")) {
+    pose.drawing = r.String(jp["drawing"], w + ".drawing");
+    pose.drawing_path = (std::filesystem::path(base_dir) / pose.drawing).string();
+  } else {
+    pose.outline = r.Points(r.Array(jp, "outline", w), w + ".outline");
+    if (pose.outline.size() < 3) r.Fail(w + ".outline", "needs at least 3 points");
+  }
+  if (!jp.contains("landmarks"))
+    r.Fail(w, "missing \"landmarks\": [[x, y], ...] on the outline; the first is the start point every pose shares");
+  pose.landmarks = r.Points(r.Array(jp, "landmarks", w), w + ".landmarks");
+  if (pose.landmarks.empty()) r.Fail(w + ".landmarks", "needs at least the start point");
+  if (jp.contains("uvs")) r.Fail(w + ".uvs", "a drawn pose gets its uvs from its drawing; remove them");
+  if (jp.contains("origin")) {
+    if (!jp.contains("drawing"))
+      r.Fail(w + ".origin", "only a drawing has an origin (an outline is in rig coordinates)");
+    pose.origin = r.Point(jp["origin"], w + ".origin");
+    if (!(std::abs(pose.origin.x()) <= 1e9 && std::abs(pose.origin.y()) <= 1e9))
+      r.Fail(w + ".origin", "must lie within +-1e9 drawing units");
+  }
+}
+
+// "deform": {"from": POSE, "handles": [...]} (paper section 3.2).
+DeformDescription ParseDeform(const Reader& r, const json& jp, const std::string& w) {
+  DeformDescription deform;
+  const json& jd = jp["deform"];
+  const std::string wd = w + ".deform";
+  if (!jd.is_object()) r.Fail(wd, "expected {\"from\": POSE, \"handles\": [...]}");
+  if (!jd.contains("from")) r.Fail(wd, "missing \"from\" (the name of the pose to deform)");
+  deform.from = r.String(jd["from"], wd + ".from");
+  const json& handles = r.Array(jd, "handles", wd);
+  for (std::size_t h = 0; h < handles.size(); ++h) {
+    const std::string wh = wd + ".handles[" + std::to_string(h) + "]";
+    const json& jh = handles[h];
+    if (!jh.is_object() || jh.contains("at") == jh.contains("vertex") || !jh.contains("to"))
+      r.Fail(wh, "expected {\"at\": [x, y], \"to\": [x, y]} or {\"vertex\": index, \"to\": [x, y]}");
+    HandleDescription handle;
+    handle.by_vertex = jh.contains("vertex");
+    if (handle.by_vertex)
+      handle.vertex = r.Index(jh["vertex"], wh + ".vertex");
+    else
+      handle.at = r.Point(jh["at"], wh + ".at");
+    handle.to = r.Point(jh["to"], wh + ".to");
+    deform.handles.push_back(handle);
+  }
+  return deform;
+}
+
+// "mesh": a mesh file's vertices. Its triangles become the rig's `triangles`
+// when the description has none yet (`have_triangles`), and must equal them
+// otherwise.
+std::vector<Eigen::Vector2d> ParseMeshFile(const Reader& r, const json& jp, const std::string& w,
+                                           const std::string& file, const std::string& base_dir,
+                                           std::vector<std::array<std::uint32_t, 3>>* triangles, bool* have_triangles) {
+  std::vector<Eigen::Vector2d> vertices;
+  const std::string rel = r.String(jp["mesh"], w + ".mesh");
+  const std::string path = (std::filesystem::path(base_dir) / rel).string();
+  Reader mr{path};
+  const json mesh = ParseDescriptionJson(ReadText(path, file), path);
+  if (!mesh.is_object()) mr.Fail("", "expected a mesh object {\"vertices\": [...], \"triangles\": [...]}");
+  vertices = mr.Points(mr.Array(mesh, "vertices", ""), "vertices");
+  if (mesh.contains("triangles")) {
+    auto t = mr.ReadTriangles(mr.Array(mesh, "triangles", ""), "triangles");
+    if (!*have_triangles) {
+      *triangles = std::move(t);
+      *have_triangles = true;
+    } else if (t != *triangles) {
+      mr.Fail("triangles", "differ from the rig's triangle list; all poses share one connectivity");
+    }
+  }
+  return vertices;
+}
+
+// One entry of "poses"; a mesh file may give the rig its triangles (ParseMeshFile).
+PoseDescription ParsePose(const Reader& r, const json& jp, std::size_t i, const std::string& file,
+                          const std::string& base_dir, std::vector<std::array<std::uint32_t, 3>>* triangles,
+                          bool* have_triangles) {
+  const std::string w = "poses[" + std::to_string(i) + "]";
+  if (!jp.is_object()) r.Fail(w, "expected an object");
+  PoseDescription pose;
+  pose.name = jp.contains("name") ? r.String(jp["name"], w + ".name") : "pose" + std::to_string(i);
+  if (!jp.contains("point")) r.Fail(w, "missing \"point\" (its place in pose space)");
+  pose.point = r.Point(jp["point"], w + ".point");
+  if (int(jp.contains("vertices")) + int(jp.contains("mesh")) + int(jp.contains("deform")) +
+          int(jp.contains("drawing")) + int(jp.contains("outline")) !=
+      1)
+    r.Fail(w,
+           "give exactly one of \"vertices\", \"mesh\" (a mesh file), \"deform\", \"drawing\" (PNG or SVG) "
+           "or \"outline\"");
+  if (jp.contains("drawing") || jp.contains("outline")) {
+    ParseDrawnPose(r, jp, w, base_dir, pose);
+  } else if (jp.contains("origin")) {
+    r.Fail(w + ".origin", "only a drawing has an origin");
+  } else if (jp.contains("deform")) {
+    pose.deformed = true;
+    pose.deform = ParseDeform(r, jp, w);
+  } else if (jp.contains("vertices")) {
+    pose.vertices = r.Points(r.Array(jp, "vertices", w), w + ".vertices");
+  } else {
+    pose.vertices = ParseMeshFile(r, jp, w, file, base_dir, triangles, have_triangles);
+  }
+  if (jp.contains("image")) pose.image = r.String(jp["image"], w + ".image");
+  if (jp.contains("uvs")) {
+    for (const Eigen::Vector2d& uv : r.Points(r.Array(jp, "uvs", w), w + ".uvs")) pose.uvs.push_back(uv.cast<float>());
+  }
+  return pose;
+}
+
+void ParseMapping(const Reader& r, const json& m, MappingParameters* parameters) {
+  if (!m.is_object()) r.Fail("mapping", "expected an object");
+  MappingParameters& p = *parameters;
+  auto number = [&](const char* key, double& v, double lo, double hi, const char* range) {
+    if (!m.contains(key)) return;
+    v = r.Number(m[key], std::string("mapping.") + key);
+    if (!(v >= lo && v <= hi)) r.Fail(std::string("mapping.") + key, std::string("must be in ") + range);
+  };
+  number("simplify_tolerance", p.simplify_tolerance, 0, 1e6, "[0, 1e6]");
+  number("max_edge_length", p.max_edge_length, 0, 1e9, "[0, 1e9] (0: automatic)");
+  number("min_angle", p.min_angle, 0, 35, "[0, 35] degrees");
+  number("alpha_threshold", p.alpha_threshold, 1.0 / 255, 1, "[1/255, 1]");
+  number("curve_tolerance", p.curve_tolerance, 1e-6, 1e6, "[1e-6, 1e6]");
+  number("spacing", p.spacing, 1e-6, 1e9, "[1e-6, 1e9]");
+  number("landmark_distance", p.landmark_distance, 0, 1, "[0, 1]");
+  if (m.contains("max_steiner_points")) {
+    if (!m["max_steiner_points"].is_number_integer() || m["max_steiner_points"].get<long long>() < 0 ||
+        m["max_steiner_points"].get<long long>() > 100000)
+      r.Fail("mapping.max_steiner_points", "expected an integer in 0..100000");
+    p.max_steiner_points = int(m["max_steiner_points"].get<long long>());
+  }
+  if (m.contains("max_vertices")) {
+    if (!m["max_vertices"].is_number_integer() || m["max_vertices"].get<long long>() < 16 ||
+        m["max_vertices"].get<long long>() > 100000)
+      r.Fail("mapping.max_vertices", "expected an integer in 16..100000");
+    p.max_vertices = int(m["max_vertices"].get<long long>());
+  }
+}
+
+void ParseBakeParameters(const Reader& r, const json& b, BakeParameters* parameters) {
+  if (!b.is_object()) r.Fail("bake", "expected an object");
+  BakeParameters& p = *parameters;
+  if (b.contains("grid_resolution")) {
+    if (!b["grid_resolution"].is_number_integer()) r.Fail("bake.grid_resolution", "expected an integer");
+    const auto v = b["grid_resolution"].get<long long>();
+    // 256 bakes within 1 GB (the snake: 690 MB, 6 s; 384 took 1.75 GB, 18 s).
+    if (v < 2 || v > 256) r.Fail("bake.grid_resolution", "must be in 2..256 (finer grids need more than 1 GB to bake)");
+    p.grid_resolution = int(v);
+  }
+  if (b.contains("margin")) p.margin = r.Number(b["margin"], "bake.margin");
+  if (b.contains("epsilon")) p.epsilon = r.Number(b["epsilon"], "bake.epsilon");
+  if (b.contains("sigma")) p.sigma = r.Number(b["sigma"], "bake.sigma");
+  if (p.margin < 0 || p.margin > 10) r.Fail("bake.margin", "must be in [0, 10]");
+  if (!(p.epsilon > 0) || p.epsilon > 1e3) r.Fail("bake.epsilon", "must be in (0, 1000]");
+  if (p.sigma < 0 || p.sigma > 1) r.Fail("bake.sigma", "must be in [0, 1]");
+  if (b.contains("precision")) {
+    const std::string v = r.String(b["precision"], "bake.precision");
+    if (v != "compact" && v != "exact") r.Fail("bake.precision", "expected \"compact\" or \"exact\"");
+    p.compact = v == "compact";
+  }
+  if (b.contains("allow_folds")) {
+    if (!b["allow_folds"].is_boolean()) r.Fail("bake.allow_folds", "expected true or false");
+    p.allow_folds = b["allow_folds"].get<bool>();
+  }
+  if (b.contains("max_error")) p.max_error_px = r.Number(b["max_error"], "bake.max_error");
+  if (!(p.max_error_px >= 1e-6) || p.max_error_px > 10) r.Fail("bake.max_error", "must be in [1e-6, 10] pixels");
+  if (b.contains("pixels_per_unit")) {
+    p.pixels_per_unit = r.Number(b["pixels_per_unit"], "bake.pixels_per_unit");
+    if (!(p.pixels_per_unit > 0) || p.pixels_per_unit > 1e6) r.Fail("bake.pixels_per_unit", "must be in (0, 1e6]");
+  }
+}
+
+// One entry of "paths"; `earlier` are the ones before it (names are unique).
+PathDescription ParsePath(const Reader& r, const json& jp, std::size_t i, const std::vector<PathDescription>& earlier) {
+  const std::string w = "paths[" + std::to_string(i) + "]";
+  if (!jp.is_object()) r.Fail(w, "expected an object");
+  PathDescription path;
+  if (!jp.contains("name")) r.Fail(w, "missing \"name\"");
+  path.name = r.String(jp["name"], w + ".name");
+  if (jp.contains("loop")) {
+    if (!jp["loop"].is_boolean()) r.Fail(w + ".loop", "expected true or false");
+    path.loop = jp["loop"].get<bool>();
+  }
+  if (jp.contains("interpolation")) {
+    const std::string mode = r.String(jp["interpolation"], w + ".interpolation");
+    if (mode != "linear" && mode != "catmull-rom")
+      r.Fail(w + ".interpolation", "\"" + mode + "\" is not \"linear\" or \"catmull-rom\"");
+    path.catmull_rom = mode == "catmull-rom";
+  }
+  const json& keys = r.Array(jp, "keys", w);
+  if (keys.empty()) r.Fail(w + ".keys", "needs at least one key");
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    const std::string wk = w + ".keys[" + std::to_string(k) + "]";
+    if (!keys[k].is_array() || keys[k].size() != 3) r.Fail(wk, "expected [time, x, y]");
+    path.keys.push_back({r.Number(keys[k][0], wk), r.Number(keys[k][1], wk), r.Number(keys[k][2], wk)});
+    for (double v : path.keys[k])
+      if (!(std::fabs(v) <= format::kMaxPathValue))
+        r.Fail(wk, "times and coordinates must lie within +-1e12 (the runtime's limit)");
+    if (k > 0 && !(path.keys[k][0] > path.keys[k - 1][0])) r.Fail(wk, "key times must increase strictly");
+  }
+  for (const PathDescription& other : earlier)
+    if (other.name == path.name) r.Fail(w + ".name", "path \"" + path.name + "\" is defined twice");
+  return path;
+}
+
+// Which poses are drawn decides where the triangles come from.
+void CheckPoseKinds(const Reader& r, const std::vector<PoseDescription>& poses, bool have_triangles) {
+  bool any_drawn = false, all_meshed = true;
+  for (const PoseDescription& p : poses) any_drawn |= p.drawn, all_meshed &= p.drawn || p.deformed;
+  if (any_drawn && have_triangles)
+    r.Fail("triangles", "drawn poses get their triangles from the mapping; remove \"triangles\" and mesh files");
+  if (any_drawn && !all_meshed)
+    r.Fail("poses", "when one pose is drawn, every pose must be drawn (\"drawing\" or \"outline\") or deformed");
+  if (!have_triangles && !any_drawn) r.Fail("triangles", "missing: give \"triangles\" or a mesh file that has them");
+}
+
 }  // namespace
 
 RigDescription ParseRigDescription(const std::string& text, const std::string& file, const std::string& base_dir) {
   Reader r{file};
-  const json root = ParseJson(text, file);
+  const json root = ParseDescriptionJson(text, file);
   if (!root.is_object()) r.Fail("", "expected a JSON object at the top level");
   if (!root.contains("posemorph") || !root["posemorph"].is_number_integer() || root["posemorph"].get<int>() != 1)
     r.Fail("posemorph", "missing or unsupported schema version (this bake reads \"posemorph\": 1)");
@@ -165,201 +384,15 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
   }
   bool have_triangles = root.contains("triangles");
   if (have_triangles) rig.triangles = r.ReadTriangles(r.Array(root, "triangles", ""), "triangles");
-
   const json& poses = r.Array(root, "poses", "");
-  for (std::size_t i = 0; i < poses.size(); ++i) {
-    const std::string w = "poses[" + std::to_string(i) + "]";
-    const json& jp = poses[i];
-    if (!jp.is_object()) r.Fail(w, "expected an object");
-    PoseDescription pose;
-    pose.name = jp.contains("name") ? r.String(jp["name"], w + ".name") : "pose" + std::to_string(i);
-    if (!jp.contains("point")) r.Fail(w, "missing \"point\" (its place in pose space)");
-    pose.point = r.Point(jp["point"], w + ".point");
-    if (int(jp.contains("vertices")) + int(jp.contains("mesh")) + int(jp.contains("deform")) +
-            int(jp.contains("drawing")) + int(jp.contains("outline")) !=
-        1)
-      r.Fail(w,
-             "give exactly one of \"vertices\", \"mesh\" (a mesh file), \"deform\", \"drawing\" (PNG or SVG) "
-             "or \"outline\"");
-    if (jp.contains("drawing") || jp.contains("outline")) {
-      pose.drawn = true;
-      if (jp.contains("drawing")) {
-        pose.drawing = r.String(jp["drawing"], w + ".drawing");
-        pose.drawing_path = (std::filesystem::path(base_dir) / pose.drawing).string();
-      } else {
-        pose.outline = r.Points(r.Array(jp, "outline", w), w + ".outline");
-        if (pose.outline.size() < 3) r.Fail(w + ".outline", "needs at least 3 points");
-      }
-      if (!jp.contains("landmarks"))
-        r.Fail(w,
-               "missing \"landmarks\": [[x, y], ...] on the outline; the first is the start point every pose shares");
-      pose.landmarks = r.Points(r.Array(jp, "landmarks", w), w + ".landmarks");
-      if (pose.landmarks.empty()) r.Fail(w + ".landmarks", "needs at least the start point");
-      if (jp.contains("uvs")) r.Fail(w + ".uvs", "a drawn pose gets its uvs from its drawing; remove them");
-      if (jp.contains("origin")) {
-        if (!jp.contains("drawing"))
-          r.Fail(w + ".origin", "only a drawing has an origin (an outline is in rig coordinates)");
-        pose.origin = r.Point(jp["origin"], w + ".origin");
-        if (!(std::abs(pose.origin.x()) <= 1e9 && std::abs(pose.origin.y()) <= 1e9))
-          r.Fail(w + ".origin", "must lie within +-1e9 drawing units");
-      }
-    } else if (jp.contains("origin")) {
-      r.Fail(w + ".origin", "only a drawing has an origin");
-    } else if (jp.contains("deform")) {
-      const json& jd = jp["deform"];
-      const std::string wd = w + ".deform";
-      if (!jd.is_object()) r.Fail(wd, "expected {\"from\": POSE, \"handles\": [...]}");
-      if (!jd.contains("from")) r.Fail(wd, "missing \"from\" (the name of the pose to deform)");
-      pose.deformed = true;
-      pose.deform.from = r.String(jd["from"], wd + ".from");
-      const json& handles = r.Array(jd, "handles", wd);
-      for (std::size_t h = 0; h < handles.size(); ++h) {
-        const std::string wh = wd + ".handles[" + std::to_string(h) + "]";
-        const json& jh = handles[h];
-        if (!jh.is_object() || jh.contains("at") == jh.contains("vertex") || !jh.contains("to"))
-          r.Fail(wh, "expected {\"at\": [x, y], \"to\": [x, y]} or {\"vertex\": index, \"to\": [x, y]}");
-        HandleDescription handle;
-        handle.by_vertex = jh.contains("vertex");
-        if (handle.by_vertex)
-          handle.vertex = r.Index(jh["vertex"], wh + ".vertex");
-        else
-          handle.at = r.Point(jh["at"], wh + ".at");
-        handle.to = r.Point(jh["to"], wh + ".to");
-        pose.deform.handles.push_back(handle);
-      }
-    } else if (jp.contains("vertices")) {
-      pose.vertices = r.Points(r.Array(jp, "vertices", w), w + ".vertices");
-    } else {
-      const std::string rel = r.String(jp["mesh"], w + ".mesh");
-      const std::string path = (std::filesystem::path(base_dir) / rel).string();
-      Reader mr{path};
-      const json mesh = ParseJson(ReadText(path, file), path);
-      if (!mesh.is_object()) mr.Fail("", "expected a mesh object {\"vertices\": [...], \"triangles\": [...]}");
-      pose.vertices = mr.Points(mr.Array(mesh, "vertices", ""), "vertices");
-      if (mesh.contains("triangles")) {
-        auto t = mr.ReadTriangles(mr.Array(mesh, "triangles", ""), "triangles");
-        if (!have_triangles) {
-          rig.triangles = std::move(t);
-          have_triangles = true;
-        } else if (t != rig.triangles) {
-          mr.Fail("triangles", "differ from the rig's triangle list; all poses share one connectivity");
-        }
-      }
-    }
-    if (jp.contains("image")) pose.image = r.String(jp["image"], w + ".image");
-    if (jp.contains("uvs")) {
-      for (const Eigen::Vector2d& uv : r.Points(r.Array(jp, "uvs", w), w + ".uvs"))
-        pose.uvs.push_back(uv.cast<float>());
-    }
-    rig.poses.push_back(std::move(pose));
-  }
-  bool any_drawn = false, all_meshed = true;
-  for (const PoseDescription& p : rig.poses) any_drawn |= p.drawn, all_meshed &= p.drawn || p.deformed;
-  if (any_drawn && have_triangles)
-    r.Fail("triangles", "drawn poses get their triangles from the mapping; remove \"triangles\" and mesh files");
-  if (any_drawn && !all_meshed)
-    r.Fail("poses", "when one pose is drawn, every pose must be drawn (\"drawing\" or \"outline\") or deformed");
-  if (!have_triangles && !any_drawn) r.Fail("triangles", "missing: give \"triangles\" or a mesh file that has them");
-
-  if (root.contains("mapping")) {
-    const json& m = root["mapping"];
-    if (!m.is_object()) r.Fail("mapping", "expected an object");
-    MappingParameters& p = rig.mapping;
-    auto number = [&](const char* key, double& v, double lo, double hi, const char* range) {
-      if (!m.contains(key)) return;
-      v = r.Number(m[key], std::string("mapping.") + key);
-      if (!(v >= lo && v <= hi)) r.Fail(std::string("mapping.") + key, std::string("must be in ") + range);
-    };
-    number("simplify_tolerance", p.simplify_tolerance, 0, 1e6, "[0, 1e6]");
-    number("max_edge_length", p.max_edge_length, 0, 1e9, "[0, 1e9] (0: automatic)");
-    number("min_angle", p.min_angle, 0, 35, "[0, 35] degrees");
-    number("alpha_threshold", p.alpha_threshold, 1.0 / 255, 1, "[1/255, 1]");
-    number("curve_tolerance", p.curve_tolerance, 1e-6, 1e6, "[1e-6, 1e6]");
-    number("spacing", p.spacing, 1e-6, 1e9, "[1e-6, 1e9]");
-    number("landmark_distance", p.landmark_distance, 0, 1, "[0, 1]");
-    if (m.contains("max_steiner_points")) {
-      if (!m["max_steiner_points"].is_number_integer() || m["max_steiner_points"].get<long long>() < 0 ||
-          m["max_steiner_points"].get<long long>() > 100000)
-        r.Fail("mapping.max_steiner_points", "expected an integer in 0..100000");
-      p.max_steiner_points = int(m["max_steiner_points"].get<long long>());
-    }
-    if (m.contains("max_vertices")) {
-      if (!m["max_vertices"].is_number_integer() || m["max_vertices"].get<long long>() < 16 ||
-          m["max_vertices"].get<long long>() > 100000)
-        r.Fail("mapping.max_vertices", "expected an integer in 16..100000");
-      p.max_vertices = int(m["max_vertices"].get<long long>());
-    }
-  }
-
-  if (root.contains("bake")) {
-    const json& b = root["bake"];
-    if (!b.is_object()) r.Fail("bake", "expected an object");
-    BakeParameters& p = rig.parameters;
-    if (b.contains("grid_resolution")) {
-      if (!b["grid_resolution"].is_number_integer()) r.Fail("bake.grid_resolution", "expected an integer");
-      const auto v = b["grid_resolution"].get<long long>();
-      // 256 bakes within 1 GB (the snake: 690 MB, 6 s; 384 took 1.75 GB, 18 s).
-      if (v < 2 || v > 256)
-        r.Fail("bake.grid_resolution", "must be in 2..256 (finer grids need more than 1 GB to bake)");
-      p.grid_resolution = int(v);
-    }
-    if (b.contains("margin")) p.margin = r.Number(b["margin"], "bake.margin");
-    if (b.contains("epsilon")) p.epsilon = r.Number(b["epsilon"], "bake.epsilon");
-    if (b.contains("sigma")) p.sigma = r.Number(b["sigma"], "bake.sigma");
-    if (p.margin < 0 || p.margin > 10) r.Fail("bake.margin", "must be in [0, 10]");
-    if (!(p.epsilon > 0) || p.epsilon > 1e3) r.Fail("bake.epsilon", "must be in (0, 1000]");
-    if (p.sigma < 0 || p.sigma > 1) r.Fail("bake.sigma", "must be in [0, 1]");
-    if (b.contains("precision")) {
-      const std::string v = r.String(b["precision"], "bake.precision");
-      if (v != "compact" && v != "exact") r.Fail("bake.precision", "expected \"compact\" or \"exact\"");
-      p.compact = v == "compact";
-    }
-    if (b.contains("allow_folds")) {
-      if (!b["allow_folds"].is_boolean()) r.Fail("bake.allow_folds", "expected true or false");
-      p.allow_folds = b["allow_folds"].get<bool>();
-    }
-    if (b.contains("max_error")) p.max_error_px = r.Number(b["max_error"], "bake.max_error");
-    if (!(p.max_error_px >= 1e-6) || p.max_error_px > 10) r.Fail("bake.max_error", "must be in [1e-6, 10] pixels");
-    if (b.contains("pixels_per_unit")) {
-      p.pixels_per_unit = r.Number(b["pixels_per_unit"], "bake.pixels_per_unit");
-      if (!(p.pixels_per_unit > 0) || p.pixels_per_unit > 1e6) r.Fail("bake.pixels_per_unit", "must be in (0, 1e6]");
-    }
-  }
-
+  for (std::size_t i = 0; i < poses.size(); ++i)
+    rig.poses.push_back(ParsePose(r, poses[i], i, file, base_dir, &rig.triangles, &have_triangles));
+  CheckPoseKinds(r, rig.poses, have_triangles);
+  if (root.contains("mapping")) ParseMapping(r, root["mapping"], &rig.mapping);
+  if (root.contains("bake")) ParseBakeParameters(r, root["bake"], &rig.parameters);
   if (root.contains("paths")) {
     const json& paths = r.Array(root, "paths", "");
-    for (std::size_t i = 0; i < paths.size(); ++i) {
-      const std::string w = "paths[" + std::to_string(i) + "]";
-      const json& jp = paths[i];
-      if (!jp.is_object()) r.Fail(w, "expected an object");
-      PathDescription path;
-      if (!jp.contains("name")) r.Fail(w, "missing \"name\"");
-      path.name = r.String(jp["name"], w + ".name");
-      if (jp.contains("loop")) {
-        if (!jp["loop"].is_boolean()) r.Fail(w + ".loop", "expected true or false");
-        path.loop = jp["loop"].get<bool>();
-      }
-      if (jp.contains("interpolation")) {
-        const std::string mode = r.String(jp["interpolation"], w + ".interpolation");
-        if (mode != "linear" && mode != "catmull-rom")
-          r.Fail(w + ".interpolation", "\"" + mode + "\" is not \"linear\" or \"catmull-rom\"");
-        path.catmull_rom = mode == "catmull-rom";
-      }
-      const json& keys = r.Array(jp, "keys", w);
-      if (keys.empty()) r.Fail(w + ".keys", "needs at least one key");
-      for (std::size_t k = 0; k < keys.size(); ++k) {
-        const std::string wk = w + ".keys[" + std::to_string(k) + "]";
-        if (!keys[k].is_array() || keys[k].size() != 3) r.Fail(wk, "expected [time, x, y]");
-        path.keys.push_back({r.Number(keys[k][0], wk), r.Number(keys[k][1], wk), r.Number(keys[k][2], wk)});
-        for (double v : path.keys[k])
-          if (!(std::fabs(v) <= format::kMaxPathValue))
-            r.Fail(wk, "times and coordinates must lie within +-1e12 (the runtime's limit)");
-        if (k > 0 && !(path.keys[k][0] > path.keys[k - 1][0])) r.Fail(wk, "key times must increase strictly");
-      }
-      for (const PathDescription& other : rig.paths)
-        if (other.name == path.name) r.Fail(w + ".name", "path \"" + path.name + "\" is defined twice");
-      rig.paths.push_back(std::move(path));
-    }
+    for (std::size_t i = 0; i < paths.size(); ++i) rig.paths.push_back(ParsePath(r, paths[i], i, rig.paths));
   }
   WarnUnknownKeys(root, file, &rig.warnings);
   return rig;

@@ -19,12 +19,11 @@
 #include <memory>
 #include <sstream>
 
-#include <nlohmann/json.hpp>
-
 #include "posemorph/bake/arap_deformer.h"
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/pose_colours.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/rig_description.h"
 #include "posemorph/jobs.h"
 #include "posemorph/path.h"
 #include "window.h"
@@ -55,7 +54,6 @@ struct Edit {
   std::unique_ptr<bake::ArapDeformer> deformer;  // for this handle set
   bake::Points rest, current;
   int dragging = -1;
-  int saved = 0;
 };
 
 struct Gesture {
@@ -92,7 +90,10 @@ class Viewer {
   void CameraUi();
   void CameraInput(std::int32_t x0, std::uint32_t w, std::uint32_t h);
   void SavePose();
-  void ChangeDescription(const char* what, const std::function<std::string(nlohmann::json&)>& change);
+  // Adds them to the rig description (bake::AddToRigDescription; the names
+  // are stems) and writes it back atomically; the status line says what.
+  void SaveIntoDescription(const char* what, const std::vector<bake::PoseDescription>& poses,
+                           const std::vector<bake::PathDescription>& paths);
 
   const Rig& rig_;
   const Drawings& drawings_;
@@ -116,7 +117,6 @@ class Viewer {
   int field_cells_ = 48;
   double pad_x0_ = 0, pad_y0_ = 0, pad_span_ = 1;
   Gesture gesture_;
-  int saved_gestures_ = 0;
   std::string status_;
   bool play_path_ = false;
   int path_index_ = 0;
@@ -134,8 +134,6 @@ class Viewer {
 };
 
 bake::Triangles RigTriangles(const Rig& rig);
-// A name "<stem>-K" that no entry of d[list] has yet.
-std::string FreshName(const nlohmann::json& d, const char* list, const std::string& stem, int* counter);
 
 // The same mapping as RigRenderer::Record: world <-> window pixels, for a
 // viewport at x0 (the edited character stands at the identity transform).

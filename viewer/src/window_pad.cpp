@@ -59,15 +59,13 @@ void Viewer::Pad() {
 }
 
 void Viewer::SaveGesture() {
-  ChangeDescription("gestures", [&](nlohmann::json& d) {
-    const std::string name = FreshName(d, "paths", "gesture", &saved_gestures_);
-    nlohmann::json keys = nlohmann::json::array();
-    double last = -1;
-    for (const auto& k : gesture_.keys)
-      if (k[0] > last + 1e-3) keys.push_back({k[0], k[1], k[2]}), last = k[0];
-    d["paths"].push_back({{"name", name}, {"loop", true}, {"interpolation", "linear"}, {"keys", keys}});
-    return "path \"" + name + "\"";
-  });
+  bake::PathDescription path;
+  path.name = "gesture";
+  path.loop = true;
+  double last = -1;  // key times must increase strictly
+  for (const auto& k : gesture_.keys)
+    if (k[0] > last + 1e-3) path.keys.push_back({k[0], k[1], k[2]}), last = k[0];
+  SaveIntoDescription("gestures", {}, {path});
 }
 
 }  // namespace posemorph::viewer::window_impl

@@ -106,4 +106,29 @@ struct RigDescription {
 RigDescription ReadRigDescription(const std::string& path);
 RigDescription ParseRigDescription(const std::string& json_text, const std::string& file, const std::string& base_dir);
 
+// Writing (rig_description_writer.cpp), the inverse of reading: the one
+// writer of descriptions (the sample generator, the viewer's saves and
+// `posemorph-bake deform` use it). ParseRigDescription(RigDescriptionText(d))
+// gives back d's poses, triangles, parameters and paths; values written are
+// the doubles held, exactly. Optional keys are written when they differ from
+// their defaults (the "bake" block's grid_resolution, margin, epsilon and
+// sigma always).
+std::string RigDescriptionText(const RigDescription& rig);  // one line of JSON and a newline
+// The mesh file a pose's "mesh" names: {"triangles": [...], "vertices": [...]}.
+std::string MeshFileText(const std::vector<Eigen::Vector2d>& vertices,
+                         const std::vector<std::array<std::uint32_t, 3>>& triangles);
+
+// Adds poses and paths to a description's JSON text, keeping everything else
+// it says (what the viewer saves into the description it was started with).
+// Each added pose's and path's name is a stem: it is written as "STEM-K", the
+// smallest K >= 1 that no entry of its list has. BakeError(file, ...) when
+// the text is not a JSON object or its "poses" or "paths" is not an array.
+struct DescriptionAddition {
+  std::string text;  // indented JSON and a newline
+  std::vector<std::string> pose_names, path_names;
+};
+DescriptionAddition AddToRigDescription(const std::string& text, const std::string& file,
+                                        const std::vector<PoseDescription>& poses,
+                                        const std::vector<PathDescription>& paths);
+
 }  // namespace posemorph::bake

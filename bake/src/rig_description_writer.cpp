@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: MIT
+// Writing rig descriptions and mesh files (JSON): the inverse of
+// rig_description.cpp, with the same keys (bake/RIG_DESCRIPTION.md).
+#include <algorithm>
+
+#include <nlohmann/json.hpp>
+
+#include "description_json.h"
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/rig_description.h"
+
+namespace posemorph::bake {
+namespace {
+
+using nlohmann::json;
+
+json PointJson(const Eigen::Vector2d& p) { return json::array({p.x(), p.y()}); }
+
+json PointsJson(const std::vector<Eigen::Vector2d>& points) {
+  json a = json::array();
+  for (const Eigen::Vector2d& p : points) a.push_back(PointJson(p));
+  return a;
+}
+
+json DeformJson(const DeformDescription& deform) {
+  json handles = json::array();
+  for (const HandleDescription& h : deform.handles) {
+    json jh = h.by_vertex ? json{{"vertex", h.vertex}} : json{{"at", PointJson(h.at)}};
+    jh["to"] = PointJson(h.to);
+    handles.push_back(std::move(jh));
+  }
+  return {{"from", deform.from}, {"handles", std::move(handles)}};
+}
+
+json PoseJson(const PoseDescription& pose) {
+  json j = {{"name", pose.name}, {"point", PointJson(pose.point)}};
+  if (pose.drawn) {
+    if (!pose.drawing.empty()) {
+      j["drawing"] = pose.drawing;
+      if (pose.origin != Eigen::Vector2d::Zero()) j["origin"] = PointJson(pose.origin);
+    } else {
+      j["outline"] = PointsJson(pose.outline);
+    }
+    j["landmarks"] = PointsJson(pose.landmarks);
+  } else if (pose.deformed) {
+    j["deform"] = DeformJson(pose.deform);
+  } else {
+    j["vertices"] = PointsJson(pose.vertices);
+  }
+  if (!pose.image.empty()) j["image"] = pose.image;
+  if (!pose.drawn && !pose.uvs.empty()) {
+    json uvs = json::array();
+    for (const Eigen::Vector2f& uv : pose.uvs) uvs.push_back(json::array({double(uv.x()), double(uv.y())}));
+    j["uvs"] = std::move(uvs);
+  }
+  return j;
+}
+
+json PathJson(const PathDescription& path) {
+  return {{"name", path.name},
+          {"loop", path.loop},
+          {"interpolation", path.catmull_rom ? "catmull-rom" : "linear"},
+          {"keys", path.keys}};
+}
+
+json BakeJson(const BakeParameters& p) {
+  const BakeParameters d;
+  json j = {{"grid_resolution", p.grid_resolution}, {"margin", p.margin}, {"epsilon", p.epsilon}, {"sigma", p.sigma}};
+  if (p.compact != d.compact) j["precision"] = p.compact ? "compact" : "exact";
+  if (p.max_error_px != d.max_error_px) j["max_error"] = p.max_error_px;
+  if (p.pixels_per_unit != d.pixels_per_unit) j["pixels_per_unit"] = p.pixels_per_unit;
+  if (p.allow_folds != d.allow_folds) j["allow_folds"] = p.allow_folds;
+  return j;
+}
+
+// Only the parameters that differ from their defaults; null if none does.
+json MappingJson(const MappingParameters& p) {
+  const MappingParameters d;
+  json j = json::object();
+  auto put = [&](const char* key, auto value, auto default_value) {
+    if (value != default_value) j[key] = value;
+  };
+  put("simplify_tolerance", p.simplify_tolerance, d.simplify_tolerance);
+  put("max_edge_length", p.max_edge_length, d.max_edge_length);
+  put("min_angle", p.min_angle, d.min_angle);
+  put("alpha_threshold", p.alpha_threshold, d.alpha_threshold);
+  put("curve_tolerance", p.curve_tolerance, d.curve_tolerance);
+  put("spacing", p.spacing, d.spacing);
+  put("landmark_distance", p.landmark_distance, d.landmark_distance);
+  put("max_steiner_points", p.max_steiner_points, d.max_steiner_points);
+  put("max_vertices", p.max_vertices, d.max_vertices);
+  return j.empty() ? json() : j;
+}
+
+json& ListIn(json& root, const char* key, const std::string& file) {
+  if (!root.contains(key)) root[key] = json::array();
+  if (!root[key].is_array()) throw BakeError(file, std::string(key) + ": expected an array");
+  return root[key];
+}
+
+// "STEM-K" for the smallest K >= 1 that no entry of `list` is named.
+std::string FreshName(const json& list, const std::string& stem) {
+  for (long k = 1;; ++k) {
+    const std::string name = stem + "-" + std::to_string(k);
+    if (std::none_of(list.begin(), list.end(), [&](const json& e) {
+          return e.is_object() && e.contains("name") && e["name"].is_string() && e["name"] == name;
+        }))
+      return name;
+  }
+}
+
+}  // namespace
+
+std::string RigDescriptionText(const RigDescription& rig) {
+  json root;
+  root["posemorph"] = 1;
+  root["name"] = rig.name;
+  if (rig.nearest_filter) root["filter"] = "nearest";
+  const bool any_drawn = std::any_of(rig.poses.begin(), rig.poses.end(), [](const auto& p) { return p.drawn; });
+  if (!any_drawn) root["triangles"] = rig.triangles;
+  json poses = json::array();
+  for (const PoseDescription& pose : rig.poses) poses.push_back(PoseJson(pose));
+  root["poses"] = std::move(poses);
+  if (json mapping = MappingJson(rig.mapping); !mapping.is_null()) root["mapping"] = std::move(mapping);
+  root["bake"] = BakeJson(rig.parameters);
+  json paths = json::array();
+  for (const PathDescription& path : rig.paths) paths.push_back(PathJson(path));
+  root["paths"] = std::move(paths);
+  return root.dump() + "\n";
+}
+
+std::string MeshFileText(const std::vector<Eigen::Vector2d>& vertices,
+                         const std::vector<std::array<std::uint32_t, 3>>& triangles) {
+  return json{{"vertices", PointsJson(vertices)}, {"triangles", triangles}}.dump() + "\n";
+}
+
+DescriptionAddition AddToRigDescription(const std::string& text, const std::string& file,
+                                        const std::vector<PoseDescription>& poses,
+                                        const std::vector<PathDescription>& paths) {
+  json root = ParseDescriptionJson(text, file);
+  if (!root.is_object()) throw BakeError(file, "expected a JSON object at the top level");
+  DescriptionAddition added;
+  for (PoseDescription pose : poses) {
+    json& list = ListIn(root, "poses", file);
+    pose.name = FreshName(list, pose.name);
+    added.pose_names.push_back(pose.name);
+    list.push_back(PoseJson(pose));
+  }
+  for (PathDescription path : paths) {
+    json& list = ListIn(root, "paths", file);
+    path.name = FreshName(list, path.name);
+    added.path_names.push_back(path.name);
+    list.push_back(PathJson(path));
+  }
+  added.text = root.dump(2) + "\n";
+  return added;
+}
+
+}  // namespace posemorph::bake

@@ -1,0 +1,195 @@
+// SPDX-License-Identifier: MIT
+// The rig-description writer is the inverse of the reader: what it writes
+// reads back to the same description, and adding to a description keeps the
+// rest of what it says.
+#include <doctest/doctest.h>
+
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/rig_description.h"
+
+namespace pb = posemorph::bake;
+
+namespace {
+
+// Everything the writer can express, away from every default.
+pb::RigDescription DrawnDescription() {
+  pb::RigDescription d;
+  d.name = "drawn \"quoted\" rig";
+  d.nearest_filter = true;
+  pb::PoseDescription a;
+  a.name = "rest";
+  a.point = {0.1, -0.3};
+  a.drawn = true;
+  a.drawing = "rest.png";
+  a.origin = {12.5, 3};
+  a.landmarks = {{1, 2}, {3.25, 4}};
+  pb::PoseDescription b;
+  b.name = "outline";
+  b.point = {1.0 / 3, 2};
+  b.drawn = true;
+  b.outline = {{0, 0}, {10, 0}, {0, 10.000000000000002}};
+  b.landmarks = {{0, 0}};
+  pb::PoseDescription c;
+  c.name = "lean";
+  c.point = {-1, 1e-7};
+  c.deformed = true;
+  c.deform.from = "rest";
+  c.deform.handles.resize(2);
+  c.deform.handles[0].by_vertex = true;
+  c.deform.handles[0].vertex = 7;
+  c.deform.handles[0].to = {0.5, 0.25};
+  c.deform.handles[1].at = {-2, 3};
+  c.deform.handles[1].to = {4, -5};
+  d.poses = {a, b, c};
+  d.mapping.simplify_tolerance = 1.5;
+  d.mapping.max_steiner_points = 7;
+  d.mapping.alpha_threshold = 0.1;
+  d.parameters.grid_resolution = 32;
+  d.parameters.epsilon = 2.5;
+  d.parameters.compact = false;
+  d.parameters.max_error_px = 0.02;
+  d.parameters.allow_folds = true;
+  pb::PathDescription p;
+  p.name = "walk";
+  p.catmull_rom = true;
+  p.keys = {{0, 0.1, 0.2}, {0.7, -0.3, 0.4}};
+  d.paths = {p};
+  return d;
+}
+
+void CheckSame(const pb::RigDescription& x, const pb::RigDescription& y) {
+  CHECK(x.name == y.name);
+  CHECK(x.nearest_filter == y.nearest_filter);
+  CHECK(x.triangles == y.triangles);
+  REQUIRE(x.poses.size() == y.poses.size());
+  for (std::size_t i = 0; i < x.poses.size(); ++i) {
+    const pb::PoseDescription &p = x.poses[i], &q = y.poses[i];
+    CHECK(p.name == q.name);
+    CHECK(p.point == q.point);
+    CHECK(p.vertices == q.vertices);
+    CHECK(p.image == q.image);
+    CHECK(p.uvs == q.uvs);
+    CHECK(p.drawn == q.drawn);
+    CHECK(p.drawing == q.drawing);
+    CHECK(p.outline == q.outline);
+    CHECK(p.landmarks == q.landmarks);
+    CHECK(p.origin == q.origin);
+    CHECK(p.deformed == q.deformed);
+    CHECK(p.deform.from == q.deform.from);
+    REQUIRE(p.deform.handles.size() == q.deform.handles.size());
+    for (std::size_t h = 0; h < p.deform.handles.size(); ++h) {
+      CHECK(p.deform.handles[h].by_vertex == q.deform.handles[h].by_vertex);
+      CHECK(p.deform.handles[h].vertex == q.deform.handles[h].vertex);
+      CHECK(p.deform.handles[h].at == q.deform.handles[h].at);
+      CHECK(p.deform.handles[h].to == q.deform.handles[h].to);
+    }
+  }
+  const pb::MappingParameters &m = x.mapping, &n = y.mapping;
+  CHECK(m.simplify_tolerance == n.simplify_tolerance);
+  CHECK(m.max_edge_length == n.max_edge_length);
+  CHECK(m.min_angle == n.min_angle);
+  CHECK(m.alpha_threshold == n.alpha_threshold);
+  CHECK(m.curve_tolerance == n.curve_tolerance);
+  CHECK(m.spacing == n.spacing);
+  CHECK(m.landmark_distance == n.landmark_distance);
+  CHECK(m.max_steiner_points == n.max_steiner_points);
+  CHECK(m.max_vertices == n.max_vertices);
+  const pb::BakeParameters &b = x.parameters, &c = y.parameters;
+  CHECK(b.grid_resolution == c.grid_resolution);
+  CHECK(b.margin == c.margin);
+  CHECK(b.epsilon == c.epsilon);
+  CHECK(b.sigma == c.sigma);
+  CHECK(b.compact == c.compact);
+  CHECK(b.max_error_px == c.max_error_px);
+  CHECK(b.pixels_per_unit == c.pixels_per_unit);
+  CHECK(b.allow_folds == c.allow_folds);
+  REQUIRE(x.paths.size() == y.paths.size());
+  for (std::size_t i = 0; i < x.paths.size(); ++i) {
+    CHECK(x.paths[i].name == y.paths[i].name);
+    CHECK(x.paths[i].loop == y.paths[i].loop);
+    CHECK(x.paths[i].catmull_rom == y.paths[i].catmull_rom);
+    CHECK(x.paths[i].keys == y.paths[i].keys);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("a drawn description written and read back is the same description, every value exact") {
+  const pb::RigDescription d = DrawnDescription();
+  const std::string text = pb::RigDescriptionText(d);
+  const pb::RigDescription back = pb::ParseRigDescription(text, "written.json", "/drawings");
+  CHECK(back.warnings.empty());
+  CHECK(back.poses[0].drawing_path == "/drawings/rest.png");
+  CheckSame(d, back);
+  CHECK(pb::RigDescriptionText(back) == text);
+}
+
+TEST_CASE("a description of vertices, uvs and images written and read back is the same description") {
+  pb::RigDescription d;
+  d.name = "plate";
+  d.triangles = {{0, 1, 2}, {0, 2, 3}};
+  for (int i = 0; i < 2; ++i) {
+    pb::PoseDescription p;
+    p.name = "p" + std::to_string(i);
+    p.point = {double(i), 0};
+    p.vertices = {{0, 0}, {1 + 0.1 * i, 0}, {1, 1}, {0, 1.0 / 7}};
+    p.image = "p" + std::to_string(i) + ".png";
+    p.uvs = {{0, 1}, {1, 1}, {1, 0}, {0, 0.125f}};
+    d.poses.push_back(p);
+  }
+  const pb::RigDescription back = pb::ParseRigDescription(pb::RigDescriptionText(d), "plate.json", ".");
+  CHECK(back.warnings.empty());
+  CheckSame(d, back);
+}
+
+TEST_CASE("a mesh file is written with its vertices and triangles, doubles exact to the last digit") {
+  const std::vector<Eigen::Vector2d> vertices = {{0, 0}, {0.1, 0}, {0, 1.0 / 3}};
+  const std::string mesh = pb::MeshFileText(vertices, {{0, 1, 2}});
+  CHECK(mesh == "{\"triangles\":[[0,1,2]],\"vertices\":[[0.0,0.0],[0.1,0.0],[0.0,0.3333333333333333]]}\n");
+}
+
+TEST_CASE("adding poses and paths keeps the rest of the description and gives each a fresh name") {
+  const std::string text =
+      R"({"posemorph": 1, "studio_note": "kept", "triangles": [[0, 1, 2]],
+          "poses": [{"name": "a", "point": [0, 0], "vertices": [[0, 0], [1, 0], [0, 1]]},
+                    {"name": "edit-1", "point": [1, 0], "vertices": [[0, 0], [2, 0], [0, 1]]}]})";
+  pb::PoseDescription pose;
+  pose.name = "edit";
+  pose.point = {0.5, 0.5};
+  pose.deformed = true;
+  pose.deform.from = "a";
+  pose.deform.handles.resize(1);
+  pose.deform.handles[0].by_vertex = true;
+  pose.deform.handles[0].vertex = 1;
+  pose.deform.handles[0].to = {3, 0};
+  pb::PathDescription path;
+  path.name = "gesture";
+  path.loop = true;
+  path.keys = {{0, 0, 0}, {1, 1, 0}};
+  const pb::DescriptionAddition added = pb::AddToRigDescription(text, "rig.json", {pose, pose}, {path});
+  CHECK(added.pose_names == std::vector<std::string>{"edit-2", "edit-3"});
+  CHECK(added.path_names == std::vector<std::string>{"gesture-1"});
+  CHECK(added.text.find("\"studio_note\": \"kept\"") != std::string::npos);
+  const pb::RigDescription back = pb::ParseRigDescription(added.text, "rig.json", ".");
+  REQUIRE(back.poses.size() == 4);
+  CHECK(back.poses[3].name == "edit-3");
+  CHECK(back.poses[3].deform.handles[0].to == Eigen::Vector2d(3, 0));
+  REQUIRE(back.paths.size() == 1);
+  CHECK(back.paths[0].keys == path.keys);
+  CHECK(back.warnings == std::vector<std::string>{"rig.json: unknown key \"studio_note\" ignored "
+                                                  "(bake/RIG_DESCRIPTION.md lists the keys)"});
+}
+
+TEST_CASE("adding to text that is not a description object names the file and the problem") {
+  auto message = [](const std::string& text) {
+    try {
+      pb::AddToRigDescription(text, "rig.json", {}, {pb::PathDescription{}});
+    } catch (const pb::BakeError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(message("[1, 2]") == "rig.json: expected a JSON object at the top level");
+  CHECK(message("{\"paths\": 3}") == "rig.json: paths: expected an array");
+  CHECK(message("{").rfind("rig.json: invalid JSON: ", 0) == 0);
+}
