@@ -1,9 +1,10 @@
 // SPDX-License-Identifier: MIT
 // The rig-description writer is the inverse of the reader: what it writes
 // reads back to the same description, and adding to a description keeps the
-// rest of what it says.
+// rest of what it says. And the one command-line number parser.
 #include <doctest/doctest.h>
 
+#include "posemorph/bake/command_line.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/rig_description.h"
 
@@ -192,4 +193,29 @@ TEST_CASE("adding to text that is not a description object names the file and th
   CHECK(message("[1, 2]") == "rig.json: expected a JSON object at the top level");
   CHECK(message("{\"paths\": 3}") == "rig.json: paths: expected an array");
   CHECK(message("{").rfind("rig.json: invalid JSON: ", 0) == 0);
+}
+
+TEST_CASE("command-line numbers: one parser for posemorph-bake and posemorph-view") {
+  using posemorph::bake::ParseNumber;
+  using posemorph::bake::ParseNumbers;
+  using posemorph::bake::ParseWholeNumber;
+  CHECK(ParseNumber("2") == 2.0);
+  CHECK(ParseNumber("-0.5") == -0.5);
+  CHECK(ParseNumber("+.25") == 0.25);
+  CHECK(ParseNumber("1e-3") == 1e-3);
+  CHECK(ParseNumber("0.1") == 0.1);  // the nearest double, as the compiler reads it
+  for (const char* refused :
+       {"", " 1", "1 ", "1x", "0x10", "inf", "-inf", "nan", ".", "e5", "1e", "1e+", "--1", "1e400"})
+    CHECK_MESSAGE(!ParseNumber(refused), refused);
+  CHECK(ParseWholeNumber("3", 1, 5) == 3);
+  CHECK(ParseWholeNumber("3.0", 1, 5) == 3);
+  CHECK(ParseWholeNumber("1e2", 0, 100) == 100);
+  CHECK(!ParseWholeNumber("3.5", 1, 5));
+  CHECK(!ParseWholeNumber("6", 1, 5));
+  CHECK(!ParseWholeNumber("0", 1, 5));
+  CHECK(ParseNumbers("0.4,-0.6", ',') == std::vector<double>{0.4, -0.6});
+  CHECK(ParseNumbers("7", ',') == std::vector<double>{7});
+  CHECK(!ParseNumbers("0.4,", ','));
+  CHECK(!ParseNumbers(",1", ','));
+  CHECK(!ParseNumbers("1,,2", ','));
 }

@@ -45,7 +45,7 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     rig.parameters.compact = *p == "compact";
   }
   if (const std::string* e = args.Get("--max-error")) {
-    rig.parameters.max_error_px = ParseNumber("--max-error", *e);
+    rig.parameters.max_error_px = NumberOption("--max-error", *e);
     if (!(rig.parameters.max_error_px >= 1e-6) || rig.parameters.max_error_px > 10)
       throw UsageError("--max-error must be in [1e-6, 10] pixels");
   }

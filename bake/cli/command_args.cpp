@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "posemorph/bake/bake.h"
+#include "posemorph/bake/command_line.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/input_file.h"
 #include "posemorph/rig_format.h"
@@ -37,29 +38,23 @@ std::string Extension(const std::string& path) {
   return e;
 }
 
-double ParseNumber(const std::string& flag, const std::string& s) {
-  std::size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(s, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != s.size() || !std::isfinite(v)) throw UsageError(flag + ": \"" + s + "\" is not a finite number");
-  return v;
+double NumberOption(const std::string& flag, const std::string& s) {
+  const std::optional<double> v = ParseNumber(s);
+  if (!v) throw UsageError(flag + ": \"" + s + "\" is not a finite number");
+  return *v;
 }
 
-int ParseCount(const std::string& flag, const std::string& s, int lo, int hi) {
-  const double v = ParseNumber(flag, s);
-  if (v != std::floor(v) || v < lo || v > hi)
-    throw UsageError(flag + ": expected a whole number in " + std::to_string(lo) + ".." + std::to_string(hi));
-  return int(v);
+int CountOption(const std::string& flag, const std::string& s, int lo, int hi) {
+  NumberOption(flag, s);
+  const std::optional<long long> v = ParseWholeNumber(s, lo, hi);
+  if (!v) throw UsageError(flag + ": expected a whole number in " + std::to_string(lo) + ".." + std::to_string(hi));
+  return int(*v);
 }
 
 EvalOptions ReadEvalOptions(const Args& args) {
   EvalOptions o;
   if (const std::string* s = args.Get("--sigma")) {
-    o.sigma = ParseNumber("--sigma", *s);
+    o.sigma = NumberOption("--sigma", *s);
     if (o.sigma < 0 || o.sigma > 1) throw UsageError("--sigma must be in [0, 1]");
   }
   o.shear_limit = !args.switches.count("--no-shear-limit");

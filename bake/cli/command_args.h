@@ -55,9 +55,10 @@ std::vector<unsigned char> ReadBytes(const std::string& path);     // a rig file
 Rig LoadRigFile(const std::string& path);                          // throws BakeError naming the file
 void WriteText(const std::string& path, const std::string& text);  // atomically
 std::string Extension(const std::string& path);                    // lower case, without the dot; "" if none
-// A finite number, nothing after it; UsageError naming the flag otherwise.
-double ParseNumber(const std::string& flag, const std::string& s);
-int ParseCount(const std::string& flag, const std::string& s, int lo, int hi);
+// A flag's value as bake::ParseNumber / ParseWholeNumber (command_line.h)
+// read it; UsageError naming the flag otherwise.
+double NumberOption(const std::string& flag, const std::string& s);
+int CountOption(const std::string& flag, const std::string& s, int lo, int hi);
 EvalOptions ReadEvalOptions(const Args& args);  // --sigma, --no-shear-limit, --linear
 std::string Printable(const std::string& message);
 

@@ -40,8 +40,8 @@ int EvalCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   if (at) {
     const auto comma = at->find(',');
     if (comma == std::string::npos) throw UsageError("--at: expected X,Y");
-    at_x = ParseNumber("--at", at->substr(0, comma));
-    at_y = ParseNumber("--at", at->substr(comma + 1));
+    at_x = NumberOption("--at", at->substr(0, comma));
+    at_y = NumberOption("--at", at->substr(comma + 1));
   }
   const Rig rig = LoadRigFile(args.positional);
 
@@ -60,9 +60,9 @@ int EvalCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     std::vector<double> times;
     if (const std::string* t = args.Get("--time")) {
       if (args.Get("--frames")) throw UsageError("give --time or --frames, not both");
-      times.push_back(ParseNumber("--time", *t));
+      times.push_back(NumberOption("--time", *t));
     } else {
-      const int k = args.Get("--frames") ? ParseCount("--frames", *args.Get("--frames"), 1, 1000) : 16;
+      const int k = args.Get("--frames") ? CountOption("--frames", *args.Get("--frames"), 1, 1000) : 16;
       // A looping path's end is its start again; spread frames over one period.
       for (int i = 0; i < k; ++i) times.push_back(t0 + (t1 - t0) * i / (path.loop ? k : std::max(1, k - 1)));
     }

@@ -36,8 +36,8 @@ int SheetCommand(const std::vector<std::string>& a, std::size_t from, std::ostre
     throw UsageError(textured ? "sheet --textured needs -o OUT.png" : "sheet needs -o OUT.svg");
   if (!textured && (args.Get("--images") || args.Get("--filter")))
     throw UsageError("--images and --filter go with --textured");
-  const int columns = args.Get("--columns") ? ParseCount("--columns", *args.Get("--columns"), 2, 32) : 7;
-  const int rows = args.Get("--rows") ? ParseCount("--rows", *args.Get("--rows"), 1, 32) : 5;
+  const int columns = args.Get("--columns") ? CountOption("--columns", *args.Get("--columns"), 2, 32) : 7;
+  const int rows = args.Get("--rows") ? CountOption("--rows", *args.Get("--rows"), 1, 32) : 5;
   const Rig rig = LoadRigFile(args.positional);
   if (textured) {
     TextureFilter filter = rig.texture_filter();

@@ -7,13 +7,16 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <sys/stat.h>
 
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "posemorph/bake/command_line.h"
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/input_file.h"
 #include "posemorph/rig.h"
 #include "rig_renderer.h"
 #include "scene.h"
@@ -65,67 +68,48 @@ bool ParseTransform(const std::string& text, Transform2D* out) {
   while (at <= text.size()) {
     const std::size_t end = std::min(text.find(',', at), text.size());
     const std::string item = text.substr(at, end - at);
-    char tail = 0;
+    const std::size_t eq = item.find('=');
+    const std::string key = item.substr(0, eq), value = eq == std::string::npos ? "" : item.substr(eq + 1);
+    const std::optional<std::vector<double>> v = bake::ParseNumbers(value, ':');
     if (item == "flip")
       flip = true;
-    else if (std::sscanf(item.c_str(), "move=%lf:%lf%c", &x, &y, &tail) == 2) {
-    } else if (std::sscanf(item.c_str(), "rotate=%lf%c", &degrees, &tail) == 1) {
-    } else if (std::sscanf(item.c_str(), "scale=%lf:%lf%c", &sx, &sy, &tail) == 2) {
-    } else if (std::sscanf(item.c_str(), "scale=%lf%c", &sx, &tail) == 1)
-      sy = sx;
+    else if (key == "move" && v && v->size() == 2)
+      x = (*v)[0], y = (*v)[1];
+    else if (key == "rotate" && v && v->size() == 1)
+      degrees = (*v)[0];
+    else if (key == "scale" && v && (v->size() == 1 || v->size() == 2))
+      sx = (*v)[0], sy = v->back();
     else
       return false;
     at = end + 1;
   }
   const double limit = 1e6;
-  for (double v : {x, y, degrees, sx, sy})
-    if (!std::isfinite(v) || std::fabs(v) > limit) return false;
+  for (double value : {x, y, degrees, sx, sy})
+    if (!(std::fabs(value) <= limit)) return false;
   if (sx == 0 || sy == 0) return false;
   *out = Transform2D::Make(x, y, degrees * 3.14159265358979323846 / 180, sx, sy, flip);
   return true;
 }
 
-// A finite number in [lo, hi], nothing after it.
+// A number in [lo, hi] (bake::ParseNumber: finite, nothing after it).
 bool ParseNumber(const char* text, double lo, double hi, double* out) {
-  char* end = nullptr;
-  const double v = std::strtod(text, &end);
-  if (end == text || *end != 0 || !(v >= lo && v <= hi)) return false;
-  *out = v;
+  const std::optional<double> v = bake::ParseNumber(text);
+  if (!v || !(*v >= lo && *v <= hi)) return false;
+  *out = *v;
   return true;
 }
 
-// A whole number in [lo, hi], nothing after it.
+// A whole number in [lo, hi].
 bool ParseCount(const char* text, long lo, long hi, std::uint32_t* out) {
-  char* end = nullptr;
-  const long v = std::strtol(text, &end, 10);
-  if (end == text || *end != 0 || v < lo || v > hi) return false;
-  *out = std::uint32_t(v);
+  const std::optional<long long> v = bake::ParseWholeNumber(text, lo, hi);
+  if (!v) return false;
+  *out = std::uint32_t(*v);
   return true;
 }
 
 int Fail(const std::string& problem) {
   std::fprintf(stderr, "posemorph-view: error: %s\n", Printable(problem, 1000).c_str());
   return 1;
-}
-
-// The rig file: a regular file (a pipe would block, a device never end) of at
-// most kMaxRigFileBytes, read whole.
-constexpr std::uint64_t kMaxRigFileBytes = std::uint64_t(256) << 20;
-bool ReadRigFile(const std::string& path, std::vector<unsigned char>* bytes, std::string* error) {
-  struct stat st;
-  if (::stat(path.c_str(), &st) != 0) return *error = path + ": cannot open file", false;
-  if (!S_ISREG(st.st_mode)) return *error = path + ": is not a regular file (a directory, device or pipe)", false;
-  if (std::uint64_t(st.st_size) > kMaxRigFileBytes)
-    return *error = path + ": is " + std::to_string(st.st_size) + " bytes, more than the limit of " +
-                    std::to_string(kMaxRigFileBytes) + " for a rig",
-           false;
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) return *error = path + ": cannot open file", false;
-  bytes->resize(std::size_t(st.st_size));
-  const std::size_t got = bytes->empty() ? 0 : std::fread(bytes->data(), 1, bytes->size(), f);
-  std::fclose(f);
-  if (got != bytes->size()) return *error = path + ": cannot read the whole file", false;
-  return true;
 }
 
 }  // namespace
@@ -149,9 +133,9 @@ int main(int argc, char** argv) {
 
 namespace {
 
-int Run(int argc, char** argv, std::string* rig_path_out) {
-  std::string& rig_path = *rig_path_out;
-  std::string images, output;
+// What the command line asks for.
+struct Options {
+  std::string rig_path, images, output;
   WindowOptions window;
   bool headless = false, validation = false;
   std::uint32_t width = 640, height = 640, frames = 0;
@@ -159,6 +143,11 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
   enum class CameraMode { kFit, kOneToOne, kGiven } camera_mode = CameraMode::kFit;
   Camera given_camera;
   Blend blend = Blend::kExact;
+};
+using CameraMode = Options::CameraMode;
+
+// The options into `o`; -1 to go on, or the exit status (usage, --help).
+int ParseOptions(int argc, char** argv, Options& o) {
   if (argc < 2) return std::fputs(kUsage, stderr), 2;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -166,150 +155,151 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
     auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
     const char* v = nullptr;
     if (a == "--headless")
-      headless = true;
+      o.headless = true;
     else if (a == "--validation")
-      validation = true;
+      o.validation = true;
     else if (a == "--no-shear-limit")
-      scene.shear_limit = false;
+      o.scene.shear_limit = false;
     else if (a == "--linear")
-      scene.linear = true;
+      o.scene.linear = true;
     else if (a == "--wireframe")
-      scene.wireframe = true;
+      o.scene.wireframe = true;
     else if (a == "--compare")
-      scene.compare_linear = true;
+      o.scene.compare_linear = true;
     else if (a == "--bases")
-      scene.show_bases = true;
+      o.scene.show_bases = true;
     else if (a == "-o" && (v = value()))
-      output = v;
+      o.output = v;
     else if (a == "--smoke-test" && (v = value()))
-      window.smoke_test = v;
+      o.window.smoke_test = v;
     else if (a == "--description" && (v = value()))
-      window.description = v;
+      o.window.description = v;
     else if (a == "--images" && (v = value()))
-      images = v;
+      o.images = v;
     else if (a == "--path" && (v = value()))
-      scene.path = v;
+      o.scene.path = v;
     else if (a == "--time" && (v = value())) {
-      if (!ParseNumber(v, -1e9, 1e9, &scene.time)) return Usage("--time wants seconds, a finite number");
+      if (!ParseNumber(v, -1e9, 1e9, &o.scene.time)) return Usage("--time wants seconds, a finite number");
     } else if (a == "--sigma" && (v = value())) {
-      if (!ParseNumber(v, 0, 1, &scene.sigma)) return Usage("--sigma wants a number in 0..1");
+      if (!ParseNumber(v, 0, 1, &o.scene.sigma)) return Usage("--sigma wants a number in 0..1");
     } else if (a == "--frames" && (v = value())) {
-      if (!ParseCount(v, 1, 100000, &frames)) return Usage("--frames wants a count in 1..100000");
+      if (!ParseCount(v, 1, 100000, &o.frames)) return Usage("--frames wants a count in 1..100000");
     } else if (a == "--crowd" && (v = value())) {
-      if (!ParseCount(v, 1, 100000, &scene.crowd)) return Usage("--crowd wants a count in 1..100000");
+      if (!ParseCount(v, 1, 100000, &o.scene.crowd)) return Usage("--crowd wants a count in 1..100000");
     } else if (a == "--seed" && (v = value())) {
-      if (!ParseCount(v, 0, 0x7fffffff, &scene.seed)) return Usage("--seed wants a whole number >= 0");
+      if (!ParseCount(v, 0, 0x7fffffff, &o.scene.seed)) return Usage("--seed wants a whole number >= 0");
     } else if (a == "--drawings" && (v = value())) {
-      if (!ParseCount(v, 1, kDrawingsPerCharacter, &scene.max_drawings)) return Usage("--drawings wants 1..8");
+      if (!ParseCount(v, 1, kDrawingsPerCharacter, &o.scene.max_drawings)) return Usage("--drawings wants 1..8");
     } else if (a == "--filter" && (v = value())) {
       if (std::strcmp(v, "linear") == 0)
-        scene.filter = 0;
+        o.scene.filter = 0;
       else if (std::strcmp(v, "nearest") == 0)
-        scene.filter = 1;
+        o.scene.filter = 1;
       else
         return Usage("--filter wants linear or nearest");
     } else if (a == "--blend" && (v = value())) {
       if (std::strcmp(v, "exact") == 0)
-        blend = Blend::kExact;
+        o.blend = Blend::kExact;
       else if (std::strcmp(v, "over") == 0)
-        blend = Blend::kSequentialOver;
+        o.blend = Blend::kSequentialOver;
       else
         return Usage("--blend wants exact or over");
     } else if (a == "--transform" && (v = value())) {
-      if (!ParseTransform(v, &scene.transform))
+      if (!ParseTransform(v, &o.scene.transform))
         return Usage("--transform wants move=X:Y,rotate=DEGREES,scale=S|SX:SY,flip (any of them, finite, scale not 0)");
     } else if (a == "--camera" && (v = value())) {
-      char tail = 0;
-      if (std::strcmp(v, "1:1") == 0)
-        camera_mode = CameraMode::kOneToOne;
-      else if (std::sscanf(v, "%lf,%lf,%lf%c", &given_camera.centre.x, &given_camera.centre.y, &given_camera.zoom,
-                           &tail) == 3 &&
-               std::isfinite(given_camera.centre.x) && std::isfinite(given_camera.centre.y) &&
-               given_camera.zoom >= Camera::kMinZoom && given_camera.zoom <= Camera::kMaxZoom)
-        camera_mode = CameraMode::kGiven;
-      else
+      const auto n = bake::ParseNumbers(v, ',');
+      if (std::strcmp(v, "1:1") == 0) {
+        o.camera_mode = CameraMode::kOneToOne;
+      } else if (n && n->size() == 3 && (*n)[2] >= Camera::kMinZoom && (*n)[2] <= Camera::kMaxZoom) {
+        o.camera_mode = CameraMode::kGiven;
+        o.given_camera.centre = {(*n)[0], (*n)[1]};
+        o.given_camera.zoom = (*n)[2];
+      } else {
         return Usage("--camera wants X,Y,ZOOM (ZOOM pixels per world unit, 1/256..256) or 1:1");
+      }
     } else if (a == "--size" && (v = value())) {
-      if (std::sscanf(v, "%ux%u", &width, &height) != 2 || width == 0 || height == 0 || width > 8192 || height > 8192)
+      const std::string size = v;
+      const std::size_t x = size.find('x');
+      std::uint32_t w = 0, h = 0;
+      if (x == std::string::npos || !ParseCount(size.substr(0, x).c_str(), 1, 8192, &w) ||
+          !ParseCount(size.substr(x + 1).c_str(), 1, 8192, &h))
         return Usage("--size wants WxH, each 1..8192");
+      o.width = w, o.height = h;
     } else if (a == "--at" && (v = value())) {
-      if (std::sscanf(v, "%lf,%lf", &scene.x, &scene.y) != 2) return Usage("--at wants X,Y");
-    } else if (!a.empty() && a[0] != '-' && rig_path.empty())
-      rig_path = a;
+      const auto n = bake::ParseNumbers(v, ',');
+      if (!n || n->size() != 2) return Usage("--at wants X,Y");
+      o.scene.x = (*n)[0], o.scene.y = (*n)[1];
+    } else if (!a.empty() && a[0] != '-' && o.rig_path.empty())
+      o.rig_path = a;
     else
       return Usage("unknown or incomplete argument \"" + a + "\"");
   }
-  if (rig_path.empty()) return Usage("no rig given");
-  if (images.empty()) {
-    const auto slash = rig_path.rfind('/');
-    images = slash == std::string::npos ? "." : rig_path.substr(0, slash);
+  if (o.rig_path.empty()) return Usage("no rig given");
+  if (o.images.empty()) {
+    const auto slash = o.rig_path.rfind('/');
+    o.images = slash == std::string::npos ? "." : o.rig_path.substr(0, slash);
   }
+  return -1;
+}
 
-  std::vector<unsigned char> bytes;
+// --headless: each frame's file and the time it shows (--frames K along the
+// path: OUT-000.png ...).
+void HeadlessFrames(const Rig& rig, const Options& o, std::vector<std::string>* outputs, std::vector<double>* times) {
+  if (o.frames == 0) {
+    outputs->push_back(o.output);
+    times->push_back(o.scene.time);
+    return;
+  }
+  const PathView path = rig.path(std::uint32_t(rig.FindPath(o.scene.path.c_str())));
+  const double t0 = path.start_time(), t1 = path.end_time();
+  std::string stem = o.output;
+  if (stem.size() > 4 && stem.compare(stem.size() - 4, 4, ".png") == 0) stem.resize(stem.size() - 4);
+  for (std::uint32_t f = 0; f < o.frames; ++f) {
+    char name[32];
+    std::snprintf(name, sizeof name, "-%03u.png", f);
+    outputs->push_back(stem + name);
+    times->push_back(t0 + (t1 - t0) * f / o.frames);
+  }
+}
+
+// Renders the frames offscreen and writes them as PNG files.
+int RunHeadless(const Rig& rig, const Drawings& drawings, Options& o) {
+  if (o.output.empty()) return Usage("--headless needs -o OUT.png");
+  if (o.frames > 0 && (o.scene.path.empty() || rig.FindPath(o.scene.path.c_str()) < 0))
+    return Fail("--frames needs a --path the rig has");
   std::string problem;
-  if (!ReadRigFile(rig_path, &bytes, &problem)) return Fail(problem);
-  Rig rig;
-  Error err;
-  if (!LoadRig(bytes.data(), bytes.size(), &rig, &err)) return Fail(rig_path + ": " + err.message);
-  if (!scene.path.empty() && rig.FindPath(scene.path.c_str()) < 0)
-    return Fail(rig_path + ": has no path named \"" + scene.path + "\"");
-  if (frames > 0 && headless && scene.path.empty()) return Usage("--frames needs --path NAME");
-  Drawings drawings;
-  if (!LoadDrawings(rig, images, &drawings, &problem)) return Fail(rig_path + ": " + problem);
-
-  if (!headless) {
-    window.validation = validation;
-    if (width != 640 || height != 640) window.width = width, window.height = height;
-    if (frames > 0) window.smoke_frames = frames;
-    return RunWindow(rig, drawings, scene, window);
-  }
-  if (output.empty()) return Usage("--headless needs -o OUT.png");
-
   Gpu gpu;
-  GpuOptions options;
-  options.validation = validation;
-  if (!gpu.Init(options, &problem)) return Fail(problem);
+  GpuOptions gpu_options;
+  gpu_options.validation = o.validation;
+  if (!gpu.Init(gpu_options, &problem)) return Fail(problem);
   RigRenderer renderer;
-  if (!renderer.Init(gpu, rig, drawings, OffscreenTarget::kFormat, SceneCharacters(rig, scene), SceneFilter(rig, scene),
-                     &problem))
+  if (!renderer.Init(gpu, rig, drawings, OffscreenTarget::kFormat, SceneCharacters(rig, o.scene),
+                     SceneFilter(rig, o.scene), &problem))
     return Fail(problem);
   OffscreenTarget target;
-  target.Init(gpu, width, height);
+  target.Init(gpu, o.width, o.height);
   const float background[4] = {0.93f, 0.94f, 0.95f, 1.0f};
-
   SceneScratch scratch;
   std::vector<std::string> outputs;
   std::vector<double> times;
-  if (frames > 0) {
-    const int p = rig.FindPath(scene.path.c_str());
-    if (scene.path.empty() || p < 0) return Fail("--frames needs a --path the rig has");
-    const PathView path = rig.path(std::uint32_t(p));
-    const double t0 = path.start_time(), t1 = path.end_time();
-    std::string stem = output;
-    if (stem.size() > 4 && stem.compare(stem.size() - 4, 4, ".png") == 0) stem.resize(stem.size() - 4);
-    for (std::uint32_t f = 0; f < frames; ++f) {
-      char name[32];
-      std::snprintf(name, sizeof name, "-%03u.png", f);
-      outputs.push_back(stem + name);
-      times.push_back(t0 + (t1 - t0) * f / frames);
-    }
-  } else {
-    outputs.push_back(output);
-    times.push_back(scene.time);
-  }
+  HeadlessFrames(rig, o, &outputs, &times);
+  const std::uint32_t width = o.width, height = o.height;
   for (std::size_t f = 0; f < outputs.size(); ++f) {
-    scene.time = times[f];
+    o.scene.time = times[f];
     SceneBounds bounds;
     std::uint32_t count = 0;
-    if (!PrepareScene(rig, scene, renderer, scratch, &bounds, &count, &problem)) return Fail(problem);
+    if (!PrepareScene(rig, o.scene, renderer, scratch, &bounds, &count, &problem)) return Fail(problem);
     Camera camera = FitCamera(bounds.all, width, height);
-    if (camera_mode == CameraMode::kOneToOne) camera.zoom = 1, camera = PixelExact(camera, width, height);
-    if (camera_mode == CameraMode::kGiven) {
-      camera = given_camera;
+    if (o.camera_mode == CameraMode::kOneToOne) camera.zoom = 1, camera = PixelExact(camera, width, height);
+    if (o.camera_mode == CameraMode::kGiven) {
+      camera = o.given_camera;
       if (camera.zoom == std::round(camera.zoom)) camera = PixelExact(camera, width, height);
     }
     target.Render(
-        [&](VkCommandBuffer cmd) { renderer.Record(cmd, count, camera, width, height, scene.wireframe, 0, 0, blend); },
+        [&](VkCommandBuffer cmd) {
+          renderer.Record(cmd, count, camera, width, height, o.scene.wireframe, 0, 0, o.blend);
+        },
         background);
     if (!WritePng(outputs[f], target.pixels(), width, height, &problem)) return Fail(problem);
   }
@@ -318,6 +308,32 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
   if (gpu.validation_messages() > 0)
     return std::fprintf(stderr, "posemorph-view: %d validation message(s)\n", gpu.validation_messages()), 3;
   return 0;
+}
+
+int Run(int argc, char** argv, std::string* rig_path_out) {
+  Options o;
+  if (const int status = ParseOptions(argc, argv, o); status >= 0) return status;
+  *rig_path_out = o.rig_path;
+  std::vector<unsigned char> bytes;
+  try {
+    bytes = bake::ReadInputFile(o.rig_path, bake::kMaxRigFileBytes, "a rig");
+  } catch (const bake::BakeError& e) {
+    return Fail(e.what());
+  }
+  Rig rig;
+  Error err;
+  if (!LoadRig(bytes.data(), bytes.size(), &rig, &err)) return Fail(o.rig_path + ": " + err.message);
+  if (!o.scene.path.empty() && rig.FindPath(o.scene.path.c_str()) < 0)
+    return Fail(o.rig_path + ": has no path named \"" + o.scene.path + "\"");
+  if (o.frames > 0 && o.headless && o.scene.path.empty()) return Usage("--frames needs --path NAME");
+  Drawings drawings;
+  std::string problem;
+  if (!LoadDrawings(rig, o.images, &drawings, &problem)) return Fail(o.rig_path + ": " + problem);
+  if (o.headless) return RunHeadless(rig, drawings, o);
+  o.window.validation = o.validation;
+  if (o.width != 640 || o.height != 640) o.window.width = o.width, o.window.height = o.height;
+  if (o.frames > 0) o.window.smoke_frames = o.frames;
+  return RunWindow(rig, drawings, o.scene, o.window);
 }
 
 }  // namespace
