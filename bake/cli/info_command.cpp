@@ -5,23 +5,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
-#include <fstream>
 #include <iomanip>
+#include <set>
 #include <sstream>
 
 #include "command_args.h"
-#include "posemorph/bake/bake.h"
-#include "posemorph/bake/deform_poses.h"
 #include "posemorph/bake/error.h"
-#include "posemorph/bake/input_file.h"
-#include "posemorph/bake/stage.h"
+#include "posemorph/bake/inbetween_check.h"
 #include "posemorph/path.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
 #include "preview.h"
-#include "textured_sheet.h"
 
 namespace posemorph::bake::cli {
 namespace {
@@ -81,13 +76,8 @@ std::string DescribeSection(std::uint32_t tag, const unsigned char* d, std::uint
   return s.str();
 }
 
-}  // namespace
-
-int InfoCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
-  const Args args = Args::Parse(a, from, {}, {});
-  if (args.positional.empty()) throw UsageError("no rig file given");
-  const std::vector<unsigned char> bytes = ReadBytes(args.positional);
-  const Rig rig = LoadRigFile(args.positional);
+// Sizes, counts, the factor's fill, the grid, load time and kernel path.
+void PrintSummary(const std::string& file, const std::vector<unsigned char>& bytes, const Rig& rig, std::ostream& out) {
   const std::uint32_t V = rig.vertex_count(), T = rig.triangle_count(), N = rig.pose_count();
   // Lower triangle of K (pinned vertex 0 removed): diagonal + one entry per interior edge.
   std::set<std::pair<std::uint32_t, std::uint32_t>> edges;
@@ -98,7 +88,7 @@ int InfoCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     }
   const std::size_t k_lower = edges.size() + (V - 1), l_strict = rig.factor().value.size;
   const PoseSpaceGrid& g = rig.grid();
-  out << args.positional << ": " << bytes.size() << " bytes (" << double(bytes.size()) / V << " per vertex), arena "
+  out << file << ": " << bytes.size() << " bytes (" << double(bytes.size()) / V << " per vertex), arena "
       << rig.arena_bytes() << " bytes\n"
       << "  vertices " << V << ", triangles " << T << ", poses " << N << ", paths " << rig.path_count()
       << (rig.uvs(0).empty() ? ", no uvs" : ", uvs") << "\n"
@@ -114,32 +104,31 @@ int InfoCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512, Isa::kNeon, Isa::kWasmSimd})
     if (IsaAvailable(isa)) out << ' ' << IsaName(isa);
   out << "; POSEMORPH_ISA chooses)\n";
-  // Where the bytes go (the loader has validated the table already).
-  std::uint32_t sections = 0;
-  std::memcpy(&sections, bytes.data() + format::kOffSectionCount, 4);
-  format::Meta meta{};
-  out << "  sections (" << (rig.format_major()) << "." << rig.format_minor() << ", ";
-  for (std::uint32_t s = 0; s < sections; ++s) {
-    const unsigned char* e = bytes.data() + format::kHeaderSize + std::size_t(s) * format::kSectionEntrySize;
-    std::uint32_t tag = 0;
-    std::memcpy(&tag, e, 4);
-    std::uint64_t offset = 0;
-    std::memcpy(&offset, e + 8, 8);
-    if (tag == format::kMeta) std::memcpy(&meta, bytes.data() + offset, sizeof(meta));
+}
+
+// Each section's tag, size and what it holds.
+void PrintSections(const std::string& file, const std::vector<unsigned char>& bytes, const Rig& rig,
+                   std::ostream& out) {
+  // Where the bytes go: the table as the runtime reads it.
+  RigSection sections[format::kMaxSections];
+  std::uint32_t section_count = 0;
+  Error err;
+  if (!ReadRigSections(bytes.data(), bytes.size(), sections, format::kMaxSections, &section_count, &err))
+    throw BakeError(file, std::string("cannot read its section table: ") + err.message);
+  out << "  sections (" << rig.format_major() << "." << rig.format_minor() << ", "
+      << (rig.compact_encoding() ? "compact" : "exact") << " encoding):\n";
+  for (std::uint32_t s = 0; s < section_count; ++s) {
+    const RigSection& section = sections[s];
+    std::string name(4, ' ');
+    for (int k = 0; k < 4; ++k) name[std::size_t(k)] = char((section.tag >> (8 * k)) & 0xFFu);
+    out << "    " << Printable(name) << ' ' << std::setw(9) << section.size << "  "
+        << DescribeSection(section.tag, bytes.data() + section.offset, section.size) << "\n";
   }
-  const bool compact = (meta.flags & format::kMetaFlagCompact) != 0;
-  out << (compact ? "compact" : "exact") << " encoding):\n";
-  for (std::uint32_t s = 0; s < sections; ++s) {
-    const unsigned char* e = bytes.data() + format::kHeaderSize + std::size_t(s) * format::kSectionEntrySize;
-    std::uint32_t tag = 0;
-    std::uint64_t offset = 0, size = 0;
-    std::memcpy(&tag, e, 4);
-    std::memcpy(&offset, e + 8, 8);
-    std::memcpy(&size, e + 16, 8);
-    out << "    " << std::string(reinterpret_cast<const char*>(e), 4) << ' ' << std::setw(9) << size << "  "
-        << DescribeSection(tag, bytes.data() + offset, size) << "\n";
-  }
-  const InbetweenCheck ib = CheckInbetweens(rig, args.positional);
+}
+
+// Folds of the in-betweens, as the bake's check finds them.
+void PrintInbetweens(const std::string& file, const Rig& rig, std::ostream& out) {
+  const InbetweenCheck ib = CheckInbetweens(rig, file);
   out << "  in-betweens: smallest triangle area " << ib.min_area_ratio << " of its smallest in a pose in the pose hull"
       << " (triangle " << ib.min_triangle << " at (" << ib.min_at.x() << ", " << ib.min_at.y() << "); " << ib.frames
       << " frames); " << ib.FoldsInHull() << " triangles fold in the hull";
@@ -147,6 +136,10 @@ int InfoCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     out << ", " << ib.folds.size() - ib.FoldsInHull() << " only on paths outside it";
   out << "\n";
   for (const InbetweenFold& f : ib.folds) out << "    " << DescribeFold(rig, f) << "\n";
+}
+
+void PrintPosesAndPaths(const Rig& rig, std::ostream& out) {
+  const std::uint32_t N = rig.pose_count();
   for (std::uint32_t i = 0; i < N; ++i) {
     out << "  pose " << i << " '" << std::string(rig.pose_name(i).data, rig.pose_name(i).size) << "' at ("
         << rig.pose_points()[2 * i] << ", " << rig.pose_points()[2 * i + 1] << ")";
@@ -164,6 +157,19 @@ int InfoCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
         << duration << " s, " << (path.interpolation == PathInterpolation::kCatmullRom ? "catmull-rom" : "linear")
         << (path.loop ? ", loops" : "") << "\n";
   }
+}
+
+}  // namespace
+
+int InfoCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
+  const Args args = Args::Parse(a, from, {}, {});
+  if (args.positional.empty()) throw UsageError("no rig file given");
+  const std::vector<unsigned char> bytes = ReadBytes(args.positional);
+  const Rig rig = LoadRigFile(args.positional);
+  PrintSummary(args.positional, bytes, rig, out);
+  PrintSections(args.positional, bytes, rig, out);
+  PrintInbetweens(args.positional, rig, out);
+  PrintPosesAndPaths(rig, out);
   return 0;
 }
 

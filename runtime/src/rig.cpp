@@ -45,6 +45,7 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   checksum_ = std::exchange(other.checksum_, 0);
   format_major_ = std::exchange(other.format_major_, 0);
   format_minor_ = std::exchange(other.format_minor_, 0);
+  compact_encoding_ = std::exchange(other.compact_encoding_, false);
   return *this;
 }
 

@@ -198,6 +198,9 @@ struct RigLoader {
   static bool ReadSectionTable(const unsigned char* bytes, std::size_t size, const Header& h, Parser* parser,
                                Error* err);
   static bool ReadCounts(Parser& parser, Counts* c, Error* err);
+  // ReadRigSections: the header and table steps alone.
+  static bool ReadSections(const void* data, std::size_t size, RigSection* out, std::uint32_t capacity,
+                           std::uint32_t* count, Error* err);
   static bool FindSections(const unsigned char* bytes, const Header& h, Parser& parser, const Counts& c, Sources* s,
                            Error* err);
   static void LayoutArena(ArenaLayout& arena, const Counts& c, const Sources& s, const LoadOptions& options, Rig* rig,
@@ -773,6 +776,32 @@ void RigLoader::Finish(const unsigned char* bytes, const Header& h, const Counts
   rig->checksum_ = ReadU32(bytes + fmt::kOffChecksum);
   rig->format_major_ = h.major;
   rig->format_minor_ = h.minor;
+  rig->compact_encoding_ = c.compact;
+}
+
+bool RigLoader::ReadSections(const void* data, std::size_t size, RigSection* out, std::uint32_t capacity,
+                             std::uint32_t* count, Error* err) {
+  if (err) *err = Error{};
+  if (!count) return Fail(err, ErrorCode::kInvalidArgument, "no output count given");
+  *count = 0;
+  if (!data) return Fail(err, ErrorCode::kInvalidArgument, "no rig bytes given");
+  const unsigned char* bytes = static_cast<const unsigned char*>(data);
+  Header h;
+  if (!ReadHeader(bytes, size, LoadOptions(), &h, err)) return false;
+  Parser parser{bytes, size, {}, err};
+  if (!ReadSectionTable(bytes, size, h, &parser, err)) return false;
+  if (!out || capacity < parser.table.count)
+    return Fail(err, ErrorCode::kInvalidArgument, "the file has %u sections, room was given for %u", parser.table.count,
+                out ? capacity : 0u);
+  for (std::uint32_t i = 0; i < parser.table.count; ++i)
+    out[i] = RigSection{parser.table.entries[i].tag, parser.table.entries[i].offset, parser.table.entries[i].size};
+  *count = parser.table.count;
+  return true;
+}
+
+bool ReadRigSections(const void* data, std::size_t size, RigSection* out, std::uint32_t capacity, std::uint32_t* count,
+                     Error* err) {
+  return RigLoader::ReadSections(data, size, out, capacity, count, err);
 }
 
 }  // namespace posemorph

@@ -150,6 +150,9 @@ class PM_API Rig {
   std::uint32_t checksum() const { return checksum_; }
   std::uint16_t format_major() const { return format_major_; }
   std::uint16_t format_minor() const { return format_minor_; }
+  // True when the file holds the compact encoding (runtime/FORMAT.md,
+  // "Compact encoding"), decoded at load; false for exact doubles.
+  bool compact_encoding() const { return compact_encoding_; }
   // The kernel path chosen at load (never kAuto once loaded).
   Isa isa() const;
   // Internal: the chosen path's kernels, for the jobs.
@@ -176,6 +179,7 @@ class PM_API Rig {
   const detail::KernelTable* kernels_ = nullptr;
   std::uint32_t checksum_ = 0;
   std::uint16_t format_major_ = 0, format_minor_ = 0;
+  bool compact_encoding_ = false;
 };
 
 // Validates every byte and builds a Rig. On failure returns false, fills err
@@ -183,6 +187,24 @@ class PM_API Rig {
 // rig's arena.
 PM_API bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err,
                     const LoadOptions& options = LoadOptions());
+
+// A section of a rig file (runtime/FORMAT.md): its tag (four ASCII letters
+// read as a little-endian u32, format::kMeta ...), where its bytes start in
+// the file and how many there are.
+struct RigSection {
+  std::uint32_t tag = 0;
+  std::uint64_t offset = 0, size = 0;
+};
+
+// The file's section table, read and checked as LoadRig reads it (header,
+// checksum, each section in bounds, aligned and apart from the others; not
+// what the sections hold): for tools that show where a rig's bytes go.
+// Writes the sections in file-table order to out[0 .. *count). False, with
+// err, where LoadRig would refuse the header or the table, and
+// (kInvalidArgument) when `capacity` is below the count; format::kMaxSections
+// entries are always enough. Never throws or allocates.
+PM_API bool ReadRigSections(const void* data, std::size_t size, RigSection* out, std::uint32_t capacity,
+                            std::uint32_t* count, Error* err = nullptr);
 
 // Caller-owned memory, as Cubism Core does it: ask for the size, then load
 // into memory you provide (aligned to kRigMemoryAlignment). Nothing is
