@@ -12,33 +12,47 @@
 
 namespace posemorph::bake {
 
-std::vector<unsigned char> ReadInputFile(const std::string& path, std::uint64_t limit, const std::string& what,
-                                         const std::string& referenced_from) {
-  const std::string named = referenced_from.empty() ? "" : " (named in " + referenced_from + ")";
+namespace {
+
+std::vector<unsigned char> ReadBounded(const std::string& path, std::uint64_t limit, const std::string& what,
+                                       const ErrorSource& source, const std::string& named) {
   // Non-blocking, so that opening a pipe returns at once and is refused below.
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
-  if (fd < 0) throw BakeError(path, "cannot open file" + named);
+  if (fd < 0) throw source.Error("cannot open file" + named);
   struct stat st;
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
-    throw BakeError(path, "is not a regular file (a directory, device or pipe)" + named);
+    throw source.Error("is not a regular file (a directory, device or pipe)" + named);
   }
   std::FILE* f = ::fdopen(fd, "rb");
   if (!f) {
     ::close(fd);
-    throw BakeError(path, "cannot open file" + named);
+    throw source.Error("cannot open file" + named);
   }
   if (std::uint64_t(st.st_size) > limit) {
     std::fclose(f);
-    throw BakeError(path, "is " + std::to_string(st.st_size) + " bytes, more than the limit of " +
-                              std::to_string(limit) + " for " + what + named);
+    throw source.Error("is " + std::to_string(st.st_size) + " bytes, more than the limit of " + std::to_string(limit) +
+                       " for " + what + named);
   }
   std::vector<unsigned char> bytes(std::size_t(st.st_size));
   const std::size_t got = bytes.empty() ? 0 : std::fread(bytes.data(), 1, bytes.size(), f);
   const bool more = std::fgetc(f) != EOF;  // grew while we read: still bounded by the limit check above
   std::fclose(f);
-  if (got != bytes.size() || more) throw BakeError(path, "changed size while being read" + named);
+  if (got != bytes.size() || more) throw source.Error("changed size while being read" + named);
   return bytes;
+}
+
+}  // namespace
+
+std::vector<unsigned char> ReadInputFile(const std::string& path, std::uint64_t limit, const std::string& what,
+                                         const std::string& referenced_from) {
+  return ReadBounded(path, limit, what, ErrorSource(path),
+                     referenced_from.empty() ? "" : " (named in " + referenced_from + ")");
+}
+
+std::vector<unsigned char> ReadInputFile(const std::string& path, std::uint64_t limit, const std::string& what,
+                                         const ErrorSource& source) {
+  return ReadBounded(path, limit, what, source, "");
 }
 
 void CheckOutputPath(const std::string& output, const std::vector<std::string>& inputs) {

@@ -54,8 +54,8 @@ TEST_CASE("the sections of exact and compact rigs: the header's count, inside th
     CHECK(sections[0].tag == format::kMeta);
     CHECK(sections[0].size == format::kMetaSize);
     const bool compact = std::strstr(name, "compact") != nullptr;
-    CHECK(std::any_of(sections.begin(), sections.end(),
-                      [&](const RigSection& s) { return s.tag == Tag("QPOS"); }) == compact);
+    CHECK(std::any_of(sections.begin(), sections.end(), [&](const RigSection& s) { return s.tag == Tag("QPOS"); }) ==
+          compact);
     Rig rig;
     REQUIRE(LoadRig(bytes.data(), bytes.size(), &rig, nullptr));
     CHECK(rig.compact_encoding() == compact);
@@ -81,8 +81,8 @@ TEST_CASE("a table the loader refuses is refused with the loader's message, and 
   std::vector<unsigned char> overlapping = bytes;  // the second section starts where the first does
   std::memcpy(overlapping.data() + format::kHeaderSize + format::kSectionEntrySize + 8,
               overlapping.data() + format::kHeaderSize + 8, 8);
-  const std::uint32_t crc = format::Crc32(overlapping.data() + format::kHeaderSize,
-                                          overlapping.size() - format::kHeaderSize);
+  const std::uint32_t crc =
+      format::Crc32(overlapping.data() + format::kHeaderSize, overlapping.size() - format::kHeaderSize);
   std::memcpy(overlapping.data() + format::kOffChecksum, &crc, 4);
   CHECK(!ReadRigSections(overlapping.data(), overlapping.size(), out.data(), format::kMaxSections, &count, &err));
   CHECK(!LoadRig(overlapping.data(), overlapping.size(), &rig, &load_err));

@@ -29,15 +29,15 @@ using Piece = std::vector<std::size_t>;  // global vertex ids, counter-clockwise
 // Past the budget the bake stops with a message instead.
 struct Work {
   std::uint64_t used = 0;
-  const std::string* what = nullptr;
+  const ErrorSource* poses = nullptr;
   void Spend(std::uint64_t steps) {
     used += steps;
     if (used > kMaxTriangulationWork)
-      throw BakeError("", *what +
-                              ": the boundaries are too intricate to triangulate compatibly within the bake's "
-                              "limit of " +
-                              std::to_string(kMaxTriangulationWork) +
-                              " steps; raise mapping.simplify_tolerance or add landmarks where the poses differ");
+      throw poses->Error(
+          "the boundaries are too intricate to triangulate compatibly within the bake's "
+          "limit of " +
+          std::to_string(kMaxTriangulationWork) +
+          " steps; raise mapping.simplify_tolerance or add landmarks where the poses differ");
   }
 };
 
@@ -188,11 +188,11 @@ LinkPaths ComputeLinkPaths(const View& v, Work& work) {
 
 }  // namespace
 
-CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const std::string& what,
+CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const ErrorSource& poses,
                                      std::size_t max_steiner_points) {
   const std::size_t N = polygons.size(), n0 = polygons[0].size();
   Work work;
-  work.what = &what;
+  work.poses = &poses;
   CompatibleMesh mesh;
   mesh.vertices = polygons;
   mesh.boundary_vertices = n0;
@@ -209,7 +209,8 @@ CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const
     if (n == 3) {
       for (std::size_t i = 0; i < N; ++i)
         if (Cross(views[i].p[0], views[i].p[1], views[i].p[2]) <= 0)
-          throw BakeError("", what + ": internal: a degenerate triangle in pose " + std::to_string(i));
+          throw poses.Error("internal: a degenerate triangle in pose " + std::to_string(i + 1) + " of these " +
+                            std::to_string(N));
       mesh.triangles.push_back({piece[0], piece[1], piece[2]});
       continue;
     }
@@ -259,8 +260,8 @@ CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const
         (void)sliver, (void)unbalance;
         work.Spend(std::uint64_t(N) * (n + std::size_t(k)) * 8);  // paths, both halves checked simple
         if (mesh.steiner_points + std::size_t(k) > max_steiner_points) {
-          throw BakeError("", what + ": the drawings cannot be triangulated compatibly with at most " +
-                                  std::to_string(max_steiner_points) + " Steiner points (mapping.max_steiner_points)");
+          throw poses.Error("the drawings cannot be triangulated compatibly with at most " +
+                            std::to_string(max_steiner_points) + " Steiner points (mapping.max_steiner_points)");
         }
         // Each pose's path, padded to k points by subdividing its longest link.
         std::vector<Polygon> paths(N);
@@ -304,9 +305,9 @@ CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const
         break;
       }
       if (!found)
-        throw BakeError("", what +
-                                ": the drawings cannot be triangulated compatibly (no chord joins the same two "
-                                "boundary points inside every pose)");
+        throw poses.Error(
+            "the drawings cannot be triangulated compatibly (no chord joins the same two "
+            "boundary points inside every pose)");
     }
     Piece left(piece.begin() + std::ptrdiff_t(A), piece.begin() + std::ptrdiff_t(B) + 1);
     left.insert(left.end(), chain.rbegin(), chain.rend());

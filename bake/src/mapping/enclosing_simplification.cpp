@@ -186,7 +186,7 @@ struct Candidate {
 }  // namespace
 
 SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const CorrespondedBoundary& boundary,
-                                     double tolerance) {
+                                     double tolerance, const std::vector<ErrorSource>& poses) {
   const std::size_t N = outlines.size(), M = boundary.points[0].size();
   std::vector<PoseState> st(N);
   std::vector<OutlineEdges> edges;  // per pose; reserved so the pointers to them stay valid
@@ -232,8 +232,7 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
         }
       }
       if (all_ok && IsSimplePolygon(s.pos)) break;
-      if (attempt == 30)
-        throw BakeError("", "pose " + std::to_string(i) + ": cannot build a polygon enclosing the outline");
+      if (attempt == 30) throw poses[i].Error("cannot build a polygon enclosing the outline");
     }
   }
 

@@ -160,16 +160,16 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
                           " long; it is matched at a spacing of " + Format(st.matched.spacing / grid.scale) +
                           " instead of mapping.spacing " + Format(prm.spacing) + " (at most " +
                           std::to_string(kMaxMatchedSamples) + " samples)");
-  try {
-    st.simplified = SimplifyEnclosing(st.outlines, st.matched, prm.simplify_tolerance * grid.scale);
-  } catch (const BakeError& e) {
-    if (st.matched.spacing > mp.spacing)
-      throw BakeError(file, std::string(e.what()) + " (the outlines are matched at a spacing of " +
-                                Format(st.matched.spacing / grid.scale) + ", coarser than mapping.spacing, because " +
-                                labels[0] + "'s outline is longer than " + std::to_string(kMaxMatchedSamples) +
-                                " samples allow)");
-    throw BakeError(file, e.what());
-  }
+  // Each stage throws its errors complete: file, pose, and why the input is as it is.
+  const std::string coarse =
+      st.matched.spacing > mp.spacing
+          ? "the outlines are matched at a spacing of " + Format(st.matched.spacing / grid.scale) +
+                ", coarser than mapping.spacing, because " + labels[0] + "'s outline is longer than " +
+                std::to_string(kMaxMatchedSamples) + " samples allow"
+          : "";
+  std::vector<ErrorSource> poses;
+  for (const std::string& label : labels) poses.emplace_back(file, label, coarse);
+  st.simplified = SimplifyEnclosing(st.outlines, st.matched, prm.simplify_tolerance * grid.scale, poses);
   for (std::size_t k = 0; k < N; ++k) {
     // The promise of this stage, checked exactly: simple, and the outline inside or on it.
     const Polygon& q = st.simplified.polygons[k];
@@ -178,11 +178,8 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   }
   std::string names;
   for (const std::string& l : labels) names += (names.empty() ? "" : ", ") + l;
-  try {
-    st.mesh = TriangulateCompatibly(st.simplified.polygons, names, std::size_t(prm.max_steiner_points));
-  } catch (const BakeError& e) {
-    throw BakeError(file, e.what());
-  }
+  st.mesh =
+      TriangulateCompatibly(st.simplified.polygons, ErrorSource(file, names), std::size_t(prm.max_steiner_points));
   Eigen::AlignedBox2d box0;
   for (const Point& p : rig_outlines[0]) box0.extend(p);
   RefinementParameters rp;
@@ -223,12 +220,14 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
     Polygon raw;
     const bool png = EndsWith(pose.drawing, ".png"), svg = EndsWith(pose.drawing, ".svg");
     if (!pose.drawing.empty() && !png && !svg) fail(d, "drawing \"" + pose.drawing + "\" is neither .png nor .svg");
-    try {
+    {
+      // A drawing's errors name the description, the pose and the drawing.
+      const ErrorSource source(rig.file, PoseLabel(pose.name, d.index) + ": " + pose.drawing_path);
       if (pose.drawing.empty()) {
         raw = pose.outline;
         d.landmarks = pose.landmarks;
       } else if (png) {
-        mapping::ImageOutline io = mapping::OutlineFromPng(pose.drawing_path, prm.alpha_threshold);
+        mapping::ImageOutline io = mapping::OutlineFromPng(pose.drawing_path, prm.alpha_threshold, source);
         if (io.dropped_components > 0) {
           // Only the largest part is mapped: a separate eye or a loose hand
           // is left out of the mesh (and drawn only where the mesh covers it).
@@ -254,14 +253,12 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
         d.origin = Point(0.0 - pose.origin.x(), 0.0 - pose.origin.y());  // the canvas's corner from the pose's origin
         d.size = Point(io.width, io.height);
       } else {
-        mapping::SvgOutline so = mapping::OutlineFromSvg(pose.drawing_path, prm.curve_tolerance);
+        mapping::SvgOutline so = mapping::OutlineFromSvg(pose.drawing_path, prm.curve_tolerance, source);
         for (const Point& p : so.outline) raw.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
         d.from_drawing = true;
         d.origin = so.canvas_origin - pose.origin;
         d.size = so.canvas_size;
       }
-    } catch (const BakeError& e) {
-      fail(d, e.what());
     }
     if (d.from_drawing)
       for (const Point& p : pose.landmarks)

@@ -142,10 +142,10 @@ std::size_t ClosePinches(Mask& m) {
 }  // namespace
 
 ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width, int height, double threshold,
-                              const std::string& file) {
-  if (!(threshold > 0 && threshold <= 1)) throw BakeError(file, "alpha threshold must be in (0, 1]");
+                              const ErrorSource& source) {
+  if (!(threshold > 0 && threshold <= 1)) throw source.Error("alpha threshold must be in (0, 1]");
   if (width <= 0 || height <= 0 || alpha.size() != std::size_t(width) * std::size_t(height))
-    throw BakeError(file, "image is empty");
+    throw source.Error("image is empty");
   ImageOutline result;
   result.width = width;
   result.height = height;
@@ -165,8 +165,8 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
   const RunComponents shape = Components(m, 1);
   const std::vector<std::size_t>& sizes = shape.sizes;
   if (sizes.empty())
-    throw BakeError(file, "image is empty or fully transparent (no pixel has alpha >= " +
-                              std::to_string(threshold).substr(0, 4) + ")");
+    throw source.Error(
+        "image is empty or fully transparent (no pixel has alpha >= " + std::to_string(threshold).substr(0, 4) + ")");
   const int keep = int(std::max_element(sizes.begin(), sizes.end()) - sizes.begin());
   result.dropped_pixels = SetAllBut(m, shape, std::uint32_t(keep), 0);
   result.dropped_components = int(sizes.size()) - 1;
@@ -175,7 +175,7 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
     if (int(c) != keep) result.dropped_parts.push_back(sizes[c]);
   }
   std::sort(result.dropped_parts.begin(), result.dropped_parts.end(), std::greater<std::size_t>());
-  if (sizes[keep] < 4) throw BakeError(file, "the drawn shape is smaller than 4 pixels");
+  if (sizes[keep] < 4) throw source.Error("the drawn shape is smaller than 4 pixels");
 
   for (;;) {
     result.filled_hole_pixels += FillHoles(m);
@@ -219,11 +219,11 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
         (in[k] ? leave : enter) = key;
       }
       if (crossings == 0) continue;
-      if (crossings != 2) throw BakeError(file, "internal: ambiguous marching-squares cell");
+      if (crossings != 2) throw source.Error("internal: ambiguous marching-squares cell");
       next[leave] = enter;
       if (next.size() > kMaxTracedBorder)
-        throw BakeError(file, "the shape's border crosses more than " + std::to_string(kMaxTracedBorder) +
-                                  " pixel edges (the limit; its outline would be too intricate to map)");
+        throw source.Error("the shape's border crosses more than " + std::to_string(kMaxTracedBorder) +
+                           " pixel edges (the limit; its outline would be too intricate to map)");
     }
 
   // Follow every loop; the outer border is the one enclosing the most area.
@@ -247,18 +247,18 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
   return result;
 }
 
-static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char>& file, const std::string& path,
+static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char>& file, const ErrorSource& source,
                                                  int* width, int* height) {
   png_image image;
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_memory(&image, file.data(), file.size()))
-    throw BakeError(path, std::string("cannot read PNG: ") + image.message);
+    throw source.Error(std::string("cannot read PNG: ") + image.message);
   if (!(image.format & PNG_FORMAT_FLAG_ALPHA)) {
     png_image_free(&image);
-    throw BakeError(path,
-                    "has no alpha channel (and no transparent colour): the bake takes the character's shape from "
-                    "alpha; save the drawing with transparency");
+    throw source.Error(
+        "has no alpha channel (and no transparent colour): the bake takes the character's shape from "
+        "alpha; save the drawing with transparency");
   }
   image.format = PNG_FORMAT_GA;  // grey + alpha: only the alpha is used
   // The header's size, checked before anything is decoded: a small file can
@@ -266,15 +266,15 @@ static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char
   if (image.width == 0 || image.height == 0 || image.width > 16384 || image.height > 16384 ||
       std::uint64_t(image.width) * image.height > kMaxDrawingPixels) {
     png_image_free(&image);
-    throw BakeError(path, "PNG size " + std::to_string(image.width) + " x " + std::to_string(image.height) +
-                              " is outside 1..16384 per side or above the limit of " +
-                              std::to_string(kMaxDrawingPixels) + " pixels");
+    throw source.Error("PNG size " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                       " is outside 1..16384 per side or above the limit of " + std::to_string(kMaxDrawingPixels) +
+                       " pixels");
   }
   std::vector<unsigned char> ga(PNG_IMAGE_SIZE(image));
   if (!png_image_finish_read(&image, nullptr, ga.data(), 0, nullptr)) {
     const std::string message = image.message;
     png_image_free(&image);
-    throw BakeError(path, "cannot decode PNG: " + message);
+    throw source.Error("cannot decode PNG: " + message);
   }
   // Keep the alpha bytes in place (byte i moves down from 2i + 1).
   const std::size_t pixels = std::size_t(image.width) * image.height;
@@ -286,20 +286,28 @@ static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char
   return ga;
 }
 
+std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height, const ErrorSource& source) {
+  return DecodePngAlpha(ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source), source, width, height);
+}
+
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height) {
-  return DecodePngAlpha(ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing"), path, width, height);
+  return ReadPngAlpha(path, width, height, ErrorSource(path));
+}
+
+ImageOutline OutlineFromPng(const std::string& path, double threshold, const ErrorSource& source) {
+  int width = 0, height = 0;
+  const std::vector<unsigned char> alpha = ReadPngAlpha(path, &width, &height, source);
+  return OutlineFromAlpha(alpha, width, height, threshold, source);
 }
 
 ImageOutline OutlineFromPng(const std::string& path, double threshold) {
-  int width = 0, height = 0;
-  const std::vector<unsigned char> alpha = ReadPngAlpha(path, &width, &height);
-  return OutlineFromAlpha(alpha, width, height, threshold, path);
+  return OutlineFromPng(path, threshold, ErrorSource(path));
 }
 
-ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double threshold, const std::string& file) {
+ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double threshold, const ErrorSource& source) {
   int width = 0, height = 0;
-  const std::vector<unsigned char> alpha = DecodePngAlpha(png, file, &width, &height);
-  return OutlineFromAlpha(alpha, width, height, threshold, file);
+  const std::vector<unsigned char> alpha = DecodePngAlpha(png, source, &width, &height);
+  return OutlineFromAlpha(alpha, width, height, threshold, source);
 }
 
 }  // namespace posemorph::bake::mapping

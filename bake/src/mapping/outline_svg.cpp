@@ -19,7 +19,7 @@ namespace {
 
 struct PathScanner {
   const std::string& d;
-  const std::string& file;
+  const ErrorSource& source;
   std::size_t i = 0;
 
   void SkipSeparators() {
@@ -37,7 +37,7 @@ struct PathScanner {
     char* end = nullptr;
     const double v = std::strtod(begin, &end);
     if (end == begin || !std::isfinite(v))
-      throw BakeError(file, "path data: expected a number at character " + std::to_string(i));
+      throw source.Error("path data: expected a number at character " + std::to_string(i));
     i += std::size_t(end - begin);
     return v;
   }
@@ -84,9 +84,9 @@ double Length(const char* text) {  // "120", "120px"
 
 }  // namespace
 
-Polygon FlattenSvgPath(const std::string& d, double tol, const std::string& file) {
-  if (!(tol > 0)) throw BakeError(file, "curve flattening tolerance must be positive");
-  PathScanner s{d, file};
+Polygon FlattenSvgPath(const std::string& d, double tol, const ErrorSource& source) {
+  if (!(tol > 0)) throw source.Error("curve flattening tolerance must be positive");
+  PathScanner s{d, source};
   Polygon out;
   Point cur(0, 0), start(0, 0), last_control(0, 0);
   char previous = 0;
@@ -100,11 +100,11 @@ Polygon FlattenSvgPath(const std::string& d, double tol, const std::string& file
     } else if (previous != 0 && previous != 'Z' && previous != 'z') {
       cmd = previous == 'M' ? 'L' : previous == 'm' ? 'l' : previous;  // repeated arguments
     } else {
-      throw BakeError(file, "path data: expected a command at character " + std::to_string(s.i));
+      throw source.Error("path data: expected a command at character " + std::to_string(s.i));
     }
     const bool rel = std::islower(static_cast<unsigned char>(cmd));
     const char up = char(std::toupper(static_cast<unsigned char>(cmd)));
-    if (!begun && up != 'M') throw BakeError(file, "path data must start with M");
+    if (!begun && up != 'M') throw source.Error("path data must start with M");
     if (begun && up == 'M') break;  // the outline is the first subpath
     auto pt = [&]() {
       const double x = s.Number(), y = s.Number();
@@ -164,15 +164,15 @@ Polygon FlattenSvgPath(const std::string& d, double tol, const std::string& file
         cur = start;
         break;
       case 'A':
-        throw BakeError(file, "path data: arcs (A) are not supported in an outline; use curves (C, Q)");
+        throw source.Error("path data: arcs (A) are not supported in an outline; use curves (C, Q)");
       default:
-        throw BakeError(file, std::string("path data: unknown command '") + cmd + "'");
+        throw source.Error(std::string("path data: unknown command '") + cmd + "'");
     }
     previous = cmd;
     if (out.size() > kMaxOutlinePoints)
-      throw BakeError(file, "the path flattens to more than " + std::to_string(kMaxOutlinePoints) +
-                                " outline points (the limit; mapping.curve_tolerance " + FormatNumber(tol) +
-                                " sets how finely curves are cut)");
+      throw source.Error("the path flattens to more than " + std::to_string(kMaxOutlinePoints) +
+                         " outline points (the limit; mapping.curve_tolerance " + FormatNumber(tol) +
+                         " sets how finely curves are cut)");
     if (up == 'Z') {
       s.SkipSeparators();
       if (s.i < d.size()) break;  // only the first closed subpath
@@ -181,12 +181,12 @@ Polygon FlattenSvgPath(const std::string& d, double tol, const std::string& file
   return Deduplicated(std::move(out));
 }
 
-SvgOutline OutlineFromSvgText(const std::string& text, double tol, const std::string& file) {
+SvgOutline OutlineFromSvgText(const std::string& text, double tol, const ErrorSource& source) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS)
-    throw BakeError(file, std::string("invalid SVG (XML): ") + doc.ErrorStr());
+    throw source.Error(std::string("invalid SVG (XML): ") + doc.ErrorStr());
   const tinyxml2::XMLElement* root = doc.RootElement();
-  if (!root || std::string(root->Name()) != "svg") throw BakeError(file, "not an SVG document (no <svg> root)");
+  if (!root || std::string(root->Name()) != "svg") throw source.Error("not an SVG document (no <svg> root)");
 
   SvgOutline result;
   if (const char* vb = root->Attribute("viewBox")) {
@@ -195,14 +195,13 @@ SvgOutline OutlineFromSvgText(const std::string& text, double tol, const std::st
       if (c == ',') c = ' ';
     std::istringstream nums(t);
     double x, y, w, h;
-    if (!(nums >> x >> y >> w >> h) || !(w > 0) || !(h > 0))
-      throw BakeError(file, "viewBox is not \"x y width height\"");
+    if (!(nums >> x >> y >> w >> h) || !(w > 0) || !(h > 0)) throw source.Error("viewBox is not \"x y width height\"");
     result.canvas_origin = Point(x, y);
     result.canvas_size = Point(w, h);
   } else {
     result.canvas_size = Point(Length(root->Attribute("width")), Length(root->Attribute("height")));
     if (!(result.canvas_size.x() > 0) || !(result.canvas_size.y() > 0))
-      throw BakeError(file, "the <svg> element needs a viewBox or width and height");
+      throw source.Error("the <svg> element needs a viewBox or width and height");
   }
 
   // Depth-first, document order; id="outline" wins.
@@ -223,20 +222,20 @@ SvgOutline OutlineFromSvgText(const std::string& text, double tol, const std::st
     for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(*it);
   }
   if (!chosen) chosen = first;
-  if (!chosen) throw BakeError(file, "no <path> or <polygon> to take the outline from");
+  if (!chosen) throw source.Error("no <path> or <polygon> to take the outline from");
   for (const tinyxml2::XMLNode* n = chosen; n && n->ToElement(); n = n->Parent())
     if (n->ToElement()->Attribute("transform"))
-      throw BakeError(file, "the outline element (or a group around it) has a transform; apply it to the coordinates");
+      throw source.Error("the outline element (or a group around it) has a transform; apply it to the coordinates");
 
   if (std::string(chosen->Name()) == "path") {
     const char* d = chosen->Attribute("d");
-    if (!d) throw BakeError(file, "the outline <path> has no d attribute");
-    result.outline = FlattenSvgPath(d, tol, file);
+    if (!d) throw source.Error("the outline <path> has no d attribute");
+    result.outline = FlattenSvgPath(d, tol, source);
   } else {
     const char* pts = chosen->Attribute("points");
-    if (!pts) throw BakeError(file, "the outline <polygon> has no points attribute");
+    if (!pts) throw source.Error("the outline <polygon> has no points attribute");
     const std::string spts(pts);
-    PathScanner s{spts, file};
+    PathScanner s{spts, source};
     Polygon p;
     while (s.AtNumber()) {
       const double x = s.Number(), y = s.Number();
@@ -244,13 +243,15 @@ SvgOutline OutlineFromSvgText(const std::string& text, double tol, const std::st
     }
     result.outline = Deduplicated(std::move(p));
   }
-  if (result.outline.size() < 3) throw BakeError(file, "the outline has fewer than 3 distinct points");
+  if (result.outline.size() < 3) throw source.Error("the outline has fewer than 3 distinct points");
   return result;
 }
 
-SvgOutline OutlineFromSvg(const std::string& path, double tol) {
-  const std::vector<unsigned char> bytes = ReadInputFile(path, kMaxTextFileBytes, "an SVG drawing");
-  return OutlineFromSvgText(std::string(bytes.begin(), bytes.end()), tol, path);
+SvgOutline OutlineFromSvg(const std::string& path, double tol, const ErrorSource& source) {
+  const std::vector<unsigned char> bytes = ReadInputFile(path, kMaxTextFileBytes, "an SVG drawing", source);
+  return OutlineFromSvgText(std::string(bytes.begin(), bytes.end()), tol, source);
 }
+
+SvgOutline OutlineFromSvg(const std::string& path, double tol) { return OutlineFromSvg(path, tol, ErrorSource(path)); }
 
 }  // namespace posemorph::bake::mapping

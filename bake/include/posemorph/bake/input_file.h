@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "posemorph/bake/error.h"
+
 namespace posemorph::bake {
 
 constexpr std::uint64_t kMaxTextFileBytes = std::uint64_t(64) << 20;  // descriptions, mesh files, SVG drawings
@@ -19,6 +21,10 @@ constexpr std::uint64_t kMaxDrawingPixels = std::uint64_t(1) << 24;   // PNG dra
 // the file that named it).
 std::vector<unsigned char> ReadInputFile(const std::string& path, std::uint64_t limit, const std::string& what,
                                          const std::string& referenced_from = "");
+// The same, its errors named by `source` (ErrorSource::Error) instead of the
+// path alone: a drawing's, "DESCRIPTION: POSE: DRAWING: problem".
+std::vector<unsigned char> ReadInputFile(const std::string& path, std::uint64_t limit, const std::string& what,
+                                         const ErrorSource& source);
 
 // Refuses (BakeError) an output path that names an input, an existing
 // directory, or an existing file that is not a regular file (a device, a

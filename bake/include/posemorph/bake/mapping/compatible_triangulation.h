@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "posemorph/bake/error.h"
 #include "posemorph/bake/mapping/polygon.h"
 
 namespace posemorph::bake::mapping {
@@ -18,9 +19,10 @@ struct CompatibleMesh {
 };
 // Splits all N polygons along chords valid in every pose (stage I), through
 // one Steiner point per pose (II) or the fewest over shortest link paths
-// (III) until every piece is a triangle. Throws BakeError naming `what` when
-// no compatible split exists or more than `max_steiner_points` would be needed.
-CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const std::string& what,
+// (III) until every piece is a triangle. Throws poses.Error(...) (the source
+// naming all the poses) when no compatible split exists or more than
+// `max_steiner_points` would be needed.
+CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const ErrorSource& poses,
                                      std::size_t max_steiner_points);
 
 }  // namespace posemorph::bake::mapping

@@ -3,6 +3,7 @@
 #pragma once
 #include <vector>
 
+#include "posemorph/bake/error.h"
 #include "posemorph/bake/mapping/boundary_matching.h"
 #include "posemorph/bake/mapping/polygon.h"
 
@@ -17,7 +18,8 @@ struct SimplifiedBoundary {
 // Greedily removes corresponding N-tuples with the smallest error (maximum over
 // poses) while it stays <= tolerance, sliding neighbours outward so every
 // polygon keeps enclosing its outline and stays simple. Landmarks are kept.
+// Throws poses[k].Error(...) when no enclosing polygon can be built for pose k.
 SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const CorrespondedBoundary& boundary,
-                                     double tolerance);
+                                     double tolerance, const std::vector<ErrorSource>& poses);
 
 }  // namespace posemorph::bake::mapping

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "posemorph/bake/error.h"
 #include "posemorph/bake/mapping/polygon.h"
 
 namespace posemorph::bake::mapping {
@@ -20,14 +21,17 @@ struct ImageOutline {
 // PNG with alpha: pixels with alpha >= threshold form the shape; the largest
 // 4-connected component is kept, holes filled, diagonal pinches closed, and
 // the outline traced where alpha crosses the threshold (marching squares,
-// sub-pixel). Throws BakeError naming the file.
+// sub-pixel). Throws BakeError naming the file, or as `source` says (in a
+// bake: "DESCRIPTION: POSE: DRAWING: problem").
 ImageOutline OutlineFromPng(const std::string& path, double alpha_threshold);
-// The same from a PNG already in memory (`file` names it in messages).
+ImageOutline OutlineFromPng(const std::string& path, double alpha_threshold, const ErrorSource& source);
+// The same from a PNG already in memory (`source` names it in messages).
 ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double alpha_threshold,
-                                 const std::string& file);
-// The alpha channel of a PNG (any colour type), row by row. Throws BakeError naming the file.
+                                 const ErrorSource& source);
+// The alpha channel of a PNG (any colour type), row by row. Throws BakeError naming the file (or `source`).
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height);
+std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height, const ErrorSource& source);
 ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width, int height, double alpha_threshold,
-                              const std::string& file);
+                              const ErrorSource& source);
 
 }  // namespace posemorph::bake::mapping
