@@ -18,6 +18,7 @@ cd "$(dirname "$0")/.."
 scripts/setup.sh
 jobs=$(nproc)
 scripts/check-format.sh  # the layout (.clang-format)
+python3 scripts/readme-figures.py --check examples  # README tables that depend only on the sources
 
 # The x86-64 paths to force besides the default one. A path the CPU lacks
 # would fail every load with a clear error; it is left out here instead.

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# The README's table of test builds, with each build's test count as ctest
+# lists it (`ctest -N`) in build/<preset>. Usage: scripts/test-counts.sh
+# (after scripts/test.sh, or after configuring and building the presets).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+count() {
+  local dir=build/$1
+  shift
+  [ -f "$dir/CTestTestfile.cmake" ] || { echo "scripts/test-counts.sh: $dir is not built" >&2; exit 1; }
+  ctest --test-dir "$dir" -N "$@" | sed -n 's/^Total Tests: //p'
+}
+release=$(count release) isa=$(count release -LE "hostile|wasm") clang=$(count clang)
+tsan=$(count tsan) debug=$(count debug)
+echo "| build | preset | tests | what |"
+echo "|---|---|---|---|"
+echo "| GCC 12, -O3 | \`release\` | $release | every test (examples included); then again with \`POSEMORPH_ISA=avx2\`, \`sse2\` and \`scalar\` ($isa each: not the hostile corpus or the web example; the default run takes AVX-512 where the CPU has it) |"
+echo "| Clang 14, -O3 | \`clang\` | $clang | the same four runs (the hostile-input corpus and the web example only in the default run: the corpus does not depend on the kernel path, and the web example runs the WebAssembly build, whose bits the WebAssembly suite checks) |"
+echo "| Clang, ThreadSanitizer | \`tsan\` | $tsan | the runtime suite (threads splitting a crowd, batch = single) |"
+echo "| GCC, AddressSanitizer + UBSan, -O1 | \`debug\` | $debug | every test but the viewer's (the Vulkan loader and driver are not built with the sanitisers), allocation counting (the sanitiser owns malloc) and the hostile-input corpus (its 1 GiB address-space limit leaves no room for the shadow memory) |"
+echo "| Clang, libFuzzer + ASan + UBSan | \`fuzz\` (\`scripts/fuzz.sh\`) | 4 harnesses | 60 s each: rig loader and frames, rig description, SVG outlines, PNG tracer (\"Hostile input and fuzzing\" below) |"
+echo "| aarch64 (g++-aarch64-linux-gnu) under qemu-aarch64 | \`scripts/cross-test.sh\` | runtime suite | NEON and scalar paths |"
+echo "| Windows x64 (mingw-w64) under wine64 | \`scripts/cross-test.sh\` | runtime suite | every x86-64 path the CPU runs |"
+echo "| WebAssembly (Emscripten 3.1.6) under node | \`scripts/cross-test.sh\` | runtime suite | SIMD128 and scalar paths |"
+echo "| consumers | \`scripts/consumer-test.sh\` | 6 programs | install + find_package, C99 + pkg-config, add_subdirectory without Eigen, FetchContent, shared library (its runtime suite, SONAME, exports) with both consumers: all compute the same frame |"
