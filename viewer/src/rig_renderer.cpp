@@ -44,7 +44,6 @@ VkShaderModule Module(VkDevice device, const std::uint32_t* code, std::size_t by
 bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFormat target_format,
                        std::uint32_t max_instances, TextureFilter filter, std::string* error) {
   gpu_ = &gpu;
-  VkDevice dev = gpu.device();
   const std::uint32_t V = rig.vertex_count(), N = rig.pose_count();
   vertex_count_ = V;
   index_count_ = 3 * rig.triangle_count();
@@ -58,8 +57,14 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
     std::memcpy(static_cast<char*>(uvs_.mapped) + 8ull * V * i, rig.uvs(i).data, 8ull * V);
   positions_ = gpu.CreateBuffer(8ull * V * max_instances, storage);
   instances_ = gpu.CreateBuffer(sizeof(Instance) * max_instances, storage);
+  UploadDrawings(drawings, N);
+  CreateDescriptors(filter);
+  return CreatePipelines(target_format, error);
+}
 
-  // The drawings as one texture array.
+// The drawings as one texture array, N layers.
+void RigRenderer::UploadDrawings(const Drawings& drawings, std::uint32_t N) {
+  Gpu& gpu = *gpu_;
   const std::size_t layer_bytes = std::size_t(drawings.width) * drawings.height * 4;
   Buffer staging = gpu.CreateBuffer(layer_bytes * N, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   for (std::uint32_t i = 0; i < N; ++i)
@@ -75,7 +80,11 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
     Transition(cmd, drawings_.image, N, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
   });
   gpu.Destroy(staging);
+}
 
+// The sampler (linear, or nearest for pixel art) and the drawings' descriptor set.
+void RigRenderer::CreateDescriptors(TextureFilter filter) {
+  VkDevice dev = gpu_->device();
   VkSamplerCreateInfo sci{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
   sci.magFilter = sci.minFilter = filter == TextureFilter::kNearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
   sci.addressModeU = sci.addressModeV = sci.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_BORDER;
@@ -106,7 +115,12 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
   write.pImageInfo = &dii;
   vkUpdateDescriptorSets(dev, 1, &write, 0, nullptr);
+}
 
+// The pipeline layout and the two pipelines: filled, and lines (wireframe)
+// where the device can.
+bool RigRenderer::CreatePipelines(VkFormat target_format, std::string* error) {
+  VkDevice dev = gpu_->device();
   VkPushConstantRange range{VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(Push)};
   VkPipelineLayoutCreateInfo pli{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   pli.setLayoutCount = 1;
@@ -165,7 +179,7 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   gpi.layout = layout_;
   const VkResult fill = vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &fill_);
   VkPhysicalDeviceFeatures features;
-  vkGetPhysicalDeviceFeatures(gpu.physical(), &features);
+  vkGetPhysicalDeviceFeatures(gpu_->physical(), &features);
   if (features.fillModeNonSolid) {
     rs.polygonMode = VK_POLYGON_MODE_LINE;
     VkCheck(vkCreateGraphicsPipelines(dev, VK_NULL_HANDLE, 1, &gpi, nullptr, &lines_), "vkCreateGraphicsPipelines");

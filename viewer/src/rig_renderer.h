@@ -54,6 +54,10 @@ class RigRenderer {
               Blend blend = Blend::kExact) const;
 
  private:
+  // Init's steps.
+  void UploadDrawings(const Drawings& drawings, std::uint32_t pose_count);
+  void CreateDescriptors(TextureFilter filter);
+  bool CreatePipelines(VkFormat target_format, std::string* error);
   Gpu* gpu_ = nullptr;
   std::uint32_t vertex_count_ = 0, index_count_ = 0, max_instances_ = 0;
   Buffer indices_, uvs_, positions_, instances_;
