@@ -59,7 +59,7 @@ void Label(benchmark::State& state, const Rig& rig) {
 void BM_Frame(benchmark::State& state) {
   const Rig& rig = Get(int(state.range(0))).rig;
   const std::uint32_t N = rig.pose_count();
-  std::vector<double> raw(N), shear(N), tex(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
+  std::vector<double> raw(N), limited(N), tex(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
   std::vector<float> xf(x.size());
   double t = 0;
   for (auto _ : state) {
@@ -68,10 +68,10 @@ void BM_Frame(benchmark::State& state) {
     t += 1.0 / 60;
     WeightsJob wj;
     wj.rig = &rig, wj.x = px, wj.y = py, wj.sigma = 0.25;
-    wj.raw = MakeSpan(raw), wj.shear = MakeSpan(shear), wj.texture = MakeSpan(tex);
+    wj.raw = MakeSpan(raw), wj.limited = MakeSpan(limited), wj.texture = MakeSpan(tex);
     wj.Run();
     MorphJob mj;
-    mj.rig = &rig, mj.weights = MakeSpan(raw), mj.shear_weights = MakeSpan(shear);
+    mj.rig = &rig, mj.weights = MakeSpan(raw), mj.limited_weights = MakeSpan(limited);
     mj.workspace = MakeSpan(work), mj.positions = MakeSpan(x), mj.positions_f32 = MakeSpan(xf);
     mj.Run();
     benchmark::DoNotOptimize(xf.data());
@@ -81,12 +81,12 @@ void BM_Frame(benchmark::State& state) {
 
 void BM_Weights(benchmark::State& state) {
   const Rig& rig = Get(int(state.range(0))).rig;
-  std::vector<double> raw(rig.pose_count()), shear(raw.size()), tex(raw.size());
+  std::vector<double> raw(rig.pose_count()), limited(raw.size()), tex(raw.size());
   double x = -1.3;
   for (auto _ : state) {
     WeightsJob wj;
     wj.rig = &rig, wj.x = x, wj.y = 0.3, wj.sigma = 0.25;
-    wj.raw = MakeSpan(raw), wj.shear = MakeSpan(shear), wj.texture = MakeSpan(tex);
+    wj.raw = MakeSpan(raw), wj.limited = MakeSpan(limited), wj.texture = MakeSpan(tex);
     wj.Run();
     x = x > 1.3 ? -1.3 : x + 0.01;
     benchmark::DoNotOptimize(tex.data());
@@ -117,13 +117,13 @@ void BM_Crowd1000(benchmark::State& state) {
     SamplePath(rig, 0, 0.003 * double(c), &px, &py);
     WeightsJob wj;
     wj.rig = &rig, wj.x = px, wj.y = py;
-    wj.raw = {w.data() + c * N, N}, wj.shear = {ws.data() + c * N, N};
+    wj.raw = {w.data() + c * N, N}, wj.limited = {ws.data() + c * N, N};
     wj.Run();
   }
   for (auto _ : state) {
     MorphBatchJob job;
     job.rig = &rig, job.count = count;
-    job.weights = MakeSpan(w), job.shear_weights = MakeSpan(ws);
+    job.weights = MakeSpan(w), job.limited_weights = MakeSpan(ws);
     job.workspace = MakeSpan(work), job.positions_f32 = MakeSpan(xf);
     job.Run();
     benchmark::DoNotOptimize(xf.data());

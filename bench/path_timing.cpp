@@ -65,13 +65,13 @@ int main(int argc, char** argv) {
     auto weights_at = [&](std::size_t k, double t) {
       WeightsJob job;
       job.rig = &rig, job.x = std::cos(t + 0.1 * k), job.y = std::sin(1.3 * t + 0.2 * k);
-      job.raw = {w.data() + k * N, N}, job.shear = {ws.data() + k * N, N};
+      job.raw = {w.data() + k * N, N}, job.limited = {ws.data() + k * N, N};
       job.Run();
     };
     const double frame = MedianMicros(200, [&](int k) {
       weights_at(0, 0.01 * k);
       MorphJob job;
-      job.rig = &rig, job.weights = {w.data(), N}, job.shear_weights = {ws.data(), N};
+      job.rig = &rig, job.weights = {w.data(), N}, job.limited_weights = {ws.data(), N};
       job.workspace = {work.data(), rig.morph_workspace_size()}, job.positions = {x.data(), v2};
       job.positions_f32 = {xf.data(), v2};
       job.Run();
@@ -80,7 +80,7 @@ int main(int argc, char** argv) {
       for (std::size_t c = 0; c < count; ++c) weights_at(c, 0.01 * k);
       MorphBatchJob job;
       job.rig = &rig, job.count = count;
-      job.weights = {w.data(), w.size()}, job.shear_weights = {ws.data(), ws.size()};
+      job.weights = {w.data(), w.size()}, job.limited_weights = {ws.data(), ws.size()};
       job.workspace = {work.data(), work.size()}, job.positions_f32 = {xf.data(), xf.size()};
       job.Run();
     });

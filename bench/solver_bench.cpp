@@ -120,10 +120,10 @@ struct RuntimeFrame {
   void Run(const Rig& rig) {
     WeightsJob wj;
     wj.rig = &rig, wj.x = 0.8 * std::cos(t), wj.y = 0.8 * std::sin(t);
-    wj.raw = MakeSpan(w), wj.shear = MakeSpan(ws);
+    wj.raw = MakeSpan(w), wj.limited = MakeSpan(ws);
     wj.Run();
     MorphJob mj;
-    mj.rig = &rig, mj.weights = MakeSpan(w), mj.shear_weights = MakeSpan(ws);
+    mj.rig = &rig, mj.weights = MakeSpan(w), mj.limited_weights = MakeSpan(ws);
     mj.workspace = MakeSpan(work), mj.positions = MakeSpan(x);
     mj.Run();
     t += 0.01;
@@ -287,12 +287,12 @@ void CrowdPart(const Rig& rig, double time, std::size_t begin, std::size_t end, 
   for (std::size_t k = begin; k < end; ++k) {
     WeightsJob wj;
     wj.rig = &rig, wj.x = std::cos(time + 0.1 * k), wj.y = std::sin(1.3 * time + 0.2 * k);
-    wj.raw = {b.w.data() + k * N, N}, wj.shear = {b.ws.data() + k * N, N};
+    wj.raw = {b.w.data() + k * N, N}, wj.limited = {b.ws.data() + k * N, N};
     wj.Run();
   }
   MorphBatchJob job;
   job.rig = &rig, job.count = end - begin;
-  job.weights = {b.w.data() + begin * N, job.count * N}, job.shear_weights = {b.ws.data() + begin * N, job.count * N};
+  job.weights = {b.w.data() + begin * N, job.count * N}, job.limited_weights = {b.ws.data() + begin * N, job.count * N};
   job.workspace = MakeSpan(work), job.positions_f32 = {b.x.data() + begin * v2, job.count * v2};
   job.Run();
 }

@@ -39,7 +39,7 @@ int main(int argc, char** argv) {
   pm_rig_info info;
   pm_rig_get_info(rig, &info);
   double* raw = calloc(info.pose_count, sizeof(double));
-  double* shear = calloc(info.pose_count, sizeof(double));
+  double* limited = calloc(info.pose_count, sizeof(double));
   double* tex = calloc(info.pose_count, sizeof(double));
   double* work = calloc(pm_morph_workspace_size(rig), sizeof(double));
   double* x = calloc(2 * info.vertex_count, sizeof(double));
@@ -47,9 +47,9 @@ int main(int argc, char** argv) {
   for (uint32_t i = 0; i < info.pose_count; ++i) {
     double px, py;
     EXPECT(pm_rig_pose_point(rig, i, &px, &py) == PM_OK);
-    EXPECT(pm_weights(rig, px, py, info.default_sigma, 1, raw, shear, tex, info.pose_count) == PM_OK);
+    EXPECT(pm_weights(rig, px, py, info.default_sigma, 1, raw, limited, tex, info.pose_count) == PM_OK);
     EXPECT(fabs(raw[i] - 1) < 1e-12 && fabs(tex[i] - 1) < 1e-12);
-    EXPECT(pm_morph(rig, raw, shear, 0, work, pm_morph_workspace_size(rig), x, xf, 2 * (size_t)info.vertex_count) ==
+    EXPECT(pm_morph(rig, raw, limited, 0, work, pm_morph_workspace_size(rig), x, xf, 2 * (size_t)info.vertex_count) ==
            PM_OK);
     const double* q = pm_rig_pose_positions(rig, i);
     double worst = 0;
@@ -88,22 +88,22 @@ int main(int argc, char** argv) {
     pm_dequantize_point(rig, packed, &qx, &qy);
     EXPECT(fabs(qx - px) < 1e-3 && fabs(qy - py) < 1e-3);
   }
-  EXPECT(pm_morph(rig, raw, shear, 0, NULL, 0, x, NULL, 2 * (size_t)info.vertex_count) == PM_ERROR_INVALID_ARGUMENT);
+  EXPECT(pm_morph(rig, raw, limited, 0, NULL, 0, x, NULL, 2 * (size_t)info.vertex_count) == PM_ERROR_INVALID_ARGUMENT);
   /* Capacities: a buffer one short, or misaligned, is refused and left untouched. */
-  EXPECT(pm_weights(rig, 0, 0, 0, 1, raw, shear, NULL, info.pose_count - 1) == PM_ERROR_BUFFER_TOO_SMALL);
-  EXPECT(pm_morph(rig, raw, shear, 0, work, pm_morph_workspace_size(rig) - 1, x, NULL, 2 * (size_t)info.vertex_count) ==
-         PM_ERROR_BUFFER_TOO_SMALL);
+  EXPECT(pm_weights(rig, 0, 0, 0, 1, raw, limited, NULL, info.pose_count - 1) == PM_ERROR_BUFFER_TOO_SMALL);
+  EXPECT(pm_morph(rig, raw, limited, 0, work, pm_morph_workspace_size(rig) - 1, x, NULL,
+                  2 * (size_t)info.vertex_count) == PM_ERROR_BUFFER_TOO_SMALL);
   x[0] = 12345;
-  EXPECT(pm_morph(rig, raw, shear, 0, work, pm_morph_workspace_size(rig), x, NULL, 2 * (size_t)info.vertex_count - 1) ==
-         PM_ERROR_BUFFER_TOO_SMALL);
+  EXPECT(pm_morph(rig, raw, limited, 0, work, pm_morph_workspace_size(rig), x, NULL,
+                  2 * (size_t)info.vertex_count - 1) == PM_ERROR_BUFFER_TOO_SMALL);
   EXPECT(x[0] == 12345);
-  EXPECT(pm_morph(rig, raw, shear, 0, work, pm_morph_workspace_size(rig), (double*)((char*)x + 1), NULL,
+  EXPECT(pm_morph(rig, raw, limited, 0, work, pm_morph_workspace_size(rig), (double*)((char*)x + 1), NULL,
                   2 * (size_t)info.vertex_count - 1) == PM_ERROR_INVALID_ARGUMENT);
   /* What a renderer and a UI need to know about the rig. */
   {
     char name[64];
     size_t length = 0;
-    EXPECT(strcmp(pm_version(), "0.2.0") == 0);
+    EXPECT(strcmp(pm_version(), "0.3.0") == 0);
     EXPECT(pm_rig_pose_name(rig, 0, name, sizeof name, &length) == PM_OK && length == strlen(name) && length > 0);
     EXPECT(pm_rig_pose_name(rig, 0, name, length, &length) == PM_ERROR_BUFFER_TOO_SMALL && length == strlen(name));
     EXPECT(pm_rig_pose_name(rig, info.pose_count, name, sizeof name, &length) == PM_ERROR_INVALID_ARGUMENT);
@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
     EXPECT(pm_rig_format_version(rig, &major, &minor) == PM_OK && major == 1 && minor == 4);
   }
   pm_rig_free(rig);
-  free(bytes), free(raw), free(shear), free(tex), free(work), free(x), free(xf);
+  free(bytes), free(raw), free(limited), free(tex), free(work), free(x), free(xf);
   printf("c_api_test: %s\n", failures ? "FAILED" : "ok");
   return failures ? 1 : 0;
 }

@@ -44,9 +44,9 @@ TEST_CASE("each pose is reproduced at its pose-space point") {
     for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
       CAPTURE(original.name);
       CAPTURE(i);
-      for (bool shear_limit : {true, false}) {
+      for (bool limit_weights : {true, false}) {
         const std::vector<double> x =
-            MorphAt(rig, original.poses[i].point.x(), original.poses[i].point.y(), shear_limit);
+            MorphAt(rig, original.poses[i].point.x(), original.poses[i].point.y(), limit_weights);
         CHECK(MaxVertexDistance(x, original.poses[i].vertices) <= 1e-9 * rig.bounding_box_diagonal());
       }
       // And from exact one-hot weights, in single precision for the GPU: the
@@ -56,7 +56,7 @@ TEST_CASE("each pose is reproduced at its pose-space point") {
       std::vector<double> work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
       std::vector<float> xf(x.size());
       MorphJob job;
-      job.rig = &rig, job.weights = MakeSpan(e), job.shear_weights = MakeSpan(e);
+      job.rig = &rig, job.weights = MakeSpan(e), job.limited_weights = MakeSpan(e);
       job.workspace = MakeSpan(work), job.positions = MakeSpan(x), job.positions_f32 = MakeSpan(xf);
       REQUIRE(job.Run());
       CHECK(MaxVertexDistance(x, original.poses[i].vertices) <= 1e-9 * rig.bounding_box_diagonal());
@@ -154,7 +154,7 @@ TEST_CASE("a pose rotated by 170 degrees interpolates by rigid rotations only") 
     // Angle t x 170 degrees, compared on the circle.
     CHECK(std::abs(std::remainder(angle - t * Degrees(170), 2 * M_PI)) <= 1e-9);
   }
-  // Through the weight field too, shear limiting included: still rigid.
+  // Through the weight field too, weight limiting included: still rigid.
   for (double px = -0.5; px <= 1.5; px += 0.1) {
     double angle = 0;
     CHECK(RigidFitError(MorphAt(rig, px, 0.3), original.poses[0].vertices, rig.bounding_box_diagonal(), &angle) <=
@@ -194,12 +194,12 @@ TEST_CASE("collinear pose points bake, evaluate, and extrapolate without degener
     double sum = 0;
     for (double v : w.raw) sum += v;
     CHECK(sum == doctest::Approx(1).epsilon(1e-12));
-    const std::vector<double> x = Morph(rig, w.raw, w.shear);
+    const std::vector<double> x = Morph(rig, w.raw, w.limited);
     CHECK(MinAreaRatio(rig, x) > 0.5);
   }
 }
 
-TEST_CASE("shear limiting keeps extrapolation past a squashed pose from collapsing") {
+TEST_CASE("weight limiting keeps extrapolation past a squashed pose from collapsing") {
   // Three poses on a line: rest, squashed across to 30%, stretched along.
   bake::RigDescription desc = BentStripRig(0, 16, 3);
   desc.poses[1].name = "squashed";
@@ -214,9 +214,9 @@ TEST_CASE("shear limiting keeps extrapolation past a squashed pose from collapsi
   const Weights w = WeightsAt(rig, 40, 0);
   CHECK(w.raw[0] < -0.3);
   CHECK(w.raw[1] > 1.3);
-  const double limited = MinAreaRatio(rig, Morph(rig, w.raw, w.shear));
+  const double limited = MinAreaRatio(rig, Morph(rig, w.raw, w.limited));
   const double unlimited = MinAreaRatio(rig, Morph(rig, w.raw, w.raw));
-  MESSAGE("min area ratio far out: " << limited << " shear-limited, " << unlimited << " without");
+  MESSAGE("min area ratio far out: " << limited << " limited, " << unlimited << " without");
   CHECK(limited > 0.25);   // the squashed pose's own 0.3, no further
   CHECK(unlimited < 0.1);  // extrapolated stretch folds the strip flat or over
 }

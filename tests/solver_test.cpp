@@ -80,7 +80,7 @@ TEST_CASE("16-bit and 32-bit solve indices give the same bits, single and batche
   CHECK(narrow.arena_bytes() < wide.arena_bytes());
 
   const std::uint32_t N = narrow.pose_count(), V = narrow.vertex_count();
-  std::vector<double> raw(N), shear(N);
+  std::vector<double> raw(N), limited(N);
   for (const auto& [x, y] : std::vector<std::pair<double, double>>{{0.3, 0.4}, {-0.8, 0.1}, {1.7, -2.0}}) {
     std::vector<double> out[2];
     for (int which = 0; which < 2; ++which) {
@@ -89,29 +89,30 @@ TEST_CASE("16-bit and 32-bit solve indices give the same bits, single and batche
       wj.rig = &rig;
       wj.x = x, wj.y = y;
       wj.raw = {raw.data(), N};
-      wj.shear = {shear.data(), N};
+      wj.limited = {limited.data(), N};
       REQUIRE(wj.Run());
       std::vector<double> workspace(rig.morph_workspace_size());
       out[which].resize(2 * V);
       MorphJob mj;
       mj.rig = &rig;
       mj.weights = {raw.data(), N};
-      mj.shear_weights = {shear.data(), N};
+      mj.limited_weights = {limited.data(), N};
       mj.workspace = {workspace.data(), workspace.size()};
       mj.positions = {out[which].data(), out[which].size()};
       REQUIRE(mj.Run());
     }
     CHECK(std::memcmp(out[0].data(), out[1].data(), out[0].size() * sizeof(double)) == 0);
     // Batched on the wide rig equals single on the narrow one.
-    std::vector<double> weights, shears;
+    std::vector<double> weights, all_limited;
     for (int c = 0; c < 9; ++c)
-      weights.insert(weights.end(), raw.begin(), raw.end()), shears.insert(shears.end(), shear.begin(), shear.end());
+      weights.insert(weights.end(), raw.begin(), raw.end()),
+          all_limited.insert(all_limited.end(), limited.begin(), limited.end());
     std::vector<double> batch(9 * 2 * V), workspace(wide.batch_workspace_size());
     MorphBatchJob bj;
     bj.rig = &wide;
     bj.count = 9;
     bj.weights = {weights.data(), weights.size()};
-    bj.shear_weights = {shears.data(), shears.size()};
+    bj.limited_weights = {all_limited.data(), all_limited.size()};
     bj.workspace = {workspace.data(), workspace.size()};
     bj.positions = {batch.data(), batch.size()};
     REQUIRE(bj.Run());

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <unistd.h>
 
@@ -118,5 +119,28 @@ TEST_CASE("posemorph-bake sheet --textured writes a PNG, and refuses what it can
   CHECK(run({"sheet", rig.string(), "--textured", "-o", (dir / "t.png").string()}, &text) == 1);
   CHECK(text.find("posemorph-bake: error: " + (dir / "rest.png").string() + ": ") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "t.png"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("eval --no-weight-limit blends the stretches with raw weights, and --no-shear-limit is its old name") {
+  Pip pip;
+  const fs::path dir = fs::temp_directory_path() / ("posemorph-limit-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path rig = dir / "pip.pmrig";
+  std::ofstream(rig, std::ios::binary)
+      .write(reinterpret_cast<const char*>(pip.bytes.data()), std::streamsize(pip.bytes.size()));
+  auto eval = [&](const std::string& flag, const std::string& name) {
+    std::vector<std::string> args = {"eval", rig.string(), "--at", "2.5,-2", "-o", (dir / name).string()};
+    if (!flag.empty()) args.push_back(flag);
+    std::ostringstream o, e;
+    REQUIRE(bake::RunBakeCommand(args, o, e) == 0);
+    std::ifstream in(dir / name, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const std::string limited = eval("", "limited.json"), raw = eval("--no-weight-limit", "raw.json");
+  CHECK(!limited.empty());
+  CHECK(limited != raw);  // far outside the poses the raw weights extrapolate
+  CHECK(eval("--no-shear-limit", "old-name.json") == raw);
   fs::remove_all(dir);
 }

@@ -13,29 +13,29 @@ TEST_CASE("weights sum to 1 everywhere and are e_i at the pose points") {
     // A dense sample of the grid and well beyond it (clamped).
     const double x0 = g.origin_x - 2, x1 = g.origin_x + g.cell * g.cells_x + 2;
     const double y0 = g.origin_y - 2, y1 = g.origin_y + g.cell * g.cells_y + 2;
-    double worst_sum = 0, worst_shear = 0, worst_texture = 0;
+    double worst_sum = 0, worst_limited = 0, worst_texture = 0;
     for (int j = 0; j <= 200; ++j)
       for (int i = 0; i <= 200; ++i) {
         const Weights w = WeightsAt(rig, x0 + (x1 - x0) * i / 200, y0 + (y1 - y0) * j / 200, 0.6);
         double s = 0, ss = 0, st = 0;
         for (std::uint32_t k = 0; k < N; ++k) {
-          s += w.raw[k], ss += w.shear[k], st += w.texture[k];
-          CHECK(w.shear[k] >= 0);
-          CHECK(w.shear[k] <= 1);
+          s += w.raw[k], ss += w.limited[k], st += w.texture[k];
+          CHECK(w.limited[k] >= 0);
+          CHECK(w.limited[k] <= 1);
         }
         worst_sum = std::max(worst_sum, std::abs(s - 1));
-        worst_shear = std::max(worst_shear, std::abs(ss - 1));
+        worst_limited = std::max(worst_limited, std::abs(ss - 1));
         worst_texture = std::max(worst_texture, std::abs(st - 1));
       }
     CAPTURE(desc.name);
     CHECK(worst_sum <= 1e-12);
-    CHECK(worst_shear <= 1e-12);
+    CHECK(worst_limited <= 1e-12);
     CHECK(worst_texture <= 1e-12);
     for (std::uint32_t i = 0; i < N; ++i) {
       const Weights w = WeightsAt(rig, desc.poses[i].point.x(), desc.poses[i].point.y(), 0.5);
       for (std::uint32_t k = 0; k < N; ++k) {
         CHECK(std::abs(w.raw[k] - (k == i ? 1.0 : 0.0)) <= 1e-12);
-        CHECK(std::abs(w.shear[k] - (k == i ? 1.0 : 0.0)) <= 1e-12);
+        CHECK(std::abs(w.limited[k] - (k == i ? 1.0 : 0.0)) <= 1e-12);
         CHECK(std::abs(w.texture[k] - (k == i ? 1.0 : 0.0)) <= 1e-12);
       }
     }
@@ -68,7 +68,7 @@ TEST_CASE("non-finite pose-space points give finite, defined weights") {
       s += v;
     }
     CHECK(s == doctest::Approx(1));
-    const std::vector<double> x = Morph(rig, w.raw, w.shear);
+    const std::vector<double> x = Morph(rig, w.raw, w.limited);
     for (double v : x) CHECK(std::isfinite(v));
   }
   // NaN means "pose 0's coordinate": (NaN, NaN) is the rest pose exactly.
@@ -76,15 +76,15 @@ TEST_CASE("non-finite pose-space points give finite, defined weights") {
   CHECK(w.raw[0] == doctest::Approx(1).epsilon(1e-12));
 }
 
-TEST_CASE("shear limiting and texture sharpening follow the paper's maps") {
+TEST_CASE("weight limiting and texture sharpening follow the paper's maps") {
   // phi: smoothstep clamped to [0, 1] with phi(0) = 0, phi(1) = 1, flat ends.
-  CHECK(ShearLimit(-3) == 0);
-  CHECK(ShearLimit(0) == 0);
-  CHECK(ShearLimit(1) == 1);
-  CHECK(ShearLimit(7) == 1);
-  CHECK(ShearLimit(0.5) == doctest::Approx(0.5));
-  CHECK(ShearLimit(0.25) == doctest::Approx(0.15625));
-  CHECK((ShearLimit(1e-4) - ShearLimit(0)) / 1e-4 < 1e-3);  // zero slope at 0
+  CHECK(LimitWeight(-3) == 0);
+  CHECK(LimitWeight(0) == 0);
+  CHECK(LimitWeight(1) == 1);
+  CHECK(LimitWeight(7) == 1);
+  CHECK(LimitWeight(0.5) == doctest::Approx(0.5));
+  CHECK(LimitWeight(0.25) == doctest::Approx(0.15625));
+  CHECK((LimitWeight(1e-4) - LimitWeight(0)) / 1e-4 < 1e-3);  // zero slope at 0
 
   const double in[] = {0.7, 0.2, 0.1};
   double out[3];

@@ -24,8 +24,8 @@ const char kUsage[] =
     "        an in-between where a triangle turns over fails the bake unless --allow-folds)\n"
     "  posemorph-bake info RIG.pmrig              sizes, counts, factor fill, in-betweens, pose points, paths\n"
     "  posemorph-bake eval RIG.pmrig (--at X,Y | --path NAME [--time T | --frames K]) -o OUT.svg|.json|.obj\n"
-    "        [--sigma S] [--no-shear-limit] [--linear]\n"
-    "  posemorph-bake sheet RIG.pmrig -o OUT.svg [--columns C] [--rows R] [--no-shear-limit] [--linear]\n"
+    "        [--sigma S] [--no-weight-limit] [--linear]\n"
+    "  posemorph-bake sheet RIG.pmrig -o OUT.svg [--columns C] [--rows R] [--no-weight-limit] [--linear]\n"
     "  posemorph-bake sheet RIG.pmrig --textured -o OUT.png [--images DIR] [--filter linear|nearest] ...\n"
     "        the same frames drawn with the drawings, cross-faded by the texture weights\n"
     "  posemorph-bake deform RIG.json --pose NAME -o MESH.json  write a deformation-made pose as a plain mesh file\n";

@@ -57,7 +57,8 @@ EvalOptions ReadEvalOptions(const Args& args) {
     o.sigma = NumberOption("--sigma", *s);
     if (o.sigma < 0 || o.sigma > 1) throw UsageError("--sigma must be in [0, 1]");
   }
-  o.shear_limit = !args.switches.count("--no-shear-limit");
+  // --no-shear-limit: the deprecated name of --no-weight-limit.
+  o.limit_weights = !args.switches.count("--no-weight-limit") && !args.switches.count("--no-shear-limit");
   o.interpolation = args.switches.count("--linear") ? Interpolation::kLinear : Interpolation::kRigid;
   return o;
 }

@@ -59,7 +59,7 @@ std::string Extension(const std::string& path);                    // lower case
 // read it; UsageError naming the flag otherwise.
 double NumberOption(const std::string& flag, const std::string& s);
 int CountOption(const std::string& flag, const std::string& s, int lo, int hi);
-EvalOptions ReadEvalOptions(const Args& args);  // --sigma, --no-shear-limit, --linear
+EvalOptions ReadEvalOptions(const Args& args);  // --sigma, --no-weight-limit, --linear
 std::string Printable(const std::string& message);
 
 }  // namespace posemorph::bake::cli

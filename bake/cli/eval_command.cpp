@@ -26,8 +26,8 @@
 namespace posemorph::bake::cli {
 
 int EvalCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
-  const Args args =
-      Args::Parse(a, from, {"-o", "--at", "--path", "--time", "--frames", "--sigma"}, {"--no-shear-limit", "--linear"});
+  const Args args = Args::Parse(a, from, {"-o", "--at", "--path", "--time", "--frames", "--sigma"},
+                                {"--no-weight-limit", "--no-shear-limit", "--linear"});
   if (args.positional.empty()) throw UsageError("no rig file given");
   const std::string* output = args.Get("-o");
   if (!output) throw UsageError("eval needs -o OUT.svg|.json|.obj");

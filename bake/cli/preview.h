@@ -20,7 +20,7 @@ struct Frame {
 
 struct EvalOptions {
   double sigma = -1;  // < 0: the rig's default
-  bool shear_limit = true;
+  bool limit_weights = true;
   Interpolation interpolation = Interpolation::kRigid;
 };
 

@@ -28,7 +28,7 @@ namespace posemorph::bake::cli {
 
 int SheetCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
   const Args args = Args::Parse(a, from, {"-o", "--columns", "--rows", "--sigma", "--images", "--filter"},
-                                {"--no-shear-limit", "--linear", "--textured"});
+                                {"--no-weight-limit", "--no-shear-limit", "--linear", "--textured"});
   if (args.positional.empty()) throw UsageError("no rig file given");
   const std::string* output = args.Get("-o");
   const bool textured = args.switches.count("--textured") > 0;

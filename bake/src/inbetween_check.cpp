@@ -93,7 +93,7 @@ std::string DescribeFold(const Rig& rig, const InbetweenFold& fold) {
   wj.x = fold.at.x();
   wj.y = fold.at.y();
   wj.raw = MakeSpan(raw);
-  wj.shear = MakeSpan(limited);
+  wj.limited = MakeSpan(limited);
   wj.Run();
   std::vector<std::uint32_t> order(N);
   for (std::uint32_t i = 0; i < N; ++i) order[i] = i;

@@ -88,11 +88,11 @@ bool EvaluateFrame(const Rig& rig, const Eigen::Vector2d& at, std::vector<double
   wj.x = at.x();
   wj.y = at.y();
   wj.raw = MakeSpan(raw);
-  wj.shear = MakeSpan(limited);
+  wj.limited = MakeSpan(limited);
   MorphJob mj;
   mj.rig = &rig;
   mj.weights = MakeSpan(raw);
-  mj.shear_weights = MakeSpan(limited);
+  mj.limited_weights = MakeSpan(limited);
   mj.workspace = MakeSpan(work);
   mj.positions = MakeSpan(x);
   return wj.Run() && mj.Run();

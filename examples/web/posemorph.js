@@ -5,7 +5,7 @@
 //   const pm = await Posemorph.create(createPosemorphWasm);
 //   const rig = pm.loadRig(bytes, 'pip.pmrig');      // throws Error('pip.pmrig: ...') on bad bytes
 //   const lists = rig.drawLists(1, [x, y]);           // [{positions, indices, drawings: [{pose, weight, uvs}], ...}]
-//   const { raw, shear, texture } = rig.weights(x, y); // the pose-space weights alone
+//   const { raw, limited, texture } = rig.weights(x, y); // the pose-space weights alone
 //
 // Arrays returned are views into wasm memory, valid until the next call.
 
@@ -86,15 +86,16 @@ export class Rig {
     m._free(b);
     return r;
   }
-  // The weights at a pose-space point: raw (the blend), shear-limited, and texture (the cross-fade), N each.
-  weights(x, y, { sigma = -1, shearLimit = true } = {}) {
+  // The weights at a pose-space point: raw (the blend), limited (phi(w) renormalised: what the stretches
+  // blend with), and texture (the cross-fade), N each. limitWeights false: limited = raw.
+  weights(x, y, { sigma = -1, limitWeights = true } = {}) {
     const m = this.wasm, n = this.poseCount, w = m._malloc(24 * n);
-    const status = m._pm_weights(this.handle, x, y, sigma < 0 ? this.defaultSigma : sigma, shearLimit ? 1 : 0, w,
+    const status = m._pm_weights(this.handle, x, y, sigma < 0 ? this.defaultSigma : sigma, limitWeights ? 1 : 0, w,
                                  w + 8 * n, w + 16 * n, n);
     const all = Array.from(m.HEAPF64.subarray(w >> 3, (w >> 3) + 3 * n));
     m._free(w);
     if (status !== 0) throw new Error(`pm_weights failed (${status})`);
-    return { raw: all.slice(0, n), shear: all.slice(n, 2 * n), texture: all.slice(2 * n) };
+    return { raw: all.slice(0, n), limited: all.slice(n, 2 * n), texture: all.slice(2 * n) };
   }
   // Draw lists for `count` characters at points [x0, y0, x1, y1, ...]; maxDrawings K in 1..8.
   drawLists(count, points, { sigma = -1, maxDrawings = 8 } = {}) {
@@ -103,7 +104,7 @@ export class Rig {
     m.HEAPF64.set(points, this.points >> 3);
     const o = this.options;
     m.HEAPF64[o >> 3] = sigma;
-    m.HEAP32[(o + 8) >> 2] = 1;  // shear limiting
+    m.HEAP32[(o + 8) >> 2] = 1;  // limit_weights
     m.HEAP32[(o + 12) >> 2] = 0;  // rigid
     m.HEAPU32[(o + 16) >> 2] = maxDrawings;
     const status = m._pm_draw_lists(this.handle, o, count, this.points, 0, this.work, this.workSize, this.positions,

@@ -215,9 +215,9 @@ int pm_rig_hull_bounds(const pm_rig* rig, uint32_t samples, double* workspace, s
           wj.rig = &r;
           wj.x = t * p[0] + u * p[2 * a] + v * p[2 * b];
           wj.y = t * p[1] + u * p[2 * a + 1] + v * p[2 * b + 1];
-          wj.raw = {w, N}, wj.shear = {ws, N};
+          wj.raw = {w, N}, wj.limited = {ws, N};
           posemorph::MorphJob mj;
-          mj.rig = &r, mj.weights = {w, N}, mj.shear_weights = {ws, N};
+          mj.rig = &r, mj.weights = {w, N}, mj.limited_weights = {ws, N};
           mj.workspace = {work, r.morph_workspace_size()}, mj.positions = {x, 2 * V};
           if (!wj.Run() || !mj.Run()) return PM_ERROR_INVALID_ARGUMENT;
           Extend(out, x, V);
@@ -256,9 +256,9 @@ int pm_rig_pose_point(const pm_rig* rig, uint32_t pose, double* x, double* y) {
   return PM_OK;
 }
 
-int pm_weights(const pm_rig* rig, double x, double y, double sigma, int shear_limit, double* raw, double* shear,
+int pm_weights(const pm_rig* rig, double x, double y, double sigma, int limit_weights, double* raw, double* limited,
                double* texture, size_t capacity) {
-  if (!rig || !raw || !Aligned(raw) || !Aligned(shear) || !Aligned(texture)) return PM_ERROR_INVALID_ARGUMENT;
+  if (!rig || !raw || !Aligned(raw) || !Aligned(limited) || !Aligned(texture)) return PM_ERROR_INVALID_ARGUMENT;
   const std::size_t n = rig->rig.pose_count();
   if (capacity < n) return PM_ERROR_BUFFER_TOO_SMALL;
   posemorph::WeightsJob job;
@@ -266,16 +266,16 @@ int pm_weights(const pm_rig* rig, double x, double y, double sigma, int shear_li
   job.x = x;
   job.y = y;
   job.sigma = sigma;
-  job.shear_limit = shear_limit != 0;
+  job.limit_weights = limit_weights != 0;
   job.raw = {raw, n};
-  job.shear = {shear, shear ? n : 0};
+  job.limited = {limited, limited ? n : 0};
   job.texture = {texture, texture ? n : 0};
   return job.Run() ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
 }
 
 size_t pm_morph_workspace_size(const pm_rig* rig) { return rig ? rig->rig.morph_workspace_size() : 0; }
 
-int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weights, int linear, double* workspace,
+int pm_morph(const pm_rig* rig, const double* weights, const double* limited_weights, int linear, double* workspace,
              size_t workspace_capacity, double* positions, float* positions_f32, size_t positions_capacity) {
   if (!rig || !Aligned(workspace) || !Aligned(positions) || !Aligned(positions_f32)) return PM_ERROR_INVALID_ARGUMENT;
   const posemorph::Rig& r = rig->rig;
@@ -285,7 +285,7 @@ int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weigh
   posemorph::MorphJob job;
   job.rig = &r;
   job.weights = {weights, n};
-  job.shear_weights = {shear_weights, n};
+  job.limited_weights = {limited_weights, n};
   job.interpolation = linear ? posemorph::Interpolation::kLinear : posemorph::Interpolation::kRigid;
   job.workspace = {workspace, r.morph_workspace_size()};
   job.positions = {positions, v2};
@@ -295,7 +295,7 @@ int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weigh
 
 size_t pm_batch_workspace_size(const pm_rig* rig) { return rig ? rig->rig.batch_workspace_size() : 0; }
 
-int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const double* shear_weights,
+int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const double* limited_weights,
                    double* workspace, size_t workspace_capacity, double* positions, float* positions_f32,
                    size_t positions_capacity) {
   if (!rig || !Aligned(workspace) || !Aligned(positions) || !Aligned(positions_f32)) return PM_ERROR_INVALID_ARGUMENT;
@@ -309,7 +309,7 @@ int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const
   job.rig = &r;
   job.count = count;
   job.weights = {weights, weights ? count * n : 0};
-  job.shear_weights = {shear_weights, shear_weights ? count * n : 0};
+  job.limited_weights = {limited_weights, limited_weights ? count * n : 0};
   job.workspace = {workspace, workspace ? r.batch_workspace_size() : 0};
   job.positions = {positions, positions ? count * v2 : 0};
   job.positions_f32 = {positions_f32, positions_f32 ? count * v2 : 0};
@@ -354,7 +354,7 @@ int pm_draw_lists(const pm_rig* rig, const pm_draw_options* options, size_t coun
   job.count = count;
   job.points = {points, 2 * count};
   job.sigma = o.sigma;
-  job.shear_limit = o.shear_limit != 0;
+  job.limit_weights = o.limit_weights != 0;
   job.interpolation = o.linear ? posemorph::Interpolation::kLinear : posemorph::Interpolation::kRigid;
   job.max_drawings = o.max_drawings;
   job.workspace = {workspace, need_workspace};

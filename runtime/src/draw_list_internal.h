@@ -19,8 +19,8 @@ bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emi
   const Rig& rig = *job.rig;
   const std::size_t n = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count()), count = job.count;
   double* raw = job.workspace.data;
-  double* shear = raw + count * n;
-  double* texture = shear + count * n;
+  double* limited = raw + count * n;
+  double* texture = limited + count * n;
   double* rest = texture + n;
   const std::size_t rest_size = job.workspace.size - (2 * count * n + n);
   const double sigma = job.sigma >= 0 ? job.sigma : rig.default_sigma();  // NaN: the default too
@@ -30,9 +30,9 @@ bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emi
     wj.rig = &rig;
     wj.x = job.points[2 * k], wj.y = job.points[2 * k + 1];
     wj.sigma = sigma;
-    wj.shear_limit = job.shear_limit;
+    wj.limit_weights = job.limit_weights;
     wj.raw = {raw + k * n, n};
-    wj.shear = {shear + k * n, n};
+    wj.limited = {limited + k * n, n};
     wj.texture = {texture, n};
     if (!wj.Run()) return false;
     DrawList list;
@@ -53,7 +53,7 @@ bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emi
     bj.rig = &rig;
     bj.count = count;
     bj.weights = {raw, count * n};
-    bj.shear_weights = {shear, count * n};
+    bj.limited_weights = {limited, count * n};
     bj.workspace = {rest, rest_size};
     bj.positions_f32 = {job.positions.data, count * v2};
     return bj.Run();
@@ -62,7 +62,7 @@ bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emi
     MorphJob mj;
     mj.rig = &rig;
     mj.weights = {raw + k * n, n};
-    mj.shear_weights = {shear + k * n, n};
+    mj.limited_weights = {limited + k * n, n};
     mj.interpolation = job.interpolation;
     mj.workspace = {rest, rig.morph_workspace_size()};
     mj.positions = {rest + rig.morph_workspace_size(), v2};

@@ -22,13 +22,14 @@ bool MorphBatchJob::Validate() const {
   const std::size_t n = rig->pose_count(), v2 = 2 * std::size_t(rig->vertex_count());
   if (count == 0) return true;
   if (count > (std::size_t(-1) / 2) / (v2 + n)) return false;
-  if (!weights.data || weights.size < count * n || !shear_weights.data || shear_weights.size < count * n) return false;
+  if (!weights.data || weights.size < count * n || !limited_weights.data || limited_weights.size < count * n)
+    return false;
   if (!workspace.data || workspace.size < rig->batch_workspace_size()) return false;
   if (positions.size == 0 && positions_f32.size == 0) return false;
   if (positions.size != 0 && (!positions.data || positions.size < count * v2)) return false;
   if (positions_f32.size != 0 && (!positions_f32.data || positions_f32.size < count * v2)) return false;
   for (std::size_t k = 0; k < count * n; ++k)
-    if (!(std::fabs(weights[k]) <= kMaxJobWeight) || !(std::fabs(shear_weights[k]) <= kMaxJobWeight)) return false;
+    if (!(std::fabs(weights[k]) <= kMaxJobWeight) || !(std::fabs(limited_weights[k]) <= kMaxJobWeight)) return false;
   return true;
 }
 
@@ -57,7 +58,7 @@ bool MorphBatchJob::Run() const {
         MorphJob one;
         one.rig = rig;
         one.weights = weights.subspan(k * N, N);
-        one.shear_weights = shear_weights.subspan(k * N, N);
+        one.limited_weights = limited_weights.subspan(k * N, N);
         one.workspace = {workspace.data, r.morph_workspace_size()};
         one.positions =
             positions.size ? positions.subspan(k * v2, v2) : workspace.subspan(r.morph_workspace_size(), v2);
@@ -71,7 +72,7 @@ bool MorphBatchJob::Run() const {
       for (std::size_t l = 0; l < width; ++l) {
         const std::size_t ch = g + (l < lanes ? l : lanes - 1);
         W[i * width + l] = weights[ch * N + i];
-        WS[i * width + l] = shear_weights[ch * N + i];
+        WS[i * width + l] = limited_weights[ch * N + i];
       }
     kernels.group(r, W, WS, x, y);
     // One pass over the lanes, writing each character's array in order.

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // Vertex positions for a weight vector (DESIGN.md section 3): blend each
-// triangle's rotation angle (raw weights) and symmetric stretch (shear-limited
+// triangle's rotation angle (raw weights) and symmetric stretch (limited
 // weights), assemble the right-hand side of the normal equations, solve with
 // the baked factor, then move the area-weighted centroid to sum_i w_i c_i.
 // The rigid arithmetic lives in kernels/ (one copy per instruction set).
@@ -14,13 +14,13 @@ namespace posemorph {
 bool MorphJob::Validate() const {
   if (!rig || !rig->loaded()) return false;
   const std::size_t n = rig->pose_count(), v2 = 2 * std::size_t(rig->vertex_count());
-  if (!weights.data || weights.size < n || !shear_weights.data || shear_weights.size < n) return false;
+  if (!weights.data || weights.size < n || !limited_weights.data || limited_weights.size < n) return false;
   if (!workspace.data || workspace.size < rig->morph_workspace_size()) return false;
   if (!positions.data || positions.size < v2) return false;
   if (positions_f32.size != 0 && (!positions_f32.data || positions_f32.size < v2)) return false;
   if (interpolation != Interpolation::kRigid && interpolation != Interpolation::kLinear) return false;
   for (std::size_t i = 0; i < n; ++i)
-    if (!(std::fabs(weights[i]) <= kMaxJobWeight) || !(std::fabs(shear_weights[i]) <= kMaxJobWeight)) return false;
+    if (!(std::fabs(weights[i]) <= kMaxJobWeight) || !(std::fabs(limited_weights[i]) <= kMaxJobWeight)) return false;
   return true;
 }
 
@@ -45,7 +45,7 @@ bool MorphJob::Run() const {
   if (interpolation == Interpolation::kLinear) {
     Linear(r, weights.data, x);
   } else {
-    r.kernels()->rigid(r, weights.data, shear_weights.data, workspace.data, x);
+    r.kernels()->rigid(r, weights.data, limited_weights.data, workspace.data, x);
   }
   if (positions_f32.size)
     for (std::size_t k = 0; k < 2 * std::size_t(V); ++k) positions_f32[k] = float(x[k]);

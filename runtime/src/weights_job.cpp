@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Pose-space weights: barycentric interpolation in the baked grid (DESIGN.md
-// section 3), then the paper's shear limiting and texture sharpening.
+// section 3), then weight limiting (the paper's limit on shear and scale:
+// phi(w) renormalised, the limited weights) and texture sharpening.
 #include <cmath>
 
 #include "posemorph/grid_location.h"
@@ -22,16 +23,16 @@ double Clamp(double v, double lo, double hi) { return v < lo ? lo : (v > hi ? hi
 
 }  // namespace
 
-double ShearLimit(double w) { return Smoothstep(0.0, 1.0, w); }
+double LimitWeight(double w) { return Smoothstep(0.0, 1.0, w); }
 
-void TextureWeights(Span<const double> shear, double sigma, Span<double> out) {
-  const std::size_t n = shear.size;
+void TextureWeights(Span<const double> limited_weights, double sigma, Span<double> out) {
+  const std::size_t n = limited_weights.size;
   sigma = std::isfinite(sigma) ? Clamp(sigma, 0, 1) : 0;
   double input_sum = 0;
-  for (std::size_t i = 0; i < n; ++i) input_sum += shear[i];
+  for (std::size_t i = 0; i < n; ++i) input_sum += limited_weights[i];
   double sum = 0;
   for (std::size_t i = 0; i < n; ++i) {
-    const double w = shear[i];
+    const double w = limited_weights[i];
     out[i] = sigma * Smoothstep(sigma / 2, 1 - sigma / 2, w) + (1 - sigma) * w;
     sum += out[i];
   }
@@ -41,15 +42,15 @@ void TextureWeights(Span<const double> shear, double sigma, Span<double> out) {
     // Only at (or within 1e-12 of) sigma = 1 with no weight above 1/2, where
     // the formula is 0/0. Its limit as sigma -> 1 is the input itself (the
     // sharpened term is 0 once sigma/2 passes every weight), so w'' stays
-    // continuous in sigma. `out` may alias `shear`: each entry reads its own.
-    for (std::size_t i = 0; i < n; ++i) out[i] = input_sum > 0 ? shear[i] / input_sum : 1.0 / double(n);
+    // continuous in sigma. `out` may alias the input: each entry reads its own.
+    for (std::size_t i = 0; i < n; ++i) out[i] = input_sum > 0 ? limited_weights[i] / input_sum : 1.0 / double(n);
   }
 }
 
 bool WeightsJob::Validate() const {
   if (!rig || !rig->loaded()) return false;
   const std::size_t n = rig->pose_count();
-  return raw.data && raw.size >= n && (shear.size == 0 || (shear.data && shear.size >= n)) &&
+  return raw.data && raw.size >= n && (limited.size == 0 || (limited.data && limited.size >= n)) &&
          (texture.size == 0 || (texture.data && texture.size >= n));
 }
 
@@ -71,19 +72,19 @@ bool WeightsJob::Run() const {
   const double l0 = at.lambda[0], l1 = at.lambda[1], l2 = at.lambda[2];
   for (std::uint32_t k = 0; k < n; ++k) raw[k] = l0 * w[0][k] + l1 * w[1][k] + l2 * w[2][k];
 
-  // phi(w) renormalised: always a convex combination. The shear output is
+  // phi(w) renormalised: always a convex combination. The limited output is
   // these, or the raw weights when limiting is off; the texture weights are
   // built from these either way, never from raw weights (which extrapolate
   // below 0 and above 1).
-  if (shear.size || texture.size) {
-    double limited[format::kMaxPoses];
+  if (limited.size || texture.size) {
+    double phi[format::kMaxPoses];
     double sum = 0;
-    for (std::uint32_t k = 0; k < n; ++k) sum += (limited[k] = ShearLimit(raw[k]));
+    for (std::uint32_t k = 0; k < n; ++k) sum += (phi[k] = LimitWeight(raw[k]));
     // sum(raw) = 1 puts some raw weight at >= 1/N, so sum > 0 for any baked grid.
-    for (std::uint32_t k = 0; k < n; ++k) limited[k] = sum > 0 ? limited[k] / sum : 1.0 / n;
-    if (shear.size)
-      for (std::uint32_t k = 0; k < n; ++k) shear[k] = shear_limit ? limited[k] : raw[k];
-    if (texture.size) TextureWeights(Span<const double>(limited, n), sigma, Span<double>(texture.data, n));
+    for (std::uint32_t k = 0; k < n; ++k) phi[k] = sum > 0 ? phi[k] / sum : 1.0 / n;
+    if (limited.size)
+      for (std::uint32_t k = 0; k < n; ++k) limited[k] = limit_weights ? phi[k] : raw[k];
+    if (texture.size) TextureWeights(Span<const double>(phi, n), sigma, Span<double>(texture.data, n));
   }
   return true;
 }

@@ -29,9 +29,9 @@ int main(int argc, char** argv) {
   std::vector<double> w(rig.pose_count()), ws(w.size()), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
   posemorph::WeightsJob weights;
   weights.rig = &rig, weights.x = px, weights.y = py;
-  weights.raw = posemorph::MakeSpan(w), weights.shear = posemorph::MakeSpan(ws);
+  weights.raw = posemorph::MakeSpan(w), weights.limited = posemorph::MakeSpan(ws);
   posemorph::MorphJob morph;
-  morph.rig = &rig, morph.weights = posemorph::MakeSpan(w), morph.shear_weights = posemorph::MakeSpan(ws);
+  morph.rig = &rig, morph.weights = posemorph::MakeSpan(w), morph.limited_weights = posemorph::MakeSpan(ws);
   morph.workspace = posemorph::MakeSpan(work), morph.positions = posemorph::MakeSpan(x);
   if (!weights.Run() || !morph.Run()) return 1;
   unsigned long long h = 0xcbf29ce484222325ull;  // FNV-1a 64 over the positions' bytes

@@ -24,19 +24,19 @@ void RequireFinite(const double* v, std::size_t n) {
     if (!std::isfinite(v[i])) std::abort();
 }
 
-void Frame(const Rig& rig, double x, double y, std::vector<double>& raw, std::vector<double>& shear,
+void Frame(const Rig& rig, double x, double y, std::vector<double>& raw, std::vector<double>& limited,
            std::vector<double>& texture, std::vector<double>& work, std::vector<double>& positions) {
   WeightsJob weights;
   weights.rig = &rig;
   weights.x = x, weights.y = y;
-  weights.raw = MakeSpan(raw), weights.shear = MakeSpan(shear), weights.texture = MakeSpan(texture);
+  weights.raw = MakeSpan(raw), weights.limited = MakeSpan(limited), weights.texture = MakeSpan(texture);
   if (!weights.Run()) std::abort();  // a loaded rig and right-sized spans: Run may not fail
   RequireFinite(raw.data(), raw.size());
-  RequireFinite(shear.data(), shear.size());
+  RequireFinite(limited.data(), limited.size());
   RequireFinite(texture.data(), texture.size());
   MorphJob morph;
   morph.rig = &rig;
-  morph.weights = MakeSpan(raw), morph.shear_weights = MakeSpan(shear);
+  morph.weights = MakeSpan(raw), morph.limited_weights = MakeSpan(limited);
   morph.workspace = MakeSpan(work), morph.positions = MakeSpan(positions);
   if (!morph.Run()) std::abort();
   RequireFinite(positions.data(), positions.size());
@@ -59,13 +59,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   const std::size_t n = rig.pose_count();
-  std::vector<double> raw(n), shear(n), texture(n), work(rig.morph_workspace_size()),
+  std::vector<double> raw(n), limited(n), texture(n), work(rig.morph_workspace_size()),
       positions(2 * std::size_t(rig.vertex_count()));
   const double far[][2] = {{0, 0}, {0.5, 0.5}, {-3, 2}, {1e6, -1e6}, {1e300, 1e300}};
-  for (const auto& p : far) Frame(rig, p[0], p[1], raw, shear, texture, work, positions);
+  for (const auto& p : far) Frame(rig, p[0], p[1], raw, limited, texture, work, positions);
   for (std::uint32_t i = 0; i < n; ++i) {
     const auto point = rig.pose_points();
-    Frame(rig, point.data[2 * i], point.data[2 * i + 1], raw, shear, texture, work, positions);
+    Frame(rig, point.data[2 * i], point.data[2 * i + 1], raw, limited, texture, work, positions);
   }
   for (std::uint32_t i = 0; i < n; ++i) {  // empty when the rig has none
     const auto uv = rig.uvs(i);

@@ -57,7 +57,7 @@ TEST_CASE("a frame performs zero heap allocations") {
   for (const char* name : {"snake", "snake.compact"}) {
     const Rig rig = LoadTestRig(name);
     const std::uint32_t N = rig.pose_count();
-    std::vector<double> raw(N), shear(N), tex(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
+    std::vector<double> raw(N), limited(N), tex(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
     std::vector<float> xf(x.size());
     const int slither = rig.FindPath("slither");
 
@@ -72,10 +72,10 @@ TEST_CASE("a frame performs zero heap allocations") {
       DequantizePoint(rig.grid(), UnpackPoint(wire), &px, &py);
       WeightsJob wj;
       wj.rig = &rig, wj.x = px, wj.y = py, wj.sigma = 0.4;
-      wj.raw = MakeSpan(raw), wj.shear = MakeSpan(shear), wj.texture = MakeSpan(tex);
+      wj.raw = MakeSpan(raw), wj.limited = MakeSpan(limited), wj.texture = MakeSpan(tex);
       ok &= wj.Run();
       MorphJob mj;
-      mj.rig = &rig, mj.weights = MakeSpan(raw), mj.shear_weights = MakeSpan(shear);
+      mj.rig = &rig, mj.weights = MakeSpan(raw), mj.limited_weights = MakeSpan(limited);
       mj.workspace = MakeSpan(work), mj.positions = MakeSpan(x), mj.positions_f32 = MakeSpan(xf);
       mj.interpolation = frame % 2 ? Interpolation::kRigid : Interpolation::kLinear;
       ok &= mj.Run();
@@ -88,10 +88,10 @@ TEST_CASE("a frame performs zero heap allocations") {
     const std::size_t count = 20;
     std::vector<double> bw, bws, bwork(rig.batch_workspace_size()), bx(count * x.size());
     for (std::size_t k = 0; k < count; ++k)
-      bw.insert(bw.end(), raw.begin(), raw.end()), bws.insert(bws.end(), shear.begin(), shear.end());
+      bw.insert(bw.end(), raw.begin(), raw.end()), bws.insert(bws.end(), limited.begin(), limited.end());
     MorphBatchJob batch;
     batch.rig = &rig, batch.count = count;
-    batch.weights = MakeSpan(bw), batch.shear_weights = MakeSpan(bws);
+    batch.weights = MakeSpan(bw), batch.limited_weights = MakeSpan(bws);
     batch.workspace = MakeSpan(bwork), batch.positions = MakeSpan(bx);
     g_allocations = 0;
     g_counting = true;
@@ -149,14 +149,14 @@ TEST_CASE("the C API evaluates frames without allocating either") {
   REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &rig, &err) == PM_OK);
   pm_rig_info info;
   pm_rig_get_info(rig, &info);
-  std::vector<double> raw(info.pose_count), shear(info.pose_count), work(pm_morph_workspace_size(rig)),
+  std::vector<double> raw(info.pose_count), limited(info.pose_count), work(pm_morph_workspace_size(rig)),
       x(2 * info.vertex_count);
   g_allocations = 0;
   g_counting = true;
   int status = 0;
   for (int frame = 0; frame < 200; ++frame) {
-    status |= pm_weights(rig, -1.5 + frame * 0.015, 0.1, 0.5, 1, raw.data(), shear.data(), nullptr, raw.size());
-    status |= pm_morph(rig, raw.data(), shear.data(), 0, work.data(), work.size(), x.data(), nullptr, x.size());
+    status |= pm_weights(rig, -1.5 + frame * 0.015, 0.1, 0.5, 1, raw.data(), limited.data(), nullptr, raw.size());
+    status |= pm_morph(rig, raw.data(), limited.data(), 0, work.data(), work.size(), x.data(), nullptr, x.size());
   }
   g_counting = false;
   CHECK(status == PM_OK);

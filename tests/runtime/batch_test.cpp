@@ -26,7 +26,7 @@ Crowd RandomCrowd(const Rig& rig, std::size_t count, unsigned seed) {
   for (std::size_t k = 0; k < count; ++k) {
     const Weights w = WeightsAt(rig, ux(rng), uy(rng));
     c.w.insert(c.w.end(), w.raw.begin(), w.raw.end());
-    c.ws.insert(c.ws.end(), w.shear.begin(), w.shear.end());
+    c.ws.insert(c.ws.end(), w.limited.begin(), w.limited.end());
   }
   return c;
 }
@@ -39,7 +39,7 @@ std::vector<double> RunBatch(const Rig& rig, const Crowd& c, std::size_t begin, 
   job.rig = &rig;
   job.count = end - begin;
   job.weights = {c.w.data() + begin * N, job.count * N};
-  job.shear_weights = {c.ws.data() + begin * N, job.count * N};
+  job.limited_weights = {c.ws.data() + begin * N, job.count * N};
   job.workspace = MakeSpan(work);
   job.positions = MakeSpan(x);
   if (f32) {
@@ -91,7 +91,7 @@ TEST_CASE("splitting a crowd across threads changes no bit") {
           MorphBatchJob job;
           job.rig = &rig, job.count = end - begin;
           job.weights = {crowd.w.data() + begin * rig.pose_count(), job.count * rig.pose_count()};
-          job.shear_weights = {crowd.ws.data() + begin * rig.pose_count(), job.count * rig.pose_count()};
+          job.limited_weights = {crowd.ws.data() + begin * rig.pose_count(), job.count * rig.pose_count()};
           job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
           job.Run();
           parts[t] = std::move(x);
@@ -122,7 +122,7 @@ TEST_CASE("a batch can write only the single-precision copy") {
     std::vector<float> only(doubles.size());
     MorphBatchJob job;
     job.rig = &rig, job.count = count;
-    job.weights = MakeSpan(crowd.w), job.shear_weights = MakeSpan(crowd.ws);
+    job.weights = MakeSpan(crowd.w), job.limited_weights = MakeSpan(crowd.ws);
     job.workspace = MakeSpan(work), job.positions_f32 = MakeSpan(only);
     REQUIRE(job.Run());
     CHECK(only == with_doubles);
@@ -135,7 +135,7 @@ TEST_CASE("a batch refuses inputs that do not fit") {
   std::vector<double> work(rig.batch_workspace_size()), x(4 * 2 * rig.vertex_count());
   MorphBatchJob job;
   job.rig = &rig, job.count = 4;
-  job.weights = MakeSpan(crowd.w), job.shear_weights = MakeSpan(crowd.ws);
+  job.weights = MakeSpan(crowd.w), job.limited_weights = MakeSpan(crowd.ws);
   job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
   CHECK(job.Validate());
   job.count = 5;  // more characters than weights

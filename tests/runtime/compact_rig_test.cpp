@@ -116,7 +116,7 @@ bool LoadAndCheckFinite(const std::vector<unsigned char>& bytes) {
   }
   for (const auto& at : {std::pair<double, double>{0, 0}, {0.5, 0.5}, {-3, 2}, {1e6, -1e6}}) {
     const Weights w = WeightsAt(rig, at.first, at.second);
-    const std::vector<double> x = Morph(rig, w.raw, w.shear);
+    const std::vector<double> x = Morph(rig, w.raw, w.limited);
     for (double v : x) REQUIRE(std::isfinite(v));
     for (float uv : std::vector<float>(rig.uvs(0).data, rig.uvs(0).data + rig.uvs(0).size)) REQUIRE(std::isfinite(uv));
   }

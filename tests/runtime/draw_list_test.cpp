@@ -104,7 +104,7 @@ TEST_CASE("draw lists: positions bit for bit as the morph jobs give them, drawin
       REQUIRE(l.job.Run());
       for (std::size_t k = 0; k < count; ++k) {
         const Weights w = WeightsAt(rig, points[2 * k], points[2 * k + 1], 0.3);
-        const std::vector<double> x = Morph(rig, w.raw, w.shear);
+        const std::vector<double> x = Morph(rig, w.raw, w.limited);
         std::vector<float> xf(v2);
         for (std::size_t i = 0; i < v2; ++i) xf[i] = float(x[i]);
         const DrawList& d = l.out[k];
@@ -138,7 +138,7 @@ TEST_CASE("draw lists: linear interpolation and the rig's default sigma") {
   const std::size_t v2 = 2 * std::size_t(rig.vertex_count());
   for (std::size_t k = 0; k < 3; ++k) {
     const Weights w = WeightsAt(rig, points[2 * k], points[2 * k + 1], rig.default_sigma());
-    const std::vector<double> x = Morph(rig, w.raw, w.shear, Interpolation::kLinear);
+    const std::vector<double> x = Morph(rig, w.raw, w.limited, Interpolation::kLinear);
     for (std::size_t i = 0; i < v2; ++i) CHECK(l.positions[k * v2 + i] == float(x[i]));
     BlendedDrawing expected[kMaxBlendDrawings];
     PickDrawings(MakeSpan(w.texture), 8, expected);

@@ -84,16 +84,16 @@ FrameHashes HashFrames(const Rig& rig) {
   std::vector<float> singles_f32;
   for (const auto& pt : pts) {
     const Weights w = WeightsAt(rig, pt.first, pt.second, 0.5);
-    hw.Add(w.raw), hw.Add(w.shear), hw.Add(w.texture);
+    hw.Add(w.raw), hw.Add(w.limited), hw.Add(w.texture);
     std::vector<double> work(rig.morph_workspace_size()), x(v2);
     std::vector<float> xf(v2);
     MorphJob job;
-    job.rig = &rig, job.weights = MakeSpan(w.raw), job.shear_weights = MakeSpan(w.shear);
+    job.rig = &rig, job.weights = MakeSpan(w.raw), job.limited_weights = MakeSpan(w.limited);
     job.workspace = MakeSpan(work), job.positions = MakeSpan(x), job.positions_f32 = MakeSpan(xf);
     REQUIRE(job.Run());
     hx.Add(x), hf.Add(xf);
     all_w.insert(all_w.end(), w.raw.begin(), w.raw.end());
-    all_ws.insert(all_ws.end(), w.shear.begin(), w.shear.end());
+    all_ws.insert(all_ws.end(), w.limited.begin(), w.limited.end());
     singles.insert(singles.end(), x.begin(), x.end());
     singles_f32.insert(singles_f32.end(), xf.begin(), xf.end());
   }
@@ -101,7 +101,7 @@ FrameHashes HashFrames(const Rig& rig) {
   std::vector<float> batch_f32(batch.size());
   MorphBatchJob job;
   job.rig = &rig, job.count = pts.size();
-  job.weights = MakeSpan(all_w), job.shear_weights = MakeSpan(all_ws);
+  job.weights = MakeSpan(all_w), job.limited_weights = MakeSpan(all_ws);
   job.workspace = MakeSpan(work), job.positions = MakeSpan(batch), job.positions_f32 = MakeSpan(batch_f32);
   REQUIRE(job.Run());
   CHECK(std::memcmp(batch.data(), singles.data(), batch.size() * sizeof(double)) == 0);

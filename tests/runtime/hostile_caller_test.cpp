@@ -72,7 +72,7 @@ TEST_CASE("a moved-from rig is empty, not a view into its new owner's memory") {
   // Jobs refuse the emptied rigs instead of reading freed memory.
   std::vector<double> w(5, 0.2), work(4 * 205), x(2 * 205);
   MorphJob job;
-  job.rig = &b, job.weights = MakeSpan(w), job.shear_weights = MakeSpan(w);
+  job.rig = &b, job.weights = MakeSpan(w), job.limited_weights = MakeSpan(w);
   job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
   CHECK_FALSE(job.Run());
   WeightsJob wj;
@@ -123,7 +123,7 @@ TEST_CASE("finite but huge stored numbers are refused at load, naming the sectio
   REQUIRE_MESSAGE(LoadRig(edge.data(), edge.size(), &rig, &err), err.message);
   for (double px : {-1e300, -3.0, 0.0, 0.01, 0.5, 7.0, 1e300}) {
     const Weights w = WeightsAt(rig, px, 0.25);
-    CHECK(AllFinite(Morph(rig, w.raw, w.shear)));
+    CHECK(AllFinite(Morph(rig, w.raw, w.limited)));
   }
 }
 
@@ -135,7 +135,7 @@ TEST_CASE("jobs take weights up to kMaxJobWeight and give finite positions; larg
   CHECK(AllFinite(Morph(rig, w, ws)));
   std::vector<double> work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
   MorphJob job;
-  job.rig = &rig, job.shear_weights = MakeSpan(ws), job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
+  job.rig = &rig, job.limited_weights = MakeSpan(ws), job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
   w[1] = 2 * kMaxJobWeight;
   job.weights = MakeSpan(w);
   CHECK_FALSE(job.Validate());

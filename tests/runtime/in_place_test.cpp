@@ -47,7 +47,7 @@ TEST_CASE("a rig loaded in caller-owned memory gives the same bits as an allocat
     for (double fx : {-0.2, 0.3, 0.77, 1.3}) {
       const double px = g.origin_x + fx * g.cell * g.cells_x, py = g.origin_y + (1 - fx) * g.cell * g.cells_y;
       const Weights a = WeightsAt(rig, px, py), b = WeightsAt(owned, px, py);
-      const std::vector<double> xa = Morph(rig, a.raw, a.shear), xb = Morph(owned, b.raw, b.shear);
+      const std::vector<double> xa = Morph(rig, a.raw, a.limited), xb = Morph(owned, b.raw, b.limited);
       CHECK(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(double)) == 0);
     }
   }
@@ -97,7 +97,7 @@ TEST_CASE("the C API loads in place too: handle and arrays in the caller's memor
   CHECK(pm_morph(rig, w.data(), ws.data(), 0, work.data(), work.size(), x.data(), nullptr, x.size()) == PM_OK);
   const Rig owned = LoadTestRig("snake");
   const Weights ow = WeightsAt(owned, 0.3, -0.2);
-  const std::vector<double> ox = Morph(owned, ow.raw, ow.shear);
+  const std::vector<double> ox = Morph(owned, ow.raw, ow.limited);
   CHECK(std::memcmp(x.data(), ox.data(), x.size() * sizeof(double)) == 0);
   pm_rig_free(rig);  // ends the rig; the memory stays ours
 }

@@ -21,7 +21,7 @@ namespace {
 constexpr double kSentinel = -12345.0;
 
 struct WeightsBuffers {
-  std::vector<double> raw, shear, texture, out;
+  std::vector<double> raw, limited, texture, out;
 };
 
 struct MorphBuffers {
@@ -35,11 +35,11 @@ TEST_CASE("WeightsJob: a valid job runs, and each failure case of its header is 
   const Rig rig = LoadTestRig("snake");
   const std::size_t N = rig.pose_count();
   WeightsBuffers fresh;
-  fresh.raw.assign(N, kSentinel), fresh.shear.assign(N, kSentinel), fresh.texture.assign(N, kSentinel);
+  fresh.raw.assign(N, kSentinel), fresh.limited.assign(N, kSentinel), fresh.texture.assign(N, kSentinel);
   auto valid = [&](WeightsJob& j, WeightsBuffers& b) {
     j.rig = &rig;
     j.x = 0.3, j.y = 0.2;
-    j.raw = MakeSpan(b.raw), j.shear = MakeSpan(b.shear), j.texture = MakeSpan(b.texture);
+    j.raw = MakeSpan(b.raw), j.limited = MakeSpan(b.limited), j.texture = MakeSpan(b.texture);
   };
   {
     WeightsBuffers b = fresh;
@@ -60,13 +60,13 @@ TEST_CASE("WeightsJob: a valid job runs, and each failure case of its header is 
        [](WeightsJob& j, WeightsBuffers& b) {
          j.raw = {b.raw.data(), b.raw.size() - 1};
        }},
-      {"shear given but null",
+      {"limited given but null",
        [](WeightsJob& j, WeightsBuffers& b) {
-         j.shear = {nullptr, b.shear.size()};
+         j.limited = {nullptr, b.limited.size()};
        }},
-      {"shear short",
+      {"limited short",
        [](WeightsJob& j, WeightsBuffers& b) {
-         j.shear = {b.shear.data(), b.shear.size() - 1};
+         j.limited = {b.limited.data(), b.limited.size() - 1};
        }},
       {"texture given but null",
        [](WeightsJob& j, WeightsBuffers& b) {
@@ -87,7 +87,7 @@ TEST_CASE("WeightsJob: a valid job runs, and each failure case of its header is 
     c.second(j, b);
     CHECK_FALSE(j.Validate());
     CHECK_FALSE(j.Run());
-    for (const std::vector<double>* out : {&b.raw, &b.shear, &b.texture})
+    for (const std::vector<double>* out : {&b.raw, &b.limited, &b.texture})
       for (double v : *out) REQUIRE(v == kSentinel);
   }
 }
@@ -102,7 +102,7 @@ TEST_CASE("MorphJob: a valid job runs, and each failure case of its header is re
   fresh.f32.assign(v2, float(kSentinel));
   auto valid = [&](MorphJob& j, MorphBuffers& b) {
     j.rig = &rig;
-    j.weights = MakeSpan(b.weights), j.shear_weights = MakeSpan(b.limited);
+    j.weights = MakeSpan(b.weights), j.limited_weights = MakeSpan(b.limited);
     j.workspace = MakeSpan(b.workspace), j.positions = MakeSpan(b.positions), j.positions_f32 = MakeSpan(b.f32);
   };
   {
@@ -123,13 +123,13 @@ TEST_CASE("MorphJob: a valid job runs, and each failure case of its header is re
        [](MorphJob& j, MorphBuffers& b) {
          j.weights = {b.weights.data(), b.weights.size() - 1};
        }},
-      {"shear weights null", [](MorphJob& j, MorphBuffers&) { j.shear_weights = {}; }},
-      {"shear weights short",
+      {"limited weights null", [](MorphJob& j, MorphBuffers&) { j.limited_weights = {}; }},
+      {"limited weights short",
        [](MorphJob& j, MorphBuffers& b) {
-         j.shear_weights = {b.limited.data(), b.limited.size() - 1};
+         j.limited_weights = {b.limited.data(), b.limited.size() - 1};
        }},
       {"a NaN weight", [nan](MorphJob&, MorphBuffers& b) { b.weights[1] = nan; }},
-      {"an infinite shear weight", [inf](MorphJob&, MorphBuffers& b) { b.limited[0] = -inf; }},
+      {"an infinite limited weight", [inf](MorphJob&, MorphBuffers& b) { b.limited[0] = -inf; }},
       {"a weight above kMaxJobWeight", [](MorphJob&, MorphBuffers& b) { b.weights[0] = 2 * kMaxJobWeight; }},
       {"workspace null", [](MorphJob& j, MorphBuffers&) { j.workspace = {}; }},
       {"workspace short",
@@ -177,7 +177,7 @@ TEST_CASE("MorphBatchJob: a valid job runs, and each failure case of its header 
   auto valid = [&](MorphBatchJob& j, MorphBuffers& b) {
     j.rig = &rig;
     j.count = count;
-    j.weights = MakeSpan(b.weights), j.shear_weights = MakeSpan(b.limited);
+    j.weights = MakeSpan(b.weights), j.limited_weights = MakeSpan(b.limited);
     j.workspace = MakeSpan(b.workspace), j.positions = MakeSpan(b.positions), j.positions_f32 = MakeSpan(b.f32);
   };
   {
@@ -196,9 +196,9 @@ TEST_CASE("MorphBatchJob: a valid job runs, and each failure case of its header 
       {"count overflows", [](MorphBatchJob& j, MorphBuffers&) { j.count = std::size_t(-1) / 4; }},
       {"weights null", [](MorphBatchJob& j, MorphBuffers&) { j.weights = {}; }},
       {"weights short for the count", [](MorphBatchJob& j, MorphBuffers&) { ++j.count; }},
-      {"shear weights short",
+      {"limited weights short",
        [](MorphBatchJob& j, MorphBuffers& b) {
-         j.shear_weights = {b.limited.data(), b.limited.size() - 1};
+         j.limited_weights = {b.limited.data(), b.limited.size() - 1};
        }},
       {"a NaN weight of the last character", [nan](MorphBatchJob&, MorphBuffers& b) { b.weights.back() = nan; }},
       {"a weight above kMaxJobWeight", [](MorphBatchJob&, MorphBuffers& b) { b.limited[0] = -2 * kMaxJobWeight; }},

@@ -28,15 +28,15 @@ bool LoadAndUse(const std::vector<unsigned char>& bytes, bool checksum) {
     return false;
   }
   const std::uint32_t N = rig.pose_count();
-  std::vector<double> raw(N), shear(N), tex(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
+  std::vector<double> raw(N), limited(N), tex(N), work(rig.morph_workspace_size()), x(2 * rig.vertex_count());
   const double points[][2] = {{0, 0}, {1, 0.5}, {-5, 7}, {0.3, 0.2}};
   for (const auto& p : points) {
     WeightsJob wj;
     wj.rig = &rig, wj.x = p[0], wj.y = p[1], wj.sigma = 0.5;
-    wj.raw = MakeSpan(raw), wj.shear = MakeSpan(shear), wj.texture = MakeSpan(tex);
+    wj.raw = MakeSpan(raw), wj.limited = MakeSpan(limited), wj.texture = MakeSpan(tex);
     REQUIRE(wj.Run());
     MorphJob mj;
-    mj.rig = &rig, mj.weights = MakeSpan(raw), mj.shear_weights = MakeSpan(shear);
+    mj.rig = &rig, mj.weights = MakeSpan(raw), mj.limited_weights = MakeSpan(limited);
     mj.workspace = MakeSpan(work), mj.positions = MakeSpan(x);
     mj.Run();  // may refuse non-finite weights from a corrupted grid; must not crash
   }

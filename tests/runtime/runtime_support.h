@@ -57,18 +57,18 @@ inline Rig LoadTestRig(const std::string& name, Isa isa = Isa::kAuto) {
 }
 
 struct Weights {
-  std::vector<double> raw, shear, texture;
+  std::vector<double> raw, limited, texture;
 };
 
-inline Weights WeightsAt(const Rig& rig, double x, double y, double sigma = 0, bool shear_limit = true) {
+inline Weights WeightsAt(const Rig& rig, double x, double y, double sigma = 0, bool limit_weights = true) {
   Weights w;
   w.raw.resize(rig.pose_count());
-  w.shear.resize(rig.pose_count());
+  w.limited.resize(rig.pose_count());
   w.texture.resize(rig.pose_count());
   WeightsJob job;
   job.rig = &rig;
-  job.x = x, job.y = y, job.sigma = sigma, job.shear_limit = shear_limit;
-  job.raw = MakeSpan(w.raw), job.shear = MakeSpan(w.shear), job.texture = MakeSpan(w.texture);
+  job.x = x, job.y = y, job.sigma = sigma, job.limit_weights = limit_weights;
+  job.raw = MakeSpan(w.raw), job.limited = MakeSpan(w.limited), job.texture = MakeSpan(w.texture);
   REQUIRE(job.Run());
   return w;
 }
@@ -78,16 +78,16 @@ inline std::vector<double> Morph(const Rig& rig, const std::vector<double>& w, c
   std::vector<double> work(rig.morph_workspace_size()), x(2 * std::size_t(rig.vertex_count()));
   MorphJob job;
   job.rig = &rig;
-  job.weights = MakeSpan(w), job.shear_weights = MakeSpan(ws);
+  job.weights = MakeSpan(w), job.limited_weights = MakeSpan(ws);
   job.interpolation = mode;
   job.workspace = MakeSpan(work), job.positions = MakeSpan(x);
   REQUIRE(job.Run());
   return x;
 }
 
-inline std::vector<double> MorphAt(const Rig& rig, double px, double py, bool shear_limit = true) {
-  const Weights w = WeightsAt(rig, px, py, 0, shear_limit);
-  return Morph(rig, w.raw, w.shear);
+inline std::vector<double> MorphAt(const Rig& rig, double px, double py, bool limit_weights = true) {
+  const Weights w = WeightsAt(rig, px, py, 0, limit_weights);
+  return Morph(rig, w.raw, w.limited);
 }
 
 // Smallest signed triangle area of positions x, relative to the same triangle at rest.

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Texture weights at the edges (issue "Fidelity", defect 3): continuous in
 // sigma up to and including 1, and always a convex combination, also with
-// shear limiting off.
+// weight limiting off.
 #include <cmath>
 
 #include "runtime_support.h"
@@ -31,7 +31,7 @@ TEST_CASE("texture weights are continuous in sigma up to 1, where every limited 
   CHECK(std::fabs(sum - 1) < 1e-12);
 }
 
-TEST_CASE("texture weights are a convex combination everywhere, with or without shear limiting") {
+TEST_CASE("texture weights are a convex combination everywhere, with or without weight limiting") {
   const Rig rig = LoadTestRig("snake");
   const PoseSpaceGrid& g = rig.grid();
   double lowest = 1, worst_sum = 0;

@@ -30,7 +30,7 @@ namespace {
 const char* kUsage =
     "usage: posemorph-view RIG.pmrig [--images DIR] [--headless -o OUT.png] [--size WxH]\n"
     "         [--at X,Y | --path NAME [--time T] [--frames K]] [--crowd K] [--sigma S]\n"
-    "         [--no-shear-limit] [--linear] [--compare] [--bases] [--wireframe] [--validation]\n"
+    "         [--no-weight-limit] [--linear] [--compare] [--bases] [--wireframe] [--validation]\n"
     "         [--camera X,Y,ZOOM | --camera 1:1] [--transform T] [--seed S] [--drawings K] [--blend B]\n"
     "         [--filter linear|nearest] [--smoke-test SHOT.png [--frames K]] [--description RIG.json]\n"
     "  --images DIR  where the rig's drawings are (default: the rig's folder)\n"
@@ -158,8 +158,8 @@ int ParseOptions(int argc, char** argv, Options& o) {
       o.headless = true;
     else if (a == "--validation")
       o.validation = true;
-    else if (a == "--no-shear-limit")
-      o.scene.shear_limit = false;
+    else if (a == "--no-weight-limit" || a == "--no-shear-limit")  // the second: its deprecated name
+      o.scene.limit_weights = false;
     else if (a == "--linear")
       o.scene.linear = true;
     else if (a == "--wireframe")

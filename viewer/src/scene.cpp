@@ -146,7 +146,7 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
     job.points = {scratch.points.data() + 2 * std::size_t(first), 2 * std::size_t(n)};
     job.transforms = {scratch.transforms.data() + first, n};
     job.sigma = scene.sigma;
-    job.shear_limit = scene.shear_limit;
+    job.limit_weights = scene.limit_weights;
     job.interpolation = interpolation;
     job.max_drawings = std::clamp<std::uint32_t>(scene.max_drawings, 1, kDrawingsPerCharacter);
     job.workspace = {scratch.workspace.data(), scratch.workspace.size()};

@@ -16,7 +16,7 @@ struct Scene {
   std::string path;     // a path of the rig: characters follow it
   double time = 0;      // seconds along the path
   double sigma = -1;    // texture sharpening; < 0: the rig's default
-  bool shear_limit = true;
+  bool limit_weights = true;
   bool linear = false;      // linear vertex blending instead of rigid (the paper's comparison)
   std::uint32_t crowd = 1;  // characters: > 1 lays them out on a ground line (see CrowdLayout)
   std::uint32_t seed = 1;   // the crowd layout's random positions, sizes and facings

@@ -49,7 +49,7 @@ void Viewer::BuildUi() {
   ImGui::TextUnformatted("Drawing");
   float sigma = float(scene_.sigma < 0 ? rig_.default_sigma() : scene_.sigma);
   if (ImGui::SliderFloat("sigma", &sigma, 0, 1)) scene_.sigma = sigma;
-  ImGui::Checkbox("shear limiting", &scene_.shear_limit);
+  ImGui::Checkbox("weight limiting", &scene_.limit_weights);
   ImGui::Checkbox("wireframe", &scene_.wireframe);
   ImGui::Checkbox("rigid | linear side by side", &scene_.compare_linear);
   ImGui::Checkbox("base drawings", &scene_.show_bases);

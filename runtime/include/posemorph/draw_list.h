@@ -87,7 +87,7 @@ struct PM_API DrawListJob {
   Span<const double> points;           // count x (x, y), pose space
   Span<const Transform2D> transforms;  // count, or empty: identity for all
   double sigma = -1;                   // texture sharpening in [0, 1]; < 0 or NaN: the rig's default
-  bool shear_limit = true;
+  bool limit_weights = true;
   Interpolation interpolation = Interpolation::kRigid;
   std::uint32_t max_drawings = kMaxBlendDrawings;  // K: drawings a renderer blends per character
   Span<double> workspace;                          // DrawListWorkspaceSize(*rig, count) doubles

@@ -17,17 +17,20 @@ namespace posemorph {
 // coordinate, so any input gives a finite, defined result.
 //
 // Validate() fails (and Run() does nothing) when: rig is null or not loaded;
-// raw is null or shorter than N (the rig's pose count); shear or texture is
+// raw is null or shorter than N (the rig's pose count); limited or texture is
 // given (non-empty) but null or shorter than N.
 struct PM_API WeightsJob {
   const Rig* rig = nullptr;
   double x = 0, y = 0;
-  double sigma = 0;         // texture sharpening in [0, 1] (clamped)
-  bool shear_limit = true;  // false: shear = raw
-  Span<double> raw;         // N: sum 1, may be negative or > 1
-  Span<double> shear;       // N, optional: phi(w) renormalised (phi = clamped smoothstep)
+  double sigma = 0;           // texture sharpening in [0, 1] (clamped)
+  bool limit_weights = true;  // false: limited = raw
+  Span<double> raw;           // N: sum 1, may be negative or > 1
+  // N, optional: the limited weights, phi(w) renormalised (phi = clamped
+  // smoothstep): what MorphJob blends the stretches with (the paper limits
+  // shear and scale, which raw weights would extrapolate).
+  Span<double> limited;
   // N, optional: sharpened cross-fade weights w'', always a convex
-  // combination (from phi(w), also when shear_limit is off) and continuous
+  // combination (from phi(w), also when limit_weights is off) and continuous
   // in sigma up to and including 1.
   Span<double> texture;
 
@@ -49,15 +52,15 @@ enum class Interpolation : std::uint8_t {
 // Vertex positions for given weights.
 //
 // Validate() fails (and Run() does nothing) when: rig is null or not loaded;
-// weights or shear_weights is null or shorter than N; a weight is not finite
+// weights or limited_weights is null or shorter than N; a weight is not finite
 // or above kMaxJobWeight in magnitude; workspace is null or shorter than
 // rig->morph_workspace_size(); positions is null or shorter than 2V;
 // positions_f32 is given but null or shorter than 2V; interpolation is not
 // one of the enum's values.
 struct PM_API MorphJob {
   const Rig* rig = nullptr;
-  Span<const double> weights;        // N raw weights (rotation angles, centroid)
-  Span<const double> shear_weights;  // N (shear/scale); pass weights again for no limiting
+  Span<const double> weights;          // N raw weights (rotation angles, centroid)
+  Span<const double> limited_weights;  // N (stretches: shear and scale); pass weights again for no limiting
   Interpolation interpolation = Interpolation::kRigid;
   Span<double> workspace;     // rig->morph_workspace_size() doubles
   Span<double> positions;     // 2 x V, interleaved x, y
@@ -75,26 +78,27 @@ struct PM_API MorphJob {
 //
 // Validate() fails (and Run() does nothing) when: rig is null or not loaded;
 // count is so large that count x (2V + N) overflows half of size_t; weights
-// or shear_weights is null or shorter than count x N; a weight is not finite
+// or limited_weights is null or shorter than count x N; a weight is not finite
 // or above kMaxJobWeight in magnitude; workspace is null or shorter than
 // rig->batch_workspace_size(); neither positions nor positions_f32 is given;
 // one that is given is null or shorter than count x 2V. A count of 0 is valid
 // and does nothing, whatever the spans.
 struct PM_API MorphBatchJob {
   const Rig* rig = nullptr;
-  std::size_t count = 0;             // characters
-  Span<const double> weights;        // count x N raw weights, character after character
-  Span<const double> shear_weights;  // count x N
-  Span<double> workspace;            // rig->batch_workspace_size() doubles
-  Span<double> positions;            // count x 2V, or empty when only floats are wanted
-  Span<float> positions_f32;         // count x 2V, or empty; at least one of the two
+  std::size_t count = 0;               // characters
+  Span<const double> weights;          // count x N raw weights, character after character
+  Span<const double> limited_weights;  // count x N
+  Span<double> workspace;              // rig->batch_workspace_size() doubles
+  Span<double> positions;              // count x 2V, or empty when only floats are wanted
+  Span<float> positions_f32;           // count x 2V, or empty; at least one of the two
 
   bool Validate() const;
   bool Run() const;
 };
 
 // The scalar maps behind WeightsJob, exposed for tests and renderers.
-PM_API double ShearLimit(double w);  // smoothstep clamped to [0, 1]
-PM_API void TextureWeights(Span<const double> shear_weights, double sigma, Span<double> out);
+PM_API double LimitWeight(double w);  // smoothstep clamped to [0, 1]
+[[deprecated("use LimitWeight")]] inline double ShearLimit(double w) { return LimitWeight(w); }
+PM_API void TextureWeights(Span<const double> limited_weights, double sigma, Span<double> out);
 
 }  // namespace posemorph

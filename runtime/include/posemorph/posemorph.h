@@ -43,7 +43,7 @@ enum {
 };
 
 #define PM_VERSION_MAJOR 0
-#define PM_VERSION_MINOR 2
+#define PM_VERSION_MINOR 3
 #define PM_VERSION_PATCH 0
 /* "MAJOR.MINOR.PATCH" of the library actually linked. */
 PM_API const char* pm_version(void);
@@ -140,33 +140,34 @@ PM_API int pm_rig_texture_filter(const pm_rig* rig);
 PM_API int pm_rig_checksum(const pm_rig* rig, uint32_t* crc);
 PM_API int pm_rig_format_version(const pm_rig* rig, uint32_t* major, uint32_t* minor);
 
-/* Weights at a pose-space point. raw is required; shear and texture may be
+/* Weights at a pose-space point. raw is required; limited (the limited
+ * weights: phi(w) renormalised, or raw when limit_weights is 0) and texture may be
  * NULL; each given array holds `capacity` doubles, at least pose_count.
  * sigma in [0,1] sharpens the texture blend. */
-PM_API int pm_weights(const pm_rig* rig, double x, double y, double sigma, int shear_limit, double* raw, double* shear,
-                      double* texture, size_t capacity);
+PM_API int pm_weights(const pm_rig* rig, double x, double y, double sigma, int limit_weights, double* raw,
+                      double* limited, double* texture, size_t capacity);
 
 /* Doubles of workspace pm_morph needs. */
 PM_API size_t pm_morph_workspace_size(const pm_rig* rig);
 
-/* Vertex positions (2 x vertex_count, interleaved) for raw and shear weights
+/* Vertex positions (2 x vertex_count, interleaved) for raw and limited weights
  * (pose_count each). workspace: workspace_capacity doubles, at least
  * pm_morph_workspace_size. positions (required) and positions_f32 (may be
  * NULL) hold positions_capacity elements each, at least 2 x vertex_count.
  * linear != 0 blends vertex positions linearly. */
-PM_API int pm_morph(const pm_rig* rig, const double* weights, const double* shear_weights, int linear,
+PM_API int pm_morph(const pm_rig* rig, const double* weights, const double* limited_weights, int linear,
                     double* workspace, size_t workspace_capacity, double* positions, float* positions_f32,
                     size_t positions_capacity);
 
 /* Many characters sharing one rig: `count` sets of pose_count weights (raw,
- * and shear-limited) in, `count` position arrays out (either may be NULL,
+ * and limited) in, `count` position arrays out (either may be NULL,
  * not both). Equal to pm_morph per character, bit for bit. To use several
  * threads, call it per thread on disjoint ranges, each with its own
  * workspace (workspace_capacity doubles, at least pm_batch_workspace_size).
  * Each given position array holds positions_capacity elements, at least
  * count x 2 x vertex_count. */
 PM_API size_t pm_batch_workspace_size(const pm_rig* rig);
-PM_API int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const double* shear_weights,
+PM_API int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const double* limited_weights,
                           double* workspace, size_t workspace_capacity, double* positions, float* positions_f32,
                           size_t positions_capacity);
 
@@ -198,12 +199,22 @@ typedef struct pm_draw_list {
   int mirrored; /* the transform mirrors: triangles are clockwise in the world */
 } pm_draw_list;
 typedef struct pm_draw_options {
-  double sigma;          /* texture sharpening in [0, 1]; < 0: the rig's default */
-  int shear_limit;       /* 1 (default): the paper's shear limiting */
+  double sigma; /* texture sharpening in [0, 1]; < 0: the rig's default */
+  /* 1 (default): the stretches blend with the limited weights (the paper's
+   * limit on shear and scale). `shear_limit`, its name before 0.3, is a
+   * deprecated alias where the compiler has anonymous unions (C11, C++). */
+#if defined(__cplusplus) || (defined(__STDC_VERSION__) && __STDC_VERSION__ >= 201112L)
+  union {
+    int limit_weights;
+    int shear_limit;
+  };
+#else
+  int limit_weights;
+#endif
   int linear;            /* 1: linear vertex blending (for comparison) */
   uint32_t max_drawings; /* K in 1..8: drawings the renderer blends per character */
 } pm_draw_options;
-/* sigma -1, shear_limit 1, linear 0, max_drawings 8. */
+/* sigma -1, limit_weights 1, linear 0, max_drawings 8. */
 PM_API void pm_draw_options_default(pm_draw_options* out);
 /* The buffers pm_draw_lists needs for `count` characters: workspace
  * (doubles) and positions (floats). */

@@ -79,10 +79,10 @@ void Group(const Rig& rig, const double* w_in, const double* ws_in, double* x_ou
   const std::uint32_t* tri = rig.triangles().data;
   const double* grad = rig.gradients().data;
   const double* angle = rig.angles().data;
-  const double* shear = rig.stretches().data;
+  const double* stretch = rig.stretches().data;
   for (std::size_t t = 0; t < T; ++t) {
     Vec alpha, s11, s12, s22, s, c, a11, a12, a21, a22;
-    BlendTriangle<Vec>(angle + t * N, shear + 3 * t * N, W, WS, N, &alpha, &s11, &s12, &s22);
+    BlendTriangle<Vec>(angle + t * N, stretch + 3 * t * N, W, WS, N, &alpha, &s11, &s12, &s22);
     SinCos(alpha, &s, &c);
     TargetMatrix(c, s, s11, s12, s22, &a11, &a12, &a21, &a22);
     AddToRhs<Vec>(tri + 3 * t, grad + 6 * t, a11, a12, a21, a22, x);

@@ -7,16 +7,16 @@
 // namespace, after vec.h.
 
 // Blended angle and stretch of one triangle: alpha with the raw weights w,
-// S with the shear-limited weights ws (DESIGN.md section 3).
+// S with the limited weights ws (DESIGN.md section 3).
 template <typename T>
-POSEMORPH_KERNEL_INLINE void BlendTriangle(const double* angle, const double* shear, const T* w, const T* ws,
+POSEMORPH_KERNEL_INLINE void BlendTriangle(const double* angle, const double* stretch, const T* w, const T* ws,
                                            std::uint32_t N, T* alpha, T* s11, T* s12, T* s22) {
-  T a = w[0] * angle[0], b = ws[0] * shear[0], c = ws[0] * shear[1], d = ws[0] * shear[2];
+  T a = w[0] * angle[0], b = ws[0] * stretch[0], c = ws[0] * stretch[1], d = ws[0] * stretch[2];
   for (std::uint32_t i = 1; i < N; ++i) {
     a += w[i] * angle[i];
-    b += ws[i] * shear[3 * i];
-    c += ws[i] * shear[3 * i + 1];
-    d += ws[i] * shear[3 * i + 2];
+    b += ws[i] * stretch[3 * i];
+    c += ws[i] * stretch[3 * i + 1];
+    d += ws[i] * stretch[3 * i + 2];
   }
   *alpha = a, *s11 = b, *s12 = c, *s22 = d;
 }

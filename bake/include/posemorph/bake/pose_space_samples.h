@@ -35,7 +35,7 @@ std::vector<PoseSpaceSample> SamplePoseSpace(const Rig& rig, const PoseSpaceSamp
 std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> points);
 
 // The frame at a pose-space point with the rig's default settings (raw and
-// shear-limited weights, as a game's first call gives). False if a job fails.
+// limited weights, as a game's first call gives). False if a job fails.
 bool EvaluateFrame(const Rig& rig, const Eigen::Vector2d& at, std::vector<double>& positions);
 
 }  // namespace posemorph::bake
