@@ -71,16 +71,16 @@ Polygon WithoutRepeats(const Polygon& p) {
 }  // namespace bake
 
 namespace bake::mapping {
+namespace {
 
-MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
-                          const std::vector<std::vector<Point>>& rig_landmarks, const MappingParameters& prm,
-                          const std::vector<std::string>& labels, const std::string& file) {
+// The outlines on the integer grid, each simple and counter-clockwise: exact
+// checks from here on. Returns the grid.
+Grid OntoGrid(const std::vector<Polygon>& rig_outlines, const std::vector<std::vector<Point>>& rig_landmarks,
+              const std::vector<std::string>& labels, const std::string& file, MappingStages& st) {
   const std::size_t N = rig_outlines.size();
   auto fail = [&](std::size_t k, const std::string& problem) -> void {
     throw BakeError(file, labels[k] + ": " + problem);
   };
-  MappingStages st;
-  // Onto the integer grid; exact checks from here on.
   double extent = 0;
   for (std::size_t k = 0; k < N; ++k) {
     for (const Point& p : rig_outlines[k]) extent = std::max(extent, p.cwiseAbs().maxCoeff());
@@ -108,47 +108,65 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
     if (SignedArea(g) < 0) std::reverse(g.begin(), g.end());
     st.outlines.push_back(std::move(g));
   }
+  return grid;
+}
 
-  // Landmarks: same count everywhere, near the outline, in the same order.
-  for (std::size_t k = 0; k < N; ++k) {
-    const std::vector<Point>& given = rig_landmarks[k];
-    if (given.empty()) fail(k, "needs at least one landmark (the start point)");
-    if (given.size() != rig_landmarks[0].size())
-      fail(k, "gives " + std::to_string(given.size()) + " landmark(s) but " + labels[0] + " gives " +
-                  std::to_string(rig_landmarks[0].size()) +
-                  "; every drawn pose needs the same corresponding points, the start point first");
-    Eigen::AlignedBox2d box;
-    for (const Point& p : rig_outlines[k]) box.extend(p);
-    const double size = box.diagonal().norm();
-    std::vector<Point> on;
-    std::vector<double> at;
-    for (std::size_t l = 0; l < given.size(); ++l) {
-      double dist = 0;
-      const double s = NearestArcLength(st.outlines[k], grid.ToGrid(given[l]), &dist);
-      dist /= grid.scale;
-      if (dist > prm.landmark_distance * size)
-        fail(k, "landmark " + std::to_string(l) + " is " + Format(dist) + " from the outline (more than " +
-                    Format(prm.landmark_distance * 100) + "% of the outline's size, " + Format(size) + ")");
-      on.push_back(PointAtArcLength(st.outlines[k], s));
-      at.push_back(s);
-    }
-    const double perimeter = CumulativeArcLength(st.outlines[k]).back();
-    double previous = 0;
-    for (std::size_t l = 1; l < at.size(); ++l) {
-      double rel = std::fmod(at[l] - at[0], perimeter);
-      if (rel < 0) rel += perimeter;
-      if (!(rel > previous))
-        fail(k,
-             at.size() >= 3 && Clockwise(at, perimeter)
-                 ? std::string("landmarks are out of order: they go clockwise around the shape as seen in the drawing; "
-                               "give them counter-clockwise, from landmark 0, in the same order in every pose")
-                 : "landmark " + std::to_string(l) +
-                       " is out of order or coincides with another: landmarks go "
-                       "counter-clockwise around the shape as seen in the drawing, in the same order in every pose");
-      previous = rel;
-    }
-    st.landmarks.push_back(std::move(on));
+// Pose k's landmarks on its grid outline: as many as pose 0's, near the
+// outline, counter-clockwise from the start point.
+std::vector<Point> PlaceLandmarks(const Polygon& outline, const Polygon& rig_outline, const std::vector<Point>& given,
+                                  std::size_t first_count, const std::string& label, const std::string& first_label,
+                                  const MappingParameters& prm, const Grid& grid, const std::string& file) {
+  auto fail = [&](const std::string& problem) -> void { throw BakeError(file, label + ": " + problem); };
+  if (given.empty()) fail("needs at least one landmark (the start point)");
+  if (given.size() != first_count)
+    fail("gives " + std::to_string(given.size()) + " landmark(s) but " + first_label + " gives " +
+         std::to_string(first_count) + "; every drawn pose needs the same corresponding points, the start point first");
+  Eigen::AlignedBox2d box;
+  for (const Point& p : rig_outline) box.extend(p);
+  const double size = box.diagonal().norm();
+  std::vector<Point> on;
+  std::vector<double> at;
+  for (std::size_t l = 0; l < given.size(); ++l) {
+    double dist = 0;
+    const double s = NearestArcLength(outline, grid.ToGrid(given[l]), &dist);
+    dist /= grid.scale;
+    if (dist > prm.landmark_distance * size)
+      fail("landmark " + std::to_string(l) + " is " + Format(dist) + " from the outline (more than " +
+           Format(prm.landmark_distance * 100) + "% of the outline's size, " + Format(size) + ")");
+    on.push_back(PointAtArcLength(outline, s));
+    at.push_back(s);
   }
+  const double perimeter = CumulativeArcLength(outline).back();
+  double previous = 0;
+  for (std::size_t l = 1; l < at.size(); ++l) {
+    double rel = std::fmod(at[l] - at[0], perimeter);
+    if (rel < 0) rel += perimeter;
+    if (!(rel > previous))
+      fail(at.size() >= 3 && Clockwise(at, perimeter)
+               ? std::string("landmarks are out of order: they go clockwise around the shape as seen in the drawing; "
+                             "give them counter-clockwise, from landmark 0, in the same order in every pose")
+               : "landmark " + std::to_string(l) +
+                     " is out of order or coincides with another: landmarks go "
+                     "counter-clockwise around the shape as seen in the drawing, in the same order in every pose");
+    previous = rel;
+  }
+  return on;
+}
+
+}  // namespace
+
+MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
+                          const std::vector<std::vector<Point>>& rig_landmarks, const MappingParameters& prm,
+                          const std::vector<std::string>& labels, const std::string& file) {
+  const std::size_t N = rig_outlines.size();
+  auto fail = [&](std::size_t k, const std::string& problem) -> void {
+    throw BakeError(file, labels[k] + ": " + problem);
+  };
+  MappingStages st;
+  const Grid grid = OntoGrid(rig_outlines, rig_landmarks, labels, file, st);
+  for (std::size_t k = 0; k < N; ++k)
+    st.landmarks.push_back(PlaceLandmarks(st.outlines[k], rig_outlines[k], rig_landmarks[k], rig_landmarks[0].size(),
+                                          labels[k], labels[0], prm, grid, file));
 
   // Correspondence, simplification, compatible triangulation, refinement.
   MatchingParameters mp;
@@ -197,101 +215,70 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
 }  // namespace bake::mapping
 
 namespace bake {
+namespace {
 
-MappedDrawings MapDrawings(const RigDescription& rig) {
-  MappedDrawings result;
-  std::vector<DrawnPose> drawn;
-  for (std::size_t i = 0; i < rig.poses.size(); ++i)
-    if (rig.poses[i].drawn && rig.poses[i].vertices.empty()) {
-      drawn.emplace_back();
-      drawn.back().index = i;
-    }
-  if (drawn.empty()) return result;
-  const auto start = std::chrono::steady_clock::now();
-  const MappingParameters& prm = rig.mapping;
-  MappingReport& report = result.report;
-  auto fail = [&](const DrawnPose& d, const std::string& problem) -> void {
+// What a PNG's tracing left out: only the largest part is mapped, so a
+// separate eye or a loose hand is left out of the mesh (and drawn only
+// where the mesh covers it).
+std::string DroppedParts(const mapping::ImageOutline& io) {
+  auto share = [&](std::size_t pixels) { return Format(100.0 * double(pixels) / double(io.shape_pixels)) + "%"; };
+  const std::size_t n = io.dropped_parts.size();
+  if (n == 1)
+    return "a separate part of " + std::to_string(io.dropped_parts[0]) + " pixels (" + share(io.dropped_parts[0]) +
+           " of the drawing)";
+  return std::to_string(n) + " separate parts of " + std::to_string(io.dropped_pixels) + " pixels (" +
+         share(io.dropped_pixels) + " of the drawing; the largest " + std::to_string(io.dropped_parts[0]) +
+         " pixels, " + share(io.dropped_parts[0]) + ")";
+}
+
+// Step 1 for one drawn pose: its outline and landmarks in rig coordinates
+// (y up), and where its drawing's canvas lies. Dropped parts of a PNG become
+// warnings in `report`.
+void ReadDrawnOutline(const RigDescription& rig, const MappingParameters& prm, DrawnPose& d, MappingReport& report) {
+  auto fail = [&](const std::string& problem) -> void {
     throw BakeError(rig.file, PoseLabel(rig.poses[d.index].name, d.index) + ": " + problem);
   };
-
-  // 1. Outlines, in rig coordinates (y up).
-  for (DrawnPose& d : drawn) {
-    const PoseDescription& pose = rig.poses[d.index];
-    Polygon raw;
-    const bool png = EndsWith(pose.drawing, ".png"), svg = EndsWith(pose.drawing, ".svg");
-    if (!pose.drawing.empty() && !png && !svg) fail(d, "drawing \"" + pose.drawing + "\" is neither .png nor .svg");
-    {
-      // A drawing's errors name the description, the pose and the drawing.
-      const ErrorSource source(rig.file, PoseLabel(pose.name, d.index) + ": " + pose.drawing_path);
-      if (pose.drawing.empty()) {
-        raw = pose.outline;
-        d.landmarks = pose.landmarks;
-      } else if (png) {
-        mapping::ImageOutline io = mapping::OutlineFromPng(pose.drawing_path, prm.alpha_threshold, source);
-        if (io.dropped_components > 0) {
-          // Only the largest part is mapped: a separate eye or a loose hand
-          // is left out of the mesh (and drawn only where the mesh covers it).
-          auto share = [&](std::size_t pixels) {
-            return Format(100.0 * double(pixels) / double(io.shape_pixels)) + "%";
-          };
-          std::string parts;
-          const std::size_t n = io.dropped_parts.size();
-          if (n == 1) {
-            parts = "a separate part of " + std::to_string(io.dropped_parts[0]) + " pixels (" +
-                    share(io.dropped_parts[0]) + " of the drawing)";
-          } else {
-            parts = std::to_string(n) + " separate parts of " + std::to_string(io.dropped_pixels) + " pixels (" +
-                    share(io.dropped_pixels) + " of the drawing; the largest " + std::to_string(io.dropped_parts[0]) +
-                    " pixels, " + share(io.dropped_parts[0]) + ")";
-          }
-          report.warnings.push_back(rig.file + ": " + PoseLabel(pose.name, d.index) + ": " + pose.drawing_path +
-                                    ": dropped " + parts +
-                                    ": only the largest part is meshed; join the parts in the drawing to keep them");
-        }
-        for (const Point& p : io.outline) raw.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
-        d.from_drawing = true;
-        d.origin = Point(0.0 - pose.origin.x(), 0.0 - pose.origin.y());  // the canvas's corner from the pose's origin
-        d.size = Point(io.width, io.height);
-      } else {
-        mapping::SvgOutline so = mapping::OutlineFromSvg(pose.drawing_path, prm.curve_tolerance, source);
-        for (const Point& p : so.outline) raw.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
-        d.from_drawing = true;
-        d.origin = so.canvas_origin - pose.origin;
-        d.size = so.canvas_size;
-      }
+  const PoseDescription& pose = rig.poses[d.index];
+  Polygon raw;
+  const bool png = EndsWith(pose.drawing, ".png"), svg = EndsWith(pose.drawing, ".svg");
+  if (!pose.drawing.empty() && !png && !svg) fail("drawing \"" + pose.drawing + "\" is neither .png nor .svg");
+  {
+    // A drawing's errors name the description, the pose and the drawing.
+    const ErrorSource source(rig.file, PoseLabel(pose.name, d.index) + ": " + pose.drawing_path);
+    if (pose.drawing.empty()) {
+      raw = pose.outline;
+      d.landmarks = pose.landmarks;
+    } else if (png) {
+      mapping::ImageOutline io = mapping::OutlineFromPng(pose.drawing_path, prm.alpha_threshold, source);
+      if (io.dropped_components > 0)
+        report.warnings.push_back(rig.file + ": " + PoseLabel(pose.name, d.index) + ": " + pose.drawing_path +
+                                  ": dropped " + DroppedParts(io) +
+                                  ": only the largest part is meshed; join the parts in the drawing to keep them");
+      for (const Point& p : io.outline) raw.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
+      d.from_drawing = true;
+      d.origin = Point(0.0 - pose.origin.x(), 0.0 - pose.origin.y());  // the canvas's corner from the pose's origin
+      d.size = Point(io.width, io.height);
+    } else {
+      mapping::SvgOutline so = mapping::OutlineFromSvg(pose.drawing_path, prm.curve_tolerance, source);
+      for (const Point& p : so.outline) raw.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
+      d.from_drawing = true;
+      d.origin = so.canvas_origin - pose.origin;
+      d.size = so.canvas_size;
     }
-    if (d.from_drawing)
-      for (const Point& p : pose.landmarks)
-        d.landmarks.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
-    if (raw.size() > mapping::kMaxOutlinePoints)
-      fail(d, (d.from_drawing ? pose.drawing_path + ": " : std::string()) + "the outline has " +
-                  std::to_string(raw.size()) + " points, more than the limit of " +
-                  std::to_string(mapping::kMaxOutlinePoints));
-    d.outline = std::move(raw);
-    report.outline_vertices.push_back(d.outline.size());
   }
+  if (d.from_drawing)
+    for (const Point& p : pose.landmarks) d.landmarks.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
+  if (raw.size() > mapping::kMaxOutlinePoints)
+    fail((d.from_drawing ? pose.drawing_path + ": " : std::string()) + "the outline has " + std::to_string(raw.size()) +
+         " points, more than the limit of " + std::to_string(mapping::kMaxOutlinePoints));
+  d.outline = std::move(raw);
+  report.outline_vertices.push_back(d.outline.size());
+}
 
-  std::vector<Polygon> outlines;
-  std::vector<std::vector<Point>> landmarks;
-  std::vector<std::string> labels;
-  for (const DrawnPose& d : drawn) {
-    outlines.push_back(d.outline);
-    landmarks.push_back(d.landmarks);
-    labels.push_back(PoseLabel(rig.poses[d.index].name, d.index));
-  }
-  const mapping::MappingStages st = mapping::MapPolygons(outlines, landmarks, prm, labels, rig.file);
-  for (const std::string& w : st.warnings) report.warnings.push_back(rig.file + ": " + w);
-  const mapping::CompatibleMesh& mesh = st.mesh;
-  const mapping::Grid grid{st.grid_scale};
-  report.matched_vertices = st.matched.points[0].size();
-  report.boundary_vertices = st.simplified.polygons[0].size();
-  report.simplification_error = st.simplified.max_error / grid.scale;
-  report.steiner_points = mesh.steiner_points;
-  report.min_angle_degrees = mapping::MinAngleDegrees(mesh);
-  report.vertices = mesh.vertices[0].size();
-  report.triangles = mesh.triangles.size();
-
-  // 5. Back to rig coordinates; uvs into each pose's own drawing.
+// The mapped meshes back in rig coordinates, with uvs into each pose's own
+// drawing (or its outline's box) and the canvas a drawing was on.
+void MeshesFromMapping(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
+                       const mapping::CompatibleMesh& mesh, const mapping::Grid& grid, MappedDrawings& result) {
   for (const auto& t : mesh.triangles)
     result.triangles.push_back({std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])});
   for (std::size_t k = 0; k < drawn.size(); ++k) {
@@ -322,6 +309,48 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
       pose.canvas_pivot = Eigen::Vector2d(0.0 - d.origin.x(), 0.0 - d.origin.y());  // no -0
     }
   }
+}
+
+}  // namespace
+
+MappedDrawings MapDrawings(const RigDescription& rig) {
+  MappedDrawings result;
+  std::vector<DrawnPose> drawn;
+  for (std::size_t i = 0; i < rig.poses.size(); ++i)
+    if (rig.poses[i].drawn && rig.poses[i].vertices.empty()) {
+      drawn.emplace_back();
+      drawn.back().index = i;
+    }
+  if (drawn.empty()) return result;
+  const auto start = std::chrono::steady_clock::now();
+  const MappingParameters& prm = rig.mapping;
+  MappingReport& report = result.report;
+
+  // 1. Outlines, in rig coordinates (y up).
+  for (DrawnPose& d : drawn) ReadDrawnOutline(rig, prm, d, report);
+
+  std::vector<Polygon> outlines;
+  std::vector<std::vector<Point>> landmarks;
+  std::vector<std::string> labels;
+  for (const DrawnPose& d : drawn) {
+    outlines.push_back(d.outline);
+    landmarks.push_back(d.landmarks);
+    labels.push_back(PoseLabel(rig.poses[d.index].name, d.index));
+  }
+  const mapping::MappingStages st = mapping::MapPolygons(outlines, landmarks, prm, labels, rig.file);
+  for (const std::string& w : st.warnings) report.warnings.push_back(rig.file + ": " + w);
+  const mapping::CompatibleMesh& mesh = st.mesh;
+  const mapping::Grid grid{st.grid_scale};
+  report.matched_vertices = st.matched.points[0].size();
+  report.boundary_vertices = st.simplified.polygons[0].size();
+  report.simplification_error = st.simplified.max_error / grid.scale;
+  report.steiner_points = mesh.steiner_points;
+  report.min_angle_degrees = mapping::MinAngleDegrees(mesh);
+  report.vertices = mesh.vertices[0].size();
+  report.triangles = mesh.triangles.size();
+
+  // 5. Back to rig coordinates; uvs into each pose's own drawing.
+  MeshesFromMapping(rig, drawn, mesh, grid, result);
   report.mapped = true;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
