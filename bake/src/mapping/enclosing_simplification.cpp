@@ -183,19 +183,38 @@ struct Candidate {
   std::vector<Point> a, b;  // per pose, new positions of the two neighbours
 };
 
-}  // namespace
+// Line p0->p1 extended past p1 meets line q0->q1 extended past q1, at x.
+bool MeetBeyond(const Point& p0, const Point& p1, const Point& q0, const Point& q1, Point& x) {
+  const Point d = p1 - p0, e = q1 - q0;
+  const double den = d.x() * e.y() - d.y() * e.x();
+  if (std::abs(den) < 1e-9 * d.norm() * e.norm()) return false;
+  const Point w = q0 - p0;
+  const double s = (w.x() * e.y() - w.y() * e.x()) / den, u = (w.x() * d.y() - w.y() * d.x()) / den;
+  if (!(s >= 1) || !(u >= 1)) return false;
+  x = Snap(p0 + s * d);
+  return std::abs(x.x()) < kGridLimit / 2 && std::abs(x.y()) < kGridLimit / 2;
+}
 
-SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const CorrespondedBoundary& boundary,
-                                     double tolerance, const std::vector<ErrorSource>& poses) {
-  const std::size_t N = outlines.size(), M = boundary.points[0].size();
-  std::vector<PoseState> st(N);
-  std::vector<OutlineEdges> edges;  // per pose; reserved so the pointers to them stay valid
-  edges.reserve(N);
-  std::vector<bool> landmark(M, false);
-  for (std::size_t k : boundary.landmarks) landmark[k] = true;
+// The simplification's state: per pose the outline and current polygon, the
+// polygon's links, which corresponding points are landmarks.
+class Simplifier {
+ public:
+  Simplifier(const std::vector<Polygon>& outlines, const CorrespondedBoundary& boundary, double tolerance)
+      : outlines_(outlines),
+        boundary_(boundary),
+        tolerance_(tolerance),
+        N(outlines.size()),
+        M(boundary.points[0].size()),
+        st(N),
+        landmark(M, false) {
+    edges.reserve(N);  // so the pointers to them stay valid
+    for (std::size_t k : boundary.landmarks) landmark[k] = true;
+  }
 
-  // 1. The corresponding points, each edge pushed out just past its span.
-  for (std::size_t i = 0; i < N; ++i) {
+  // 1. The corresponding points of pose i, each edge pushed out just past its span.
+  void EncloseOutline(std::size_t i, const ErrorSource& source) {
+    const std::vector<Polygon>& outlines = outlines_;
+    const CorrespondedBoundary& boundary = boundary_;
     PoseState& s = st[i];
     s.outline = &outlines[i];
     edges.emplace_back(outlines[i]);
@@ -232,17 +251,67 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
         }
       }
       if (all_ok && IsSimplePolygon(s.pos)) break;
-      if (attempt == 30) throw poses[i].Error("cannot build a polygon enclosing the outline");
+      if (attempt == 30) throw source.Error("cannot build a polygon enclosing the outline");
     }
   }
 
   // 2. Greedy removal.
-  Linked L;
-  L.prev.resize(M), L.next.resize(M), L.alive.assign(M, true);
-  for (std::size_t k = 0; k < M; ++k) L.prev[k] = (k + M - 1) % M, L.next[k] = (k + 1) % M;
-  std::size_t alive = M;
-  std::vector<std::uint32_t> version(M, 0);
+  void RemoveGreedily() {
+    L.prev.resize(M), L.next.resize(M), L.alive.assign(M, true);
+    for (std::size_t k = 0; k < M; ++k) L.prev[k] = (k + M - 1) % M, L.next[k] = (k + 1) % M;
+    alive = M;
+    std::vector<std::uint32_t> version(M, 0);
+    const double tolerance = tolerance_;
+    using Entry = std::tuple<double, std::size_t, std::uint32_t>;
+    std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+    for (std::size_t j = 0; j < M; ++j) {
+      const double e = Evaluate(j).error;
+      if (e <= tolerance) queue.emplace(Priority(j, e), j, version[j]);
+    }
+    while (!queue.empty()) {
+      const auto [key, j, v] = queue.top();
+      queue.pop();
+      if (!L.alive[j] || v != version[j]) continue;
+      const Candidate c = Evaluate(j);
+      if (c.error > tolerance) continue;
+      const double now = Priority(j, c.error);
+      if (now > key) {  // neighbourhood changed since it was queued
+        queue.emplace(now, j, version[j]);
+        continue;
+      }
+      if (!Valid(j, c)) continue;  // until a neighbour changes
+      const std::size_t a = L.prev[j], b = L.next[j];
+      for (std::size_t i = 0; i < N; ++i) st[i].pos[a] = c.a[i], st[i].pos[b] = c.b[i];
+      L.next[a] = b, L.prev[b] = a, L.alive[j] = false;
+      --alive;
+      max_error_ = std::max(max_error_, c.error);
+      // Candidates within two links of a or b depend on what moved.
+      std::size_t around[6] = {L.prev[L.prev[a]], L.prev[a], a, b, L.next[b], L.next[L.next[b]]};
+      for (std::size_t k : around) {
+        ++version[k];
+        const double ek = Evaluate(k).error;
+        if (ek <= tolerance) queue.emplace(Priority(k, ek), k, version[k]);
+      }
+    }
+  }
 
+  SimplifiedBoundary Result() const {
+    const CorrespondedBoundary& boundary = boundary_;
+    SimplifiedBoundary out;
+    out.polygons.resize(N);
+    out.max_error = max_error_;
+    std::size_t first = boundary.landmarks.empty() ? 0 : boundary.landmarks[0];
+    std::size_t k = first;
+    do {
+      if (landmark[k]) out.landmarks.push_back(out.kept.size());
+      out.kept.push_back(k);
+      for (std::size_t i = 0; i < N; ++i) out.polygons[i].push_back(st[i].pos[k]);
+      k = L.next[k];
+    } while (k != first);
+    return out;
+  }
+
+ private:
   // Three ways to remove vertex j between a and b, the cheapest taken:
   //   chord   join a and b; where the outline bulges past the chord, move
   //           both out along its normal (their other edges turn outward
@@ -252,18 +321,8 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
   //           the polygon only grows by the triangle a, corner, j.
   // Landmarks are never removed; like any vertex they may move outward within
   // the tolerance. `valid` checks the result exactly.
-  auto meet = [](const Point& p0, const Point& p1, const Point& q0, const Point& q1, Point& x) {
-    // Line p0->p1 extended past p1 meets line q0->q1 extended past q1.
-    const Point d = p1 - p0, e = q1 - q0;
-    const double den = d.x() * e.y() - d.y() * e.x();
-    if (std::abs(den) < 1e-9 * d.norm() * e.norm()) return false;
-    const Point w = q0 - p0;
-    const double s = (w.x() * e.y() - w.y() * e.x()) / den, u = (w.x() * d.y() - w.y() * d.x()) / den;
-    if (!(s >= 1) || !(u >= 1)) return false;
-    x = Snap(p0 + s * d);
-    return std::abs(x.x()) < kGridLimit / 2 && std::abs(x.y()) < kGridLimit / 2;
-  };
-  auto evaluate = [&](std::size_t j) {
+  Candidate Evaluate(std::size_t j) const {
+    const CorrespondedBoundary& boundary = boundary_;
     Candidate best;
     if (landmark[j] || alive <= std::max<std::size_t>(4, boundary.landmarks.size() + 2)) return best;
     const std::size_t a = L.prev[j], b = L.next[j], pa = L.prev[a], nb = L.next[b];
@@ -287,10 +346,10 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
               possible = false;
           }
         } else if (option == 1) {
-          possible = meet(s.pos[pa], s.pos[a], s.pos[b], s.pos[j], A);
+          possible = MeetBeyond(s.pos[pa], s.pos[a], s.pos[b], s.pos[j], A);
           if (possible) error = std::max({error, (A - s.pos[a]).norm(), (A - s.pos[j]).norm()});
         } else {
-          possible = meet(s.pos[nb], s.pos[b], s.pos[a], s.pos[j], B);
+          possible = MeetBeyond(s.pos[nb], s.pos[b], s.pos[a], s.pos[j], B);
           if (possible) error = std::max({error, (B - s.pos[b]).norm(), (B - s.pos[j]).norm()});
         }
         if (!possible) break;
@@ -307,9 +366,11 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
       if (c.error < best.error) best = std::move(c);
     }
     return best;
-  };
+  }
 
-  auto valid = [&](std::size_t j, const Candidate& c) {
+  // Whether the candidate's new edges keep every outline inside and cross
+  // nothing, checked exactly.
+  bool Valid(std::size_t j, const Candidate& c) {
     const std::size_t a = L.prev[j], b = L.next[j], pa = L.prev[a], nb = L.next[b];
     for (std::size_t i = 0; i < N; ++i) {
       PoseState& s = st[i];
@@ -332,64 +393,40 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
       if (hit) return false;
     }
     return true;
-  };
+  }
 
   // Order: error, scaled down for a vertex with a short edge in some pose, so
   // such vertices go first; short edges next to long ones make thin triangles
   // later. Only the error itself decides whether a removal is allowed.
-  const double short_edge = 4 * tolerance;
-  auto priority = [&](std::size_t j, double error) {
+  double Priority(std::size_t j, double error) const {
+    const double short_edge = 4 * tolerance_;
     double shortest = kInf;
     for (std::size_t i = 0; i < N; ++i)
       shortest = std::min(
           {shortest, (st[i].pos[j] - st[i].pos[L.prev[j]]).norm(), (st[i].pos[j] - st[i].pos[L.next[j]]).norm()});
     return error * std::clamp(shortest / short_edge, 0.05, 1.0);
-  };
-  using Entry = std::tuple<double, std::size_t, std::uint32_t>;
-  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
-  for (std::size_t j = 0; j < M; ++j) {
-    const double e = evaluate(j).error;
-    if (e <= tolerance) queue.emplace(priority(j, e), j, version[j]);
-  }
-  double max_error = 0;
-  while (!queue.empty()) {
-    const auto [key, j, v] = queue.top();
-    queue.pop();
-    if (!L.alive[j] || v != version[j]) continue;
-    const Candidate c = evaluate(j);
-    if (c.error > tolerance) continue;
-    const double now = priority(j, c.error);
-    if (now > key) {  // neighbourhood changed since it was queued
-      queue.emplace(now, j, version[j]);
-      continue;
-    }
-    if (!valid(j, c)) continue;  // until a neighbour changes
-    const std::size_t a = L.prev[j], b = L.next[j];
-    for (std::size_t i = 0; i < N; ++i) st[i].pos[a] = c.a[i], st[i].pos[b] = c.b[i];
-    L.next[a] = b, L.prev[b] = a, L.alive[j] = false;
-    --alive;
-    max_error = std::max(max_error, c.error);
-    // Candidates within two links of a or b depend on what moved.
-    std::size_t around[6] = {L.prev[L.prev[a]], L.prev[a], a, b, L.next[b], L.next[L.next[b]]};
-    for (std::size_t k : around) {
-      ++version[k];
-      const double ek = evaluate(k).error;
-      if (ek <= tolerance) queue.emplace(priority(k, ek), k, version[k]);
-    }
   }
 
-  SimplifiedBoundary out;
-  out.polygons.resize(N);
-  out.max_error = max_error;
-  std::size_t first = boundary.landmarks.empty() ? 0 : boundary.landmarks[0];
-  std::size_t k = first;
-  do {
-    if (landmark[k]) out.landmarks.push_back(out.kept.size());
-    out.kept.push_back(k);
-    for (std::size_t i = 0; i < N; ++i) out.polygons[i].push_back(st[i].pos[k]);
-    k = L.next[k];
-  } while (k != first);
-  return out;
+  const std::vector<Polygon>& outlines_;
+  const CorrespondedBoundary& boundary_;
+  const double tolerance_;
+  const std::size_t N, M;
+  std::vector<PoseState> st;
+  std::vector<OutlineEdges> edges;  // per pose
+  std::vector<bool> landmark;
+  Linked L;
+  std::size_t alive = 0;
+  double max_error_ = 0;  // the largest error of a removal made
+};
+
+}  // namespace
+
+SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const CorrespondedBoundary& boundary,
+                                     double tolerance, const std::vector<ErrorSource>& poses) {
+  Simplifier simplifier(outlines, boundary, tolerance);
+  for (std::size_t i = 0; i < outlines.size(); ++i) simplifier.EncloseOutline(i, poses[i]);
+  simplifier.RemoveGreedily();
+  return simplifier.Result();
 }
 
 }  // namespace posemorph::bake::mapping
