@@ -153,71 +153,80 @@ bool ReadCompactLayout(const SectionBytes& qpos, const SectionBytes& qtri, const
   return true;
 }
 
-bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
-  const std::uint64_t V = c.V, T = c.T, N = c.N, n = c.n;
-  // Triangles.
-  {
-    BitReader r(L.triangles.data + 8, L.triangles.size - 8);
-    for (std::uint64_t k = 0; k < 3 * T; ++k) {
-      const std::int64_t previous = k >= 3 ? std::int64_t(o.triangles[k - 3]) : 0;
-      const std::int64_t value = previous + fmt::UnZigZag(r.ReadGolomb(L.triangle_k, fmt::kMaxGolombZeros));
-      if (r.overrun || value < 0 || value >= std::int64_t(V))
+namespace {
+
+// Triangles: differences from the previous triangle, each index checked.
+bool DecodeTriangles(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
+  const std::uint64_t V = c.V, T = c.T;
+  BitReader r(L.triangles.data + 8, L.triangles.size - 8);
+  for (std::uint64_t k = 0; k < 3 * T; ++k) {
+    const std::int64_t previous = k >= 3 ? std::int64_t(o.triangles[k - 3]) : 0;
+    const std::int64_t value = previous + fmt::UnZigZag(r.ReadGolomb(L.triangle_k, fmt::kMaxGolombZeros));
+    if (r.overrun || value < 0 || value >= std::int64_t(V))
+      return Fail(err, ErrorCode::kBadValue,
+                  "section QTRI: triangle %llu has a vertex index outside 0..%llu or runs past the section",
+                  (unsigned long long)(k / 3), (unsigned long long)(V - 1));
+    o.triangles[k] = std::uint32_t(value);
+  }
+  if ((r.position() + 7) / 8 != r.size_bits() / 8)
+    return Fail(err, ErrorCode::kBadLayout, "section QTRI has bytes after its codes");
+  for (std::uint64_t t = 0; t < T; ++t) {
+    const std::uint32_t a = o.triangles[3 * t], b = o.triangles[3 * t + 1], d = o.triangles[3 * t + 2];
+    if (a >= V || b >= V || d >= V)
+      return Fail(err, ErrorCode::kBadValue, "section QTRI: triangle %llu has a vertex index >= %llu",
+                  (unsigned long long)t, (unsigned long long)V);
+    if (a == b || b == d || a == d)
+      return Fail(err, ErrorCode::kBadValue, "section QTRI: triangle %llu repeats a vertex", (unsigned long long)t);
+  }
+  return true;
+}
+
+// The fill-reducing order: bit-packed, checked to be a permutation.
+bool DecodePermutation(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
+  const std::uint64_t n = c.n;
+  const BitReader r(L.permutation.data + 8, L.permutation.size - 8);
+  std::memset(o.seen, 0, n);
+  for (std::uint64_t k = 0; k < n; ++k) {
+    const std::uint32_t v = r.At(k * L.permutation_bits, L.permutation_bits);
+    if (v >= n || o.seen[v])
+      return Fail(err, ErrorCode::kBadValue, "section QPRM: not a permutation (entry %llu)", (unsigned long long)k);
+    o.seen[v] = 1;
+    o.order[k] = v;
+  }
+  return true;
+}
+
+// Positions: origin + step * q, pose by pose.
+bool DecodePositions(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
+  const std::uint64_t V = c.V, N = c.N;
+  const unsigned char* origins = L.positions.data + 16;
+  BitReader r(origins + 16 * N, L.positions.size - 16 - 16 * N);
+  for (std::uint64_t i = 0; i < N; ++i) {
+    const double ox = F64(origins + 16 * i), oy = F64(origins + 16 * i + 8);
+    std::int64_t qx = 0, qy = 0;
+    for (std::uint64_t v = 0; v < V; ++v) {
+      const std::uint64_t k = 2 * (i * V + v);
+      qx += fmt::UnZigZag(r.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
+      qy += fmt::UnZigZag(r.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
+      if (r.overrun || qx < 0 || qy < 0 || qx > kMaxPositionCode || qy > kMaxPositionCode)
         return Fail(err, ErrorCode::kBadValue,
-                    "section QTRI: triangle %llu has a vertex index outside 0..%llu or runs past the section",
-                    (unsigned long long)(k / 3), (unsigned long long)(V - 1));
-      o.triangles[k] = std::uint32_t(value);
-    }
-    if ((r.position() + 7) / 8 != r.size_bits() / 8)
-      return Fail(err, ErrorCode::kBadLayout, "section QTRI has bytes after its codes");
-    for (std::uint64_t t = 0; t < T; ++t) {
-      const std::uint32_t a = o.triangles[3 * t], b = o.triangles[3 * t + 1], d = o.triangles[3 * t + 2];
-      if (a >= V || b >= V || d >= V)
-        return Fail(err, ErrorCode::kBadValue, "section QTRI: triangle %llu has a vertex index >= %llu",
-                    (unsigned long long)t, (unsigned long long)V);
-      if (a == b || b == d || a == d)
-        return Fail(err, ErrorCode::kBadValue, "section QTRI: triangle %llu repeats a vertex", (unsigned long long)t);
+                    "section QPOS: vertex %llu of pose %llu: code runs past the section or out of range",
+                    (unsigned long long)v, (unsigned long long)i);
+      o.positions[k] = ox + L.position_step * double(qx);
+      o.positions[k + 1] = oy + L.position_step * double(qy);
+      if (!FiniteWithin(o.positions[k], fmt::kMaxMagnitude) || !FiniteWithin(o.positions[k + 1], fmt::kMaxMagnitude))
+        return Fail(err, ErrorCode::kBadValue, "section QPOS: vertex %llu of pose %llu is beyond %g",
+                    (unsigned long long)v, (unsigned long long)i, fmt::kMaxMagnitude);
     }
   }
-  // Permutation.
-  {
-    const BitReader r(L.permutation.data + 8, L.permutation.size - 8);
-    std::memset(o.seen, 0, n);
-    for (std::uint64_t k = 0; k < n; ++k) {
-      const std::uint32_t v = r.At(k * L.permutation_bits, L.permutation_bits);
-      if (v >= n || o.seen[v])
-        return Fail(err, ErrorCode::kBadValue, "section QPRM: not a permutation (entry %llu)", (unsigned long long)k);
-      o.seen[v] = 1;
-      o.order[k] = v;
-    }
-  }
-  // Positions: origin + step * q, pose by pose.
-  {
-    const unsigned char* origins = L.positions.data + 16;
-    BitReader r(origins + 16 * N, L.positions.size - 16 - 16 * N);
-    for (std::uint64_t i = 0; i < N; ++i) {
-      const double ox = F64(origins + 16 * i), oy = F64(origins + 16 * i + 8);
-      std::int64_t qx = 0, qy = 0;
-      for (std::uint64_t v = 0; v < V; ++v) {
-        const std::uint64_t k = 2 * (i * V + v);
-        qx += fmt::UnZigZag(r.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
-        qy += fmt::UnZigZag(r.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
-        if (r.overrun || qx < 0 || qy < 0 || qx > kMaxPositionCode || qy > kMaxPositionCode)
-          return Fail(err, ErrorCode::kBadValue,
-                      "section QPOS: vertex %llu of pose %llu: code runs past the section or out of range",
-                      (unsigned long long)v, (unsigned long long)i);
-        o.positions[k] = ox + L.position_step * double(qx);
-        o.positions[k + 1] = oy + L.position_step * double(qy);
-        if (!FiniteWithin(o.positions[k], fmt::kMaxMagnitude) || !FiniteWithin(o.positions[k + 1], fmt::kMaxMagnitude))
-          return Fail(err, ErrorCode::kBadValue, "section QPOS: vertex %llu of pose %llu is beyond %g",
-                      (unsigned long long)v, (unsigned long long)i, fmt::kMaxMagnitude);
-      }
-    }
-    if ((r.position() + 7) / 8 != r.size_bits() / 8)
-      return Fail(err, ErrorCode::kBadLayout, "section QPOS has bytes after its codes");
-  }
-  // Gradients, masses and the factor from the rest pose.
-  if (!BuildArapFactor(o.positions, V, o.triangles, T, o.order, c.nnz, o.factor, err)) return false;
-  // Centroids.
+  if ((r.position() + 7) / 8 != r.size_bits() / 8)
+    return Fail(err, ErrorCode::kBadLayout, "section QPOS has bytes after its codes");
+  return true;
+}
+
+// Centroids: the mass-weighted mean of each pose.
+void ComputeCentroids(const CompactCounts& c, const CompactOutputs& o) {
+  const std::uint64_t V = c.V, N = c.N;
   for (std::uint64_t i = 0; i < N; ++i) {
     double cx = 0, cy = 0;
     for (std::uint64_t v = 0; v < V; ++v) {
@@ -227,101 +236,111 @@ bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const Compact
     o.centroids[2 * i] = cx;
     o.centroids[2 * i + 1] = cy;
   }
-  // Angles and stretches: the polar split of A = E_i E_0^-1, plus whole turns.
-  {
-    const double kTwoPi = 6.283185307179586232;
-    const BitReader turns(L.turns.data + 8, L.turns.size - 8);
-    for (std::uint64_t t = 0; t < T; ++t) {
-      const std::uint32_t* tri = o.triangles + 3 * t;
-      const double* p0 = o.positions;
-      const double e00 = p0[2 * tri[0]] - p0[2 * tri[2]], e10 = p0[2 * tri[0] + 1] - p0[2 * tri[2] + 1];
-      const double e01 = p0[2 * tri[1]] - p0[2 * tri[2]], e11 = p0[2 * tri[1] + 1] - p0[2 * tri[2] + 1];
-      const double det0 = e00 * e11 - e01 * e10;  // > 0: checked by BuildArapFactor
-      const double i00 = e11 / det0, i01 = -e01 / det0, i10 = -e10 / det0, i11 = e00 / det0;  // E_0^-1
-      for (std::uint64_t i = 0; i < N; ++i) {
-        const double* p = o.positions + 2 * i * V;
-        const double f00 = p[2 * tri[0]] - p[2 * tri[2]], f10 = p[2 * tri[0] + 1] - p[2 * tri[2] + 1];
-        const double f01 = p[2 * tri[1]] - p[2 * tri[2]], f11 = p[2 * tri[1] + 1] - p[2 * tri[2] + 1];
-        const double det = f00 * f11 - f01 * f10;
-        if (!(det > 0) || !std::isfinite(det))
-          return Fail(err, ErrorCode::kBadValue, "section QPOS: triangle %llu is inverted or degenerate in pose %llu",
-                      (unsigned long long)t, (unsigned long long)i);
-        const double a = f00 * i00 + f01 * i10, b = f00 * i01 + f01 * i11;
-        const double cc = f10 * i00 + f11 * i10, d = f10 * i01 + f11 * i11;
-        const PolarParts s = PolarSplit(a, b, cc, d);
-        const std::uint64_t k = t * N + i;
-        const std::int64_t turn = std::int64_t(L.turn_base) + std::int64_t(turns.At(k * L.turn_bits, L.turn_bits));
-        o.angles[k] = s.alpha + kTwoPi * double(turn);
-        o.stretches[3 * k] = s.s11;
-        o.stretches[3 * k + 1] = s.s12;
-        o.stretches[3 * k + 2] = s.s22;
+}
+
+// Angles and stretches: the polar split of A = E_i E_0^-1, plus whole turns.
+bool ComputeAnglesAndStretches(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
+  const std::uint64_t V = c.V, T = c.T, N = c.N;
+  const double kTwoPi = 6.283185307179586232;
+  const BitReader turns(L.turns.data + 8, L.turns.size - 8);
+  for (std::uint64_t t = 0; t < T; ++t) {
+    const std::uint32_t* tri = o.triangles + 3 * t;
+    const double* p0 = o.positions;
+    const double e00 = p0[2 * tri[0]] - p0[2 * tri[2]], e10 = p0[2 * tri[0] + 1] - p0[2 * tri[2] + 1];
+    const double e01 = p0[2 * tri[1]] - p0[2 * tri[2]], e11 = p0[2 * tri[1] + 1] - p0[2 * tri[2] + 1];
+    const double det0 = e00 * e11 - e01 * e10;  // > 0: checked by BuildArapFactor
+    const double i00 = e11 / det0, i01 = -e01 / det0, i10 = -e10 / det0, i11 = e00 / det0;  // E_0^-1
+    for (std::uint64_t i = 0; i < N; ++i) {
+      const double* p = o.positions + 2 * i * V;
+      const double f00 = p[2 * tri[0]] - p[2 * tri[2]], f10 = p[2 * tri[0] + 1] - p[2 * tri[2] + 1];
+      const double f01 = p[2 * tri[1]] - p[2 * tri[2]], f11 = p[2 * tri[1] + 1] - p[2 * tri[2] + 1];
+      const double det = f00 * f11 - f01 * f10;
+      if (!(det > 0) || !std::isfinite(det))
+        return Fail(err, ErrorCode::kBadValue, "section QPOS: triangle %llu is inverted or degenerate in pose %llu",
+                    (unsigned long long)t, (unsigned long long)i);
+      const double a = f00 * i00 + f01 * i10, b = f00 * i01 + f01 * i11;
+      const double cc = f10 * i00 + f11 * i10, d = f10 * i01 + f11 * i11;
+      const PolarParts s = PolarSplit(a, b, cc, d);
+      const std::uint64_t k = t * N + i;
+      const std::int64_t turn = std::int64_t(L.turn_base) + std::int64_t(turns.At(k * L.turn_bits, L.turn_bits));
+      o.angles[k] = s.alpha + kTwoPi * double(turn);
+      o.stretches[3 * k] = s.s11;
+      o.stretches[3 * k + 1] = s.s12;
+      o.stretches[3 * k + 2] = s.s22;
+    }
+  }
+  return true;
+}
+
+// Weight grid: per coded pose, corners predicted from their left, lower and
+// lower-left neighbours, centres from the rounded mean of their corners.
+bool DecodeWeightGrid(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
+  const std::uint64_t N = c.N;
+  const std::uint64_t cx = c.cells_x, cy = c.cells_y, row = cx + 1;
+  const std::uint32_t coded = L.grid_coded_poses;
+  const std::uint64_t header = 16 + 4 * std::uint64_t(coded);
+  BitReader r(L.grid.data + header, L.grid.size - header);
+  const std::int64_t kLimit = std::int64_t(1) << 40;
+  auto next = [&](unsigned k, std::int64_t pred, std::int64_t* q) {
+    const std::uint64_t u = r.ReadGolomb(k, fmt::kMaxGolombZeros);
+    *q = pred + fmt::UnZigZag(u);
+    return !r.overrun && *q <= kLimit && *q >= -kLimit;
+  };
+  for (std::uint32_t i = 0; i < coded; ++i) {
+    const std::uint32_t ks = std::uint32_t(L.grid.data[16 + 4 * i]) | std::uint32_t(L.grid.data[17 + 4 * i]) << 8;
+    const unsigned k_corner = ks & 0xFFu, k_centre = (ks >> 8) & 0xFFu, order = L.grid.data[18 + 4 * i];
+    std::int64_t* q = o.grid_scratch;
+    for (std::uint64_t y = 0; y <= cy; ++y)
+      for (std::uint64_t x = 0; x <= cx; ++x) {
+        std::int64_t pred;
+        const std::int64_t* at = q + y * row + x;
+        if (x >= order && y >= order) {  // inside: the formulas written out (the same integers)
+          pred = order == 1 ? at[-1] + at[-std::int64_t(row)] - at[-std::int64_t(row) - 1]
+                            : 2 * at[-1] - at[-2] + 2 * at[-std::int64_t(row)] - 4 * at[-std::int64_t(row) - 1] +
+                                  2 * at[-std::int64_t(row) - 2] - at[-2 * std::int64_t(row)] +
+                                  2 * at[-2 * std::int64_t(row) - 1] - at[-2 * std::int64_t(row) - 2];
+        } else {
+          pred = fmt::GridCornerPrediction(q, row, x, y, order);
+        }
+        if (!next(k_corner, pred, &q[y * row + x]))
+          return Fail(err, ErrorCode::kBadValue,
+                      "section QGRD: pose %u, corner (%llu, %llu): code runs past the section or out of range", i,
+                      (unsigned long long)x, (unsigned long long)y);
+        o.grid_corners[(y * row + x) * N + i] = L.grid_step * double(q[y * row + x]);
       }
-    }
+    if (!o.grid_centres) continue;
+    for (std::uint64_t y = 0; y < cy; ++y)
+      for (std::uint64_t x = 0; x < cx; ++x) {
+        const std::int64_t pred = fmt::GridCentrePrediction(q[y * row + x], q[y * row + x + 1], q[(y + 1) * row + x],
+                                                            q[(y + 1) * row + x + 1]);
+        std::int64_t value;
+        if (!next(k_centre, pred, &value))
+          return Fail(err, ErrorCode::kBadValue,
+                      "section QGRD: pose %u, centre (%llu, %llu): code runs past the section or out of range", i,
+                      (unsigned long long)x, (unsigned long long)y);
+        o.grid_centres[(y * cx + x) * N + i] = L.grid_step * double(value);
+      }
   }
-  // Weight grid: per coded pose, corners predicted from their left, lower and
-  // lower-left neighbours, centres from the rounded mean of their corners.
-  {
-    const std::uint64_t cx = c.cells_x, cy = c.cells_y, row = cx + 1;
-    const std::uint32_t coded = L.grid_coded_poses;
-    const std::uint64_t header = 16 + 4 * std::uint64_t(coded);
-    BitReader r(L.grid.data + header, L.grid.size - header);
-    const std::int64_t kLimit = std::int64_t(1) << 40;
-    auto next = [&](unsigned k, std::int64_t pred, std::int64_t* q) {
-      const std::uint64_t u = r.ReadGolomb(k, fmt::kMaxGolombZeros);
-      *q = pred + fmt::UnZigZag(u);
-      return !r.overrun && *q <= kLimit && *q >= -kLimit;
+  if ((r.position() + 7) / 8 != r.size_bits() / 8)
+    return Fail(err, ErrorCode::kBadLayout, "section QGRD has %llu bytes after its codes",
+                (unsigned long long)(r.size_bits() / 8 - (r.position() + 7) / 8));
+  if (coded + 1 == N) {
+    auto complete = [&](double* w, std::uint64_t nodes) {
+      for (std::uint64_t g = 0; g < nodes; ++g) {
+        double sum = 0;
+        for (std::uint64_t i = 0; i + 1 < N; ++i) sum += w[g * N + i];
+        w[g * N + N - 1] = 1 - sum;
+      }
     };
-    for (std::uint32_t i = 0; i < coded; ++i) {
-      const std::uint32_t ks = std::uint32_t(L.grid.data[16 + 4 * i]) | std::uint32_t(L.grid.data[17 + 4 * i]) << 8;
-      const unsigned k_corner = ks & 0xFFu, k_centre = (ks >> 8) & 0xFFu, order = L.grid.data[18 + 4 * i];
-      std::int64_t* q = o.grid_scratch;
-      for (std::uint64_t y = 0; y <= cy; ++y)
-        for (std::uint64_t x = 0; x <= cx; ++x) {
-          std::int64_t pred;
-          const std::int64_t* at = q + y * row + x;
-          if (x >= order && y >= order) {  // inside: the formulas written out (the same integers)
-            pred = order == 1 ? at[-1] + at[-std::int64_t(row)] - at[-std::int64_t(row) - 1]
-                              : 2 * at[-1] - at[-2] + 2 * at[-std::int64_t(row)] - 4 * at[-std::int64_t(row) - 1] +
-                                    2 * at[-std::int64_t(row) - 2] - at[-2 * std::int64_t(row)] +
-                                    2 * at[-2 * std::int64_t(row) - 1] - at[-2 * std::int64_t(row) - 2];
-          } else {
-            pred = fmt::GridCornerPrediction(q, row, x, y, order);
-          }
-          if (!next(k_corner, pred, &q[y * row + x]))
-            return Fail(err, ErrorCode::kBadValue,
-                        "section QGRD: pose %u, corner (%llu, %llu): code runs past the section or out of range", i,
-                        (unsigned long long)x, (unsigned long long)y);
-          o.grid_corners[(y * row + x) * N + i] = L.grid_step * double(q[y * row + x]);
-        }
-      if (!o.grid_centres) continue;
-      for (std::uint64_t y = 0; y < cy; ++y)
-        for (std::uint64_t x = 0; x < cx; ++x) {
-          const std::int64_t pred = fmt::GridCentrePrediction(q[y * row + x], q[y * row + x + 1], q[(y + 1) * row + x],
-                                                              q[(y + 1) * row + x + 1]);
-          std::int64_t value;
-          if (!next(k_centre, pred, &value))
-            return Fail(err, ErrorCode::kBadValue,
-                        "section QGRD: pose %u, centre (%llu, %llu): code runs past the section or out of range", i,
-                        (unsigned long long)x, (unsigned long long)y);
-          o.grid_centres[(y * cx + x) * N + i] = L.grid_step * double(value);
-        }
-    }
-    if ((r.position() + 7) / 8 != r.size_bits() / 8)
-      return Fail(err, ErrorCode::kBadLayout, "section QGRD has %llu bytes after its codes",
-                  (unsigned long long)(r.size_bits() / 8 - (r.position() + 7) / 8));
-    if (coded + 1 == N) {
-      auto complete = [&](double* w, std::uint64_t nodes) {
-        for (std::uint64_t g = 0; g < nodes; ++g) {
-          double sum = 0;
-          for (std::uint64_t i = 0; i + 1 < N; ++i) sum += w[g * N + i];
-          w[g * N + N - 1] = 1 - sum;
-        }
-      };
-      complete(o.grid_corners, (cx + 1) * (cy + 1));
-      if (o.grid_centres) complete(o.grid_centres, cx * cy);
-    }
+    complete(o.grid_corners, (cx + 1) * (cy + 1));
+    if (o.grid_centres) complete(o.grid_centres, cx * cy);
   }
-  // Uvs: each pose's as an affine map of one pose's decoded positions.
+  return true;
+}
+
+// Uvs: each pose's as an affine map of one pose's decoded positions.
+bool DecodeUvs(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
+  const std::uint64_t V = c.V, N = c.N;
   if (o.uvs) {
     for (std::uint64_t i = 0; i < N; ++i) {
       const unsigned char* e = L.affine_uvs.data + 56 * i;
@@ -339,6 +358,22 @@ bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const Compact
       }
     }
   }
+  return true;
+}
+
+}  // namespace
+
+bool DecodeCompact(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
+  const std::uint64_t V = c.V, T = c.T;
+  if (!DecodeTriangles(L, c, o, err)) return false;
+  if (!DecodePermutation(L, c, o, err)) return false;
+  if (!DecodePositions(L, c, o, err)) return false;
+  // Gradients, masses and the factor from the rest pose.
+  if (!BuildArapFactor(o.positions, V, o.triangles, T, o.order, c.nnz, o.factor, err)) return false;
+  ComputeCentroids(c, o);
+  if (!ComputeAnglesAndStretches(L, c, o, err)) return false;
+  if (!DecodeWeightGrid(L, c, o, err)) return false;
+  if (!DecodeUvs(L, c, o, err)) return false;
   return true;
 }
 
