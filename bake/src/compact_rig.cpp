@@ -347,20 +347,9 @@ struct Encoder {
   }
 };
 
-}  // namespace
-
-std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_bytes, const CompactSettings& settings,
-                                      const std::string& file, CompactReport* report) {
-  Rig exact;
-  Error err;
-  if (!LoadRig(exact_bytes.data(), exact_bytes.size(), &exact, &err))
-    throw BakeError(file, std::string("internal error: the exact rig does not load: ") + err.message);
-  if (!(settings.max_error_px > 0) || !(settings.pixels_per_unit > 0))
-    throw BakeError(file, "the compact encoding needs a positive error budget and pixels per unit");
-  const std::uint64_t V = exact.vertex_count(), T = exact.triangle_count(), N = exact.pose_count();
-  Encoder enc{exact, settings.max_error_px / 2, settings.pixels_per_unit, RawSections(exact_bytes), {}, false};
-
-  // Does the grid sum to 1 at every node (so the last pose need not be stored)?
+// Whether the grid sums to 1 at every node (so the last pose need not be stored).
+bool GridSumsToOne(const Rig& exact) {
+  const std::uint64_t N = exact.pose_count();
   double worst_sum = 0;
   for (const Span<const double>& w : {exact.grid().weights, exact.grid().centre_weights})
     for (std::size_t g = 0; g < w.size / N; ++g) {
@@ -368,17 +357,13 @@ std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_by
       for (std::size_t i = 0; i < N; ++i) sum += w[g * N + i];
       worst_sum = std::max(worst_sum, std::fabs(sum - 1));
     }
-  enc.derive_last_pose = worst_sum <= 1e-9;
+  return worst_sum <= 1e-9;
+}
 
-  const std::vector<Eigen::Vector2d> samples = SamplePoints(exact);
-  std::vector<std::vector<double>> reference(samples.size());
-  for (std::size_t s = 0; s < samples.size(); ++s)
-    if (!EvaluateFrame(exact, samples[s], reference[s]))
-      throw BakeError(file, "internal error: the exact rig does not evaluate");
-
-  const double budget = settings.max_error_px / settings.pixels_per_unit;  // rig units
-  // Largest distance a vertex travels between poses (centroids aligned): how
-  // far a weight error moves it.
+// Largest distance a vertex travels between poses (centroids aligned): how
+// far a weight error moves it.
+double WeightReach(const Rig& exact) {
+  const std::uint64_t V = exact.vertex_count(), N = exact.pose_count();
   double reach = 0;
   for (std::uint64_t i = 1; i < N; ++i) {
     const Span<const double> p = exact.pose_positions(std::uint32_t(i)), r = exact.pose_positions(0);
@@ -387,19 +372,29 @@ std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_by
       reach = std::max(reach, std::hypot((p[2 * v] - c[2 * i]) - (r[2 * v] - c[0]),
                                          (p[2 * v + 1] - c[2 * i + 1]) - (r[2 * v + 1] - c[1])));
   }
-  reach = std::max(reach, 0.05 * exact.bounding_box_diagonal());
+  return std::max(reach, 0.05 * exact.bounding_box_diagonal());
+}
 
-  // Accepted at 90% of the budget: frames between the samples may come out
-  // slightly worse than the worst sample.
-  const double accept = 0.9 * budget;
-  CompactReport rep;
-  struct Trial {
-    bool ok = false;
-    double error = 0, pose_error = 0;
-    std::vector<unsigned char> bytes;
-    std::vector<std::int32_t> turns;
-  };
-  auto attempt = [&](double ps, double ws) {
+struct Trial {
+  bool ok = false;
+  double error = 0, pose_error = 0;
+  std::vector<unsigned char> bytes;
+  std::vector<std::int32_t> turns;
+};
+
+// Encodes at a position step and a weight step, loads the result with the
+// runtime and measures every sample frame against the exact rig's.
+struct Trials {
+  const Rig& exact;
+  Encoder& enc;
+  const std::vector<Eigen::Vector2d>& samples;
+  const std::vector<std::vector<double>>& reference;
+  double accept;  // the error a trial may reach
+  CompactReport& rep;
+
+  Trial Attempt(double ps, double ws) {
+    const std::uint64_t V = exact.vertex_count(), T = exact.triangle_count(), N = exact.pose_count();
+    Error err;
     Trial t;
     ++rep.trials;
     // First without turns, to learn the principal angles the runtime derives.
@@ -424,8 +419,35 @@ std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_by
     }
     t.ok = t.error <= accept;
     return t;
-  };
+  }
+};
 
+}  // namespace
+
+std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_bytes, const CompactSettings& settings,
+                                      const std::string& file, CompactReport* report) {
+  Rig exact;
+  Error err;
+  if (!LoadRig(exact_bytes.data(), exact_bytes.size(), &exact, &err))
+    throw BakeError(file, std::string("internal error: the exact rig does not load: ") + err.message);
+  if (!(settings.max_error_px > 0) || !(settings.pixels_per_unit > 0))
+    throw BakeError(file, "the compact encoding needs a positive error budget and pixels per unit");
+  Encoder enc{exact, settings.max_error_px / 2, settings.pixels_per_unit, RawSections(exact_bytes), {}, false};
+  enc.derive_last_pose = GridSumsToOne(exact);
+
+  const std::vector<Eigen::Vector2d> samples = SamplePoints(exact);
+  std::vector<std::vector<double>> reference(samples.size());
+  for (std::size_t s = 0; s < samples.size(); ++s)
+    if (!EvaluateFrame(exact, samples[s], reference[s]))
+      throw BakeError(file, "internal error: the exact rig does not evaluate");
+
+  const double budget = settings.max_error_px / settings.pixels_per_unit;  // rig units
+  const double reach = WeightReach(exact);
+  // Accepted at 90% of the budget: frames between the samples may come out
+  // slightly worse than the worst sample.
+  CompactReport rep;
+  Trials trials{exact, enc, samples, reference, 0.9 * budget, rep};
+  auto attempt = [&](double ps, double ws) { return trials.Attempt(ps, ws); };
   // Positions first, with a fine grid, to within half the budget; then the
   // coarsest grid step that keeps the whole within budget.
   const double fine_weights = 1e-9;
