@@ -49,14 +49,10 @@ bool Rest(const double* p, const std::uint32_t* tri, std::uint64_t t, RestTriang
   return true;
 }
 
-}  // namespace
-
-bool BuildArapFactor(const double* positions, std::uint64_t V, const std::uint32_t* triangles, std::uint64_t T,
-                     const std::uint32_t* order, std::uint64_t nnz, const ArapFactorBuffers& b, Error* err) {
-  const std::uint64_t n = V - 1;
-  for (std::uint64_t k = 0; k < n; ++k) b.position[order[k]] = std::uint32_t(k);
-
-  // Gradients, masses, and the column counts of K's upper part.
+// K's upper part (column by column, rows in the fill-reducing order), the
+// gradients and the vertex masses.
+bool AssembleStiffness(const double* positions, std::uint64_t V, const std::uint32_t* triangles, std::uint64_t T,
+                       std::uint64_t n, const ArapFactorBuffers& b, Error* err) {
   std::memset(b.vertex_masses, 0, V * sizeof(double));
   std::memset(b.entry_start, 0, (n + 1) * sizeof(std::uint32_t));
   double total_area = 0;
@@ -97,9 +93,12 @@ bool BuildArapFactor(const double* positions, std::uint64_t V, const std::uint32
         b.entry_value[slot] = M[2 * i] * r.G[0][j] + M[2 * i + 1] * r.G[1][j];  // (M G)(i, j)
       }
   }
+  return true;
+}
 
-  // Elimination tree and column counts of L: row k of L is the set of nodes
-  // met walking up the tree from each row index of K's column k, up to k.
+// Elimination tree and column counts of L: row k of L is the set of nodes
+// met walking up the tree from each row index of K's column k, up to k.
+bool FactorPattern(std::uint64_t n, std::uint64_t nnz, const ArapFactorBuffers& b, Error* err) {
   std::uint64_t found = 0;
   std::memset(b.col_start, 0, (n + 1) * sizeof(std::uint32_t));
   for (std::uint64_t k = 0; k < n; ++k) {
@@ -130,9 +129,12 @@ bool BuildArapFactor(const double* positions, std::uint64_t V, const std::uint32
     return Fail(err, ErrorCode::kTooLarge,
                 "section QPRM: factoring this rig takes %llu operations, above the limit of %llu",
                 (unsigned long long)work, (unsigned long long)format::kMaxCompactFactorWork);
+  return true;
+}
 
-  // Up-looking LDL^T: row k of L solves L(0:k, 0:k) D l = K(0:k, k) over the
-  // row's pattern, visited in the tree's topological order.
+// Up-looking LDL^T: row k of L solves L(0:k, 0:k) D l = K(0:k, k) over the
+// row's pattern, visited in the tree's topological order.
+bool FactorValues(std::uint64_t n, const ArapFactorBuffers& b, Error* err) {
   std::memcpy(b.fill, b.col_start, n * sizeof(std::uint32_t));
   std::memset(b.work, 0, n * sizeof(double));
   for (std::uint64_t k = 0; k < n; ++k) b.flag[k] = kNone;
@@ -170,6 +172,16 @@ bool BuildArapFactor(const double* positions, std::uint64_t V, const std::uint32
     b.inv_diagonal[k] = 1 / d;
   }
   return true;
+}
+
+}  // namespace
+
+bool BuildArapFactor(const double* positions, std::uint64_t V, const std::uint32_t* triangles, std::uint64_t T,
+                     const std::uint32_t* order, std::uint64_t nnz, const ArapFactorBuffers& b, Error* err) {
+  const std::uint64_t n = V - 1;
+  for (std::uint64_t k = 0; k < n; ++k) b.position[order[k]] = std::uint32_t(k);
+  return AssembleStiffness(positions, V, triangles, T, n, b, err) && FactorPattern(n, nnz, b, err) &&
+         FactorValues(n, b, err);
 }
 
 }  // namespace posemorph::detail
