@@ -80,6 +80,89 @@ double NearestArcLength(const Polygon& outline, const Point& q, double* distance
   return at;
 }
 
+namespace {
+
+// The matching of one segment between two landmarks: the cheapest monotone
+// path from pose 0's m samples to pose i's (turning angles theta0, theta;
+// lambda per skipped sample), as the fraction of pose i's segment that each
+// of pose 0's samples lands on, strictly increasing.
+std::vector<double> MatchSegment(const std::vector<double>& theta0, const std::vector<double>& theta, double lambda) {
+  const std::size_t m = theta0.size() - 1;
+  // D(j, q): cheapest monotone path from (0, 0) to (j, q), kept one row
+  // of j at a time; the steps taken are kept whole for the backtrack.
+  const std::size_t W = m + 1;
+  std::vector<double> before(W, std::numeric_limits<double>::infinity()), row(W);
+  std::vector<unsigned char> from(W * W, 0);  // 0 diagonal, 1 from j-1, 2 from q-1
+  for (std::size_t j = 0; j <= m; ++j) {
+    for (std::size_t q = 0; q <= m; ++q) {
+      const double cost = std::abs(WrapAngle(theta0[j] - theta[q]));
+      if (j == 0 && q == 0) {
+        row[0] = cost;
+        continue;
+      }
+      double best = std::numeric_limits<double>::infinity();
+      unsigned char step = 0;
+      if (j > 0 && q > 0 && before[q - 1] < best) best = before[q - 1], step = 0;
+      if (j > 0 && before[q] + lambda < best) best = before[q] + lambda, step = 1;
+      if (q > 0 && row[q - 1] + lambda < best) best = row[q - 1] + lambda, step = 2;
+      row[q] = best + cost;
+      from[j * W + q] = step;
+    }
+    std::swap(before, row);
+  }
+  std::vector<double> sum(m + 1, 0), count(m + 1, 0);
+  for (std::size_t j = m, q = m;;) {
+    sum[j] += double(q), count[j] += 1;
+    if (j == 0 && q == 0) break;
+    const unsigned char step = from[j * W + q];
+    if (step == 0)
+      --j, --q;
+    else if (step == 1)
+      --j;
+    else
+      --q;
+  }
+  std::vector<double> u(m);
+  for (std::size_t j = 0; j < m; ++j) u[j] = sum[j] / count[j] / double(m);
+  MakeStrictlyIncreasing(u);
+  return u;
+}
+
+// Where the matching advanced far on one outline between two neighbouring
+// samples, chords there would cut through that shape: add samples in every
+// pose, spread evenly over each pose's own stretch.
+void Densify(const std::vector<double>& perimeter, double spacing, CorrespondedBoundary& out) {
+  const std::size_t N = perimeter.size();
+  const std::size_t M = out.at[0].size();
+  double longest = 0;
+  for (double p : perimeter) longest = std::max(longest, p);
+  const double dense_spacing = std::max(spacing, longest / double(kMaxMatchedSamples));
+  std::vector<std::vector<double>> dense(N);
+  std::vector<std::size_t> dense_landmarks;
+  std::size_t next_landmark = 0;
+  for (std::size_t j = 0; j < M; ++j) {
+    if (next_landmark < out.landmarks.size() && out.landmarks[next_landmark] == j) {
+      dense_landmarks.push_back(dense[0].size());
+      ++next_landmark;
+    }
+    double gap = 0;
+    std::vector<double> from(N), to(N);
+    for (std::size_t i = 0; i < N; ++i) {
+      from[i] = out.at[i][j];
+      to[i] = j + 1 < M ? out.at[i][j + 1] : out.at[i][0] + perimeter[i];
+      while (to[i] < from[i]) to[i] += perimeter[i];
+      gap = std::max(gap, to[i] - from[i]);
+    }
+    const std::size_t pieces = std::max<std::size_t>(1, std::size_t(std::ceil(gap / (1.5 * dense_spacing))));
+    for (std::size_t p = 0; p < pieces; ++p)
+      for (std::size_t i = 0; i < N; ++i) dense[i].push_back(from[i] + (to[i] - from[i]) * double(p) / double(pieces));
+  }
+  out.at = std::move(dense);
+  out.landmarks = std::move(dense_landmarks);
+}
+
+}  // namespace
+
 CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
                                      const std::vector<std::vector<Point>>& landmarks, const MatchingParameters& prm) {
   const std::size_t N = outlines.size(), L = landmarks[0].size();
@@ -117,75 +200,11 @@ CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
       const double hi = len / double(m) * prm.bending_scale;
       std::vector<double> theta(m + 1);
       for (std::size_t q = 0; q <= m; ++q) theta[q] = Turning(arc[i], s[i][k] + len * double(q) / double(m), hi);
-      // D(j, q): cheapest monotone path from (0, 0) to (j, q), kept one row
-      // of j at a time; the steps taken are kept whole for the backtrack.
-      const std::size_t W = m + 1;
-      std::vector<double> before(W, std::numeric_limits<double>::infinity()), row(W);
-      std::vector<unsigned char> from(W * W, 0);  // 0 diagonal, 1 from j-1, 2 from q-1
-      for (std::size_t j = 0; j <= m; ++j) {
-        for (std::size_t q = 0; q <= m; ++q) {
-          const double cost = std::abs(WrapAngle(theta0[j] - theta[q]));
-          if (j == 0 && q == 0) {
-            row[0] = cost;
-            continue;
-          }
-          double best = std::numeric_limits<double>::infinity();
-          unsigned char step = 0;
-          if (j > 0 && q > 0 && before[q - 1] < best) best = before[q - 1], step = 0;
-          if (j > 0 && before[q] + lambda < best) best = before[q] + lambda, step = 1;
-          if (q > 0 && row[q - 1] + lambda < best) best = row[q - 1] + lambda, step = 2;
-          row[q] = best + cost;
-          from[j * W + q] = step;
-        }
-        std::swap(before, row);
-      }
-      std::vector<double> sum(m + 1, 0), count(m + 1, 0);
-      for (std::size_t j = m, q = m;;) {
-        sum[j] += double(q), count[j] += 1;
-        if (j == 0 && q == 0) break;
-        const unsigned char step = from[j * W + q];
-        if (step == 0)
-          --j, --q;
-        else if (step == 1)
-          --j;
-        else
-          --q;
-      }
-      std::vector<double> u(m);
-      for (std::size_t j = 0; j < m; ++j) u[j] = sum[j] / count[j] / double(m);
-      MakeStrictlyIncreasing(u);
+      std::vector<double> u = MatchSegment(theta0, theta, lambda);
       for (std::size_t j = 0; j < m; ++j) out.at[i].push_back(s[i][k] + len * u[j]);
     }
   }
-  // Where the matching advanced far on one outline between two neighbouring
-  // samples, chords there would cut through that shape: add samples in every
-  // pose, spread evenly over each pose's own stretch.
-  const std::size_t M = out.at[0].size();
-  double longest = 0;
-  for (double p : perimeter) longest = std::max(longest, p);
-  const double dense_spacing = std::max(spacing, longest / double(kMaxMatchedSamples));
-  std::vector<std::vector<double>> dense(N);
-  std::vector<std::size_t> dense_landmarks;
-  std::size_t next_landmark = 0;
-  for (std::size_t j = 0; j < M; ++j) {
-    if (next_landmark < out.landmarks.size() && out.landmarks[next_landmark] == j) {
-      dense_landmarks.push_back(dense[0].size());
-      ++next_landmark;
-    }
-    double gap = 0;
-    std::vector<double> from(N), to(N);
-    for (std::size_t i = 0; i < N; ++i) {
-      from[i] = out.at[i][j];
-      to[i] = j + 1 < M ? out.at[i][j + 1] : out.at[i][0] + perimeter[i];
-      while (to[i] < from[i]) to[i] += perimeter[i];
-      gap = std::max(gap, to[i] - from[i]);
-    }
-    const std::size_t pieces = std::max<std::size_t>(1, std::size_t(std::ceil(gap / (1.5 * dense_spacing))));
-    for (std::size_t p = 0; p < pieces; ++p)
-      for (std::size_t i = 0; i < N; ++i) dense[i].push_back(from[i] + (to[i] - from[i]) * double(p) / double(pieces));
-  }
-  out.at = std::move(dense);
-  out.landmarks = std::move(dense_landmarks);
+  Densify(perimeter, spacing, out);
   for (std::size_t i = 0; i < N; ++i)
     for (double a : out.at[i]) out.points[i].push_back(arc[i].At(a));
   return out;
