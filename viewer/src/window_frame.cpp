@@ -79,8 +79,16 @@ void Viewer::Frame(bool screenshot) {
     return;
   }
   VkCheck(vkResetFences(dev, 1, &fence_), "vkResetFences");
-
   // The characters: the runtime, timed, then into the GPU buffers.
+  const Scene shown = ShownScene();
+  const std::uint32_t count = PrepareCharacters(shown);
+  RecordFrame(index, count, shown, screenshot);
+  SubmitAndPresent(index);
+}
+
+// The scene as this frame shows it: along the playing path or gesture, the
+// pad's point moving with it.
+Scene Viewer::ShownScene() {
   Scene shown = scene_;
   if (play_path_ && rig_.path_count() > 0) {
     shown.path =
@@ -99,6 +107,12 @@ void Viewer::Frame(bool screenshot) {
     scene_.y = shown.y = a[2] + u * (b[2] - a[2]);
   }
   if (!shown.path.empty() && shown.crowd <= 1) shown.path.clear();  // one character sits at the sampled point
+  return shown;
+}
+
+// Evaluates the characters into the renderer's buffers (timed) and fits the
+// camera; returns how many to draw.
+std::uint32_t Viewer::PrepareCharacters(const Scene& shown) {
   SceneBounds bounds;
   std::uint32_t count = 0;
   std::string problem;
@@ -113,6 +127,12 @@ void Viewer::Frame(bool screenshot) {
     if (one_to_one_) camera_.zoom = 1, camera_ = PixelExact(camera_, view_w, sc_.extent.height), one_to_one_ = false;
   }
 
+  return count;
+}
+
+// The characters, then the panel; and a copy of the image for a screenshot.
+void Viewer::RecordFrame(std::uint32_t index, std::uint32_t count, const Scene& shown, bool screenshot) {
+  const std::uint32_t view_w = sc_.extent.width > kPanelWidth ? sc_.extent.width - std::uint32_t(kPanelWidth) : 1;
   VkCheck(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -153,7 +173,9 @@ void Viewer::Frame(bool screenshot) {
     Transition(cmd_, image, 1, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR);
   }
   VkCheck(vkEndCommandBuffer(cmd_), "vkEndCommandBuffer");
+}
 
+void Viewer::SubmitAndPresent(std::uint32_t index) {
   const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
   VkSubmitInfo si{VK_STRUCTURE_TYPE_SUBMIT_INFO};
   si.waitSemaphoreCount = 1;

@@ -83,6 +83,11 @@ class Viewer {
   void BuildUi();
   void Pad();
   void Frame(bool screenshot);
+  // Frame's steps.
+  Scene ShownScene();
+  std::uint32_t PrepareCharacters(const Scene& shown);
+  void RecordFrame(std::uint32_t index, std::uint32_t count, const Scene& shown, bool screenshot);
+  void SubmitAndPresent(std::uint32_t index);
   void SaveGesture();
   void EditUi();
   void EditInput(std::int32_t x0, std::uint32_t w, std::uint32_t h);
