@@ -139,26 +139,22 @@ std::size_t ClosePinches(Mask& m) {
   return changed;
 }
 
-}  // namespace
+// Alpha at padded coordinates (a border of 0 around the image).
+double PaddedAlpha(const std::vector<unsigned char>& alpha, int width, int height, int x, int y) {
+  if (x <= 0 || y <= 0 || x > width || y > height) return 0;
+  return alpha[std::size_t(y - 1) * width + (x - 1)];
+}
 
-ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width, int height, double threshold,
-                              const ErrorSource& source) {
-  if (!(threshold > 0 && threshold <= 1)) throw source.Error("alpha threshold must be in (0, 1]");
-  if (width <= 0 || height <= 0 || alpha.size() != std::size_t(width) * std::size_t(height))
-    throw source.Error("image is empty");
-  ImageOutline result;
-  result.width = width;
-  result.height = height;
-
+// The shape: pixels at or above the threshold, the largest 4-connected part
+// kept (the others counted in `result`), holes filled, pinches closed.
+Mask ShapeMask(const std::vector<unsigned char>& alpha, int width, int height, double threshold,
+               const ErrorSource& source, ImageOutline& result) {
+  auto a = [&](int x, int y) { return PaddedAlpha(alpha, width, height, x, y); };
   Mask m;
   m.w = width + 2;
   m.h = height + 2;
   m.in.assign(std::size_t(m.w) * m.h, 0);
   const double cut = threshold * 255.0;
-  auto a = [&](int x, int y) -> double {  // padded coordinates
-    if (x <= 0 || y <= 0 || x > width || y > height) return 0;
-    return alpha[std::size_t(y - 1) * width + (x - 1)];
-  };
   for (int y = 1; y <= height; ++y)
     for (int x = 1; x <= width; ++x) m.at(x, y) = a(x, y) >= cut;
 
@@ -182,6 +178,22 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
     if (ClosePinches(m) == 0) break;
   }
 
+  return m;
+}
+
+// Where the border crosses the cell edges (marching squares through the
+// pixel centres, sub-pixel), linked edge to edge with the shape on one side.
+struct Border {
+  std::unordered_map<std::size_t, std::size_t> next;  // edge key -> edge key
+  std::unordered_map<std::size_t, Point> where;
+};
+
+Border TraceBorder(const Mask& m, const std::vector<unsigned char>& alpha, int width, int height, double threshold,
+                   const ErrorSource& source) {
+  auto a = [&](int x, int y) { return PaddedAlpha(alpha, width, height, x, y); };
+  Border border;
+  std::unordered_map<std::size_t, std::size_t>& next = border.next;
+  std::unordered_map<std::size_t, Point>& where = border.where;
   // Signed field through the pixel centres: positive inside. Pixels the mask
   // overrides (filled holes, dropped specks) sit just across the threshold.
   const double delta = 1.0 / 512;
@@ -196,8 +208,6 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
     const double t = f0 / (f0 - f1);
     return Point(centre(x0, y0) + t * (centre(x1, y1) - centre(x0, y0)));
   };
-  std::unordered_map<std::size_t, std::size_t> next;  // edge key -> edge key, shape on one fixed side
-  std::unordered_map<std::size_t, Point> where;
   for (int y = 0; y + 1 < m.h; ++y)
     for (int x = 0; x + 1 < m.w; ++x) {
       const unsigned char c0 = m.at(x, y);
@@ -226,7 +236,13 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
                            " pixel edges (the limit; its outline would be too intricate to map)");
     }
 
-  // Follow every loop; the outer border is the one enclosing the most area.
+  return border;
+}
+
+// Every loop of the border; the outer one is the one enclosing the most area.
+Polygon OuterLoop(const Border& border) {
+  const std::unordered_map<std::size_t, std::size_t>& next = border.next;
+  const std::unordered_map<std::size_t, Point>& where = border.where;
   std::unordered_map<std::size_t, bool> seen;
   Polygon best;
   double best_area = 0;
@@ -243,7 +259,21 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
     const double area = std::abs(SignedArea(loop));
     if (area > best_area) best_area = area, best = std::move(loop);
   }
-  result.outline = std::move(best);
+  return best;
+}
+
+}  // namespace
+
+ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width, int height, double threshold,
+                              const ErrorSource& source) {
+  if (!(threshold > 0 && threshold <= 1)) throw source.Error("alpha threshold must be in (0, 1]");
+  if (width <= 0 || height <= 0 || alpha.size() != std::size_t(width) * std::size_t(height))
+    throw source.Error("image is empty");
+  ImageOutline result;
+  result.width = width;
+  result.height = height;
+  const Mask m = ShapeMask(alpha, width, height, threshold, source, result);
+  result.outline = OuterLoop(TraceBorder(m, alpha, width, height, threshold, source));
   return result;
 }
 
