@@ -29,6 +29,12 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Gpu::OnMessage(VkDebugUtilsMessageSeverityFlagBit
 }
 
 bool Gpu::Init(const GpuOptions& options, std::string* error) {
+  return CreateInstance(options, error) && PickDevice(error) && CreateDevice(options, error);
+}
+
+// The instance (Vulkan 1.3), with the validation layer and its message
+// callback when asked for.
+bool Gpu::CreateInstance(const GpuOptions& options, std::string* error) {
   auto fail = [&](const std::string& what) {
     *error = what;
     return false;
@@ -73,8 +79,15 @@ bool Gpu::Init(const GpuOptions& options, std::string* error) {
     if (!create || create(instance_, &messenger, nullptr, &messenger_) != VK_SUCCESS)
       return fail("cannot install the validation message callback");
   }
+  return true;
+}
 
-  // The first device with Vulkan 1.3 and a graphics queue; a discrete GPU if there is one.
+// The first device with Vulkan 1.3 and a graphics queue; a discrete GPU if there is one.
+bool Gpu::PickDevice(std::string* error) {
+  auto fail = [&](const std::string& what) {
+    *error = what;
+    return false;
+  };
   std::uint32_t n = 0;
   VkCheck(vkEnumeratePhysicalDevices(instance_, &n, nullptr), "vkEnumeratePhysicalDevices");
   std::vector<VkPhysicalDevice> devices(n);
@@ -98,7 +111,16 @@ bool Gpu::Init(const GpuOptions& options, std::string* error) {
     }
   }
   if (!physical_) return fail("no Vulkan 1.3 device with a graphics queue");
+  return true;
+}
 
+// The logical device (dynamic rendering, buffer device addresses, scalar
+// layouts; wireframe where supported), its queue and a command pool.
+bool Gpu::CreateDevice(const GpuOptions& options, std::string* error) {
+  auto fail = [&](const std::string& what) {
+    *error = what;
+    return false;
+  };
   const float priority = 1;
   VkDeviceQueueCreateInfo qci{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
   qci.queueFamilyIndex = family_;

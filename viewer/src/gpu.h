@@ -71,6 +71,10 @@ class Gpu {
   int validation_messages() const { return messages_; }
 
  private:
+  // Init's steps.
+  bool CreateInstance(const GpuOptions& options, std::string* error);
+  bool PickDevice(std::string* error);
+  bool CreateDevice(const GpuOptions& options, std::string* error);
   VkDeviceMemory Allocate(const VkMemoryRequirements& req, VkMemoryPropertyFlags flags, const void* next) const;
   static VKAPI_ATTR VkBool32 VKAPI_CALL OnMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
                                                   VkDebugUtilsMessageTypeFlagsEXT type,
