@@ -49,15 +49,10 @@ bool FiniteWithin(double v, double limit) { return std::isfinite(v) && std::fabs
 
 constexpr std::int64_t kMaxPositionCode = std::int64_t(1) << 40;
 
-}  // namespace
-
-bool ReadCompactLayout(const SectionBytes& qpos, const SectionBytes& qtri, const SectionBytes& qprm,
-                       const SectionBytes& qtrn, const SectionBytes& qgrd, const SectionBytes& quva,
-                       const CompactCounts& c, CompactLayout* out, Error* err) {
-  CompactLayout L;
-  // QPOS: f64 step, u32 Exp-Golomb order k (0..20), u32 zero, N x (f64 x0,
-  // y0), then per pose and vertex the x and y integers as codes of their
-  // differences from the previous vertex's (zigzag, order k).
+// QPOS: f64 step, u32 Exp-Golomb order k (0..20), u32 zero, N x (f64 x0,
+// y0), then per pose and vertex the x and y integers as codes of their
+// differences from the previous vertex's (zigzag, order k).
+bool ReadPositionsHeader(const SectionBytes& qpos, const CompactCounts& c, CompactLayout& L, Error* err) {
   if (!qpos.data) return Fail(err, ErrorCode::kBadLayout, "missing section QPOS");
   if (qpos.size < 16 + 16 * c.N) return Fail(err, ErrorCode::kBadLayout, "section QPOS is shorter than its header");
   L.position_step = F64(qpos.data);
@@ -74,10 +69,14 @@ bool ReadCompactLayout(const SectionBytes& qpos, const SectionBytes& qtri, const
     return Fail(err, ErrorCode::kBadLayout, "section QPOS is too short for %llu vertices in %llu poses",
                 (unsigned long long)c.V, (unsigned long long)c.N);
   L.positions = qpos;
+  return true;
+}
 
-  // QTRI: u32 Exp-Golomb order k (0..20), u32 zero, then each vertex index
-  // as the code of its difference from the same corner of the previous
-  // triangle (zigzag, order k).
+// QTRI: u32 Exp-Golomb order k (0..20), u32 zero, then each vertex index
+// as the code of its difference from the same corner of the previous
+// triangle (zigzag, order k).
+bool ReadTrianglesHeader(const SectionBytes& qtri, const SectionBytes& qprm, const CompactCounts& c, CompactLayout& L,
+                         Error* err) {
   if (!qtri.data) return Fail(err, ErrorCode::kBadLayout, "missing section QTRI");
   if (qtri.size < 8) return Fail(err, ErrorCode::kBadLayout, "section QTRI is shorter than its header");
   L.triangle_k = U32(qtri.data);
@@ -88,8 +87,11 @@ bool ReadCompactLayout(const SectionBytes& qpos, const SectionBytes& qtri, const
   if (!PackedHeader("QPRM", qprm, c.n, &L.permutation_bits, err)) return false;
   L.triangles = qtri;
   L.permutation = qprm;
+  return true;
+}
 
-  // QTRN: i32 base, u32 width (0..32), TN packed values: turn = base + value.
+// QTRN: i32 base, u32 width (0..32), TN packed values: turn = base + value.
+bool ReadTurnsHeader(const SectionBytes& qtrn, const CompactCounts& c, CompactLayout& L, Error* err) {
   if (!qtrn.data) return Fail(err, ErrorCode::kBadLayout, "missing section QTRN");
   if (qtrn.size < 8) return Fail(err, ErrorCode::kBadLayout, "section QTRN is shorter than its header");
   std::memcpy(&L.turn_base, qtrn.data, 4);
@@ -100,10 +102,13 @@ bool ReadCompactLayout(const SectionBytes& qpos, const SectionBytes& qtri, const
     return Fail(err, ErrorCode::kBadLayout, "section QTRN is %llu bytes, the counts imply %llu",
                 (unsigned long long)qtrn.size, (unsigned long long)turn_expected);
   L.turns = qtrn;
+  return true;
+}
 
-  // QGRD: f64 step, u32 coded poses (N, or N - 1 with the last pose 1 minus
-  // the others), u32 zero, per coded pose u32 (k corners | k centres << 8),
-  // then the Exp-Golomb stream.
+// QGRD: f64 step, u32 coded poses (N, or N - 1 with the last pose 1 minus
+// the others), u32 zero, per coded pose u32 (k corners | k centres << 8),
+// then the Exp-Golomb stream.
+bool ReadGridHeader(const SectionBytes& qgrd, const CompactCounts& c, CompactLayout& L, Error* err) {
   if (!qgrd.data) return Fail(err, ErrorCode::kBadLayout, "missing section QGRD");
   if (qgrd.size < 16) return Fail(err, ErrorCode::kBadLayout, "section QGRD is shorter than its header");
   L.grid_step = F64(qgrd.data);
@@ -126,25 +131,39 @@ bool ReadCompactLayout(const SectionBytes& qpos, const SectionBytes& qtri, const
     return Fail(err, ErrorCode::kBadLayout, "section QGRD is too short for a %llux%llu grid",
                 (unsigned long long)c.cells_x, (unsigned long long)c.cells_y);
   L.grid = qgrd;
+  return true;
+}
 
-  if (quva.data) {
-    if (quva.size != 56 * c.N)
-      return Fail(err, ErrorCode::kBadLayout, "section QUVA is %llu bytes, the counts imply %llu",
-                  (unsigned long long)quva.size, 56ull * c.N);
-    for (std::uint64_t i = 0; i < c.N; ++i) {
-      const unsigned char* e = quva.data + 56 * i;
-      if (U32(e) >= c.N || U32(e + 4) != 0)
-        return Fail(err, ErrorCode::kBadValue, "section QUVA: pose %llu names source pose %u of %llu",
-                    (unsigned long long)i, U32(e), (unsigned long long)c.N);
-      for (int k = 0; k < 6; ++k)
-        if (!FiniteWithin(F64(e + 8 + 8 * k), fmt::kMaxMagnitude))
-          return Fail(err, ErrorCode::kBadValue, "section QUVA: coefficient %d of pose %llu is not finite", k,
-                      (unsigned long long)i);
-    }
-    L.affine_uvs = quva;
-    L.has_affine_uvs = true;
+// QUVA (optional): per pose u32 source pose, u32 zero, 6 f64: uv = M (x, y, 1).
+bool ReadAffineUvs(const SectionBytes& quva, const CompactCounts& c, CompactLayout& L, Error* err) {
+  if (quva.size != 56 * c.N)
+    return Fail(err, ErrorCode::kBadLayout, "section QUVA is %llu bytes, the counts imply %llu",
+                (unsigned long long)quva.size, 56ull * c.N);
+  for (std::uint64_t i = 0; i < c.N; ++i) {
+    const unsigned char* e = quva.data + 56 * i;
+    if (U32(e) >= c.N || U32(e + 4) != 0)
+      return Fail(err, ErrorCode::kBadValue, "section QUVA: pose %llu names source pose %u of %llu",
+                  (unsigned long long)i, U32(e), (unsigned long long)c.N);
+    for (int k = 0; k < 6; ++k)
+      if (!FiniteWithin(F64(e + 8 + 8 * k), fmt::kMaxMagnitude))
+        return Fail(err, ErrorCode::kBadValue, "section QUVA: coefficient %d of pose %llu is not finite", k,
+                    (unsigned long long)i);
   }
+  L.affine_uvs = quva;
+  L.has_affine_uvs = true;
+  return true;
+}
 
+}  // namespace
+
+bool ReadCompactLayout(const SectionBytes& qpos, const SectionBytes& qtri, const SectionBytes& qprm,
+                       const SectionBytes& qtrn, const SectionBytes& qgrd, const SectionBytes& quva,
+                       const CompactCounts& c, CompactLayout* out, Error* err) {
+  CompactLayout L;
+  if (!ReadPositionsHeader(qpos, c, L, err) || !ReadTrianglesHeader(qtri, qprm, c, L, err) ||
+      !ReadTurnsHeader(qtrn, c, L, err) || !ReadGridHeader(qgrd, c, L, err))
+    return false;
+  if (quva.data && !ReadAffineUvs(quva, c, L, err)) return false;
   if (c.nnz > std::uint64_t(fmt::kMaxCompactNonzerosPerByte) * c.file_size)
     return Fail(err, ErrorCode::kTooLarge,
                 "META: %llu factor nonzeros for a compact file of %llu bytes (at most %u per byte)",
