@@ -79,6 +79,8 @@ class Viewer {
   void SmokeAfterFrame();
   int WriteSmokeShot();
   bool CreateSwapchain();
+  void CreateUiPass();
+  void CreateImageViews();
   void DestroySwapchain();
   void BuildUi();
   void Pad();

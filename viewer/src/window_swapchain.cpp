@@ -47,36 +47,48 @@ bool Viewer::CreateSwapchain() {
   sc_.images.resize(n);
   vkGetSwapchainImagesKHR(gpu_.device(), sc_.handle, &n, sc_.images.data());
 
-  if (format_changed || !ui_pass_) {
-    if (ui_pass_) vkDestroyRenderPass(gpu_.device(), ui_pass_, nullptr);
-    VkAttachmentDescription at{};
-    at.format = sc_.format;
-    at.samples = VK_SAMPLE_COUNT_1_BIT;
-    at.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // the rig is already there
-    at.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    at.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
-    at.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
-    at.initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    at.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
-    VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-    VkSubpassDescription sub{};
-    sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
-    sub.colorAttachmentCount = 1;
-    sub.pColorAttachments = &ref;
-    VkSubpassDependency dep{};
-    dep.srcSubpass = VK_SUBPASS_EXTERNAL;
-    dep.dstSubpass = 0;
-    dep.srcStageMask = dep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
-    dep.srcAccessMask = dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_READ_BIT;
-    VkRenderPassCreateInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
-    rp.attachmentCount = 1;
-    rp.pAttachments = &at;
-    rp.subpassCount = 1;
-    rp.pSubpasses = &sub;
-    rp.dependencyCount = 1;
-    rp.pDependencies = &dep;
-    VkCheck(vkCreateRenderPass(gpu_.device(), &rp, nullptr, &ui_pass_), "vkCreateRenderPass");
-  }
+  if (format_changed || !ui_pass_) CreateUiPass();
+  CreateImageViews();
+  return true;
+}
+
+// The panel's render pass: it loads what the characters' pass drew and
+// leaves the image ready to present.
+void Viewer::CreateUiPass() {
+  if (ui_pass_) vkDestroyRenderPass(gpu_.device(), ui_pass_, nullptr);
+  VkAttachmentDescription at{};
+  at.format = sc_.format;
+  at.samples = VK_SAMPLE_COUNT_1_BIT;
+  at.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;  // the rig is already there
+  at.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+  at.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+  at.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+  at.initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+  at.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+  VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+  VkSubpassDescription sub{};
+  sub.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+  sub.colorAttachmentCount = 1;
+  sub.pColorAttachments = &ref;
+  VkSubpassDependency dep{};
+  dep.srcSubpass = VK_SUBPASS_EXTERNAL;
+  dep.dstSubpass = 0;
+  dep.srcStageMask = dep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+  dep.srcAccessMask = dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT | VK_ACCESS_COLOR_ATTACHMENT_READ_BIT;
+  VkRenderPassCreateInfo rp{VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO};
+  rp.attachmentCount = 1;
+  rp.pAttachments = &at;
+  rp.subpassCount = 1;
+  rp.pSubpasses = &sub;
+  rp.dependencyCount = 1;
+  rp.pDependencies = &dep;
+  VkCheck(vkCreateRenderPass(gpu_.device(), &rp, nullptr, &ui_pass_), "vkCreateRenderPass");
+}
+
+// Per swapchain image: a view, the panel's framebuffer and the semaphore its
+// rendering signals.
+void Viewer::CreateImageViews() {
+  const VkExtent2D extent = sc_.extent;
   for (VkImage image : sc_.images) {
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     vi.image = image;
@@ -101,7 +113,6 @@ bool Viewer::CreateSwapchain() {
     VkCheck(vkCreateSemaphore(gpu_.device(), &si, nullptr, &s), "vkCreateSemaphore");
     sc_.rendered.push_back(s);
   }
-  return true;
 }
 
 void Viewer::DestroySwapchain() {
