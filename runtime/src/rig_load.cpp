@@ -149,7 +149,8 @@ struct Header {
 struct Counts {
   fmt::Meta meta{};
   std::uint64_t V = 0, T = 0, N = 0, P = 0, nnz = 0;
-  std::uint64_t n = 0;  // V - 1 unknowns (vertex 0 is pinned)
+  std::uint64_t n = 0;        // V - 1 unknowns (vertex 0 is pinned)
+  std::uint64_t strings = 0;  // 2N + P: pose names, image references, path names
   std::uint64_t grid_corners = 0, grid_centres = 0, grid_vertices = 0;
   bool has_uvs = false, compact = false;
 };
@@ -161,7 +162,7 @@ struct Sources {
                       *grads = nullptr, *angles = nullptr, *stretches = nullptr, *perm = nullptr, *lcol = nullptr,
                       *lrow = nullptr, *lval = nullptr, *dinv = nullptr, *wgrid = nullptr, *uvs = nullptr,
                       *paths = nullptr, *strs = nullptr, *pkeys = nullptr, *canvases = nullptr;
-  std::uint64_t strings_size = 0, string_count = 0, key_total = 0;
+  std::uint64_t strings_size = 0, key_total = 0;
   detail::CompactLayout packed;
   detail::CompactCounts packed_counts{};
   bool affine_uvs = false;
@@ -205,6 +206,8 @@ struct RigLoader {
                            Error* err);
   static void LayoutArena(ArenaLayout& arena, const Counts& c, const Sources& s, const LoadOptions& options, Rig* rig,
                           Scratch* scratch);
+  static void LayoutCompact(ArenaLayout& arena, const Counts& c, const Sources& s, Rig* rig, Scratch* scratch);
+  static void LayoutExact(ArenaLayout& arena, const Counts& c, const Sources& s, Rig* rig);
   static bool PlaceArena(const ArenaSource& source, int pass, Rig* rig, ArenaLayout* arena, Error* err);
   static bool CheckArenaSize(const ArenaLayout& arena, const Counts& c, std::uint64_t file_size, Error* err);
   static bool ReadStrings(const Counts& c, const Scratch& scratch, Rig* rig, Error* err);
@@ -395,6 +398,7 @@ bool RigLoader::ReadCounts(Parser& parser, Counts* c, Error* err) {
     return Fail(err, ErrorCode::kBadValue, "rig size %g is not finite and positive", meta.rig_size);
   c->V = V, c->T = T, c->N = N, c->P = P, c->nnz = nnz;
   c->n = V - 1;
+  c->strings = 2 * N + P;
   c->grid_corners = std::uint64_t(meta.grid_cells_x + 1) * (meta.grid_cells_y + 1);
   c->grid_centres = (meta.flags & fmt::kMetaFlagGridCentres) ? std::uint64_t(meta.grid_cells_x) * meta.grid_cells_y : 0;
   c->grid_vertices = c->grid_corners + c->grid_centres;
@@ -461,7 +465,6 @@ bool RigLoader::FindSections(const unsigned char* bytes, const Header& h, Parser
     return Fail(err, ErrorCode::kTooLarge, "string table above %u bytes", fmt::kMaxStringBytes);
   s->strs = bytes + strings_section->offset;
   s->strings_size = strings_section->size;
-  s->string_count = 2 * N + P;
   return true;
 }
 
@@ -498,90 +501,104 @@ bool RigLoader::CheckArenaSize(const ArenaLayout& arena, const Counts& c, std::u
   return true;
 }
 
+// A compact rig's spans: decoded and derived at load into the layout an
+// exact rig copies into, then the decoder's scratch.
+void RigLoader::LayoutCompact(ArenaLayout& arena, const Counts& c, const Sources& s, Rig* rig_out, Scratch* scratch) {
+  Rig& rig = *rig_out;
+  const std::uint64_t V = c.V, T = c.T, N = c.N, n = c.n, nnz = c.nnz;
+  const std::uint64_t grid_corners = c.grid_corners, grid_centres = c.grid_centres, grid_vertices = c.grid_vertices;
+  const bool has_uvs = c.has_uvs, affine_uvs = s.affine_uvs;
+  detail::CompactOutputs& decoded = scratch->decoded;
+  // Decoded and derived into the layout an exact rig copies into.
+  decoded.triangles = arena.Take<std::uint32_t>(T * 3);
+  decoded.positions = arena.Take<double>(N * V * 2);
+  decoded.centroids = arena.Take<double>(N * 2);
+  decoded.factor.vertex_masses = arena.Take<double>(V);
+  decoded.factor.gradients = arena.Take<double>(T * 6);
+  decoded.angles = arena.Take<double>(T * N);
+  decoded.stretches = arena.Take<double>(T * N * 3);
+  decoded.order = arena.Take<std::uint32_t>(n);
+  decoded.factor.col_start = arena.Take<std::uint32_t>(n + 1);
+  decoded.factor.row = arena.Take<std::uint32_t>(nnz);
+  decoded.factor.value = arena.Take<double>(nnz);
+  decoded.factor.inv_diagonal = arena.Take<double>(n);
+  decoded.grid_corners = arena.Take<double>(grid_vertices * N);
+  decoded.grid_centres = grid_centres && decoded.grid_corners ? decoded.grid_corners + grid_corners * N : nullptr;
+  decoded.uvs = affine_uvs ? arena.Take<float>(N * V * 2) : nullptr;
+  rig.triangles_ = {decoded.triangles, std::size_t(T * 3)};
+  rig.pose_positions_ = {decoded.positions, std::size_t(N * V * 2)};
+  rig.pose_points_ = CopyInto<double>(arena, s.points, N * 2);
+  rig.pose_centroids_ = {decoded.centroids, std::size_t(N * 2)};
+  rig.vertex_masses_ = {decoded.factor.vertex_masses, std::size_t(V)};
+  rig.gradients_ = {decoded.factor.gradients, std::size_t(T * 6)};
+  rig.angles_ = {decoded.angles, std::size_t(T * N)};
+  rig.stretches_ = {decoded.stretches, std::size_t(T * N * 3)};
+  rig.factor_.order = {decoded.order, std::size_t(n)};
+  rig.factor_.col_start = {decoded.factor.col_start, std::size_t(n + 1)};
+  rig.factor_.row = {decoded.factor.row, std::size_t(nnz)};
+  rig.factor_.value = {decoded.factor.value, std::size_t(nnz)};
+  rig.factor_.inv_diagonal = {decoded.factor.inv_diagonal, std::size_t(n)};
+  rig.grid_.weights = {decoded.grid_corners, std::size_t(grid_corners * N)};
+  if (decoded.grid_centres) rig.grid_.centre_weights = {decoded.grid_centres, std::size_t(grid_centres * N)};
+  if (affine_uvs)
+    rig.uvs_ = {decoded.uvs, std::size_t(N * V * 2)};
+  else if (has_uvs)
+    rig.uvs_ = CopyInto<float>(arena, s.uvs, N * V * 2);
+  // Scratch, used once at load.
+  decoded.grid_scratch = arena.Take<std::int64_t>(grid_corners);
+  decoded.seen = arena.Take<unsigned char>(n);
+  detail::ArapFactorBuffers& f = decoded.factor;
+  f.position = arena.Take<std::uint32_t>(n);
+  f.parent = arena.Take<std::uint32_t>(n);
+  f.flag = arena.Take<std::uint32_t>(n);
+  f.path = arena.Take<std::uint32_t>(n);
+  f.stack = arena.Take<std::uint32_t>(n);
+  f.fill = arena.Take<std::uint32_t>(n);
+  f.entry_start = arena.Take<std::uint32_t>(n + 1);
+  f.entry_row = arena.Take<std::uint32_t>(detail::ArapEntryCapacity(T));
+  f.entry_value = arena.Take<double>(detail::ArapEntryCapacity(T));
+  f.work = arena.Take<double>(n);
+  f.pivot = arena.Take<double>(n);
+}
+
+// An exact rig's spans: copies of its sections.
+void RigLoader::LayoutExact(ArenaLayout& arena, const Counts& c, const Sources& s, Rig* rig_out) {
+  Rig& rig = *rig_out;
+  const std::uint64_t V = c.V, T = c.T, N = c.N, n = c.n, nnz = c.nnz;
+  const std::uint64_t grid_corners = c.grid_corners, grid_centres = c.grid_centres, grid_vertices = c.grid_vertices;
+  rig.triangles_ = CopyInto<std::uint32_t>(arena, s.tris, T * 3);
+  rig.pose_positions_ = CopyInto<double>(arena, s.poses, N * V * 2);
+  rig.pose_points_ = CopyInto<double>(arena, s.points, N * 2);
+  rig.pose_centroids_ = CopyInto<double>(arena, s.cents, N * 2);
+  rig.vertex_masses_ = CopyInto<double>(arena, s.masses, V);
+  rig.gradients_ = CopyInto<double>(arena, s.grads, T * 6);
+  rig.angles_ = CopyInto<double>(arena, s.angles, T * N);
+  rig.stretches_ = CopyInto<double>(arena, s.stretches, T * N * 3);
+  rig.factor_.order = CopyInto<std::uint32_t>(arena, s.perm, n);
+  rig.factor_.col_start = CopyInto<std::uint32_t>(arena, s.lcol, n + 1);
+  rig.factor_.row = CopyInto<std::uint32_t>(arena, s.lrow, nnz);
+  rig.factor_.value = CopyInto<double>(arena, s.lval, nnz);
+  rig.factor_.inv_diagonal = CopyInto<double>(arena, s.dinv, n);
+  const Span<const double> grid_all = CopyInto<double>(arena, s.wgrid, grid_vertices * N);
+  rig.grid_.weights = {grid_all.data, std::size_t(grid_corners * N)};
+  if (grid_centres && grid_all.data)  // (null while the arena is only being measured)
+    rig.grid_.centre_weights = grid_all.subspan(std::size_t(grid_corners * N), std::size_t(grid_centres * N));
+  if (c.has_uvs) rig.uvs_ = CopyInto<float>(arena, s.uvs, N * V * 2);
+}
+
 // Every span of the rig and every load-time buffer, in one fixed order (the
 // same on both passes: the first only sizes, base == nullptr).
 void RigLoader::LayoutArena(ArenaLayout& arena, const Counts& c, const Sources& s, const LoadOptions& options,
                             Rig* rig_out, Scratch* scratch) {
   Rig& rig = *rig_out;
-  const std::uint64_t V = c.V, T = c.T, N = c.N, P = c.P, n = c.n, nnz = c.nnz;
-  const std::uint64_t grid_corners = c.grid_corners, grid_centres = c.grid_centres, grid_vertices = c.grid_vertices;
-  const bool has_uvs = c.has_uvs, affine_uvs = s.affine_uvs;
-  const unsigned char *points = s.points, *uvs = s.uvs;
-  detail::CompactOutputs& decoded = scratch->decoded;
-  if (c.compact) {
-    // Decoded and derived into the layout an exact rig copies into.
-    decoded.triangles = arena.Take<std::uint32_t>(T * 3);
-    decoded.positions = arena.Take<double>(N * V * 2);
-    decoded.centroids = arena.Take<double>(N * 2);
-    decoded.factor.vertex_masses = arena.Take<double>(V);
-    decoded.factor.gradients = arena.Take<double>(T * 6);
-    decoded.angles = arena.Take<double>(T * N);
-    decoded.stretches = arena.Take<double>(T * N * 3);
-    decoded.order = arena.Take<std::uint32_t>(n);
-    decoded.factor.col_start = arena.Take<std::uint32_t>(n + 1);
-    decoded.factor.row = arena.Take<std::uint32_t>(nnz);
-    decoded.factor.value = arena.Take<double>(nnz);
-    decoded.factor.inv_diagonal = arena.Take<double>(n);
-    decoded.grid_corners = arena.Take<double>(grid_vertices * N);
-    decoded.grid_centres = grid_centres && decoded.grid_corners ? decoded.grid_corners + grid_corners * N : nullptr;
-    decoded.uvs = affine_uvs ? arena.Take<float>(N * V * 2) : nullptr;
-    rig.triangles_ = {decoded.triangles, std::size_t(T * 3)};
-    rig.pose_positions_ = {decoded.positions, std::size_t(N * V * 2)};
-    rig.pose_points_ = CopyInto<double>(arena, points, N * 2);
-    rig.pose_centroids_ = {decoded.centroids, std::size_t(N * 2)};
-    rig.vertex_masses_ = {decoded.factor.vertex_masses, std::size_t(V)};
-    rig.gradients_ = {decoded.factor.gradients, std::size_t(T * 6)};
-    rig.angles_ = {decoded.angles, std::size_t(T * N)};
-    rig.stretches_ = {decoded.stretches, std::size_t(T * N * 3)};
-    rig.factor_.order = {decoded.order, std::size_t(n)};
-    rig.factor_.col_start = {decoded.factor.col_start, std::size_t(n + 1)};
-    rig.factor_.row = {decoded.factor.row, std::size_t(nnz)};
-    rig.factor_.value = {decoded.factor.value, std::size_t(nnz)};
-    rig.factor_.inv_diagonal = {decoded.factor.inv_diagonal, std::size_t(n)};
-    rig.grid_.weights = {decoded.grid_corners, std::size_t(grid_corners * N)};
-    if (decoded.grid_centres) rig.grid_.centre_weights = {decoded.grid_centres, std::size_t(grid_centres * N)};
-    if (affine_uvs)
-      rig.uvs_ = {decoded.uvs, std::size_t(N * V * 2)};
-    else if (has_uvs)
-      rig.uvs_ = CopyInto<float>(arena, uvs, N * V * 2);
-    // Scratch, used once at load.
-    decoded.grid_scratch = arena.Take<std::int64_t>(grid_corners);
-    decoded.seen = arena.Take<unsigned char>(n);
-    detail::ArapFactorBuffers& f = decoded.factor;
-    f.position = arena.Take<std::uint32_t>(n);
-    f.parent = arena.Take<std::uint32_t>(n);
-    f.flag = arena.Take<std::uint32_t>(n);
-    f.path = arena.Take<std::uint32_t>(n);
-    f.stack = arena.Take<std::uint32_t>(n);
-    f.fill = arena.Take<std::uint32_t>(n);
-    f.entry_start = arena.Take<std::uint32_t>(n + 1);
-    f.entry_row = arena.Take<std::uint32_t>(detail::ArapEntryCapacity(T));
-    f.entry_value = arena.Take<double>(detail::ArapEntryCapacity(T));
-    f.work = arena.Take<double>(n);
-    f.pivot = arena.Take<double>(n);
-  } else {
-    rig.triangles_ = CopyInto<std::uint32_t>(arena, s.tris, T * 3);
-    rig.pose_positions_ = CopyInto<double>(arena, s.poses, N * V * 2);
-    rig.pose_points_ = CopyInto<double>(arena, points, N * 2);
-    rig.pose_centroids_ = CopyInto<double>(arena, s.cents, N * 2);
-    rig.vertex_masses_ = CopyInto<double>(arena, s.masses, V);
-    rig.gradients_ = CopyInto<double>(arena, s.grads, T * 6);
-    rig.angles_ = CopyInto<double>(arena, s.angles, T * N);
-    rig.stretches_ = CopyInto<double>(arena, s.stretches, T * N * 3);
-    rig.factor_.order = CopyInto<std::uint32_t>(arena, s.perm, n);
-    rig.factor_.col_start = CopyInto<std::uint32_t>(arena, s.lcol, n + 1);
-    rig.factor_.row = CopyInto<std::uint32_t>(arena, s.lrow, nnz);
-    rig.factor_.value = CopyInto<double>(arena, s.lval, nnz);
-    rig.factor_.inv_diagonal = CopyInto<double>(arena, s.dinv, n);
-    const Span<const double> grid_all = CopyInto<double>(arena, s.wgrid, grid_vertices * N);
-    rig.grid_.weights = {grid_all.data, std::size_t(grid_corners * N)};
-    if (grid_centres && grid_all.data)  // (null while the arena is only being measured)
-      rig.grid_.centre_weights = grid_all.subspan(std::size_t(grid_corners * N), std::size_t(grid_centres * N));
-    if (has_uvs) rig.uvs_ = CopyInto<float>(arena, uvs, N * V * 2);
-  }
+  const std::uint64_t T = c.T, N = c.N, P = c.P, n = c.n, nnz = c.nnz;
+  if (c.compact)
+    LayoutCompact(arena, c, s, rig_out, scratch);
+  else
+    LayoutExact(arena, c, s, rig_out);
   if (s.canvases) rig.canvases_ = CopyInto<double>(arena, s.canvases, N * 4);
   scratch->chars = CopyInto<char>(arena, s.strs, s.strings_size);
-  scratch->strings = arena.Take<StringView>(s.string_count);
+  scratch->strings = arena.Take<StringView>(c.strings);
   scratch->path_views = arena.Take<PathView>(P);
   scratch->keys = CopyInto<double>(arena, s.pkeys, s.key_total * 3);
   scratch->seen = arena.Take<unsigned char>(n);  // scratch for the permutation check
@@ -601,7 +618,7 @@ void RigLoader::LayoutArena(ArenaLayout& arena, const Counts& c, const Sources& 
 // Strings: u32 length + bytes, one after another, exactly filling STRS.
 bool RigLoader::ReadStrings(const Counts& c, const Scratch& scratch, Rig* rig, Error* err) {
   const Span<const char> chars = scratch.chars;
-  const std::uint64_t string_count = 2 * c.N + c.P;
+  const std::uint64_t string_count = c.strings;
   std::uint64_t at = 0;
   for (std::uint64_t i = 0; i < string_count; ++i) {
     if (chars.size - at < 4)
