@@ -186,6 +186,108 @@ LinkPaths ComputeLinkPaths(const View& v, Work& work) {
   return lp;
 }
 
+// Stage I: a chord a-b inside the piece in every pose; balanced ones first
+// (both halves at least a third), then short ones, slivers last.
+bool FindCommonChord(const std::vector<View>& views, Work& work, std::size_t* A, std::size_t* B) {
+  const std::size_t N = views.size(), n = views[0].p.size();
+  std::vector<std::tuple<bool, int, double, std::size_t, std::size_t>> pairs;
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 2; b < n; ++b) {
+      if (a == 0 && b == n - 1) continue;
+      const std::size_t small = std::min(b - a, n - (b - a));
+      double length = 0;
+      for (std::size_t i = 0; i < N; ++i) length = std::max(length, (views[i].p[a] - views[i].p[b]).norm());
+      pairs.emplace_back(Clearance(views, a, b) < kSliver, 3 * small >= n ? 0 : int(n - small), length, a, b);
+    }
+  std::sort(pairs.begin(), pairs.end());
+  for (const auto& [sliver, bucket, length, a, b] : pairs) {
+    (void)sliver, (void)bucket, (void)length;
+    bool all = true;
+    for (std::size_t i = 0; i < N && all; ++i) {
+      work.Spend(n);
+      all = IsDiagonal(views[i], a, b);
+    }
+    if (all) {
+      *A = a, *B = b;
+      return true;
+    }
+  }
+  return false;
+}
+
+// One pose's link path from a to b with k Steiner points (a path with fewer
+// is padded by subdividing its longest link), end points included, into
+// *out; true if both halves it cuts the piece into are simple with area.
+bool LinkPathSplits(const LinkPaths& L, const View& view, std::size_t a, std::size_t b, int k, Polygon* out) {
+  const std::size_t n = view.p.size(), c = L.cand.size();
+  Polygon& path = *out;
+  path.push_back(view.p[a]);
+  if (L.steiner[a * n + b] > 0)
+    for (int s = L.first[a * n + b];; s = L.next[std::size_t(s) * c + std::size_t(L.last[a * n + b])]) {
+      path.push_back(L.cand[std::size_t(s)]);
+      if (s == L.last[a * n + b]) break;
+    }
+  path.push_back(view.p[b]);
+  while (path.size() < std::size_t(k) + 2) {
+    std::size_t longest = 0;
+    for (std::size_t j = 0; j + 1 < path.size(); ++j)
+      if ((path[j + 1] - path[j]).squaredNorm() > (path[longest + 1] - path[longest]).squaredNorm()) longest = j;
+    path.insert(path.begin() + std::ptrdiff_t(longest + 1), Snap((path[longest] + path[longest + 1]) / 2));
+  }
+  // Both halves must be simple polygons with area in this pose.
+  Polygon left(view.p.begin() + std::ptrdiff_t(a), view.p.begin() + std::ptrdiff_t(b) + 1);
+  left.insert(left.end(), path.rbegin() + 1, path.rend() - 1);
+  Polygon right(view.p.begin() + std::ptrdiff_t(b), view.p.end());
+  right.insert(right.end(), view.p.begin(), view.p.begin() + std::ptrdiff_t(a) + 1);
+  right.insert(right.end(), path.begin() + 1, path.end() - 1);
+  return SignedArea(left) > 0 && SignedArea(right) > 0 && IsSimplePolygon(left) && IsSimplePolygon(right);
+}
+
+// Stages II and III: the chord a-b whose link paths need the fewest Steiner
+// points in every pose, its points added to the mesh as *chain (ids from A
+// to B). Throws poses.Error when none fits.
+void SplitThroughSteiner(const std::vector<View>& views, Work& work, std::size_t max_steiner_points,
+                         const ErrorSource& poses, CompatibleMesh& mesh, std::size_t* A, std::size_t* B,
+                         std::vector<std::size_t>* chain) {
+  const std::size_t N = views.size(), n = views[0].p.size();
+  std::vector<LinkPaths> lp(N);
+  for (std::size_t i = 0; i < N; ++i) lp[i] = ComputeLinkPaths(views[i], work);
+  std::vector<std::tuple<int, bool, std::size_t, std::size_t, std::size_t>> options;  // k, sliver, -balance, a, b
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = a + 2; b < n; ++b) {
+      if (a == 0 && b == n - 1) continue;
+      int k = 0;
+      for (std::size_t i = 0; i < N; ++i) k = std::max(k, lp[i].steiner[a * n + b]);
+      if (k >= kUnreachable) continue;
+      options.emplace_back(k, Clearance(views, a, b) < kSliver, n - std::min(b - a, n - (b - a)), a, b);
+    }
+  std::sort(options.begin(), options.end());
+  for (const auto& [k, sliver, unbalance, a, b] : options) {
+    (void)sliver, (void)unbalance;
+    work.Spend(std::uint64_t(N) * (n + std::size_t(k)) * 8);  // paths, both halves checked simple
+    if (mesh.steiner_points + std::size_t(k) > max_steiner_points) {
+      throw poses.Error("the drawings cannot be triangulated compatibly with at most " +
+                        std::to_string(max_steiner_points) + " Steiner points (mapping.max_steiner_points)");
+    }
+    std::vector<Polygon> paths(N);
+    bool ok = true;
+    for (std::size_t i = 0; i < N && ok; ++i) ok = LinkPathSplits(lp[i], views[i], a, b, k, &paths[i]);
+    if (!ok) continue;
+    *A = a, *B = b;
+    chain->resize(std::size_t(k));
+    for (std::size_t& id : *chain) {
+      id = mesh.vertices[0].size();
+      for (std::size_t i = 0; i < N; ++i) mesh.vertices[i].push_back(Point::Zero());
+    }
+    for (std::size_t i = 0; i < N; ++i)
+      for (std::size_t j = 0; j < chain->size(); ++j) mesh.vertices[i][(*chain)[j]] = paths[i][j + 1];
+    mesh.steiner_points += chain->size();
+    return;
+  }
+  throw poses.Error(
+      "the drawings cannot be triangulated compatibly (no chord joins the same two boundary points inside every pose)");
+}
+
 }  // namespace
 
 CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const ErrorSource& poses,
@@ -215,100 +317,11 @@ CompatibleMesh TriangulateCompatibly(const std::vector<Polygon>& polygons, const
       continue;
     }
 
-    // Stage I: chords visible in every pose, balanced ones first, then short ones.
-    work.Spend(std::uint64_t(n) * n * N);
-    std::vector<std::tuple<bool, int, double, std::size_t, std::size_t>> pairs;
-    for (std::size_t a = 0; a < n; ++a)
-      for (std::size_t b = a + 2; b < n; ++b) {
-        if (a == 0 && b == n - 1) continue;
-        const std::size_t small = std::min(b - a, n - (b - a));
-        double length = 0;
-        for (std::size_t i = 0; i < N; ++i) length = std::max(length, (views[i].p[a] - views[i].p[b]).norm());
-        pairs.emplace_back(Clearance(views, a, b) < kSliver, 3 * small >= n ? 0 : int(n - small), length, a, b);
-      }
-    std::sort(pairs.begin(), pairs.end());
     std::size_t A = 0, B = 0;
-    bool found = false;
-    for (const auto& [sliver, bucket, length, a, b] : pairs) {
-      (void)sliver, (void)bucket, (void)length;
-      bool all = true;
-      for (std::size_t i = 0; i < N && all; ++i) {
-        work.Spend(n);
-        all = IsDiagonal(views[i], a, b);
-      }
-      if (all) {
-        A = a, B = b, found = true;
-        break;
-      }
-    }
     std::vector<std::size_t> chain;  // Steiner vertex ids from A to B
-    if (!found) {
-      // Stages II and III.
-      std::vector<LinkPaths> lp(N);
-      for (std::size_t i = 0; i < N; ++i) lp[i] = ComputeLinkPaths(views[i], work);
-      std::vector<std::tuple<int, bool, std::size_t, std::size_t, std::size_t>> options;  // k, sliver, -balance, a, b
-      for (std::size_t a = 0; a < n; ++a)
-        for (std::size_t b = a + 2; b < n; ++b) {
-          if (a == 0 && b == n - 1) continue;
-          int k = 0;
-          for (std::size_t i = 0; i < N; ++i) k = std::max(k, lp[i].steiner[a * n + b]);
-          if (k >= kUnreachable) continue;
-          options.emplace_back(k, Clearance(views, a, b) < kSliver, n - std::min(b - a, n - (b - a)), a, b);
-        }
-      std::sort(options.begin(), options.end());
-      for (const auto& [k, sliver, unbalance, a, b] : options) {
-        (void)sliver, (void)unbalance;
-        work.Spend(std::uint64_t(N) * (n + std::size_t(k)) * 8);  // paths, both halves checked simple
-        if (mesh.steiner_points + std::size_t(k) > max_steiner_points) {
-          throw poses.Error("the drawings cannot be triangulated compatibly with at most " +
-                            std::to_string(max_steiner_points) + " Steiner points (mapping.max_steiner_points)");
-        }
-        // Each pose's path, padded to k points by subdividing its longest link.
-        std::vector<Polygon> paths(N);
-        bool ok = true;
-        for (std::size_t i = 0; i < N && ok; ++i) {
-          const LinkPaths& L = lp[i];
-          const std::size_t c = L.cand.size();
-          Polygon& path = paths[i];
-          path.push_back(views[i].p[a]);
-          if (L.steiner[a * n + b] > 0)
-            for (int s = L.first[a * n + b];; s = L.next[std::size_t(s) * c + std::size_t(L.last[a * n + b])]) {
-              path.push_back(L.cand[std::size_t(s)]);
-              if (s == L.last[a * n + b]) break;
-            }
-          path.push_back(views[i].p[b]);
-          while (path.size() < std::size_t(k) + 2) {
-            std::size_t longest = 0;
-            for (std::size_t j = 0; j + 1 < path.size(); ++j)
-              if ((path[j + 1] - path[j]).squaredNorm() > (path[longest + 1] - path[longest]).squaredNorm())
-                longest = j;
-            path.insert(path.begin() + std::ptrdiff_t(longest + 1), Snap((path[longest] + path[longest + 1]) / 2));
-          }
-          // Both halves must be simple polygons with area in this pose.
-          Polygon left(views[i].p.begin() + std::ptrdiff_t(a), views[i].p.begin() + std::ptrdiff_t(b) + 1);
-          left.insert(left.end(), path.rbegin() + 1, path.rend() - 1);
-          Polygon right(views[i].p.begin() + std::ptrdiff_t(b), views[i].p.end());
-          right.insert(right.end(), views[i].p.begin(), views[i].p.begin() + std::ptrdiff_t(a) + 1);
-          right.insert(right.end(), path.begin() + 1, path.end() - 1);
-          ok = SignedArea(left) > 0 && SignedArea(right) > 0 && IsSimplePolygon(left) && IsSimplePolygon(right);
-        }
-        if (!ok) continue;
-        A = a, B = b, found = true;
-        chain.resize(std::size_t(k));
-        for (std::size_t& id : chain) {
-          id = mesh.vertices[0].size();
-          for (std::size_t i = 0; i < N; ++i) mesh.vertices[i].push_back(Point::Zero());
-        }
-        for (std::size_t i = 0; i < N; ++i)
-          for (std::size_t j = 0; j < chain.size(); ++j) mesh.vertices[i][chain[j]] = paths[i][j + 1];
-        mesh.steiner_points += chain.size();
-        break;
-      }
-      if (!found)
-        throw poses.Error(
-            "the drawings cannot be triangulated compatibly (no chord joins the same two "
-            "boundary points inside every pose)");
-    }
+    work.Spend(std::uint64_t(n) * n * N);
+    if (!FindCommonChord(views, work, &A, &B))
+      SplitThroughSteiner(views, work, max_steiner_points, poses, mesh, &A, &B, &chain);
     Piece left(piece.begin() + std::ptrdiff_t(A), piece.begin() + std::ptrdiff_t(B) + 1);
     left.insert(left.end(), chain.rbegin(), chain.rend());
     Piece right(piece.begin() + std::ptrdiff_t(B), piece.end());
