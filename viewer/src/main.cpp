@@ -146,6 +146,54 @@ struct Options {
 };
 using CameraMode = Options::CameraMode;
 
+// The options without a value; false if `a` is none of them.
+bool ParseSwitch(const std::string& a, Options& o) {
+  if (a == "--headless")
+    o.headless = true;
+  else if (a == "--validation")
+    o.validation = true;
+  else if (a == "--no-weight-limit" || a == "--no-shear-limit")  // the second: its deprecated name
+    o.scene.limit_weights = false;
+  else if (a == "--linear")
+    o.scene.linear = true;
+  else if (a == "--wireframe")
+    o.scene.wireframe = true;
+  else if (a == "--compare")
+    o.scene.compare_linear = true;
+  else if (a == "--bases")
+    o.scene.show_bases = true;
+  else
+    return false;
+  return true;
+}
+
+// --camera X,Y,ZOOM or 1:1.
+bool ParseCamera(const char* v, Options& o) {
+  const auto n = bake::ParseNumbers(v, ',');
+  if (std::strcmp(v, "1:1") == 0) {
+    o.camera_mode = CameraMode::kOneToOne;
+  } else if (n && n->size() == 3 && (*n)[2] >= Camera::kMinZoom && (*n)[2] <= Camera::kMaxZoom) {
+    o.camera_mode = CameraMode::kGiven;
+    o.given_camera.centre = {(*n)[0], (*n)[1]};
+    o.given_camera.zoom = (*n)[2];
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// --size WxH, each 1..8192.
+bool ParseSize(const char* v, Options& o) {
+  const std::string size = v;
+  const std::size_t x = size.find('x');
+  std::uint32_t w = 0, h = 0;
+  if (x == std::string::npos || !ParseCount(size.substr(0, x).c_str(), 1, 8192, &w) ||
+      !ParseCount(size.substr(x + 1).c_str(), 1, 8192, &h))
+    return false;
+  o.width = w, o.height = h;
+  return true;
+}
+
 // The options into `o`; -1 to go on, or the exit status (usage, --help).
 int ParseOptions(int argc, char** argv, Options& o) {
   if (argc < 2) return std::fputs(kUsage, stderr), 2;
@@ -154,20 +202,8 @@ int ParseOptions(int argc, char** argv, Options& o) {
     if (a == "-h" || a == "--help") return std::fputs(kUsage, stdout), 0;
     auto value = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
     const char* v = nullptr;
-    if (a == "--headless")
-      o.headless = true;
-    else if (a == "--validation")
-      o.validation = true;
-    else if (a == "--no-weight-limit" || a == "--no-shear-limit")  // the second: its deprecated name
-      o.scene.limit_weights = false;
-    else if (a == "--linear")
-      o.scene.linear = true;
-    else if (a == "--wireframe")
-      o.scene.wireframe = true;
-    else if (a == "--compare")
-      o.scene.compare_linear = true;
-    else if (a == "--bases")
-      o.scene.show_bases = true;
+    if (ParseSwitch(a, o))
+      continue;
     else if (a == "-o" && (v = value()))
       o.output = v;
     else if (a == "--smoke-test" && (v = value()))
@@ -208,24 +244,9 @@ int ParseOptions(int argc, char** argv, Options& o) {
       if (!ParseTransform(v, &o.scene.transform))
         return Usage("--transform wants move=X:Y,rotate=DEGREES,scale=S|SX:SY,flip (any of them, finite, scale not 0)");
     } else if (a == "--camera" && (v = value())) {
-      const auto n = bake::ParseNumbers(v, ',');
-      if (std::strcmp(v, "1:1") == 0) {
-        o.camera_mode = CameraMode::kOneToOne;
-      } else if (n && n->size() == 3 && (*n)[2] >= Camera::kMinZoom && (*n)[2] <= Camera::kMaxZoom) {
-        o.camera_mode = CameraMode::kGiven;
-        o.given_camera.centre = {(*n)[0], (*n)[1]};
-        o.given_camera.zoom = (*n)[2];
-      } else {
-        return Usage("--camera wants X,Y,ZOOM (ZOOM pixels per world unit, 1/256..256) or 1:1");
-      }
+      if (!ParseCamera(v, o)) return Usage("--camera wants X,Y,ZOOM (ZOOM pixels per world unit, 1/256..256) or 1:1");
     } else if (a == "--size" && (v = value())) {
-      const std::string size = v;
-      const std::size_t x = size.find('x');
-      std::uint32_t w = 0, h = 0;
-      if (x == std::string::npos || !ParseCount(size.substr(0, x).c_str(), 1, 8192, &w) ||
-          !ParseCount(size.substr(x + 1).c_str(), 1, 8192, &h))
-        return Usage("--size wants WxH, each 1..8192");
-      o.width = w, o.height = h;
+      if (!ParseSize(v, o)) return Usage("--size wants WxH, each 1..8192");
     } else if (a == "--at" && (v = value())) {
       const auto n = bake::ParseNumbers(v, ',');
       if (!n || n->size() != 2) return Usage("--at wants X,Y");
