@@ -82,42 +82,32 @@ double Length(const char* text) {  // "120", "120px"
   return end == text ? 0 : v;
 }
 
-}  // namespace
-
-Polygon FlattenSvgPath(const std::string& d, double tol, const ErrorSource& source) {
-  if (!(tol > 0)) throw source.Error("curve flattening tolerance must be positive");
-  PathScanner s{d, source};
-  Polygon out;
-  Point cur(0, 0), start(0, 0), last_control(0, 0);
+// The pen along path data: where it is, where its subpath started, the
+// last control point (for S and T), the previous command.
+struct Pen {
+  PathScanner& s;
+  double tol;
+  const ErrorSource& source;
+  Polygon& out;
+  Point cur{0, 0}, start{0, 0}, last_control{0, 0};
   char previous = 0;
   bool begun = false;
-  for (;;) {
-    s.SkipSeparators();
-    if (s.i >= d.size()) break;
-    char cmd = d[s.i];
-    if (std::isalpha(static_cast<unsigned char>(cmd))) {
-      ++s.i;
-    } else if (previous != 0 && previous != 'Z' && previous != 'z') {
-      cmd = previous == 'M' ? 'L' : previous == 'm' ? 'l' : previous;  // repeated arguments
-    } else {
-      throw source.Error("path data: expected a command at character " + std::to_string(s.i));
-    }
-    const bool rel = std::islower(static_cast<unsigned char>(cmd));
-    const char up = char(std::toupper(static_cast<unsigned char>(cmd)));
-    if (!begun && up != 'M') throw source.Error("path data must start with M");
-    if (begun && up == 'M') break;  // the outline is the first subpath
-    auto pt = [&]() {
-      const double x = s.Number(), y = s.Number();
-      return rel ? Point(cur + Point(x, y)) : Point(x, y);
-    };
+
+  Point Pt(bool rel) {
+    const double x = s.Number(), y = s.Number();
+    return rel ? Point(cur + Point(x, y)) : Point(x, y);
+  }
+
+  // One command (`up`: its upper-case letter) with its arguments.
+  void Draw(char cmd, char up, bool rel) {
     switch (up) {
       case 'M':
-        cur = start = pt();
+        cur = start = Pt(rel);
         out.push_back(cur);
         begun = true;
         break;
       case 'L':
-        cur = pt();
+        cur = Pt(rel);
         out.push_back(cur);
         break;
       case 'H': {
@@ -137,10 +127,10 @@ Polygon FlattenSvgPath(const std::string& d, double tol, const ErrorSource& sour
         Point c1;
         const char pu = char(std::toupper(static_cast<unsigned char>(previous)));
         if (up == 'C')
-          c1 = pt();
+          c1 = Pt(rel);
         else
           c1 = (pu == 'C' || pu == 'S') ? Point(2 * cur - last_control) : cur;
-        const Point c2 = pt(), end = pt();
+        const Point c2 = Pt(rel), end = Pt(rel);
         FlattenCubic(cur, c1, c2, end, tol, 0, out);
         last_control = c2;
         cur = end;
@@ -151,10 +141,10 @@ Polygon FlattenSvgPath(const std::string& d, double tol, const ErrorSource& sour
         Point c;
         const char pu = char(std::toupper(static_cast<unsigned char>(previous)));
         if (up == 'Q')
-          c = pt();
+          c = Pt(rel);
         else
           c = (pu == 'Q' || pu == 'T') ? Point(2 * cur - last_control) : cur;
-        const Point end = pt();
+        const Point end = Pt(rel);
         FlattenCubic(cur, cur + 2.0 / 3 * (c - cur), end + 2.0 / 3 * (c - end), end, tol, 0, out);
         last_control = c;
         cur = end;
@@ -168,6 +158,34 @@ Polygon FlattenSvgPath(const std::string& d, double tol, const ErrorSource& sour
       default:
         throw source.Error(std::string("path data: unknown command '") + cmd + "'");
     }
+  }
+};
+
+}  // namespace
+
+Polygon FlattenSvgPath(const std::string& d, double tol, const ErrorSource& source) {
+  if (!(tol > 0)) throw source.Error("curve flattening tolerance must be positive");
+  PathScanner s{d, source};
+  Polygon out;
+  Pen pen{s, tol, source, out};
+  char& previous = pen.previous;
+  const bool& begun = pen.begun;
+  for (;;) {
+    s.SkipSeparators();
+    if (s.i >= d.size()) break;
+    char cmd = d[s.i];
+    if (std::isalpha(static_cast<unsigned char>(cmd))) {
+      ++s.i;
+    } else if (previous != 0 && previous != 'Z' && previous != 'z') {
+      cmd = previous == 'M' ? 'L' : previous == 'm' ? 'l' : previous;  // repeated arguments
+    } else {
+      throw source.Error("path data: expected a command at character " + std::to_string(s.i));
+    }
+    const bool rel = std::islower(static_cast<unsigned char>(cmd));
+    const char up = char(std::toupper(static_cast<unsigned char>(cmd)));
+    if (!begun && up != 'M') throw source.Error("path data must start with M");
+    if (begun && up == 'M') break;  // the outline is the first subpath
+    pen.Draw(cmd, up, rel);
     previous = cmd;
     if (out.size() > kMaxOutlinePoints)
       throw source.Error("the path flattens to more than " + std::to_string(kMaxOutlinePoints) +
