@@ -35,9 +35,11 @@ bool HasCanvases(const PoseMeshes& meshes) {
   return false;
 }
 
-std::vector<unsigned char> SerialiseRig(const RigDescription& description, const PoseMeshes& meshes,
-                                        const PoseAnalysis& analysis, const ArapSystem& system,
-                                        const WeightGrid& grid) {
+namespace {
+
+// META: counts, flags, the grid's geometry, sigma and the rig's size.
+fmt::Meta MakeMeta(const RigDescription& description, const PoseMeshes& meshes, const ArapSystem& system,
+                   const WeightGrid& grid) {
   const std::size_t V = meshes.poses[0].vertices.size(), T = meshes.triangles.size(), N = meshes.poses.size();
   fmt::Meta meta{};
   meta.vertex_count = std::uint32_t(V);
@@ -56,16 +58,27 @@ std::vector<unsigned char> SerialiseRig(const RigDescription& description, const
   meta.default_sigma = description.parameters.sigma;
   meta.rig_size = RigBoundingBoxDiagonal(meshes);
 
-  std::vector<std::uint32_t> tris;
-  for (const auto& t : meshes.triangles) tris.insert(tris.end(), t.begin(), t.end());
+  return meta;
+}
+
+// The poses' vertices, points, centroids (mass-weighted) and uvs, flat.
+struct PoseArrays {
   std::vector<double> positions, pose_points, centroids;
   std::vector<float> uvs;
+};
+
+PoseArrays FlattenPoses(const PoseMeshes& meshes, const std::vector<double>& vertex_masses) {
+  const std::size_t V = meshes.poses[0].vertices.size();
+  const bool has_uvs = !meshes.poses[0].uvs.empty();
+  PoseArrays a;
+  std::vector<double>&positions = a.positions, &pose_points = a.pose_points, &centroids = a.centroids;
+  std::vector<float>& uvs = a.uvs;
   for (const PoseMesh& p : meshes.poses) {
     Eigen::Vector2d c = Eigen::Vector2d::Zero();
     for (std::size_t v = 0; v < V; ++v) {
       positions.push_back(p.vertices[v].x());
       positions.push_back(p.vertices[v].y());
-      c += system.vertex_masses[v] * p.vertices[v];
+      c += vertex_masses[v] * p.vertices[v];
       if (has_uvs) {
         uvs.push_back(p.uvs[v].x());
         uvs.push_back(p.uvs[v].y());
@@ -76,8 +89,19 @@ std::vector<unsigned char> SerialiseRig(const RigDescription& description, const
     centroids.push_back(c.x());
     centroids.push_back(c.y());
   }
+  return a;
+}
+
+// STRS (pose names, image references, path names), PATH and PKEY.
+struct NamesAndPaths {
   std::vector<unsigned char> strings, path_table;
   std::vector<double> keys;
+};
+
+NamesAndPaths FlattenNamesAndPaths(const RigDescription& description, const PoseMeshes& meshes) {
+  NamesAndPaths a;
+  std::vector<unsigned char>&strings = a.strings, &path_table = a.path_table;
+  std::vector<double>& keys = a.keys;
   for (const PoseMesh& p : meshes.poses) AppendString(strings, p.name);
   for (const PoseMesh& p : meshes.poses) AppendString(strings, p.image);
   for (const auto& path : description.paths) {
@@ -92,12 +116,26 @@ std::vector<unsigned char> SerialiseRig(const RigDescription& description, const
     for (const auto& k : path.keys) keys.insert(keys.end(), k.begin(), k.end());
   }
 
+  return a;
+}
+
+}  // namespace
+
+std::vector<unsigned char> SerialiseRig(const RigDescription& description, const PoseMeshes& meshes,
+                                        const PoseAnalysis& analysis, const ArapSystem& system,
+                                        const WeightGrid& grid) {
+  const fmt::Meta meta = MakeMeta(description, meshes, system, grid);
+  const bool has_uvs = !meshes.poses[0].uvs.empty();
+  std::vector<std::uint32_t> tris;
+  for (const auto& t : meshes.triangles) tris.insert(tris.end(), t.begin(), t.end());
+  const PoseArrays poses = FlattenPoses(meshes, system.vertex_masses);
+  const NamesAndPaths names = FlattenNamesAndPaths(description, meshes);
   RigWriter w;
   w.Add(fmt::kMeta, Bytes(meta));
   w.AddArray(fmt::kTriangles, tris);
-  w.AddArray(fmt::kPosePositions, positions);
-  w.AddArray(fmt::kPosePoints, pose_points);
-  w.AddArray(fmt::kPoseCentroids, centroids);
+  w.AddArray(fmt::kPosePositions, poses.positions);
+  w.AddArray(fmt::kPosePoints, poses.pose_points);
+  w.AddArray(fmt::kPoseCentroids, poses.centroids);
   w.AddArray(fmt::kVertexMasses, system.vertex_masses);
   w.AddArray(fmt::kGradients, system.gradients);
   w.AddArray(fmt::kAngles, analysis.angles);
@@ -110,10 +148,10 @@ std::vector<unsigned char> SerialiseRig(const RigDescription& description, const
   std::vector<double> grid_nodes = grid.weights;  // corners, then cell centres (format 1.2)
   grid_nodes.insert(grid_nodes.end(), grid.centre_weights.begin(), grid.centre_weights.end());
   w.AddArray(fmt::kWeightGrid, grid_nodes);
-  w.Add(fmt::kStrings, strings);
-  w.Add(fmt::kPaths, path_table);
-  w.AddArray(fmt::kPathKeys, keys);
-  if (has_uvs) w.AddArray(fmt::kUVs, uvs);
+  w.Add(fmt::kStrings, names.strings);
+  w.Add(fmt::kPaths, names.path_table);
+  w.AddArray(fmt::kPathKeys, names.keys);
+  if (has_uvs) w.AddArray(fmt::kUVs, poses.uvs);
   if (HasCanvases(meshes)) {
     std::vector<double> canvases;
     for (const PoseMesh& p : meshes.poses)
