@@ -2,25 +2,11 @@
 // posemorph-bake sheet RIG.pmrig: a contact sheet of frames across pose space.
 #include "commands.h"
 
-#include <algorithm>
-#include <chrono>
-#include <cmath>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iomanip>
-#include <sstream>
 
 #include "command_args.h"
 #include "posemorph/bake/bake.h"
-#include "posemorph/bake/deform_poses.h"
-#include "posemorph/bake/error.h"
-#include "posemorph/bake/input_file.h"
-#include "posemorph/bake/stage.h"
-#include "posemorph/path.h"
 #include "posemorph/rig.h"
-#include "posemorph/rig_format.h"
 #include "preview.h"
 #include "textured_sheet.h"
 

@@ -14,10 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <functional>
 #include <memory>
-#include <sstream>
 
 #include "posemorph/bake/arap_deformer.h"
 #include "posemorph/bake/bake.h"
