@@ -11,18 +11,23 @@
 
 namespace posemorph::bake {
 
-ArapSystem BuildArapSystem(const Points& rest, const Triangles& triangles, const std::string& file) {
-  const std::size_t V = rest.size(), n = V - 1;
-  ArapSystem sys;
-  sys.gradients.resize(6 * triangles.size());
-  sys.vertex_masses.assign(V, 0.0);
+namespace {
 
+// K (pose 0's stiffness, vertex 0 pinned) as triplets, the gradients and the
+// vertex masses (unnormalised); the smallest and largest triangle areas.
+struct Assembly {
+  std::vector<Eigen::Triplet<double>> entries;
+  double total_area = 0, smallest_area = HUGE_VAL, largest_area = 0;
+};
+
+Assembly Assemble(const Points& rest, const Triangles& triangles, ArapSystem& sys) {
+  Assembly out;
+  std::vector<Eigen::Triplet<double>>& entries = out.entries;
+  double &total_area = out.total_area, &smallest_area = out.smallest_area, &largest_area = out.largest_area;
   // D maps (x_a, x_b, x_c) to the edge differences (x_a - x_c, x_b - x_c).
   Eigen::Matrix<double, 2, 3> D;
   D << 1, 0, -1, 0, 1, -1;
-  std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(9 * triangles.size());
-  double total_area = 0, smallest_area = HUGE_VAL, largest_area = 0;
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     const auto& tri = triangles[t];
     const Eigen::Matrix2d E = EdgeMatrix(rest, tri);
@@ -43,12 +48,12 @@ ArapSystem BuildArapSystem(const Points& rest, const Triangles& triangles, const
       for (int c = 0; c < 3; ++c)
         if (tri[r] != 0 && tri[c] != 0) entries.emplace_back(int(tri[r] - 1), int(tri[c] - 1), Kt(r, c));
   }
-  for (double& m : sys.vertex_masses) m /= total_area;
-  sys.K.resize(int(n), int(n));
-  sys.K.setFromTriplets(entries.begin(), entries.end());
+  return out;
+}
 
-  // Fill-reducing order; Eigen's AMD returns the inverse permutation, whose
-  // indices are exactly "which unknown goes to position k'".
+// Fill-reducing order; Eigen's AMD returns the inverse permutation, whose
+// indices are exactly "which unknown goes to position k'".
+Eigen::SparseMatrix<double> Reordered(ArapSystem& sys, std::size_t n) {
   Eigen::AMDOrdering<int> amd;
   Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int> inverse_perm;
   amd(sys.K, inverse_perm);
@@ -62,6 +67,26 @@ ArapSystem BuildArapSystem(const Points& rest, const Triangles& triangles, const
       permuted.emplace_back(position[it.row()], position[it.col()], it.value());
   Eigen::SparseMatrix<double> Kp(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
   Kp.setFromTriplets(permuted.begin(), permuted.end());
+  return Kp;
+}
+
+}  // namespace
+
+ArapSystem BuildArapSystem(const Points& rest, const Triangles& triangles, const std::string& file) {
+  const std::size_t V = rest.size(), n = V - 1;
+  ArapSystem sys;
+  sys.gradients.resize(6 * triangles.size());
+  sys.vertex_masses.assign(V, 0.0);
+
+  const Assembly assembly = Assemble(rest, triangles, sys);
+  const double total_area = assembly.total_area, smallest_area = assembly.smallest_area,
+               largest_area = assembly.largest_area;
+  const std::vector<Eigen::Triplet<double>>& entries = assembly.entries;
+  for (double& m : sys.vertex_masses) m /= total_area;
+  sys.K.resize(int(n), int(n));
+  sys.K.setFromTriplets(entries.begin(), entries.end());
+
+  const Eigen::SparseMatrix<double> Kp = Reordered(sys, n);
 
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::NaturalOrdering<int>> ldlt(Kp);
   // A failure here means the rest pose's triangles are beyond what double
