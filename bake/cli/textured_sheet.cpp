@@ -90,10 +90,65 @@ std::vector<RgbaImage> ReadPoseDrawings(const Rig& rig, const std::string& rig_f
   return out;
 }
 
+namespace {
+
+// The sheet being drawn: premultiplied colour accumulated per pixel, and
+// which pixels a triangle has covered (a pixel on a shared edge is drawn once).
+struct SheetCanvas {
+  std::uint32_t width = 0;
+  std::vector<double> acc;
+  std::vector<unsigned char> covered;
+};
+
+// One frame into its cell (centred at ox, oy; cell column cx, row cy): each
+// triangle rasterised, each pixel the texture-weighted mix of the drawings.
+void DrawFrame(const Rig& rig, const std::vector<RgbaImage>& drawings, const Frame& f, std::uint32_t cx,
+               std::uint32_t cy, const TexturedSheetLayout& lay, TextureFilter filter, SheetCanvas& canvas) {
+  const std::uint32_t N = rig.pose_count(), T = rig.triangle_count(), cell = lay.cell;
+  const double ox = (cx + 0.5) * cell, oy = (cy + 0.5) * cell;
+  std::vector<double>& acc = canvas.acc;
+  std::vector<unsigned char>& covered = canvas.covered;
+  auto sx = [&](std::uint32_t v) { return ox + (f.positions[2 * v] - lay.centre_x) * lay.scale; };
+  auto sy = [&](std::uint32_t v) { return oy - (f.positions[2 * v + 1] - lay.centre_y) * lay.scale; };
+  for (std::uint32_t t = 0; t < T; ++t) {
+    const std::uint32_t* tri = rig.triangles().data + 3 * t;
+    const double ax = sx(tri[0]), ay = sy(tri[0]), bx = sx(tri[1]), by = sy(tri[1]), qx = sx(tri[2]), qy = sy(tri[2]);
+    const double area = (bx - ax) * (qy - ay) - (by - ay) * (qx - ax);
+    if (!(std::abs(area) > 1e-12)) continue;
+    const long px0 = std::max<long>(long(std::floor(std::min({ax, bx, qx}))), long(cx * cell));
+    const long px1 = std::min<long>(long(std::ceil(std::max({ax, bx, qx}))), long((cx + 1) * cell) - 1);
+    const long py0 = std::max<long>(long(std::floor(std::min({ay, by, qy}))), long(cy * cell));
+    const long py1 = std::min<long>(long(std::ceil(std::max({ay, by, qy}))), long((cy + 1) * cell) - 1);
+    for (long py = py0; py <= py1; ++py)
+      for (long px = px0; px <= px1; ++px) {
+        const std::size_t at = std::size_t(py) * canvas.width + std::size_t(px);
+        if (covered[at]) continue;  // a pixel on a shared edge is drawn once
+        const double x = px + 0.5, y = py + 0.5;
+        const double l1 = ((x - ax) * (qy - ay) - (y - ay) * (qx - ax)) / area;
+        const double l2 = ((bx - ax) * (y - ay) - (by - ay) * (x - ax)) / area;
+        const double l0 = 1 - l1 - l2;
+        if (l0 < -1e-9 || l1 < -1e-9 || l2 < -1e-9) continue;
+        covered[at] = 1;
+        for (std::uint32_t i = 0; i < N; ++i) {
+          const double w = f.texture[i];
+          if (!(w > 1e-6)) continue;
+          const auto uv = rig.uvs(i);
+          const double u = l0 * uv[2 * tri[0]] + l1 * uv[2 * tri[1]] + l2 * uv[2 * tri[2]];
+          const double v = l0 * uv[2 * tri[0] + 1] + l1 * uv[2 * tri[1] + 1] + l2 * uv[2 * tri[2] + 1];
+          double c[4];
+          Sample(drawings[i], u, v, filter, c);
+          for (int ch = 0; ch < 4; ++ch) acc[at * 4 + std::size_t(ch)] += w * c[ch];
+        }
+      }
+  }
+}
+
+}  // namespace
+
 RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, int columns, int rows,
                         const EvalOptions& options, TextureFilter filter, std::uint32_t cell,
                         TexturedSheetLayout* layout) {
-  const std::uint32_t N = rig.pose_count(), V = rig.vertex_count(), T = rig.triangle_count();
+  const std::uint32_t N = rig.pose_count(), V = rig.vertex_count();
   const auto pts = rig.pose_points();
   std::vector<Frame> frames;
   for (std::uint32_t i = 0; i < N; ++i) frames.push_back(EvaluateFrame(rig, pts[2 * i], pts[2 * i + 1], options));
@@ -120,46 +175,16 @@ RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, 
   RgbaImage sheet;
   sheet.width = lay.columns * cell;
   sheet.height = (1 + grid_rows) * cell;
-  std::vector<double> acc(std::size_t(sheet.width) * sheet.height * 4, 0.0);
-  std::vector<unsigned char> covered(std::size_t(sheet.width) * sheet.height, 0);
+  SheetCanvas canvas;
+  canvas.width = sheet.width;
+  canvas.acc.assign(std::size_t(sheet.width) * sheet.height * 4, 0.0);
+  canvas.covered.assign(std::size_t(sheet.width) * sheet.height, 0);
+  const std::vector<double>& acc = canvas.acc;
+  const std::vector<unsigned char>& covered = canvas.covered;
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const std::uint32_t cx = k < N ? std::uint32_t(k) : std::uint32_t(k - N) % std::uint32_t(columns);
     const std::uint32_t cy = k < N ? 0 : 1 + std::uint32_t(k - N) / std::uint32_t(columns);
-    const double ox = (cx + 0.5) * cell, oy = (cy + 0.5) * cell;
-    const Frame& f = frames[k];
-    auto sx = [&](std::uint32_t v) { return ox + (f.positions[2 * v] - lay.centre_x) * lay.scale; };
-    auto sy = [&](std::uint32_t v) { return oy - (f.positions[2 * v + 1] - lay.centre_y) * lay.scale; };
-    for (std::uint32_t t = 0; t < T; ++t) {
-      const std::uint32_t* tri = rig.triangles().data + 3 * t;
-      const double ax = sx(tri[0]), ay = sy(tri[0]), bx = sx(tri[1]), by = sy(tri[1]), qx = sx(tri[2]), qy = sy(tri[2]);
-      const double area = (bx - ax) * (qy - ay) - (by - ay) * (qx - ax);
-      if (!(std::abs(area) > 1e-12)) continue;
-      const long px0 = std::max<long>(long(std::floor(std::min({ax, bx, qx}))), long(cx * cell));
-      const long px1 = std::min<long>(long(std::ceil(std::max({ax, bx, qx}))), long((cx + 1) * cell) - 1);
-      const long py0 = std::max<long>(long(std::floor(std::min({ay, by, qy}))), long(cy * cell));
-      const long py1 = std::min<long>(long(std::ceil(std::max({ay, by, qy}))), long((cy + 1) * cell) - 1);
-      for (long py = py0; py <= py1; ++py)
-        for (long px = px0; px <= px1; ++px) {
-          const std::size_t at = std::size_t(py) * sheet.width + std::size_t(px);
-          if (covered[at]) continue;  // a pixel on a shared edge is drawn once
-          const double x = px + 0.5, y = py + 0.5;
-          const double l1 = ((x - ax) * (qy - ay) - (y - ay) * (qx - ax)) / area;
-          const double l2 = ((bx - ax) * (y - ay) - (by - ay) * (x - ax)) / area;
-          const double l0 = 1 - l1 - l2;
-          if (l0 < -1e-9 || l1 < -1e-9 || l2 < -1e-9) continue;
-          covered[at] = 1;
-          for (std::uint32_t i = 0; i < N; ++i) {
-            const double w = f.texture[i];
-            if (!(w > 1e-6)) continue;
-            const auto uv = rig.uvs(i);
-            const double u = l0 * uv[2 * tri[0]] + l1 * uv[2 * tri[1]] + l2 * uv[2 * tri[2]];
-            const double v = l0 * uv[2 * tri[0] + 1] + l1 * uv[2 * tri[1] + 1] + l2 * uv[2 * tri[2] + 1];
-            double c[4];
-            Sample(drawings[i], u, v, filter, c);
-            for (int ch = 0; ch < 4; ++ch) acc[at * 4 + std::size_t(ch)] += w * c[ch];
-          }
-        }
-    }
+    DrawFrame(rig, drawings, frames[k], cx, cy, lay, filter, canvas);
   }
   // Over a light background, as the viewer's.
   const double background[3] = {0.93, 0.94, 0.95};
