@@ -29,6 +29,28 @@ struct MorphBuffers {
   std::vector<float> f32;
 };
 
+template <typename Job, typename Buffers>
+using Breaks = std::vector<std::pair<const char*, std::function<void(Job&, Buffers&)>>>;
+
+// From a valid job over a copy of `fresh`, each case breaks one thing:
+// Validate() is false, Run() refuses, and `untouched` finds the outputs as
+// they were.
+template <typename Job, typename Buffers, typename Valid, typename Untouched>
+void CheckRefusals(const Buffers& fresh, Valid valid, const Breaks<Job, Buffers>& cases, Untouched untouched) {
+  for (const auto& c : cases) {
+    const char* what = c.first;  // (Clang 14 cannot capture a structured binding)
+    CAPTURE(what);
+    Buffers b = fresh;
+    Job j;
+    valid(j, b);
+    REQUIRE(j.Validate());
+    c.second(j, b);
+    CHECK_FALSE(j.Validate());
+    CHECK_FALSE(j.Run());
+    untouched(b);
+  }
+}
+
 }  // namespace
 
 TEST_CASE("WeightsJob: a valid job runs, and each failure case of its header is refused") {
@@ -51,8 +73,7 @@ TEST_CASE("WeightsJob: a valid job runs, and each failure case of its header is 
     CHECK(std::fabs(sum - 1) < 1e-12);
   }
   const Rig empty;
-  using F = std::function<void(WeightsJob&, WeightsBuffers&)>;
-  const std::vector<std::pair<const char*, F>> cases = {
+  const Breaks<WeightsJob, WeightsBuffers> cases = {
       {"null rig", [](WeightsJob& j, WeightsBuffers&) { j.rig = nullptr; }},
       {"rig not loaded", [&](WeightsJob& j, WeightsBuffers&) { j.rig = &empty; }},
       {"raw null", [](WeightsJob& j, WeightsBuffers&) { j.raw = {}; }},
@@ -77,19 +98,10 @@ TEST_CASE("WeightsJob: a valid job runs, and each failure case of its header is 
          j.texture = {b.texture.data(), b.texture.size() - 1};
        }},
   };
-  for (const auto& c : cases) {
-    const char* what = c.first;  // (Clang 14 cannot capture a structured binding)
-    CAPTURE(what);
-    WeightsBuffers b = fresh;
-    WeightsJob j;
-    valid(j, b);
-    REQUIRE(j.Validate());
-    c.second(j, b);
-    CHECK_FALSE(j.Validate());
-    CHECK_FALSE(j.Run());
+  CheckRefusals<WeightsJob>(fresh, valid, cases, [](const WeightsBuffers& b) {
     for (const std::vector<double>* out : {&b.raw, &b.limited, &b.texture})
       for (double v : *out) REQUIRE(v == kSentinel);
-  }
+  });
 }
 
 TEST_CASE("MorphJob: a valid job runs, and each failure case of its header is refused") {
@@ -113,9 +125,8 @@ TEST_CASE("MorphJob: a valid job runs, and each failure case of its header is re
     for (double v : b.positions) REQUIRE(std::isfinite(v));
   }
   const Rig empty;
-  using F = std::function<void(MorphJob&, MorphBuffers&)>;
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  const std::vector<std::pair<const char*, F>> cases = {
+  const Breaks<MorphJob, MorphBuffers> cases = {
       {"null rig", [](MorphJob& j, MorphBuffers&) { j.rig = nullptr; }},
       {"rig not loaded", [&](MorphJob& j, MorphBuffers&) { j.rig = &empty; }},
       {"weights null", [](MorphJob& j, MorphBuffers&) { j.weights = {}; }},
@@ -151,19 +162,10 @@ TEST_CASE("MorphJob: a valid job runs, and each failure case of its header is re
        }},
       {"unknown interpolation", [](MorphJob& j, MorphBuffers&) { j.interpolation = Interpolation(7); }},
   };
-  for (const auto& c : cases) {
-    const char* what = c.first;  // (Clang 14 cannot capture a structured binding)
-    CAPTURE(what);
-    MorphBuffers b = fresh;
-    MorphJob j;
-    valid(j, b);
-    REQUIRE(j.Validate());
-    c.second(j, b);
-    CHECK_FALSE(j.Validate());
-    CHECK_FALSE(j.Run());
+  CheckRefusals<MorphJob>(fresh, valid, cases, [](const MorphBuffers& b) {
     for (double v : b.positions) REQUIRE(v == kSentinel);
     for (float v : b.f32) REQUIRE(v == float(kSentinel));
-  }
+  });
 }
 
 TEST_CASE("MorphBatchJob: a valid job runs, and each failure case of its header is refused") {
@@ -188,9 +190,8 @@ TEST_CASE("MorphBatchJob: a valid job runs, and each failure case of its header 
     for (double v : b.positions) REQUIRE(std::isfinite(v));
   }
   const Rig empty;
-  using F = std::function<void(MorphBatchJob&, MorphBuffers&)>;
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  const std::vector<std::pair<const char*, F>> cases = {
+  const Breaks<MorphBatchJob, MorphBuffers> cases = {
       {"null rig", [](MorphBatchJob& j, MorphBuffers&) { j.rig = nullptr; }},
       {"rig not loaded", [&](MorphBatchJob& j, MorphBuffers&) { j.rig = &empty; }},
       {"count overflows", [](MorphBatchJob& j, MorphBuffers&) { j.count = std::size_t(-1) / 4; }},
@@ -220,17 +221,8 @@ TEST_CASE("MorphBatchJob: a valid job runs, and each failure case of its header 
          j.positions_f32 = {b.f32.data(), b.f32.size() - 1};
        }},
   };
-  for (const auto& c : cases) {
-    const char* what = c.first;  // (Clang 14 cannot capture a structured binding)
-    CAPTURE(what);
-    MorphBuffers b = fresh;
-    MorphBatchJob j;
-    valid(j, b);
-    REQUIRE(j.Validate());
-    c.second(j, b);
-    CHECK_FALSE(j.Validate());
-    CHECK_FALSE(j.Run());
+  CheckRefusals<MorphBatchJob>(fresh, valid, cases, [](const MorphBuffers& b) {
     for (double v : b.positions) REQUIRE(v == kSentinel);
     for (float v : b.f32) REQUIRE(v == float(kSentinel));
-  }
+  });
 }
