@@ -324,7 +324,12 @@ void pm_transform_make(double x, double y, double radians, double scale_x, doubl
 }
 
 void pm_draw_options_default(pm_draw_options* out) {
-  if (out) *out = {-1.0, 1, 0, posemorph::kMaxBlendDrawings};
+  if (!out) return;
+  *out = pm_draw_options{};
+  out->sigma = -1.0;
+  out->limit_weights = 1;
+  out->linear = 0;
+  out->max_drawings = posemorph::kMaxBlendDrawings;
 }
 
 int pm_draw_list_buffers(const pm_rig* rig, size_t count, size_t* workspace_doubles, size_t* position_floats) {

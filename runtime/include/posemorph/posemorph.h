@@ -214,7 +214,9 @@ typedef struct pm_draw_options {
   int linear;            /* 1: linear vertex blending (for comparison) */
   uint32_t max_drawings; /* K in 1..8: drawings the renderer blends per character */
 } pm_draw_options;
-/* sigma -1, limit_weights 1, linear 0, max_drawings 8. */
+/* sigma -1, limit_weights 1, linear 0, max_drawings 8. Start from these
+ * and set fields by name (a positional initialiser needs braces around
+ * limit_weights where the alias union is there). */
 PM_API void pm_draw_options_default(pm_draw_options* out);
 /* The buffers pm_draw_lists needs for `count` characters: workspace
  * (doubles) and positions (floats). */
