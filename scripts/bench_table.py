@@ -86,11 +86,12 @@ def main(path, paths_only=False):
     print("\nSamples (single character):\n")
     print("| benchmark | median |")
     print("|---|---|")
-    names = {"0": "snake", "1": "worm-line", "2": "strip-1000"}
+    names = {"0": "snake", "1": "worm-line", "2": "strip-1000",  # then the same rigs, compact
+             "3": "snake compact", "4": "worm-line compact", "5": "strip-1000 compact"}
     for n in sorted(median):
         m = re.match(r"BM_(Frame|Weights|Solve|Load|Bake)/(\d)$", n)
         if m:
-            print(f"| {m.group(1)} {names[m.group(2)]} ({label[n]}) | {median[n]:.1f} us |")
+            print(f"| {m.group(1)} {names[m.group(2)]} ({label[n]}) | {median[n]:.{1 if median[n] >= 1 else 3}f} us |")
     for n in ("BM_DeformerSetup", "BM_DeformerDrag"):
         if n in median:
             print(f"| {n[3:]} gingerbread ({label[n]}) | {median[n]:.1f} us |")

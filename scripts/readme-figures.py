@@ -10,9 +10,12 @@
 # NAMEs: compact (scripts/compact-table.sh: sizes, errors, load times of the
 # test rigs in build/release), examples (scripts/example-lines.sh), tests
 # (scripts/test-counts.sh: ctest counts of the presets scripts/test.sh
-# builds). Default: all. --check writes nothing and fails, naming the table,
+# builds). Default: those three. --check writes nothing and fails, naming the table,
 # when the README differs from what the scripts print now (CI checks
-# `examples`, whose figures depend only on the sources).
+# `examples`, whose figures depend only on the sources). bench
+# (scripts/bench.sh 5) and paths (scripts/bench-paths.sh 5) run the
+# benchmarks: minutes each, on a quiet machine, so they are never in the
+# default set; name them.
 import os
 import re
 import subprocess
@@ -23,12 +26,15 @@ TABLES = {
     'compact': ['scripts/compact-table.sh', 'build/release'],
     'examples': ['scripts/example-lines.sh'],
     'tests': ['scripts/test-counts.sh'],
+    # Minutes each, on a quiet machine; never in CI.
+    'bench': ['scripts/bench.sh', '5'],
+    'paths': ['scripts/bench-paths.sh', '5'],
 }
 
 
 def main(argv):
     check = '--check' in argv
-    names = [a for a in argv if a != '--check'] or list(TABLES)
+    names = [a for a in argv if a != '--check'] or ['compact', 'examples', 'tests']
     for name in names:
         if name not in TABLES:
             sys.exit(f'scripts/readme-figures.py: unknown table "{name}" (known: {", ".join(TABLES)})')
@@ -42,7 +48,11 @@ def main(argv):
                              (re.escape(name), re.escape(name)), re.S)
         if len(pattern.findall(text)) != 1:
             sys.exit(f'scripts/readme-figures.py: README.md: expected one block "<!-- generated: {name} by ... -->"')
-        table = subprocess.run(command, cwd=ROOT, check=True, capture_output=True, text=True).stdout
+        run = subprocess.run(command, cwd=ROOT, capture_output=True, text=True)
+        if run.returncode != 0:
+            sys.exit(f'scripts/readme-figures.py: {" ".join(command)} failed (exit {run.returncode}); '
+                     f'README.md unchanged:\n{run.stderr[-2000:]}')
+        table = run.stdout
         current = pattern.search(text).group(2)
         if current != table:
             failed.append(name)
