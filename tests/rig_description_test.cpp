@@ -12,6 +12,26 @@ namespace pb = posemorph::bake;
 
 namespace {
 
+// A pose made by deforming `from` with the given handles.
+pb::PoseDescription DeformedPose(const std::string& name, const Eigen::Vector2d& point, const std::string& from,
+                                 const std::vector<pb::HandleDescription>& handles) {
+  pb::PoseDescription p;
+  p.name = name;
+  p.point = point;
+  p.deformed = true;
+  p.deform.from = from;
+  p.deform.handles = handles;
+  return p;
+}
+
+pb::HandleDescription VertexHandle(std::uint32_t vertex, const Eigen::Vector2d& to) {
+  pb::HandleDescription h;
+  h.by_vertex = true;
+  h.vertex = vertex;
+  h.to = to;
+  return h;
+}
+
 // Everything the writer can express, away from every default.
 pb::RigDescription DrawnDescription() {
   pb::RigDescription d;
@@ -30,17 +50,10 @@ pb::RigDescription DrawnDescription() {
   b.drawn = true;
   b.outline = {{0, 0}, {10, 0}, {0, 10.000000000000002}};
   b.landmarks = {{0, 0}};
-  pb::PoseDescription c;
-  c.name = "lean";
-  c.point = {-1, 1e-7};
-  c.deformed = true;
-  c.deform.from = "rest";
-  c.deform.handles.resize(2);
-  c.deform.handles[0].by_vertex = true;
-  c.deform.handles[0].vertex = 7;
-  c.deform.handles[0].to = {0.5, 0.25};
-  c.deform.handles[1].at = {-2, 3};
-  c.deform.handles[1].to = {4, -5};
+  pb::HandleDescription at;
+  at.at = {-2, 3};
+  at.to = {4, -5};
+  const pb::PoseDescription c = DeformedPose("lean", {-1, 1e-7}, "rest", {VertexHandle(7, {0.5, 0.25}), at});
   d.poses = {a, b, c};
   d.mapping.simplify_tolerance = 1.5;
   d.mapping.max_steiner_points = 7;
@@ -154,15 +167,7 @@ TEST_CASE("adding poses and paths keeps the rest of the description and gives ea
       R"({"posemorph": 1, "studio_note": "kept", "triangles": [[0, 1, 2]],
           "poses": [{"name": "a", "point": [0, 0], "vertices": [[0, 0], [1, 0], [0, 1]]},
                     {"name": "edit-1", "point": [1, 0], "vertices": [[0, 0], [2, 0], [0, 1]]}]})";
-  pb::PoseDescription pose;
-  pose.name = "edit";
-  pose.point = {0.5, 0.5};
-  pose.deformed = true;
-  pose.deform.from = "a";
-  pose.deform.handles.resize(1);
-  pose.deform.handles[0].by_vertex = true;
-  pose.deform.handles[0].vertex = 1;
-  pose.deform.handles[0].to = {3, 0};
+  const pb::PoseDescription pose = DeformedPose("edit", {0.5, 0.5}, "a", {VertexHandle(1, {3, 0})});
   pb::PathDescription path;
   path.name = "gesture";
   path.loop = true;
