@@ -28,12 +28,15 @@ const char kUsage[] =
     "  posemorph-bake sheet RIG.pmrig -o OUT.svg [--columns C] [--rows R] [--no-weight-limit] [--linear]\n"
     "  posemorph-bake sheet RIG.pmrig --textured -o OUT.png [--images DIR] [--filter linear|nearest] ...\n"
     "        the same frames drawn with the drawings, cross-faded by the texture weights\n"
-    "  posemorph-bake deform RIG.json --pose NAME -o MESH.json  write a deformation-made pose as a plain mesh file\n";
+    "  posemorph-bake deform RIG.json --pose NAME -o MESH.json  write a deformation-made pose as a plain mesh file\n"
+    "  posemorph-bake outline RIG.json -o DIR   per drawn pose, DIR/INDEX-NAME.png: the drawing scaled up with\n"
+    "        the outline the bake traces, the mesh boundary, the landmarks numbered and their tolerance, the start\n";
 
 // The file a command works on, for messages that do not name one.
 std::string InputOf(const std::vector<std::string>& a) {
   for (std::size_t i = 0; i < a.size(); ++i) {
-    if (a[i] == "info" || a[i] == "eval" || a[i] == "sheet" || a[i] == "deform" || a[i] == "bake") continue;
+    if (a[i] == "info" || a[i] == "eval" || a[i] == "sheet" || a[i] == "deform" || a[i] == "outline" || a[i] == "bake")
+      continue;
     if (!a[i].empty() && a[i][0] == '-') {
       ++i;  // an option and its value
       continue;
@@ -64,6 +67,7 @@ int RunBakeCommand(const std::vector<std::string>& a, std::ostream& out, std::os
     if (cmd == "eval") return EvalCommand(a, 1, out);
     if (cmd == "sheet") return SheetCommand(a, 1, out);
     if (cmd == "deform") return DeformCommand(a, 1, out);
+    if (cmd == "outline") return OutlineCommand(a, 1, out, err);
     if (cmd == "bake") return BakeCommand(a, 1, out, err);
     return BakeCommand(a, 0, out, err);
   } catch (const UsageError& e) {

@@ -199,6 +199,10 @@ RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, 
   return sheet;
 }
 
+RgbaImage ReadRgbaPng(const std::string& path) {
+  return DecodeRgba(ReadInputFile(path, kMaxTextFileBytes, "a drawing"), path);
+}
+
 std::vector<unsigned char> EncodePng(const RgbaImage& image, const std::string& file) {
   png_image png;
   std::memset(&png, 0, sizeof png);

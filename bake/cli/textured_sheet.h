@@ -38,6 +38,10 @@ RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, 
                         const EvalOptions& options, TextureFilter filter, std::uint32_t cell,
                         TexturedSheetLayout* layout = nullptr);
 
+// A PNG drawing as RGBA: a regular file of at most 64 MiB and 16,777,216
+// pixels. Throws BakeError naming the file.
+RgbaImage ReadRgbaPng(const std::string& path);
+
 // PNG bytes of an image (libpng's simplified API).
 std::vector<unsigned char> EncodePng(const RgbaImage& image, const std::string& file);
 

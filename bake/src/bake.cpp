@@ -68,15 +68,28 @@ std::uint64_t LowerNonzeros(const Eigen::SparseMatrix<double>& K) {
   return n;
 }
 
-}  // namespace
+// One pass of the pipeline, up to the in-between check; what the report needs.
+struct Attempt {
+  MappedDrawings drawings;
+  PoseMeshes meshes;
+  std::uint64_t factor_nonzeros = 0, matrix_nonzeros = 0;
+  int grid_cells_x = 0, grid_cells_y = 0;
+  std::vector<unsigned char> exact, bytes;
+  CompactSettings compact_settings;
+  CompactReport compact;
+  bool is_compact = false;
+  ReproductionCheck written;
+  InbetweenCheck inbetweens;
+};
 
-std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport* report) {
-  const auto start = std::chrono::steady_clock::now();
+Attempt BakeOnce(const RigDescription& description) {
+  Attempt a;
   const std::string& file = description.file;
   BakeStage stage("mapping the drawings");
-  const MappedDrawings drawings = MapDrawings(description);
+  a.drawings = MapDrawings(description);
   BakeStage deform_stage("deforming poses");
-  PoseMeshes meshes = DeformPoses(description, drawings);
+  a.meshes = DeformPoses(description, a.drawings);
+  PoseMeshes& meshes = a.meshes;
   BakeStage validate_stage("validating the rig");
   meshes.triangles = OrientTriangles(meshes);
   if (const std::optional<std::string> problem = ValidateRig(meshes, description.paths))
@@ -90,21 +103,74 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
   for (const PoseMesh& p : meshes.poses) points.push_back(p.point), names.push_back(p.name);
   const WeightGrid grid = SolvePoseSpaceWeights(points, names, description.parameters, file);
   BakeStage write_stage("writing and encoding the rig");
-  const std::vector<unsigned char> exact = SerialiseRig(description, meshes, analysis, system, grid);
-  const CompactSettings compact_settings = CompactSettingsFor(description.parameters, meshes);
-  CompactReport compact;
-  const std::vector<unsigned char> bytes =
-      description.parameters.compact ? CompactRig(exact, compact_settings, file, &compact) : exact;
-  const bool is_compact = description.parameters.compact && !compact.fell_back;
+  a.exact = SerialiseRig(description, meshes, analysis, system, grid);
+  a.compact_settings = CompactSettingsFor(description.parameters, meshes);
+  a.bytes = description.parameters.compact ? CompactRig(a.exact, a.compact_settings, file, &a.compact) : a.exact;
+  a.is_compact = description.parameters.compact && !a.compact.fell_back;
   BakeStage check_stage("checking the baked rig");
   const double tolerance = std::max(
-      1e-6, is_compact
-                ? compact_settings.max_error_px / compact_settings.pixels_per_unit / RigBoundingBoxDiagonal(meshes)
+      1e-6, a.is_compact
+                ? a.compact_settings.max_error_px / a.compact_settings.pixels_per_unit / RigBoundingBoxDiagonal(meshes)
                 : 0.0);
-  const ReproductionCheck written = CheckReproduction(bytes, meshes, tolerance, file);
+  a.written = CheckReproduction(a.bytes, meshes, tolerance, file);
   BakeStage inbetween_stage("checking the in-betweens for folds");
-  InbetweenCheck inbetweens = CheckInbetweens(written.rig, file);
-  RefuseFolds(description, written, inbetweens);
+  a.inbetweens = CheckInbetweens(a.written.rig, file);
+  a.factor_nonzeros = system.value.size();
+  a.matrix_nonzeros = LowerNonzeros(system.K);
+  a.grid_cells_x = grid.cells_x;
+  a.grid_cells_y = grid.cells_y;
+  return a;
+}
+
+// The mapping variants tried when the in-betweens fold: coarser matching,
+// longer edges, both.
+constexpr int kFoldRetries = 3;
+RigDescription FoldRetry(const RigDescription& description, int retry, std::string* name) {
+  RigDescription variant = description;
+  const double spacing[] = {2, 1, 2}, edge[] = {1, 1.5, 1.5};
+  variant.mapping.spacing_scale = spacing[retry - 1];
+  variant.mapping.edge_scale = edge[retry - 1];
+  *name = retry == 1 ? "matched-sample spacing x2" : retry == 2 ? "longest edge x1.5" : "spacing x2, longest edge x1.5";
+  return variant;
+}
+
+}  // namespace
+
+std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport* report) {
+  const auto start = std::chrono::steady_clock::now();
+  const std::string& file = description.file;
+  Attempt first = BakeOnce(description);
+  std::vector<std::string> retry_warnings;
+  int retries = 0;
+  Attempt kept;
+  bool retried = false;
+  if (first.inbetweens.FoldsInHull() > 0 && first.drawings.report.mapped) {
+    for (int retry = 1; retry <= kFoldRetries; ++retry) {
+      std::string name;
+      Attempt again;
+      try {
+        again = BakeOnce(FoldRetry(description, retry, &name));
+      } catch (const BakeError&) {
+        continue;  // a variant that cannot be baked is not a way out
+      }
+      retries = retry;
+      if (again.inbetweens.FoldsInHull() == 0) {
+        retry_warnings.push_back(
+            file + ": the in-betweens folded (" + std::to_string(first.inbetweens.FoldsInHull()) +
+            " triangles; the worst: " + DescribeFold(first.written.rig, first.inbetweens.folds[0]) +
+            "); mapped again with " + name + ": fold-free");
+        kept = std::move(again);
+        retried = true;
+        break;
+      }
+    }
+  }
+  if (!retried) {
+    RefuseFolds(description, first.written, first.inbetweens);
+    kept = std::move(first);
+  }
+  const Attempt& a = kept;
+  const PoseMeshes& meshes = a.meshes;
 
   if (report) {
     BakeReport& r = *report;
@@ -113,23 +179,25 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
     r.triangles = std::uint32_t(meshes.triangles.size());
     r.poses = std::uint32_t(meshes.poses.size());
     r.paths = std::uint32_t(description.paths.size());
-    r.factor_nonzeros = system.value.size();
-    r.matrix_nonzeros = LowerNonzeros(system.K);
-    r.grid_cells_x = grid.cells_x;
-    r.grid_cells_y = grid.cells_y;
-    r.bytes = bytes.size();
-    r.max_reproduction_error = written.max_error;
+    r.factor_nonzeros = a.factor_nonzeros;
+    r.matrix_nonzeros = a.matrix_nonzeros;
+    r.grid_cells_x = std::uint32_t(a.grid_cells_x);
+    r.grid_cells_y = std::uint32_t(a.grid_cells_y);
+    r.bytes = a.bytes.size();
+    r.max_reproduction_error = a.written.max_error;
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    r.compact = is_compact;
-    r.exact_bytes = exact.size();
+    r.compact = a.is_compact;
+    r.exact_bytes = a.exact.size();
     r.max_error_px = description.parameters.compact ? description.parameters.max_error_px : 0;
-    r.pixels_per_unit = description.parameters.compact ? compact_settings.pixels_per_unit : 0;
-    r.compact_report = compact;
-    r.warnings = FoldWarnings(file, written.rig, inbetweens);
-    r.inbetweens = std::move(inbetweens);
-    r.mapping = drawings.report;
+    r.pixels_per_unit = description.parameters.compact ? a.compact_settings.pixels_per_unit : 0;
+    r.compact_report = a.compact;
+    r.warnings = retry_warnings;
+    for (std::string& w : FoldWarnings(file, a.written.rig, a.inbetweens)) r.warnings.push_back(std::move(w));
+    r.inbetweens = a.inbetweens;
+    r.mapping = a.drawings.report;
+    r.mapping.fold_retries = retried ? retries : 0;
   }
-  return bytes;
+  return a.bytes;
 }
 
 void WriteFileAtomic(const std::string& path, const std::vector<unsigned char>& bytes) {

@@ -267,12 +267,13 @@ void ParseMapping(const Reader& r, const json& m, MappingParameters* parameters)
     v = r.Number(m[key], std::string("mapping.") + key);
     if (!(v >= lo && v <= hi)) r.Fail(std::string("mapping.") + key, std::string("must be in ") + range);
   };
-  number("simplify_tolerance", p.simplify_tolerance, 0, 1e6, "[0, 1e6]");
+  number("simplify_tolerance", p.simplify_tolerance, 0, 1e6, "[0, 1e6] (0: automatic)");
   number("max_edge_length", p.max_edge_length, 0, 1e9, "[0, 1e9] (0: automatic)");
   number("min_angle", p.min_angle, 0, 35, "[0, 35] degrees");
   number("alpha_threshold", p.alpha_threshold, 1.0 / 255, 1, "[1/255, 1]");
   number("curve_tolerance", p.curve_tolerance, 1e-6, 1e6, "[1e-6, 1e6]");
-  number("spacing", p.spacing, 1e-6, 1e9, "[1e-6, 1e9]");
+  number("spacing", p.spacing, 0, 1e9, "0 (automatic) or [1e-6, 1e9]");
+  if (p.spacing > 0 && p.spacing < 1e-6) r.Fail("mapping.spacing", "must be 0 (automatic) or in [1e-6, 1e9]");
   number("landmark_distance", p.landmark_distance, 0, 1, "[0, 1]");
   if (m.contains("max_steiner_points")) {
     if (!m["max_steiner_points"].is_number_integer() || m["max_steiner_points"].get<long long>() < 0 ||

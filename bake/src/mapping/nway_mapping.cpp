@@ -164,20 +164,22 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   };
   MappingStages st;
   const Grid grid = OntoGrid(rig_outlines, rig_landmarks, labels, file, st);
+  Eigen::AlignedBox2d box0;
+  for (const Point& p : rig_outlines[0]) box0.extend(p);
+  st.sizes = ResolveMappingSizes(prm, box0.diagonal().norm());
   for (std::size_t k = 0; k < N; ++k)
     st.landmarks.push_back(PlaceLandmarks(st.outlines[k], rig_outlines[k], rig_landmarks[k], rig_landmarks[0].size(),
                                           labels[k], labels[0], prm, grid, file));
 
   // Correspondence, simplification, compatible triangulation, refinement.
   MatchingParameters mp;
-  mp.spacing = prm.spacing * grid.scale;
+  mp.spacing = st.sizes.spacing * grid.scale;
   st.matched = MatchBoundaries(st.outlines, st.landmarks, mp);
   if (st.matched.spacing > mp.spacing)
-    st.warnings.push_back(labels[0] + ": the outline is " +
-                          Format(CumulativeArcLength(st.outlines[0]).back() / grid.scale) +
-                          " long; it is matched at a spacing of " + Format(st.matched.spacing / grid.scale) +
-                          " instead of mapping.spacing " + Format(prm.spacing) + " (at most " +
-                          std::to_string(kMaxMatchedSamples) + " samples)");
+    st.warnings.push_back(
+        labels[0] + ": the outline is " + Format(CumulativeArcLength(st.outlines[0]).back() / grid.scale) +
+        " long; it is matched at a spacing of " + Format(st.matched.spacing / grid.scale) + " instead of " +
+        Format(st.sizes.spacing) + " (mapping.spacing; at most " + std::to_string(kMaxMatchedSamples) + " samples)");
   // Each stage throws its errors complete: file, pose, and why the input is as it is.
   const std::string coarse =
       st.matched.spacing > mp.spacing
@@ -187,7 +189,7 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
           : "";
   std::vector<ErrorSource> poses;
   for (const std::string& label : labels) poses.emplace_back(file, label, coarse);
-  st.simplified = SimplifyEnclosing(st.outlines, st.matched, prm.simplify_tolerance * grid.scale, poses);
+  st.simplified = SimplifyEnclosing(st.outlines, st.matched, st.sizes.simplify_tolerance * grid.scale, poses);
   for (std::size_t k = 0; k < N; ++k) {
     // The promise of this stage, checked exactly: simple, and the outline inside or on it.
     const Polygon& q = st.simplified.polygons[k];
@@ -198,16 +200,14 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   for (const std::string& l : labels) names += (names.empty() ? "" : ", ") + l;
   st.mesh =
       TriangulateCompatibly(st.simplified.polygons, ErrorSource(file, names), std::size_t(prm.max_steiner_points));
-  Eigen::AlignedBox2d box0;
-  for (const Point& p : rig_outlines[0]) box0.extend(p);
   RefinementParameters rp;
-  rp.max_edge_length = (prm.max_edge_length > 0 ? prm.max_edge_length : box0.diagonal().norm() / 10) * grid.scale;
+  rp.max_edge_length = st.sizes.max_edge_length * grid.scale;
   rp.min_angle_goal = prm.min_angle;
   rp.max_vertices = std::size_t(prm.max_vertices);
   if (!RefineCompatibly(st.mesh, rp))
     throw BakeError(file, "mapping.max_edge_length " + Format(rp.max_edge_length / grid.scale) +
                               " needs more than mapping.max_vertices " + std::to_string(prm.max_vertices) +
-                              " mesh vertices; give a longer max_edge_length (0: a tenth of the shape's size) or a "
+                              " mesh vertices; give a longer max_edge_length (0: from the shape's size) or a "
                               "larger max_vertices");
   return st;
 }
@@ -311,16 +311,26 @@ void MeshesFromMapping(const RigDescription& rig, const std::vector<DrawnPose>& 
   }
 }
 
-}  // namespace
-
-MappedDrawings MapDrawings(const RigDescription& rig) {
-  MappedDrawings result;
+std::vector<DrawnPose> DrawnPoses(const RigDescription& rig) {
   std::vector<DrawnPose> drawn;
   for (std::size_t i = 0; i < rig.poses.size(); ++i)
     if (rig.poses[i].drawn && rig.poses[i].vertices.empty()) {
       drawn.emplace_back();
       drawn.back().index = i;
     }
+  return drawn;
+}
+
+// A rig point of a pose -> its drawing's coordinates (y down, before the origin).
+Point InDrawing(const Point& p, const PoseDescription& pose) {
+  return {p.x() + pose.origin.x(), -p.y() + pose.origin.y()};
+}
+
+}  // namespace
+
+MappedDrawings MapDrawings(const RigDescription& rig) {
+  MappedDrawings result;
+  std::vector<DrawnPose> drawn = DrawnPoses(rig);
   if (drawn.empty()) return result;
   const auto start = std::chrono::steady_clock::now();
   const MappingParameters& prm = rig.mapping;
@@ -353,6 +363,49 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
   MeshesFromMapping(rig, drawn, mesh, grid, result);
   report.mapped = true;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+DrawnOutlines TraceDrawings(const RigDescription& rig) {
+  DrawnOutlines result;
+  std::vector<DrawnPose> drawn = DrawnPoses(rig);
+  MappingReport report;
+  std::vector<Polygon> outlines;
+  std::vector<std::vector<Point>> landmarks;
+  std::vector<std::string> labels;
+  for (DrawnPose& d : drawn) {
+    ReadDrawnOutline(rig, rig.mapping, d, report);
+    const PoseDescription& pose = rig.poses[d.index];
+    DrawnPoseOutline o;
+    o.pose = d.index;
+    o.label = PoseLabel(pose.name, d.index);
+    Eigen::AlignedBox2d box;
+    for (const Point& p : d.outline) box.extend(p), o.traced.push_back(InDrawing(p, pose));
+    if (mapping::SignedArea(d.outline) < 0) std::reverse(o.traced.begin(), o.traced.end());
+    for (const Point& p : d.landmarks) o.landmarks.push_back(InDrawing(p, pose));
+    o.landmark_distance = rig.mapping.landmark_distance * box.diagonal().norm();
+    result.poses.push_back(std::move(o));
+    outlines.push_back(d.outline);
+    landmarks.push_back(d.landmarks);
+    labels.push_back(result.poses.back().label);
+  }
+  if (drawn.empty()) return result;
+  try {
+    const mapping::MappingStages st = mapping::MapPolygons(outlines, landmarks, rig.mapping, labels, rig.file);
+    const mapping::Grid grid{st.grid_scale};
+    result.simplify_tolerance = st.sizes.simplify_tolerance;
+    for (std::size_t k = 0; k < drawn.size(); ++k) {
+      const PoseDescription& pose = rig.poses[drawn[k].index];
+      DrawnPoseOutline& o = result.poses[k];
+      for (const Point& g : st.landmarks[k]) o.placed.push_back(InDrawing(grid.FromGrid(g), pose));
+      for (const Point& g : st.simplified.polygons[k]) o.boundary.push_back(InDrawing(grid.FromGrid(g), pose));
+      for (const Point& g : st.mesh.vertices[k]) o.vertices.push_back(InDrawing(grid.FromGrid(g), pose));
+    }
+    for (const auto& t : st.mesh.triangles)
+      result.triangles.push_back({std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])});
+  } catch (const BakeError& e) {
+    result.mapping_error = e.what();
+  }
   return result;
 }
 

@@ -38,9 +38,13 @@ struct BakeReport {
 // solve the pose-space weights (pose_space_weights.h) -> write
 // (serialise_rig.h; compact_rig.h within the error budget) -> check the
 // poses with the runtime (reproduction_check.h) -> check the in-betweens for
-// folds (inbetween_check.h; a fold inside the pose hull throws unless
-// description.parameters.allow_folds). Returns the rig's bytes. Throws
-// BakeError naming the file and the problem.
+// folds (inbetween_check.h). When the in-betweens fold inside the pose hull
+// and the meshes come from drawings, the bake maps them again, coarser
+// (kFoldRetries variants: matched-sample spacing x2, longest edge x1.5, both;
+// the first fold-free one is written, with a warning naming it); if every
+// variant folds, the fold of the mapping as given throws unless
+// description.parameters.allow_folds (then the first mapping is written).
+// Returns the rig's bytes. Throws BakeError naming the file and the problem.
 std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport* report = nullptr);
 
 // Writes bytes to path via a temporary file in the same folder and a rename,

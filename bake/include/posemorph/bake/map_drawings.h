@@ -23,6 +23,9 @@ struct MappingReport {
   double min_angle_degrees = 0;               // over all triangles and drawn poses
   double simplification_error = 0;            // drawing units
   double seconds = 0;
+  // The bake maps again, coarser, when the in-betweens fold (bake.h): the
+  // mappings tried before the one written (0: the first was kept).
+  int fold_retries = 0;
   std::vector<std::string> warnings;  // "FILE: ...", e.g. specks dropped from a drawing
 };
 
@@ -38,5 +41,30 @@ struct MappedDrawings {
 // no vertices. Returns nothing mapped when no pose is drawn. Throws BakeError
 // naming the file, the pose and the problem.
 MappedDrawings MapDrawings(const RigDescription& description);
+
+// What the mapping sees in one drawn pose, in that drawing's coordinates
+// (drawing units, y down, before the pose's origin is applied): for
+// `posemorph-bake outline`, so an animator can place landmarks on the
+// outline the bake actually traces.
+struct DrawnPoseOutline {
+  std::size_t pose = 0;                    // index in the description
+  std::string label;                       // "pose 'rest' (index 0)"
+  std::vector<Eigen::Vector2d> traced;     // the outline as traced or read, counter-clockwise as seen
+  std::vector<Eigen::Vector2d> landmarks;  // as given; the first is the start point
+  double landmark_distance = 0;            // how far a landmark may lie off the outline
+  // From the mapping, empty when it failed: the landmarks placed on the
+  // outline, the simplified (enclosing) boundary, the mesh's triangles.
+  std::vector<Eigen::Vector2d> placed, boundary, vertices;
+};
+struct DrawnOutlines {
+  std::vector<DrawnPoseOutline> poses;
+  Triangles triangles;            // into each pose's `vertices`
+  double simplify_tolerance = 0;  // as used (automatic values resolved)
+  std::string mapping_error;      // why the mapping failed after tracing, or empty
+};
+// Traces every drawn pose (throws BakeError when a drawing cannot be traced)
+// and then maps them; a mapping failure is returned, not thrown, with what
+// was traced, since that is what an animator needs to see.
+DrawnOutlines TraceDrawings(const RigDescription& description);
 
 }  // namespace posemorph::bake

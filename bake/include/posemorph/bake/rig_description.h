@@ -50,15 +50,21 @@ struct PoseDescription {
 
 // How drawings become meshes (bake/RIG_DESCRIPTION.md, "mapping").
 struct MappingParameters {
-  double simplify_tolerance = 2.0;  // drawing units (pixels): how far the polygon may stray from the outline
-  double max_edge_length = 0;       // drawing units; 0: a tenth of pose 0's bounding-box diagonal
-  double min_angle = 20;            // degrees: refinement splits triangles below it (bounded rounds)
-  double alpha_threshold = 0.5;     // PNG: alpha at or above this is the shape
+  // Lengths in drawing units (pixels); 0: from the drawing's size (mapping/mapping_sizes.h).
+  double simplify_tolerance = 0;  // how far the boundary may stand off the outline
+  double max_edge_length = 0;     // longest mesh edge in any pose
+  double min_angle = 20;          // degrees: refinement splits triangles below it (bounded rounds)
+  // PNG: alpha at or above this is the shape. Low, so the mesh encloses the
+  // anti-aliased fringe: the drawing's own alpha draws the silhouette.
+  double alpha_threshold = 0.05;
   double curve_tolerance = 0.25;    // SVG: curve flattening, drawing units
-  double spacing = 1.0;             // drawing units between matched boundary samples
+  double spacing = 0;               // between matched boundary samples
   double landmark_distance = 0.05;  // a landmark may lie this far off its outline, times the outline's size
   int max_steiner_points = 100;     // interior points the compatible triangulation may add
   int max_vertices = 20000;         // refinement's vertex budget (mesh vertices in all)
+  // Not in the description: the bake's own retries when the in-betweens fold
+  // (bake.h) scale the spacing and the longest edge, automatic or given.
+  double spacing_scale = 1, edge_scale = 1;
 };
 
 struct PathDescription {

@@ -9,6 +9,7 @@
 //   compatible_refinement.h           splits, flips, smoothing
 //   polygon.h                         polygons and exact grid geometry
 //   limits.h                          bounds on work and memory
+//   mapping_sizes.h                   lengths that follow the drawing's size
 //   nway_mapping.h (this)             the driver: MapPolygons
 #pragma once
 #include <array>
@@ -24,6 +25,7 @@
 #include "posemorph/bake/mapping/compatible_triangulation.h"
 #include "posemorph/bake/mapping/enclosing_simplification.h"
 #include "posemorph/bake/mapping/limits.h"
+#include "posemorph/bake/mapping/mapping_sizes.h"
 #include "posemorph/bake/mapping/outline_image.h"
 #include "posemorph/bake/mapping/outline_svg.h"
 #include "posemorph/bake/mapping/polygon.h"
@@ -33,6 +35,7 @@ namespace posemorph::bake::mapping {
 
 struct MappingStages {
   double grid_scale = 1;                      // grid units per rig unit (a power of two)
+  MappingSizes sizes;                         // the lengths used (automatic ones resolved)
   std::vector<Polygon> outlines;              // grid, counter-clockwise, simple
   std::vector<std::vector<Point>> landmarks;  // on the outlines, grid
   CorrespondedBoundary matched;

@@ -1,0 +1,137 @@
+// SPDX-License-Identifier: MIT
+// The sprite corpus (assets/sprites/: small characters drawn for these tests,
+// 24 to 80 pixels, 3 to 4 poses, anti-aliased and pixel-art, one on canvases
+// that differ): default settings bake them fold-free, with meshes in
+// proportion to the sprite that enclose the anti-aliased fringe; and
+// `posemorph-bake outline` draws what the bake traces.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "cli.h"
+#include "posemorph/bake/bake.h"
+#include "posemorph/bake/mapping/outline_image.h"
+#include "posemorph/bake/rig_description.h"
+#include "textured_sheet.h"
+#include "drawing_coverage.h"
+
+namespace pb = posemorph::bake;
+using Point = Eigen::Vector2d;
+
+namespace {
+
+std::string SpriteDir(const std::string& name) { return std::string(POSEMORPH_DRAWN_SAMPLES) + "/sprites/" + name; }
+
+}  // namespace
+
+TEST_CASE("sprites: the corpus bakes fold-free with default settings, meshes in proportion, the fringe enclosed") {
+  for (const std::string name : {"slime", "chick", "ghost", "cat"}) {
+    CAPTURE(name);
+    const std::string dir = SpriteDir(name);
+    REQUIRE_MESSAGE(std::filesystem::exists(dir + "/" + name + ".json"), "the build rasterises the sprites");
+    const pb::RigDescription rig = pb::ReadRigDescription(dir + "/" + name + ".json");
+    // No mapping settings: the defaults are what is tested.
+    CHECK(rig.mapping.simplify_tolerance == 0);
+    CHECK(rig.mapping.max_edge_length == 0);
+    CHECK(rig.mapping.spacing == 0);
+    pb::BakeReport report;
+    REQUIRE_NOTHROW(pb::BakeRig(rig, &report));  // a fold in the hull would throw
+    CHECK(report.mapping.fold_retries == 0);     // and the first mapping is fold-free
+    CHECK(report.inbetweens.FoldsInHull() == 0);
+    CHECK(report.inbetweens.min_area_ratio > 0.5);
+    CHECK(report.mapping.min_angle_degrees > 9);
+
+    const pb::MappedDrawings mapped = pb::MapDrawings(rig);
+    std::size_t opaque = 0;
+    std::vector<Point> canvases;
+    for (std::size_t k = 0; k < mapped.meshes.size(); ++k) {
+      const pb::PoseMesh& pose = mapped.meshes[k];
+      CAPTURE(pose.name);
+      const posemorph::test::DrawingCoverage c =
+          posemorph::test::CoverageOf(pose.uvs, mapped.triangles, dir + "/" + pose.image, rig.mapping.alpha_threshold);
+      MESSAGE(name << " " << pose.name << ": " << c.opaque << " opaque pixels, alpha outside the mesh "
+                   << 100 * c.alpha_outside_share << "%");
+      CHECK(c.shape_uncovered == 0);         // every pixel of the traced shape is meshed
+      CHECK(c.alpha_outside_share < 0.001);  // the fringe below the threshold is nearly nothing
+      opaque = std::max(opaque, c.opaque);
+      canvases.push_back(pose.canvas_size);
+      // The origin (the cat's: between its feet, on the outline) is the rig's (0, 0) in every pose.
+      if (name == "cat") {
+        double nearest = 1e9;
+        for (const Point& v : pose.vertices) nearest = std::min(nearest, v.norm());
+        CHECK(nearest < 1.5);
+      }
+    }
+    MESSAGE(name << ": " << report.vertices << " vertices, " << report.triangles << " triangles for up to " << opaque
+                 << " opaque pixels; min angle " << report.mapping.min_angle_degrees
+                 << ", smallest in-between area ratio " << report.inbetweens.min_area_ratio << ", bake "
+                 << report.seconds * 1e3 << " ms");
+    // In proportion: at most one vertex per 3 opaque pixels (a 32-pixel
+    // sprite had 617 vertices for 460 opaque pixels with 256-pixel defaults).
+    CHECK(report.vertices * 3 <= opaque);
+    if (name == "cat") CHECK(std::count(canvases.begin(), canvases.end(), canvases[0]) < long(canvases.size()));
+  }
+}
+
+TEST_CASE("posemorph-bake outline: one picture per drawn pose, drawn from what the bake traces") {
+  namespace fs = std::filesystem;
+  const fs::path out_dir = fs::temp_directory_path() / ("posemorph-outline-" + std::to_string(::getpid()));
+  fs::remove_all(out_dir);
+  fs::create_directories(out_dir);
+  auto run = [](const std::vector<std::string>& args, std::string* out, std::string* err) {
+    std::ostringstream o, e;
+    const int status = pb::RunBakeCommand(args, o, e);
+    *out = o.str();
+    *err = e.str();
+    return status;
+  };
+  const std::string chick = SpriteDir("chick") + "/chick.json";
+  std::string out, err;
+  REQUIRE(run({"outline", chick, "-o", out_dir.string()}, &out, &err) == 0);
+  CAPTURE(out);
+  CHECK(err.empty());
+  const pb::RigDescription rig = pb::ReadRigDescription(chick);
+  for (std::size_t i = 0; i < rig.poses.size(); ++i) {
+    const std::string path = (out_dir / (std::to_string(i) + "-" + rig.poses[i].name + ".png")).string();
+    CAPTURE(path);
+    REQUIRE(fs::exists(path));
+    const pb::RgbaImage picture = pb::ReadRgbaPng(path);
+    CHECK(picture.width == 24 * 16);  // a 24-pixel canvas at 16 pixels per drawing pixel
+    CHECK(picture.height == 24 * 16);
+    // The start landmark is a green disc (0, 170, 60) at its point.
+    const Point at = rig.poses[i].landmarks[0] * 16;
+    const unsigned char* p = &picture.rgba[(std::size_t(at.y()) * picture.width + std::size_t(at.x())) * 4];
+    CHECK(int(p[0]) == 0);
+    CHECK(int(p[1]) == 170);
+    CHECK(int(p[2]) == 60);
+  }
+  CHECK(out.find("boundary vertices, 3 landmarks)") != std::string::npos);
+
+  // A landmark far off the outline: the mapping fails, the pictures (what
+  // was traced, the landmark and its ring) are still written, and the
+  // error is one line.
+  const fs::path bad_dir = out_dir / "bad";
+  fs::create_directories(bad_dir);
+  for (const char* f : {"rest.png", "flap.png", "hop.png"}) fs::copy(SpriteDir("chick") + "/" + f, bad_dir / f);
+  {
+    std::ifstream in(chick);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("[12, 21]]"), 9, "[12, 12]]");  // rest's third landmark inside the body
+    std::ofstream(bad_dir / "chick.json") << text;
+  }
+  CHECK(run({"outline", (bad_dir / "chick.json").string(), "-o", bad_dir.string()}, &out, &err) == 1);
+  CAPTURE(err);
+  CHECK(err.find("landmark 2 is ") != std::string::npos);
+  CHECK(err.find("(the pictures show the outlines and landmarks as traced)\n") != std::string::npos);
+  CHECK(std::count(err.begin(), err.end(), '\n') == 1);
+  CHECK(fs::exists(bad_dir / "0-rest.png"));
+  // Usage: a folder is needed.
+  CHECK(run({"outline", chick}, &out, &err) == 2);
+  CHECK(run({"outline", chick, "-o", (out_dir / "missing").string()}, &out, &err) == 1);
+  CHECK(err.find("is not a folder") != std::string::npos);
+  fs::remove_all(out_dir);
+}
