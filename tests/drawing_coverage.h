@@ -20,9 +20,9 @@ inline double Orient(const Point& a, const Point& b, const Point& c) {
 }
 
 struct DrawingCoverage {
-  std::size_t opaque = 0;            // pixels of alpha >= 128
-  std::size_t shape_uncovered = 0;   // pixels of alpha >= the threshold whose centre no triangle covers
-  double alpha_outside_share = 0;    // of the drawing's alpha, the part on pixels no triangle covers
+  std::size_t opaque = 0;           // pixels of alpha >= 128
+  std::size_t shape_uncovered = 0;  // pixels of alpha >= the threshold whose centre no triangle covers
+  double alpha_outside_share = 0;   // of the drawing's alpha, the part on pixels no triangle covers
 };
 
 // A pose's mesh over its drawing, through its uvs: the pixel centres each

@@ -7,6 +7,8 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -44,6 +46,7 @@ TEST_CASE("sprites: the corpus bakes fold-free with default settings, meshes in 
     CHECK(report.inbetweens.FoldsInHull() == 0);
     CHECK(report.inbetweens.min_area_ratio > 0.5);
     CHECK(report.mapping.min_angle_degrees > 9);
+    CHECK(report.mapping.warnings.empty());  // no dropped part, no start landmark that seems misplaced
 
     const pb::MappedDrawings mapped = pb::MapDrawings(rig);
     std::size_t opaque = 0;
@@ -75,6 +78,31 @@ TEST_CASE("sprites: the corpus bakes fold-free with default settings, meshes in 
     CHECK(report.vertices * 3 <= opaque);
     if (name == "cat") CHECK(std::count(canvases.begin(), canvases.end(), canvases[0]) < long(canvases.size()));
   }
+}
+
+TEST_CASE("mapping: a start landmark on another part of the outline than in pose 0 is named, with where it fits") {
+  // The slime with only its start landmarks: in 'squash' it is put on the
+  // top of the dome instead of between the feet.
+  pb::RigDescription rig = pb::ReadRigDescription(SpriteDir("slime") + "/slime.json");
+  for (pb::PoseDescription& pose : rig.poses) pose.landmarks.resize(1);
+  const pb::MappedDrawings aligned = pb::MapDrawings(rig);
+  CHECK(aligned.report.warnings.empty());
+  rig.poses[1].landmarks[0] = Point(16, 16);
+  const pb::MappedDrawings moved = pb::MapDrawings(rig);
+  REQUIRE(moved.report.warnings.size() == 1);
+  const std::string& w = moved.report.warnings[0];
+  CAPTURE(w);
+  CHECK(w.find("pose 'squash' (index 1): its start landmark (landmark 0) may sit on another part of the outline "
+               "than in pose 'rest' (index 0)") != std::string::npos);
+  CHECK(w.find("if the in-betweens spin, move landmark 0 there") != std::string::npos);
+  // It suggests the bottom of the squashed slime, where the start belongs (16, 29).
+  const std::size_t near = w.find(") in its drawing");
+  REQUIRE(near != std::string::npos);
+  const std::size_t open = w.rfind("near (", near);
+  double x = 0, y = 0;
+  REQUIRE(std::sscanf(w.c_str() + open, "near (%lf, %lf)", &x, &y) == 2);
+  CHECK(std::abs(y - 29) < 2);
+  CHECK(std::abs(x - 16) < 4);
 }
 
 TEST_CASE("posemorph-bake outline: one picture per drawn pose, drawn from what the bake traces") {

@@ -163,6 +163,29 @@ void Densify(const std::vector<double>& perimeter, double spacing, CorrespondedB
 
 }  // namespace
 
+StartAlignment AlignStart(const Polygon& outline0, const Point& start0, const Polygon& outline, const Point& start) {
+  constexpr std::size_t K = 256;
+  auto turning = [](const Polygon& p, const Point& from) {
+    const ArcLength arc(p);
+    const double perimeter = CumulativeArcLength(p).back();
+    const double s0 = NearestArcLength(p, from, nullptr), h = perimeter / double(K) * 8;
+    std::vector<double> theta(K);
+    for (std::size_t j = 0; j < K; ++j) theta[j] = Turning(arc, s0 + perimeter * double(j) / double(K), h);
+    return theta;
+  };
+  const std::vector<double> a = turning(outline0, start0), b = turning(outline, start);
+  StartAlignment r;
+  r.best_cost = std::numeric_limits<double>::infinity();
+  for (std::size_t shift = 0; shift < K; ++shift) {
+    double cost = 0;
+    for (std::size_t j = 0; j < K; ++j) cost += std::abs(WrapAngle(a[j] - b[(j + shift) % K]));
+    cost /= double(K);
+    if (shift == 0) r.cost_at_start = cost;
+    if (cost < r.best_cost) r.best_cost = cost, r.best_shift = double(shift) / double(K);
+  }
+  return r;
+}
+
 CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
                                      const std::vector<std::vector<Point>>& landmarks, const MatchingParameters& prm) {
   const std::size_t N = outlines.size(), L = landmarks[0].size();

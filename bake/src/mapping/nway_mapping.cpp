@@ -171,6 +171,15 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
     st.landmarks.push_back(PlaceLandmarks(st.outlines[k], rig_outlines[k], rig_landmarks[k], rig_landmarks[0].size(),
                                           labels[k], labels[0], prm, grid, file));
 
+  for (std::size_t k = 1; k < N; ++k) {
+    const StartAlignment a = AlignStart(st.outlines[0], st.landmarks[0][0], st.outlines[k], st.landmarks[k][0]);
+    if (std::min(a.best_shift, 1 - a.best_shift) > 0.125 && a.best_cost < 0.8 * a.cost_at_start) {
+      const double perimeter = CumulativeArcLength(st.outlines[k]).back();
+      const double s = NearestArcLength(st.outlines[k], st.landmarks[k][0], nullptr) + a.best_shift * perimeter;
+      st.spinning.push_back({k, a.best_shift, grid.FromGrid(PointAtArcLength(st.outlines[k], s)), a});
+    }
+  }
+
   // Correspondence, simplification, compatible triangulation, refinement.
   MatchingParameters mp;
   mp.spacing = st.sizes.spacing * grid.scale;
@@ -326,6 +335,22 @@ Point InDrawing(const Point& p, const PoseDescription& pose) {
   return {p.x() + pose.origin.x(), -p.y() + pose.origin.y()};
 }
 
+// "FILE: POSE: ..." for each pose whose start landmark seems misplaced.
+std::vector<std::string> SpinningWarnings(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
+                                          const std::vector<std::string>& labels, const mapping::MappingStages& st) {
+  std::vector<std::string> warnings;
+  for (const auto& s : st.spinning) {
+    const Point at = InDrawing(s.suggested, rig.poses[drawn[s.pose].index]);
+    warnings.push_back(rig.file + ": " + labels[s.pose] + ": its start landmark (landmark 0) may sit on another part " +
+                       "of the outline than in " + labels[0] + ": the outlines' bends agree best with the start " +
+                       Format(100 * s.shift) + "% of the way round, counter-clockwise as seen (mean difference " +
+                       Format(s.alignment.best_cost) + " rad there, " + Format(s.alignment.cost_at_start) +
+                       " at landmark 0), near (" + Format(at.x()) + ", " + Format(at.y()) +
+                       ") in its drawing; if the in-betweens spin, move landmark 0 there");
+  }
+  return warnings;
+}
+
 }  // namespace
 
 MappedDrawings MapDrawings(const RigDescription& rig) {
@@ -349,6 +374,7 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
   }
   const mapping::MappingStages st = mapping::MapPolygons(outlines, landmarks, prm, labels, rig.file);
   for (const std::string& w : st.warnings) report.warnings.push_back(rig.file + ": " + w);
+  for (const std::string& w : SpinningWarnings(rig, drawn, labels, st)) report.warnings.push_back(w);
   const mapping::CompatibleMesh& mesh = st.mesh;
   const mapping::Grid grid{st.grid_scale};
   report.matched_vertices = st.matched.points[0].size();

@@ -42,6 +42,17 @@ struct MappingStages {
   SimplifiedBoundary simplified;
   CompatibleMesh mesh;                // grid
   std::vector<std::string> warnings;  // limits that changed what was asked (e.g. a coarser spacing)
+  // Poses whose start landmark seems to sit on another part of the outline
+  // than pose 0's (AlignStart: the outline matches best with the start more
+  // than an eighth of the way round, at under 0.8 times the cost): the
+  // in-betweens may spin. Warnings; the start suggested is in rig coordinates.
+  struct SpinningStart {
+    std::size_t pose = 0;
+    double shift = 0;  // share of the perimeter, counter-clockwise as seen
+    Point suggested{0, 0};
+    StartAlignment alignment;
+  };
+  std::vector<SpinningStart> spinning;
 };
 // Outlines and landmarks in rig coordinates (y up, any orientation); labels
 // name each pose in messages. The driver behind MapDrawings, exposed so
