@@ -139,10 +139,6 @@ Polygon Closed(Polygon p) {
   return p;
 }
 
-double Orient2(const Point& a, const Point& b, const Point& c) {
-  return (b - a).x() * (c - a).y() - (b - a).y() * (c - a).x();
-}
-
 // Every triangle positive in every pose, one connectivity (shared by
 // construction), and the rig bakes. These shapes have no landmarks but the
 // start point, and some fold between poses: folds are allowed (and counted).
@@ -150,7 +146,7 @@ std::size_t CheckCompatible(pb::RigDescription& rig) {
   for (const auto& pose : rig.poses) {
     REQUIRE(pose.vertices.size() == rig.poses[0].vertices.size());
     for (const auto& t : rig.triangles)
-      REQUIRE(Orient2(pose.vertices[t[0]], pose.vertices[t[1]], pose.vertices[t[2]]) > 0);
+      REQUIRE(posemorph::test::Orient(pose.vertices[t[0]], pose.vertices[t[1]], pose.vertices[t[2]]) > 0);
   }
   rig.parameters.allow_folds = true;
   pb::BakeReport report;

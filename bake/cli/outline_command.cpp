@@ -15,10 +15,6 @@
 namespace posemorph::bake::cli {
 namespace {
 
-bool EndsWithPng(const std::string& s) {
-  return s.size() >= 4 && (s.compare(s.size() - 4, 4, ".png") == 0 || s.compare(s.size() - 4, 4, ".PNG") == 0);
-}
-
 // DIR/NAME.png for a pose, NAME made of the pose name's letters, digits, '-' and '_'.
 std::string PicturePath(const std::string& dir, const PoseDescription& pose, std::size_t index) {
   std::string name;
@@ -43,7 +39,7 @@ int OutlineCommand(const std::vector<std::string>& a, std::size_t from, std::ost
   std::vector<std::pair<std::string, std::vector<unsigned char>>> pictures;
   for (const DrawnPoseOutline& pose : traced.poses) {
     const PoseDescription& description = rig.poses[pose.pose];
-    const RgbaImage drawing = EndsWithPng(description.drawing) ? ReadRgbaPng(description.drawing_path) : RgbaImage{};
+    const RgbaImage drawing = pose.png_path.empty() ? RgbaImage{} : ReadRgbaPng(pose.png_path);
     int scale = 1;
     const RgbaImage picture = OutlinePicture(pose, traced.triangles, drawing, &scale);
     const std::string path = PicturePath(*dir, description, pose.pose);

@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
+#include <optional>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -122,16 +124,36 @@ Attempt BakeOnce(const RigDescription& description) {
   return a;
 }
 
-// The mapping variants tried when the in-betweens fold: coarser matching,
-// longer edges, both.
-constexpr int kFoldRetries = 3;
-RigDescription FoldRetry(const RigDescription& description, int retry, std::string* name) {
-  RigDescription variant = description;
-  const double spacing[] = {2, 1, 2}, edge[] = {1, 1.5, 1.5};
-  variant.mapping.spacing_scale = spacing[retry - 1];
-  variant.mapping.edge_scale = edge[retry - 1];
-  *name = retry == 1 ? "matched-sample spacing x2" : retry == 2 ? "longest edge x1.5" : "spacing x2, longest edge x1.5";
-  return variant;
+// The mapping variants tried, in order, when the in-betweens fold: coarser
+// matching, longer edges, both.
+struct FoldRetry {
+  double spacing_scale, edge_scale;
+  const char* name;
+};
+constexpr FoldRetry kFoldRetries[] = {
+    {2, 1, "matched-sample spacing x2"}, {1, 1.5, "longest edge x1.5"}, {2, 1.5, "spacing x2, longest edge x1.5"}};
+
+// The first variant's bake whose in-betweens do not fold in the hull, with
+// *tried set to its place in kFoldRetries + 1; nothing when none does (a
+// variant that cannot be baked at all is passed over).
+std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, int* tried, std::string* name) {
+  for (int k = 0; k < int(std::size(kFoldRetries)); ++k) {
+    RigDescription variant = description;
+    variant.mapping.spacing_scale = kFoldRetries[k].spacing_scale;
+    variant.mapping.edge_scale = kFoldRetries[k].edge_scale;
+    std::optional<Attempt> again;
+    try {
+      again = BakeOnce(variant);
+    } catch (const BakeError&) {
+      continue;
+    }
+    if (again->inbetweens.FoldsInHull() == 0) {
+      *tried = k + 1;
+      *name = kFoldRetries[k].name;
+      return again;
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -141,35 +163,18 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
   const std::string& file = description.file;
   Attempt first = BakeOnce(description);
   std::vector<std::string> retry_warnings;
-  int retries = 0;
-  Attempt kept;
-  bool retried = false;
-  if (first.inbetweens.FoldsInHull() > 0 && first.drawings.report.mapped) {
-    for (int retry = 1; retry <= kFoldRetries; ++retry) {
-      std::string name;
-      Attempt again;
-      try {
-        again = BakeOnce(FoldRetry(description, retry, &name));
-      } catch (const BakeError&) {
-        continue;  // a variant that cannot be baked is not a way out
-      }
-      retries = retry;
-      if (again.inbetweens.FoldsInHull() == 0) {
-        retry_warnings.push_back(
-            file + ": the in-betweens folded (" + std::to_string(first.inbetweens.FoldsInHull()) +
-            " triangles; the worst: " + DescribeFold(first.written.rig, first.inbetweens.folds[0]) +
-            "); mapped again with " + name + ": fold-free");
-        kept = std::move(again);
-        retried = true;
-        break;
-      }
-    }
-  }
-  if (!retried) {
+  int tried = 0;
+  std::string variant;
+  std::optional<Attempt> again;
+  if (first.inbetweens.FoldsInHull() > 0 && first.drawings.report.mapped)
+    again = MapAgainWithoutFolds(description, &tried, &variant);
+  if (again)
+    retry_warnings.push_back(file + ": the in-betweens folded (" + std::to_string(first.inbetweens.FoldsInHull()) +
+                             " triangles; the worst: " + DescribeFold(first.written.rig, first.inbetweens.folds[0]) +
+                             "); mapped again with " + variant + ": fold-free");
+  else
     RefuseFolds(description, first.written, first.inbetweens);
-    kept = std::move(first);
-  }
-  const Attempt& a = kept;
+  const Attempt& a = again ? *again : first;
   const PoseMeshes& meshes = a.meshes;
 
   if (report) {
@@ -195,7 +200,7 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
     for (std::string& w : FoldWarnings(file, a.written.rig, a.inbetweens)) r.warnings.push_back(std::move(w));
     r.inbetweens = a.inbetweens;
     r.mapping = a.drawings.report;
-    r.mapping.fold_retries = retried ? retries : 0;
+    r.mapping.fold_retries = tried;
   }
   return a.bytes;
 }

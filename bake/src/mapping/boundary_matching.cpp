@@ -175,6 +175,7 @@ StartAlignment AlignStart(const Polygon& outline0, const Point& start0, const Po
   };
   const std::vector<double> a = turning(outline0, start0), b = turning(outline, start);
   StartAlignment r;
+  const double s = NearestArcLength(outline, start, nullptr), perimeter = CumulativeArcLength(outline).back();
   r.best_cost = std::numeric_limits<double>::infinity();
   for (std::size_t shift = 0; shift < K; ++shift) {
     double cost = 0;
@@ -183,6 +184,7 @@ StartAlignment AlignStart(const Polygon& outline0, const Point& start0, const Po
     if (shift == 0) r.cost_at_start = cost;
     if (cost < r.best_cost) r.best_cost = cost, r.best_shift = double(shift) / double(K);
   }
+  r.best_start = s + r.best_shift * perimeter;
   return r;
 }
 

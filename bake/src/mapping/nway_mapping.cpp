@@ -174,9 +174,7 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   for (std::size_t k = 1; k < N; ++k) {
     const StartAlignment a = AlignStart(st.outlines[0], st.landmarks[0][0], st.outlines[k], st.landmarks[k][0]);
     if (std::min(a.best_shift, 1 - a.best_shift) > 0.125 && a.best_cost < 0.8 * a.cost_at_start) {
-      const double perimeter = CumulativeArcLength(st.outlines[k]).back();
-      const double s = NearestArcLength(st.outlines[k], st.landmarks[k][0], nullptr) + a.best_shift * perimeter;
-      st.spinning.push_back({k, a.best_shift, grid.FromGrid(PointAtArcLength(st.outlines[k], s)), a});
+      st.spinning.push_back({k, a.best_shift, grid.FromGrid(PointAtArcLength(st.outlines[k], a.best_start)), a});
     }
   }
 
@@ -240,6 +238,23 @@ std::string DroppedParts(const mapping::ImageOutline& io) {
          " pixels, " + share(io.dropped_parts[0]) + ")";
 }
 
+// A point of a pose's drawing (y down) -> rig coordinates (y up, the pose's
+// origin at 0), and back.
+Point InRig(const Point& p, const PoseDescription& pose) {
+  return {p.x() - pose.origin.x(), -(p.y() - pose.origin.y())};
+}
+Point InDrawing(const Point& p, const PoseDescription& pose) {
+  return {p.x() + pose.origin.x(), -p.y() + pose.origin.y()};
+}
+
+// The mesh's triangles as the rig stores them.
+Triangles SharedTriangles(const mapping::CompatibleMesh& mesh) {
+  Triangles triangles;
+  for (const auto& t : mesh.triangles)
+    triangles.push_back({std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])});
+  return triangles;
+}
+
 // Step 1 for one drawn pose: its outline and landmarks in rig coordinates
 // (y up), and where its drawing's canvas lies. Dropped parts of a PNG become
 // warnings in `report`.
@@ -263,20 +278,20 @@ void ReadDrawnOutline(const RigDescription& rig, const MappingParameters& prm, D
         report.warnings.push_back(rig.file + ": " + PoseLabel(pose.name, d.index) + ": " + pose.drawing_path +
                                   ": dropped " + DroppedParts(io) +
                                   ": only the largest part is meshed; join the parts in the drawing to keep them");
-      for (const Point& p : io.outline) raw.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
+      for (const Point& p : io.outline) raw.push_back(InRig(p, pose));
       d.from_drawing = true;
       d.origin = Point(0.0 - pose.origin.x(), 0.0 - pose.origin.y());  // the canvas's corner from the pose's origin
       d.size = Point(io.width, io.height);
     } else {
       mapping::SvgOutline so = mapping::OutlineFromSvg(pose.drawing_path, prm.curve_tolerance, source);
-      for (const Point& p : so.outline) raw.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
+      for (const Point& p : so.outline) raw.push_back(InRig(p, pose));
       d.from_drawing = true;
       d.origin = so.canvas_origin - pose.origin;
       d.size = so.canvas_size;
     }
   }
   if (d.from_drawing)
-    for (const Point& p : pose.landmarks) d.landmarks.push_back({p.x() - pose.origin.x(), -(p.y() - pose.origin.y())});
+    for (const Point& p : pose.landmarks) d.landmarks.push_back(InRig(p, pose));
   if (raw.size() > mapping::kMaxOutlinePoints)
     fail((d.from_drawing ? pose.drawing_path + ": " : std::string()) + "the outline has " + std::to_string(raw.size()) +
          " points, more than the limit of " + std::to_string(mapping::kMaxOutlinePoints));
@@ -288,8 +303,7 @@ void ReadDrawnOutline(const RigDescription& rig, const MappingParameters& prm, D
 // drawing (or its outline's box) and the canvas a drawing was on.
 void MeshesFromMapping(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
                        const mapping::CompatibleMesh& mesh, const mapping::Grid& grid, MappedDrawings& result) {
-  for (const auto& t : mesh.triangles)
-    result.triangles.push_back({std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])});
+  result.triangles = SharedTriangles(mesh);
   for (std::size_t k = 0; k < drawn.size(); ++k) {
     const DrawnPose& d = drawn[k];
     const PoseDescription& description = rig.poses[d.index];
@@ -330,9 +344,21 @@ std::vector<DrawnPose> DrawnPoses(const RigDescription& rig) {
   return drawn;
 }
 
-// A rig point of a pose -> its drawing's coordinates (y down, before the origin).
-Point InDrawing(const Point& p, const PoseDescription& pose) {
-  return {p.x() + pose.origin.x(), -p.y() + pose.origin.y()};
+// Step 1 for every drawn pose: what MapPolygons takes.
+struct MappingInput {
+  std::vector<Polygon> outlines;
+  std::vector<std::vector<Point>> landmarks;
+  std::vector<std::string> labels;
+};
+MappingInput ReadDrawnOutlines(const RigDescription& rig, std::vector<DrawnPose>& drawn, MappingReport& report) {
+  MappingInput in;
+  for (DrawnPose& d : drawn) {
+    ReadDrawnOutline(rig, rig.mapping, d, report);
+    in.outlines.push_back(d.outline);
+    in.landmarks.push_back(d.landmarks);
+    in.labels.push_back(PoseLabel(rig.poses[d.index].name, d.index));
+  }
+  return in;
 }
 
 // "FILE: POSE: ..." for each pose whose start landmark seems misplaced.
@@ -362,19 +388,10 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
   MappingReport& report = result.report;
 
   // 1. Outlines, in rig coordinates (y up).
-  for (DrawnPose& d : drawn) ReadDrawnOutline(rig, prm, d, report);
-
-  std::vector<Polygon> outlines;
-  std::vector<std::vector<Point>> landmarks;
-  std::vector<std::string> labels;
-  for (const DrawnPose& d : drawn) {
-    outlines.push_back(d.outline);
-    landmarks.push_back(d.landmarks);
-    labels.push_back(PoseLabel(rig.poses[d.index].name, d.index));
-  }
-  const mapping::MappingStages st = mapping::MapPolygons(outlines, landmarks, prm, labels, rig.file);
+  const MappingInput in = ReadDrawnOutlines(rig, drawn, report);
+  const mapping::MappingStages st = mapping::MapPolygons(in.outlines, in.landmarks, prm, in.labels, rig.file);
   for (const std::string& w : st.warnings) report.warnings.push_back(rig.file + ": " + w);
-  for (const std::string& w : SpinningWarnings(rig, drawn, labels, st)) report.warnings.push_back(w);
+  for (const std::string& w : SpinningWarnings(rig, drawn, in.labels, st)) report.warnings.push_back(w);
   const mapping::CompatibleMesh& mesh = st.mesh;
   const mapping::Grid grid{st.grid_scale};
   report.matched_vertices = st.matched.points[0].size();
@@ -396,28 +413,24 @@ DrawnOutlines TraceDrawings(const RigDescription& rig) {
   DrawnOutlines result;
   std::vector<DrawnPose> drawn = DrawnPoses(rig);
   MappingReport report;
-  std::vector<Polygon> outlines;
-  std::vector<std::vector<Point>> landmarks;
-  std::vector<std::string> labels;
-  for (DrawnPose& d : drawn) {
-    ReadDrawnOutline(rig, rig.mapping, d, report);
+  const MappingInput in = ReadDrawnOutlines(rig, drawn, report);
+  for (std::size_t k = 0; k < drawn.size(); ++k) {
+    const DrawnPose& d = drawn[k];
     const PoseDescription& pose = rig.poses[d.index];
     DrawnPoseOutline o;
     o.pose = d.index;
-    o.label = PoseLabel(pose.name, d.index);
+    o.label = in.labels[k];
+    if (EndsWith(pose.drawing, ".png")) o.png_path = pose.drawing_path;
     Eigen::AlignedBox2d box;
     for (const Point& p : d.outline) box.extend(p), o.traced.push_back(InDrawing(p, pose));
     if (mapping::SignedArea(d.outline) < 0) std::reverse(o.traced.begin(), o.traced.end());
     for (const Point& p : d.landmarks) o.landmarks.push_back(InDrawing(p, pose));
     o.landmark_distance = rig.mapping.landmark_distance * box.diagonal().norm();
     result.poses.push_back(std::move(o));
-    outlines.push_back(d.outline);
-    landmarks.push_back(d.landmarks);
-    labels.push_back(result.poses.back().label);
   }
   if (drawn.empty()) return result;
   try {
-    const mapping::MappingStages st = mapping::MapPolygons(outlines, landmarks, rig.mapping, labels, rig.file);
+    const mapping::MappingStages st = mapping::MapPolygons(in.outlines, in.landmarks, rig.mapping, in.labels, rig.file);
     const mapping::Grid grid{st.grid_scale};
     result.simplify_tolerance = st.sizes.simplify_tolerance;
     for (std::size_t k = 0; k < drawn.size(); ++k) {
@@ -427,8 +440,7 @@ DrawnOutlines TraceDrawings(const RigDescription& rig) {
       for (const Point& g : st.simplified.polygons[k]) o.boundary.push_back(InDrawing(grid.FromGrid(g), pose));
       for (const Point& g : st.mesh.vertices[k]) o.vertices.push_back(InDrawing(grid.FromGrid(g), pose));
     }
-    for (const auto& t : st.mesh.triangles)
-      result.triangles.push_back({std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])});
+    result.triangles = SharedTriangles(st.mesh);
   } catch (const BakeError& e) {
     result.mapping_error = e.what();
   }

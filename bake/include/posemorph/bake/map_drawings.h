@@ -49,6 +49,7 @@ MappedDrawings MapDrawings(const RigDescription& description);
 struct DrawnPoseOutline {
   std::size_t pose = 0;                    // index in the description
   std::string label;                       // "pose 'rest' (index 0)"
+  std::string png_path;                    // the PNG drawing, resolved; empty for an SVG or an outline
   std::vector<Eigen::Vector2d> traced;     // the outline as traced or read, counter-clockwise as seen
   std::vector<Eigen::Vector2d> landmarks;  // as given; the first is the start point
   double landmark_distance = 0;            // how far a landmark may lie off the outline

@@ -27,11 +27,12 @@ CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
 // Whether a pose's start point sits where pose 0's does, judged by the
 // outlines' turning angles alone (256 samples round each, from its start
 // point): the shift of the other outline's start (a share of its perimeter,
-// counter-clockwise, in [0, 1)) at which it matches pose 0's best, the mean
-// turning-angle difference there, and with no shift. A start point placed on
+// counter-clockwise, in [0, 1)) at which it matches pose 0's best, that
+// start's arc length on `outline`, the mean turning-angle difference there,
+// and with no shift. A start point placed on
 // a different feature than pose 0's makes the in-betweens spin.
 struct StartAlignment {
-  double best_shift = 0, best_cost = 0, cost_at_start = 0;
+  double best_shift = 0, best_start = 0, best_cost = 0, cost_at_start = 0;
 };
 StartAlignment AlignStart(const Polygon& outline0, const Point& start0, const Polygon& outline, const Point& start);
 // Arc length from vertex 0 at each vertex, closing edge included (size n + 1; the last is the perimeter).
