@@ -82,6 +82,7 @@ struct Attempt {
   bool is_compact = false;
   ReproductionCheck written;
   InbetweenCheck inbetweens;
+  std::vector<std::string> weight_warnings;
 };
 
 Attempt BakeOnce(const RigDescription& description) {
@@ -103,7 +104,7 @@ Attempt BakeOnce(const RigDescription& description) {
   std::vector<Eigen::Vector2d> points;
   std::vector<std::string> names;
   for (const PoseMesh& p : meshes.poses) points.push_back(p.point), names.push_back(p.name);
-  const WeightGrid grid = SolvePoseSpaceWeights(points, names, description.parameters, file);
+  const WeightGrid grid = SolvePoseSpaceWeights(points, names, description.parameters, file, &a.weight_warnings);
   BakeStage write_stage("writing and encoding the rig");
   a.exact = SerialiseRig(description, meshes, analysis, system, grid);
   a.compact_settings = CompactSettingsFor(description.parameters, meshes);
@@ -197,6 +198,7 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
     r.pixels_per_unit = description.parameters.compact ? a.compact_settings.pixels_per_unit : 0;
     r.compact_report = a.compact;
     r.warnings = retry_warnings;
+    for (const std::string& w : a.weight_warnings) r.warnings.push_back(w);
     for (std::string& w : FoldWarnings(file, a.written.rig, a.inbetweens)) r.warnings.push_back(std::move(w));
     r.inbetweens = a.inbetweens;
     r.mapping = a.drawings.report;

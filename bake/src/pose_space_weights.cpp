@@ -2,12 +2,15 @@
 #include "posemorph/bake/pose_space_weights.h"
 
 #include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
+#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/pose_space_samples.h"
+#include "posemorph/bake/thin_plate_spline.h"
 #include "posemorph/bake/triangle_math.h"
 
 namespace posemorph::bake {
@@ -107,38 +110,60 @@ std::vector<Eigen::Triplet<double>> EnergyTriplets(const GridMesh& m, double eps
   return q;
 }
 
-// The KKT solve meets W(p_i) = e_i only to its conditioning (~1e-12 here);
-// move the three grid values around each point along its barycentric
-// coordinates by the residual so the runtime's arithmetic gives e_i to
-// roundoff. Residuals sum to 0 over the poses, so row sums stay 1.
+// The grid interpolates the spline's values, so W(p_i) = e_i holds only to
+// the interpolation error (~1e-3); move the three grid values around each
+// point along its barycentric coordinates by the residual so the runtime's
+// arithmetic gives e_i to roundoff. Points in neighbouring cells share
+// nodes, so sweep until no residual is left (Gauss-Seidel on a positive
+// definite system: it converges). Residuals sum to 0 over the poses, so row
+// sums stay 1.
 void PinPoints(const WeightGrid& g, const std::vector<Eigen::Vector2d>& points, std::vector<double>& all) {
   const std::size_t N = points.size();
-  for (std::size_t i = 0; i < N; ++i) {
-    const GridLocation loc = Locate(g, points[i]);
-    const double norm = loc.lambda[0] * loc.lambda[0] + loc.lambda[1] * loc.lambda[1] + loc.lambda[2] * loc.lambda[2];
-    for (std::size_t j = 0; j < N; ++j) {
-      double value = 0;
-      for (int k = 0; k < 3; ++k) value += loc.lambda[k] * all[loc.node[k] * N + j];
-      const double residual = (i == j ? 1.0 : 0.0) - value;
-      for (int k = 0; k < 3; ++k) all[loc.node[k] * N + j] += loc.lambda[k] / norm * residual;
+  for (int sweep = 0; sweep < 100; ++sweep) {
+    double largest = 0;
+    for (std::size_t i = 0; i < N; ++i) {
+      const GridLocation loc = Locate(g, points[i]);
+      const double norm = loc.lambda[0] * loc.lambda[0] + loc.lambda[1] * loc.lambda[1] + loc.lambda[2] * loc.lambda[2];
+      for (std::size_t j = 0; j < N; ++j) {
+        double value = 0;
+        for (int k = 0; k < 3; ++k) value += loc.lambda[k] * all[loc.node[k] * N + j];
+        const double residual = (i == j ? 1.0 : 0.0) - value;
+        largest = std::max(largest, std::abs(residual));
+        for (int k = 0; k < 3; ++k) all[loc.node[k] * N + j] += loc.lambda[k] / norm * residual;
+      }
     }
+    if (largest <= 1e-15) return;
   }
+}
+
+// Distance from x to the convex hull (counter-clockwise; a segment or a
+// point when the points are collinear); 0 inside.
+double DistanceToHull(const std::vector<Eigen::Vector2d>& hull, const Eigen::Vector2d& x) {
+  if (hull.size() == 1) return (x - hull[0]).norm();
+  bool inside = hull.size() >= 3;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const Eigen::Vector2d& a = hull[i];
+    const Eigen::Vector2d ab = hull[(i + 1) % hull.size()] - a, ax = x - a;
+    if (ab.x() * ax.y() - ab.y() * ax.x() < 0) inside = false;
+    const double t = std::clamp(ax.dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+    nearest = std::min(nearest, (ax - t * ab).norm());
+  }
+  return inside ? 0.0 : nearest;
 }
 
 }  // namespace
 
 WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, const std::vector<std::string>& names,
-                                 const BakeParameters& params, const std::string& file) {
+                                 const BakeParameters& params, const std::string& file,
+                                 std::vector<std::string>* warnings) {
   const std::size_t N = points.size();
   double spread = 0;
   WeightGrid g = CoveringGrid(points, params, &spread);
   const GridMesh mesh = Tessellate(g);
   const std::size_t corners = mesh.corners, G = mesh.nodes.size();
-  // eps is relative to the points' spread so that it means the same at any
-  // pose-space scale and grid resolution: the field levels out over distances
-  // of about spread / sqrt(eps).
-  std::vector<Eigen::Triplet<double>> q = EnergyTriplets(mesh, params.epsilon / (spread * spread));
-  // Point constraints by Lagrange multipliers: [Q C^T; C 0] [W; mu] = [0; I].
+  // Two points in one cell would ask one triangle's three values for two
+  // different unit vectors.
   std::vector<std::uint32_t> cell_owner(std::size_t(g.cells_x) * g.cells_y, std::uint32_t(-1));
   for (std::size_t i = 0; i < N; ++i) {
     const GridLocation loc = Locate(g, points[i]);
@@ -147,38 +172,90 @@ WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, con
                                 "' fall in one pose-space grid cell; raise bake.grid_resolution (now " +
                                 std::to_string(params.grid_resolution) + ") or move them apart");
     cell_owner[loc.cell] = std::uint32_t(i);
-    for (int k = 0; k < 3; ++k) {
-      q.emplace_back(int(G + i), int(loc.node[k]), loc.lambda[k]);
-      q.emplace_back(int(loc.node[k]), int(G + i), loc.lambda[k]);
-    }
   }
-  Eigen::SparseMatrix<double> kkt(int(G + N), int(G + N));
-  kkt.setFromTriplets(q.begin(), q.end());
-  kkt.makeCompressed();
-  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu;
-  lu.compute(kkt);
-  // The grid and constraint checks above leave a solvable system; a failure
-  // here is a layout beyond the grid's precision: say which layout.
-  auto layout_problem = [&](const std::string& symptom) {
-    std::ostringstream s;
-    s << "the pose-space weights cannot be solved for these pose points (" << symptom << "): " << N << " points on a "
-      << g.cells_x << " x " << g.cells_y << " grid of cell size " << g.cell
-      << "; move points that nearly coincide apart, or change bake.grid_resolution (now " << params.grid_resolution
-      << ")";
-    return BakeError(file, s.str());
-  };
-  if (lu.info() != Eigen::Success) throw layout_problem("the solver reports: " + lu.lastErrorMessage());
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(G + N, N);
-  for (std::size_t i = 0; i < N; ++i) rhs(G + i, i) = 1;
-  const Eigen::MatrixXd solution = lu.solve(rhs);
-  if (lu.info() != Eigen::Success || !solution.allFinite()) throw layout_problem("the solve gave non-finite weights");
+  for (std::size_t i = 0; warnings && i < N; ++i)
+    for (std::size_t j = i + 1; j < N; ++j) {
+      const double apart = (points[i] - points[j]).norm() / g.cell;
+      if (apart >= 2) continue;
+      const int needed = std::min(256, int(std::ceil(params.grid_resolution * 2 / apart)));
+      std::ostringstream s;
+      s.precision(2);
+      s << file << ": pose points '" << names[i] << "' and '" << names[j] << "' are " << std::fixed << apart
+        << " pose-space grid cells apart: the weights between them are interpolated coarsely; bake.grid_resolution "
+        << needed << " (now " << params.grid_resolution << ") puts them two cells apart";
+      warnings->push_back(s.str());
+    }
 
-  std::vector<double> all(G * N);  // corners, then centres
+  // Inside the hull: the thin-plate spline, at every node of every cell
+  // within 3/4 of a cell of the hull (so each point of the hull is
+  // interpolated from spline values only).
+  const ThinPlateSpline spline(points);
+  const std::vector<Eigen::Vector2d> hull = ConvexHull(points);
+  std::vector<char> fixed(G, 0);
+  std::vector<double> all(G * N, 0.0);  // corners, then centres
+  auto set_spline = [&](std::size_t v) {
+    if (fixed[v]) return;
+    fixed[v] = 1;
+    const Eigen::VectorXd w = spline(mesh.nodes[v]);
+    for (std::size_t i = 0; i < N; ++i) all[v * N + i] = w(Eigen::Index(i));
+  };
+  for (std::size_t cell = 0; cell < std::size_t(g.cells_x) * g.cells_y; ++cell) {
+    if (DistanceToHull(hull, mesh.nodes[corners + cell]) > 2.0 * g.cell) continue;
+    for (int k = 0; k < 4; ++k) set_spline(mesh.triangles[4 * cell + std::size_t(k)][0]);
+    set_spline(corners + cell);
+  }
+
+  // Outside: the energy with the spline's values held, so that the field
+  // continues the spline smoothly and levels out. eps is relative to the
+  // points' spread so that it means the same at any pose-space scale and grid
+  // resolution: the field levels out over distances of about spread /
+  // sqrt(eps).
+  std::vector<Eigen::Triplet<double>> q = EnergyTriplets(mesh, params.epsilon / (spread * spread));
+  std::vector<int> unknown(G, -1);
+  int free_count = 0;
+  for (std::size_t v = 0; v < G; ++v)
+    if (!fixed[v]) unknown[v] = free_count++;
+  if (free_count > 0) {
+    std::vector<Eigen::Triplet<double>> qff;
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(free_count, Eigen::Index(N));
+    for (const auto& t : q) {
+      const int r = unknown[std::size_t(t.row())];
+      if (r < 0) continue;
+      const int c = unknown[std::size_t(t.col())];
+      if (c >= 0) {
+        qff.emplace_back(r, c, t.value());
+      } else {
+        for (std::size_t i = 0; i < N; ++i) rhs(r, Eigen::Index(i)) -= t.value() * all[std::size_t(t.col()) * N + i];
+      }
+    }
+    Eigen::SparseMatrix<double> Q(free_count, free_count);
+    Q.setFromTriplets(qff.begin(), qff.end());
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(Q);
+    // Q is positive definite (the gradient term, and nodes held): a failure
+    // here is a layout beyond the grid's precision; say which layout.
+    auto layout_problem = [&](const std::string& symptom) {
+      std::ostringstream s;
+      s << "the pose-space weights cannot be solved for these pose points (" << symptom << "): " << N << " points on a "
+        << g.cells_x << " x " << g.cells_y << " grid of cell size " << g.cell
+        << "; move points that nearly coincide apart, or change bake.grid_resolution (now " << params.grid_resolution
+        << ")";
+      return BakeError(file, s.str());
+    };
+    if (ldlt.info() != Eigen::Success) throw layout_problem("the factorisation failed");
+    const Eigen::MatrixXd solution = ldlt.solve(rhs);
+    if (ldlt.info() != Eigen::Success || !solution.allFinite())
+      throw layout_problem("the solve gave non-finite weights");
+    for (std::size_t v = 0; v < G; ++v)
+      if (unknown[v] >= 0)
+        for (std::size_t i = 0; i < N; ++i) all[v * N + i] = solution(unknown[v], Eigen::Index(i));
+  }
   for (std::size_t v = 0; v < G; ++v) {
-    // The exact field sums to 1 (the constant 1 meets every constraint at zero
-    // energy); dividing by the sum removes the solver's roundoff.
-    const double sum = solution.row(v).sum();
-    for (std::size_t i = 0; i < N; ++i) all[v * N + i] = solution(v, i) / sum;
+    // The exact field sums to 1 (the spline reproduces constants and the
+    // constant 1 continues it at zero energy); dividing by the sum removes
+    // roundoff.
+    double sum = 0;
+    for (std::size_t i = 0; i < N; ++i) sum += all[v * N + i];
+    for (std::size_t i = 0; i < N; ++i) all[v * N + i] /= sum;
   }
   PinPoints(g, points, all);
   g.weights.assign(all.begin(), all.begin() + std::ptrdiff_t(corners * N));

@@ -5,6 +5,9 @@
 // by the bake before 1.2 (from small.json).
 #include "posemorph/jobs.h"
 #include "posemorph/rig_format.h"
+#include <cmath>
+#include <utility>
+
 #include "runtime_support.h"
 
 using namespace posemorph;
@@ -55,39 +58,68 @@ TEST_CASE("a rig baked now is format 1.4 with a centre per grid cell") {
   for (std::uint32_t k = 0; k < n; ++k) CHECK(w.raw[k] == doctest::Approx(c[k]).epsilon(1e-14));
 }
 
+namespace {
+
+Rig LoadCommitted(const std::string& name) {
+  const std::vector<unsigned char> bytes =
+      ReadFileBytes(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/" + name);
+  Rig rig;
+  Error err;
+  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), name << ": " << err.message);
+  return rig;
+}
+
+}  // namespace
+
 // small-format-1.2.pmrig: small.json baked with --precision exact and the
 // header's minor version set back to 2 (the header lies outside the CRC):
-// what the 1.2 bake wrote, whose exact sections 1.3 did not change. It loads
-// to the same arrays as today's exact bake of the same description.
+// what the 1.2 bake wrote, whose exact sections 1.3 and 1.4 did not change.
 // small-format-1.3-compact.pmrig: small.json as the 1.3 bake wrote it
-// (compact). 1.4 added only the texture-filter flag: it loads, samples
-// linear, and gives the frames of today's compact bake bit for bit.
-TEST_CASE("a format 1.3 compact rig loads and gives today's compact frames") {
-  const std::vector<unsigned char> bytes =
-      ReadFileBytes(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/small-format-1.3-compact.pmrig");
-  Rig old;
-  Error err;
-  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &old, &err), err.message);
+// (compact). small-format-1.4.pmrig and small-format-1.4-compact.pmrig:
+// small.json as the 1.4 bake wrote it (exact, compact) at commit 03c561f,
+// before the weights inside the pose points' hull became the thin-plate
+// spline (the files keep that grid). 1.4 added only the texture-filter flag:
+// the older files load, sample linear, and give the 1.4 files' arrays and
+// frames bit for bit.
+TEST_CASE("a format 1.3 compact rig loads and gives the frames of the 1.4 compact file") {
+  const Rig old = LoadCommitted("small-format-1.3-compact.pmrig");
   CHECK(old.format_minor() == 3);
   CHECK(old.texture_filter() == TextureFilter::kLinear);
-  const Rig now = LoadTestRig("small.compact");
+  const Rig now = LoadCommitted("small-format-1.4-compact.pmrig");
+  CHECK(now.format_minor() == 4);
   for (double x : {-0.5, 0.0, 0.3, 1.0, 1.7}) {
     CAPTURE(x);
     CHECK(MorphAt(old, x, 0.2) == MorphAt(now, x, 0.2));
   }
 }
 
-TEST_CASE("a format 1.2 rig loads to the arrays an exact 1.3 bake gives") {
-  const std::vector<unsigned char> bytes =
-      ReadFileBytes(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/small-format-1.2.pmrig");
-  Rig old;
-  Error err;
-  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &old, &err), err.message);
+TEST_CASE("a format 1.2 rig loads to the arrays of the 1.4 exact file") {
+  const Rig old = LoadCommitted("small-format-1.2.pmrig");
   CHECK(old.format_minor() == 2);
-  const Rig now = LoadTestRig("small");
+  const Rig now = LoadCommitted("small-format-1.4.pmrig");
   REQUIRE(old.grid().weights.size == now.grid().weights.size);
   for (std::size_t k = 0; k < now.grid().weights.size; ++k) CHECK(old.grid().weights[k] == now.grid().weights[k]);
   for (std::size_t k = 0; k < now.angles().size; ++k) CHECK(old.angles()[k] == now.angles()[k]);
   const std::vector<double> a = MorphAt(old, 0.3, 0.2), b = MorphAt(now, 0.3, 0.2);
   CHECK(a == b);
+}
+
+TEST_CASE("today's bake differs from the 1.4 file only in the weight grid") {
+  // The thin-plate spline changed the stored weights and nothing else: the
+  // same angles, and at the pose points the same poses.
+  const Rig before = LoadCommitted("small-format-1.4.pmrig");
+  const Rig now = LoadTestRig("small");
+  REQUIRE(before.angles().size == now.angles().size);
+  for (std::size_t k = 0; k < now.angles().size; ++k) CHECK(before.angles()[k] == now.angles()[k]);
+  REQUIRE(before.grid().weights.size == now.grid().weights.size);
+  double changed = 0;
+  for (std::size_t k = 0; k < now.grid().weights.size; ++k)
+    changed = std::max(changed, std::abs(before.grid().weights[k] - now.grid().weights[k]));
+  MESSAGE("largest change of a stored grid weight: " << changed);
+  CHECK(changed > 1e-3);
+  for (const auto& p : {std::pair<double, double>{0, 0}, {1, 0.5}}) {
+    const std::vector<double> a = MorphAt(before, p.first, p.second), b = MorphAt(now, p.first, p.second);
+    REQUIRE(a.size() == b.size());
+    for (std::size_t k = 0; k < a.size(); ++k) CHECK(std::abs(a[k] - b[k]) <= 1e-14);
+  }
 }

@@ -1,7 +1,13 @@
 // SPDX-License-Identifier: MIT
 // The biharmonic pose-space weight field of the paper's section 4.1 on a
-// regular grid: minimise sum over edge-adjacent grid triangles of
-// ||grad W_j - grad W_k||^2 + eps' sum_j area_j ||grad W_j||^2 with W(p_i) = e_i.
+// regular grid. Within two cells of the pose points' convex hull the grid
+// holds the thin-plate spline through (p_i, e_i) (thin_plate_spline.h: the
+// biharmonic interpolant of the whole plane, so mirror images and turns of a
+// layout get permuted weights and uneven layouts are not distorted by the
+// grid's edge). Beyond, it minimises the paper's discrete energy
+// sum over edge-adjacent grid triangles ||grad W_j - grad W_k||^2
+// + eps' sum_j area_j ||grad W_j||^2 with those values held, so the field
+// continues the spline smoothly and levels out (docs/DESIGN.md).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -23,8 +29,11 @@ struct WeightGrid : GridGeometry {
   std::vector<double> centre_weights;
 };
 
-// Throws BakeError (with `file`) if two points share a grid cell.
+// Throws BakeError (with `file`) if two points share a grid cell. Appends to
+// *warnings ("FILE: ...") each pair of points closer than two cells, between
+// which the grid's linear interpolation is coarse.
 WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, const std::vector<std::string>& names,
-                                 const BakeParameters& parameters, const std::string& file);
+                                 const BakeParameters& parameters, const std::string& file,
+                                 std::vector<std::string>* warnings = nullptr);
 
 }  // namespace posemorph::bake
