@@ -15,7 +15,7 @@ drawn=build/release/assets   # the SVG drawings of assets/pip and assets/sprout,
 $bin/posemorph-bake $drawn/pip/pip.json -o out/pip.pmrig
 $bin/posemorph-bake info out/pip.pmrig
 $bin/posemorph-bake sheet out/pip.pmrig -o out/pip-sheet.svg
-$bin/posemorph-bake sheet out/pip.pmrig --textured --images $drawn/pip --columns 5 --rows 3 -o out/pip-sheet-textured.png
+$bin/posemorph-bake sheet out/pip.pmrig --textured --columns 5 --rows 3 -o out/pip-sheet-textured.png
 $bin/posemorph-bake eval out/pip.pmrig --path hello --frames 16 -o out/pip-hello.svg
 $bin/posemorph-bake $drawn/sprout/sprout.json -o out/sprout.pmrig
 $bin/posemorph-bake sheet out/sprout.pmrig -o out/sprout-sheet.svg
@@ -37,11 +37,11 @@ if [ ! -x $view ]; then
   echo "posemorph-view was not built (see the cmake warnings); skipping the viewer"
 elif [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
   echo "opening the viewer on out/pip.pmrig (close the window to finish)"
-  $view out/pip.pmrig --images $drawn/pip --description $drawn/pip/pip.json
+  $view out/pip.pmrig --description $drawn/pip/pip.json
 else
   mkdir -p out/frames
-  $view out/pip.pmrig --images $drawn/pip --headless --size 480x480 --path hello --frames 24 -o out/frames/pip-hello.png
-  $view out/pip.pmrig --images $drawn/pip --headless --size 1280x720 --path hello --crowd 100 -o out/frames/pip-crowd.png
-  $view out/pip.pmrig --images $drawn/pip --headless --size 960x480 --at 1.4,0.4 --compare -o out/frames/pip-rigid-vs-linear.png
-  $view out/sprout.pmrig --images $drawn/sprout --headless --size 480x480 --path breeze --frames 24 -o out/frames/sprout-breeze.png
+  $view out/pip.pmrig --headless --size 480x480 --path hello --frames 24 -o out/frames/pip-hello.png
+  $view out/pip.pmrig --headless --size 1280x720 --path hello --crowd 100 -o out/frames/pip-crowd.png
+  $view out/pip.pmrig --headless --size 960x480 --at 1.4,0.4 --compare -o out/frames/pip-rigid-vs-linear.png
+  $view out/sprout.pmrig --headless --size 480x480 --path breeze --frames 24 -o out/frames/sprout-breeze.png
 fi

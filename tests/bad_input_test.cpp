@@ -510,6 +510,44 @@ TEST_CASE("drawn poses: an origin per pose lines up drawings on canvases of diff
                     "rig.json: poses[0].origin: only a drawing has an origin (an outline is in rig coordinates)");
 }
 
+TEST_CASE("a rig baked to a file records its drawings' folder relative to it (format 1.5)") {
+  json d = ValidDescription();
+  d["poses"][0]["image"] = "a.png";
+  auto folder = [&](const std::string& description, const std::string& rig_file, const char* precision) {
+    d["bake"]["precision"] = precision;
+    bake::RigDescription desc = bake::ParseRigDescription(d.dump(), description, ".");
+    desc.rig_file = rig_file;
+    const std::vector<unsigned char> bytes = bake::BakeRig(desc);
+    Rig rig;
+    Error err;
+    REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
+    CHECK(rig.format_minor() == 5);
+    const std::string recorded(rig.drawing_folder().data, rig.drawing_folder().size);
+    pm_rig* handle = nullptr;
+    REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &handle, nullptr) == PM_OK);
+    char text[128];
+    std::size_t length = 99;
+    CHECK(pm_rig_drawing_folder(handle, text, sizeof text, &length) == PM_OK);
+    CHECK(std::string(text) == recorded);
+    CHECK(length == recorded.size());
+    pm_rig_free(handle);
+    return recorded;
+  };
+  for (const char* precision : {"exact", "compact"}) {
+    CAPTURE(precision);
+    CHECK(folder("/studio/assets/chick/chick.json", "/studio/build/rigs/chick.pmrig", precision) ==
+          "../../assets/chick");
+    CHECK(folder("/studio/chick.json", "/studio/chick.pmrig", precision) == ".");
+    CHECK(folder("/studio/chick.json", "/studio/out/chick.pmrig", precision) == "..");
+    CHECK(folder("art/chick.json", "art/rigs/chick.pmrig", precision) == "..");
+    // Baked in memory: nowhere to be relative to.
+    CHECK(folder("/studio/chick.json", "", precision).empty());
+  }
+  // No drawing referenced: nothing to find.
+  d["poses"][0].erase("image");
+  CHECK(folder("/studio/chick.json", "/studio/out/chick.pmrig", "exact").empty());
+}
+
 TEST_CASE("a description's \"filter\" reaches the rig, exact and compact, and the C API") {
   for (const char* precision : {"exact", "compact"}) {
     CAPTURE(precision);
@@ -521,7 +559,7 @@ TEST_CASE("a description's \"filter\" reaches the rig, exact and compact, and th
     Rig rig;
     REQUIRE(LoadRig(bytes.data(), bytes.size(), &rig, nullptr));
     CHECK(rig.texture_filter() == TextureFilter::kNearest);
-    CHECK(rig.format_minor() == 4);
+    CHECK(rig.format_minor() == 5);
     pm_rig* handle = nullptr;
     REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &handle, nullptr) == PM_OK);
     CHECK(pm_rig_texture_filter(handle) == PM_FILTER_NEAREST);

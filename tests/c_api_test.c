@@ -108,6 +108,9 @@ int main(int argc, char** argv) {
     EXPECT(pm_rig_pose_name(rig, 0, name, length, &length) == PM_ERROR_BUFFER_TOO_SMALL && length == strlen(name));
     EXPECT(pm_rig_pose_name(rig, info.pose_count, name, sizeof name, &length) == PM_ERROR_INVALID_ARGUMENT);
     EXPECT(pm_rig_pose_image(rig, 0, name, sizeof name, &length) == PM_OK);
+    /* The snake has no drawings: the bake records no folder. */
+    EXPECT(pm_rig_drawing_folder(rig, name, sizeof name, &length) == PM_OK && length == 0 && name[0] == 0);
+    EXPECT(pm_rig_drawing_folder(NULL, name, sizeof name, &length) == PM_ERROR_INVALID_ARGUMENT);
     if (info.path_count)
       EXPECT(pm_rig_path_name(rig, 0, name, sizeof name, NULL) == PM_OK && pm_path_find(rig, name) == 0);
     pm_grid_info grid;
@@ -133,7 +136,7 @@ int main(int argc, char** argv) {
     uint32_t crc = 0, crc_at = 0, major = 0, minor = 9;
     memcpy(&crc_at, bytes + 32, 4); /* the header's checksum field */
     EXPECT(pm_rig_checksum(rig, &crc) == PM_OK && crc == crc_at);
-    EXPECT(pm_rig_format_version(rig, &major, &minor) == PM_OK && major == 1 && minor == 4);
+    EXPECT(pm_rig_format_version(rig, &major, &minor) == PM_OK && major == 1 && minor == 5);
   }
   pm_rig_free(rig);
   free(bytes), free(raw), free(limited), free(tex), free(work), free(x), free(xf);

@@ -35,6 +35,7 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   }
   if (args.switches.count("--allow-folds")) rig.parameters.allow_folds = true;
   BakeReport report;
+  rig.rig_file = output;
   const std::vector<unsigned char> bytes = BakeRig(rig, &report);
   BakeStage writing("writing the output");
   WriteFileAtomic(output, bytes);

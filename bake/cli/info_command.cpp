@@ -97,8 +97,11 @@ void PrintSummary(const std::string& file, const std::vector<unsigned char>& byt
       << "  weight grid: " << g.cells_x << " x " << g.cells_y << " cells of " << g.cell << ", origin (" << g.origin_x
       << ", " << g.origin_y << ")\n"
       << "  rig size " << rig.bounding_box_diagonal() << ", default sigma " << rig.default_sigma()
-      << ", drawings sampled " << (rig.texture_filter() == TextureFilter::kNearest ? "nearest (pixel art)" : "linear")
-      << "\n"
+      << ", drawings sampled " << (rig.texture_filter() == TextureFilter::kNearest ? "nearest (pixel art)" : "linear");
+  if (rig.drawing_folder().size)
+    out << ", found in " << Printable(std::string(rig.drawing_folder().data, rig.drawing_folder().size))
+        << " (relative to the rig)";
+  out << "\n"
       << "  load " << MedianLoadMicroseconds(bytes) << " us (median of 21 loads on this machine)\n"
       << "  kernel path " << IsaName(rig.isa()) << " (this build and CPU run:";
   for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512, Isa::kNeon, Isa::kWasmSimd})

@@ -2,10 +2,9 @@
 // posemorph-bake sheet RIG.pmrig: a contact sheet of frames across pose space.
 #include "commands.h"
 
-#include <filesystem>
-
 #include "command_args.h"
 #include "posemorph/bake/bake.h"
+#include "posemorph/bake/drawing_folder.h"
 #include "posemorph/rig.h"
 #include "preview.h"
 #include "textured_sheet.h"
@@ -31,9 +30,8 @@ int SheetCommand(const std::vector<std::string>& a, std::size_t from, std::ostre
       if (*f != "linear" && *f != "nearest") throw UsageError("--filter wants linear or nearest");
       filter = *f == "nearest" ? TextureFilter::kNearest : TextureFilter::kLinear;
     }
-    std::string images = std::filesystem::path(args.positional).parent_path().string();
+    std::string images = DefaultDrawingFolder(args.positional, rig);
     if (const std::string* i = args.Get("--images")) images = *i;
-    if (images.empty()) images = ".";
     const std::vector<RgbaImage> drawings = ReadPoseDrawings(rig, args.positional, images);
     TexturedSheetLayout layout;
     const RgbaImage sheet = TexturedSheet(rig, drawings, columns, rows, ReadEvalOptions(args), filter, 160, &layout);

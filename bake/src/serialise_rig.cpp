@@ -2,6 +2,8 @@
 #include "posemorph/bake/serialise_rig.h"
 
 #include <cstring>
+#include <filesystem>
+#include <optional>
 
 #include <Eigen/Geometry>
 
@@ -37,6 +39,24 @@ bool HasCanvases(const PoseMeshes& meshes) {
 
 namespace {
 
+// The description's folder relative to the folder of the rig file, when the
+// rig file is known, some pose references a drawing, and one folder can be
+// reached from the other by a relative path.
+std::optional<std::string> DrawingFolder(const RigDescription& description, const PoseMeshes& meshes) {
+  namespace fs = std::filesystem;
+  bool any_image = false;
+  for (const PoseMesh& p : meshes.poses) any_image = any_image || !p.image.empty();
+  if (description.rig_file.empty() || description.file.empty() || !any_image) return std::nullopt;
+  std::error_code ec;
+  const fs::path from = fs::absolute(fs::path(description.rig_file), ec).lexically_normal().parent_path();
+  if (ec) return std::nullopt;
+  const fs::path to = fs::absolute(fs::path(description.file), ec).lexically_normal().parent_path();
+  if (ec) return std::nullopt;
+  const fs::path relative = to.lexically_relative(from);
+  if (relative.empty()) return std::nullopt;
+  return relative.generic_string();
+}
+
 // META: counts, flags, the grid's geometry, sigma and the rig's size.
 fmt::Meta MakeMeta(const RigDescription& description, const PoseMeshes& meshes, const ArapSystem& system,
                    const WeightGrid& grid) {
@@ -51,7 +71,8 @@ fmt::Meta MakeMeta(const RigDescription& description, const PoseMeshes& meshes, 
   meta.factor_nonzeros = std::uint32_t(system.value.size());
   const bool has_uvs = !meshes.poses[0].uvs.empty();
   meta.flags = (has_uvs ? fmt::kMetaFlagHasUVs : 0) | (grid.centre_weights.empty() ? 0 : fmt::kMetaFlagGridCentres) |
-               (description.nearest_filter ? fmt::kMetaFlagNearestFilter : 0);
+               (description.nearest_filter ? fmt::kMetaFlagNearestFilter : 0) |
+               (DrawingFolder(description, meshes) ? fmt::kMetaFlagDrawingFolder : 0);
   meta.grid_origin_x = grid.origin_x;
   meta.grid_origin_y = grid.origin_y;
   meta.grid_cell_size = grid.cell;
@@ -115,6 +136,7 @@ NamesAndPaths FlattenNamesAndPaths(const RigDescription& description, const Pose
     path_table.insert(path_table.end(), e, e + sizeof(entry));
     for (const auto& k : path.keys) keys.insert(keys.end(), k.begin(), k.end());
   }
+  if (const std::optional<std::string> folder = DrawingFolder(description, meshes)) AppendString(strings, *folder);
 
   return a;
 }

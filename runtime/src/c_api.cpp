@@ -152,6 +152,10 @@ int pm_rig_pose_image(const pm_rig* rig, uint32_t pose, char* out, size_t capaci
                     capacity, length);
 }
 
+int pm_rig_drawing_folder(const pm_rig* rig, char* out, size_t capacity, size_t* length) {
+  return CopyString(rig ? rig->rig.drawing_folder() : posemorph::StringView{}, rig != nullptr, out, capacity, length);
+}
+
 int pm_rig_path_name(const pm_rig* rig, uint32_t path, char* out, size_t capacity, size_t* length) {
   return CopyString(rig ? rig->rig.path(path).name : posemorph::StringView{}, rig && path < rig->rig.path_count(), out,
                     capacity, length);

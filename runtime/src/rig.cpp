@@ -40,6 +40,7 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   factor_ = std::exchange(other.factor_, {});
   default_sigma_ = std::exchange(other.default_sigma_, 0);
   texture_filter_ = std::exchange(other.texture_filter_, TextureFilter::kLinear);
+  drawing_folder_ = std::exchange(other.drawing_folder_, {});
   rig_size_ = std::exchange(other.rig_size_, 0);
   kernels_ = std::exchange(other.kernels_, nullptr);
   checksum_ = std::exchange(other.checksum_, 0);

@@ -150,7 +150,7 @@ struct Counts {
   fmt::Meta meta{};
   std::uint64_t V = 0, T = 0, N = 0, P = 0, nnz = 0;
   std::uint64_t n = 0;        // V - 1 unknowns (vertex 0 is pinned)
-  std::uint64_t strings = 0;  // 2N + P: pose names, image references, path names
+  std::uint64_t strings = 0;  // 2N + P (+ 1): pose names, image references, path names (, drawing folder)
   std::uint64_t grid_corners = 0, grid_centres = 0, grid_vertices = 0;
   bool has_uvs = false, compact = false;
 };
@@ -383,8 +383,8 @@ bool RigLoader::ReadCounts(Parser& parser, Counts* c, Error* err) {
   if (nnz > fmt::kMaxFactorNonzeros)
     return Fail(err, ErrorCode::kTooLarge, "factor has %llu nonzeros, above %u", (unsigned long long)nnz,
                 fmt::kMaxFactorNonzeros);
-  if ((meta.flags &
-       ~(fmt::kMetaFlagHasUVs | fmt::kMetaFlagGridCentres | fmt::kMetaFlagCompact | fmt::kMetaFlagNearestFilter)) != 0)
+  if ((meta.flags & ~(fmt::kMetaFlagHasUVs | fmt::kMetaFlagGridCentres | fmt::kMetaFlagCompact |
+                      fmt::kMetaFlagNearestFilter | fmt::kMetaFlagDrawingFolder)) != 0)
     return Fail(err, ErrorCode::kBadVersion, "unknown META flags 0x%x", meta.flags);
   if (!std::isfinite(meta.grid_origin_x) || !std::isfinite(meta.grid_origin_y) || !std::isfinite(meta.grid_cell_size) ||
       !(meta.grid_cell_size > 0) || !std::isfinite(meta.grid_cell_size * meta.grid_cells_x) ||
@@ -398,7 +398,7 @@ bool RigLoader::ReadCounts(Parser& parser, Counts* c, Error* err) {
     return Fail(err, ErrorCode::kBadValue, "rig size %g is not finite and positive", meta.rig_size);
   c->V = V, c->T = T, c->N = N, c->P = P, c->nnz = nnz;
   c->n = V - 1;
-  c->strings = 2 * N + P;
+  c->strings = 2 * N + P + ((meta.flags & fmt::kMetaFlagDrawingFolder) ? 1 : 0);
   c->grid_corners = std::uint64_t(meta.grid_cells_x + 1) * (meta.grid_cells_y + 1);
   c->grid_centres = (meta.flags & fmt::kMetaFlagGridCentres) ? std::uint64_t(meta.grid_cells_x) * meta.grid_cells_y : 0;
   c->grid_vertices = c->grid_corners + c->grid_centres;
@@ -789,6 +789,7 @@ void RigLoader::Finish(const unsigned char* bytes, const Header& h, const Counts
   rig->texture_filter_ =
       (c.meta.flags & fmt::kMetaFlagNearestFilter) ? TextureFilter::kNearest : TextureFilter::kLinear;
   rig->rig_size_ = c.meta.rig_size;
+  if (c.meta.flags & fmt::kMetaFlagDrawingFolder) rig->drawing_folder_ = rig->strings_[std::size_t(c.strings - 1)];
   rig->kernels_ = kernels;
   rig->checksum_ = ReadU32(bytes + fmt::kOffChecksum);
   rig->format_major_ = h.major;

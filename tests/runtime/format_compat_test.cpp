@@ -3,15 +3,29 @@
 // weight grid has no cell centres and its cells are split on one diagonal,
 // as they were baked. tests/runtime/rigs/small-format-1.1.pmrig was written
 // by the bake before 1.2 (from small.json).
-#include "posemorph/jobs.h"
-#include "posemorph/rig_format.h"
 #include <cmath>
+#include <string>
 #include <utility>
 
+#include "posemorph/jobs.h"
+#include "posemorph/rig_format.h"
 #include "runtime_support.h"
 
 using namespace posemorph;
 using namespace posemorph::test;
+
+namespace {
+
+Rig LoadCommitted(const std::string& name) {
+  const std::vector<unsigned char> bytes =
+      ReadFileBytes(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/" + name);
+  Rig rig;
+  Error err;
+  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), name << ": " << err.message);
+  return rig;
+}
+
+}  // namespace
 
 TEST_CASE("a format 1.1 rig loads and interpolates its grid as it was baked") {
   const std::vector<unsigned char> bytes =
@@ -44,10 +58,18 @@ TEST_CASE("a format 1.1 rig loads and interpolates its grid as it was baked") {
     }
 }
 
-TEST_CASE("a rig baked now is format 1.4 with a centre per grid cell") {
+TEST_CASE("a rig baked now is format 1.5 with a centre per grid cell and its drawings' folder") {
   const Rig rig = LoadTestRig("small");
   CHECK(rig.format_minor() == format::kVersionMinor);
-  CHECK(format::kVersionMinor == 4);
+  CHECK(format::kVersionMinor == 5);
+  // Baked by the CLI from tests/runtime/rigs/small.json into the build's rig
+  // folder: the folder of the description, relative to the rig.
+  const std::string folder(rig.drawing_folder().data, rig.drawing_folder().size);
+  const std::string tail = "tests/runtime/rigs";
+  CAPTURE(folder);
+  CHECK(folder.size() > tail.size());
+  CHECK(folder.compare(folder.size() - tail.size(), tail.size(), tail) == 0);
+  CHECK(LoadCommitted("small-format-1.4.pmrig").drawing_folder().size == 0);
   CHECK(rig.texture_filter() == TextureFilter::kLinear);  // small.json gives no filter
   const PoseSpaceGrid& g = rig.grid();
   CHECK(g.centre_weights.size == std::size_t(g.cells_x) * g.cells_y * rig.pose_count());
@@ -57,19 +79,6 @@ TEST_CASE("a rig baked now is format 1.4 with a centre per grid cell") {
   const double* c = g.centre_weights.data + (2 * g.cells_x + 1) * n;
   for (std::uint32_t k = 0; k < n; ++k) CHECK(w.raw[k] == doctest::Approx(c[k]).epsilon(1e-14));
 }
-
-namespace {
-
-Rig LoadCommitted(const std::string& name) {
-  const std::vector<unsigned char> bytes =
-      ReadFileBytes(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/" + name);
-  Rig rig;
-  Error err;
-  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), name << ": " << err.message);
-  return rig;
-}
-
-}  // namespace
 
 // small-format-1.2.pmrig: small.json baked with --precision exact and the
 // header's minor version set back to 2 (the header lies outside the CRC):
@@ -104,8 +113,8 @@ TEST_CASE("a format 1.2 rig loads to the arrays of the 1.4 exact file") {
   CHECK(a == b);
 }
 
-TEST_CASE("today's bake differs from the 1.4 file only in the weight grid") {
-  // The thin-plate spline changed the stored weights and nothing else: the
+TEST_CASE("today's bake keeps the 1.4 file's angles and poses; the weight grid moved") {
+  // The thin-plate spline changed the stored weights, not the geometry: the
   // same angles, and at the pose points the same poses.
   const Rig before = LoadCommitted("small-format-1.4.pmrig");
   const Rig now = LoadTestRig("small");

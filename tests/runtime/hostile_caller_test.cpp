@@ -36,10 +36,11 @@ std::size_t SectionOffset(const std::vector<unsigned char>& bytes, std::uint32_t
   return 0;
 }
 
-// Writes a double at `offset` and recomputes the checksum, so that only the
-// loader's value checks stand between the number and the jobs.
-std::vector<unsigned char> WithDouble(std::vector<unsigned char> bytes, std::size_t offset, double value) {
-  std::memcpy(bytes.data() + offset, &value, 8);
+// Writes a value at `offset` and recomputes the checksum, so that only the
+// loader's checks stand between the value and the jobs.
+template <typename T>
+std::vector<unsigned char> WithValue(std::vector<unsigned char> bytes, std::size_t offset, T value) {
+  std::memcpy(bytes.data() + offset, &value, sizeof(T));
   const std::uint32_t crc = format::Crc32(bytes.data() + format::kHeaderSize, bytes.size() - format::kHeaderSize);
   std::memcpy(bytes.data() + format::kOffChecksum, &crc, 4);
   return bytes;
@@ -106,7 +107,7 @@ TEST_CASE("finite but huge stored numbers are refused at load, naming the sectio
   for (const Case& c : cases) {
     const std::size_t at = SectionOffset(bytes, c.tag);
     REQUIRE(at != 0);
-    const std::vector<unsigned char> bad = WithDouble(bytes, at, c.value);
+    const std::vector<unsigned char> bad = WithValue(bytes, at, c.value);
     Rig rig;
     Error err;
     CAPTURE(std::string(c.expect));
@@ -116,8 +117,8 @@ TEST_CASE("finite but huge stored numbers are refused at load, naming the sectio
     CHECK(std::string(err.message).find("beyond the limit") != std::string::npos);
   }
   // At the limits themselves the rig loads, and still evaluates to finite positions.
-  std::vector<unsigned char> edge = WithDouble(bytes, SectionOffset(bytes, format::kAngles), format::kMaxAngle);
-  edge = WithDouble(edge, SectionOffset(edge, format::kWeightGrid), -format::kMaxGridWeight);
+  std::vector<unsigned char> edge = WithValue(bytes, SectionOffset(bytes, format::kAngles), format::kMaxAngle);
+  edge = WithValue(edge, SectionOffset(edge, format::kWeightGrid), -format::kMaxGridWeight);
   Rig rig;
   Error err;
   REQUIRE_MESSAGE(LoadRig(edge.data(), edge.size(), &rig, &err), err.message);
@@ -178,11 +179,36 @@ TEST_CASE("drawn rigs carry each pose's canvas; a negative canvas is refused") {
   std::vector<unsigned char> bytes = TestRigBytes("pip");
   const std::size_t at = SectionOffset(bytes, format::kCanvases);
   REQUIRE(at != 0);
-  bytes = WithDouble(bytes, at + 8, -1);  // pose 0's height
+  bytes = WithValue(bytes, at + 8, -1.0);  // pose 0's height
   Rig rig;
   Error err;
   CHECK_FALSE(LoadRig(bytes.data(), bytes.size(), &rig, &err));
   CHECK(std::string(err.message).find("canvas of pose 0") != std::string::npos);
+}
+
+TEST_CASE("the drawings' folder is read where META says it is, and refused where it is not") {
+  const Rig pip = LoadTestRig("pip");  // baked by the CLI from build/<preset>/assets/pip
+  CHECK(std::string(pip.drawing_folder().data, pip.drawing_folder().size).find("assets/pip") != std::string::npos);
+  Rig moved = LoadTestRig("pip");
+  Rig owner = std::move(moved);
+  CHECK(moved.drawing_folder().size == 0);
+  CHECK(owner.drawing_folder().size == pip.drawing_folder().size);
+  // META's flags word is its eighth u32.
+  auto with_flags = [](const char* name, std::uint32_t set, std::uint32_t clear) {
+    std::vector<unsigned char> bytes = TestRigBytes(name);
+    const std::size_t at = SectionOffset(bytes, format::kMeta) + 28;
+    std::uint32_t flags = 0;
+    std::memcpy(&flags, bytes.data() + at, 4);
+    return WithValue(bytes, at, (flags | set) & ~clear);
+  };
+  Rig rig;
+  Error err;
+  std::vector<unsigned char> bytes = with_flags("pip", 0, format::kMetaFlagDrawingFolder);
+  CHECK_FALSE(LoadRig(bytes.data(), bytes.size(), &rig, &err));
+  CHECK(std::string(err.message).find("string table has trailing bytes") != std::string::npos);
+  bytes = with_flags("snake", format::kMetaFlagDrawingFolder, 0);  // no folder stored
+  CHECK_FALSE(LoadRig(bytes.data(), bytes.size(), &rig, &err));
+  CHECK(std::string(err.message).find("string table truncated at string 12") != std::string::npos);  // 2 x 5 + 2
 }
 
 TEST_CASE("a format 1.0 rig (no CANV section) still loads") {

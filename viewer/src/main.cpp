@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "posemorph/bake/command_line.h"
+#include "posemorph/bake/drawing_folder.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/input_file.h"
 #include "posemorph/rig.h"
@@ -33,7 +34,8 @@ const char* kUsage =
     "         [--no-weight-limit] [--linear] [--compare] [--bases] [--wireframe] [--validation]\n"
     "         [--camera X,Y,ZOOM | --camera 1:1] [--transform T] [--seed S] [--drawings K] [--blend B]\n"
     "         [--filter linear|nearest] [--smoke-test SHOT.png [--frames K]] [--description RIG.json]\n"
-    "  --images DIR  where the rig's drawings are (default: the rig's folder)\n"
+    "  --images DIR  where the rig's drawings are (default: where the bake found them, recorded in the rig\n"
+    "                relative to its file; else the rig's folder)\n"
     "  --frames K    with --path: K frames over the path's duration, OUT-000.png ...\n"
     "  --crowd K     K characters on a ground line: seeded random places, sizes and facings\n"
     "  --seed S      the crowd's layout (default 1)\n"
@@ -257,10 +259,6 @@ int ParseOptions(int argc, char** argv, Options& o) {
       return Usage("unknown or incomplete argument \"" + a + "\"");
   }
   if (o.rig_path.empty()) return Usage("no rig given");
-  if (o.images.empty()) {
-    const auto slash = o.rig_path.rfind('/');
-    o.images = slash == std::string::npos ? "." : o.rig_path.substr(0, slash);
-  }
   return -1;
 }
 
@@ -347,6 +345,7 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
   if (!o.scene.path.empty() && rig.FindPath(o.scene.path.c_str()) < 0)
     return Fail(o.rig_path + ": has no path named \"" + o.scene.path + "\"");
   if (o.frames > 0 && o.headless && o.scene.path.empty()) return Usage("--frames needs --path NAME");
+  if (o.images.empty()) o.images = bake::DefaultDrawingFolder(o.rig_path, rig);
   Drawings drawings;
   std::string problem;
   if (!LoadDrawings(rig, o.images, &drawings, &problem)) return Fail(o.rig_path + ": " + problem);

@@ -95,6 +95,11 @@ PM_API int pm_rig_pose_point(const pm_rig* rig, uint32_t pose, double* x, double
 PM_API int pm_rig_pose_name(const pm_rig* rig, uint32_t pose, char* out, size_t capacity, size_t* length);
 PM_API int pm_rig_pose_image(const pm_rig* rig, uint32_t pose, char* out, size_t capacity, size_t* length);
 PM_API int pm_rig_path_name(const pm_rig* rig, uint32_t path, char* out, size_t capacity, size_t* length);
+/* Where the bake found the drawings, relative to the rig file's folder
+ * ('/'-separated, may contain ".."; empty before format 1.5 or when the bake
+ * did not know): where tools on the baking machine look for the drawings.
+ * Copied as above. */
+PM_API int pm_rig_drawing_folder(const pm_rig* rig, char* out, size_t capacity, size_t* length);
 
 /* The pose-space grid the weights are baked on: a UI maps its pad to
  * [min_x, max_x] x [min_y, max_y]; points beyond are clamped to it. */

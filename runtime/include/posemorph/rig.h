@@ -135,6 +135,13 @@ class PM_API Rig {
   // How the drawings want to be sampled (the description's "filter"; pixel
   // art: nearest). A hint for renderers; linear for rigs before format 1.4.
   TextureFilter texture_filter() const { return texture_filter_; }
+  // Where the bake found the drawings (the description's folder), relative
+  // to the folder of the rig file it wrote, '/'-separated: where a tool on
+  // that machine looks for pose_image() references by default (the viewer's
+  // --images). Empty for rigs before format 1.5, baked in memory, or whose
+  // drawings lie on another root. It may contain '..' and comes from the
+  // file: a game ships its drawings where it likes and ignores it.
+  StringView drawing_folder() const { return drawing_folder_; }
   // The diagonal of pose 0's bounding box: the rig's scale, which relative
   // tolerances multiply.
   double bounding_box_diagonal() const { return rig_size_; }
@@ -170,12 +177,13 @@ class PM_API Rig {
   Span<const double> gradients_, angles_, stretches_, blend_blocks_;
   Span<const float> uvs_;
   Span<const double> canvases_;     // 4N, or empty
-  Span<const StringView> strings_;  // N names, N images, P path names
+  Span<const StringView> strings_;  // N names, N images, P path names (, drawing folder)
   Span<const PathView> paths_;
   PoseSpaceGrid grid_;
   Factor factor_;
   double default_sigma_ = 0, rig_size_ = 0;
   TextureFilter texture_filter_ = TextureFilter::kLinear;
+  StringView drawing_folder_;
   const detail::KernelTable* kernels_ = nullptr;
   std::uint32_t checksum_ = 0;
   std::uint16_t format_major_ = 0, format_minor_ = 0;

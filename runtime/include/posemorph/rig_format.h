@@ -11,8 +11,9 @@ constexpr unsigned char kMagic[8] = {'P', 'M', 'R', 'I', 'G', '\r', '\n', 0x1a};
 constexpr std::uint16_t kVersionMajor = 1;
 // 1.1 added the optional CANV section; 1.2 the weight grid's cell centres
 // (META flag kMetaFlagGridCentres); 1.3 the compact encoding (META flag
-// kMetaFlagCompact). Older files load unchanged.
-constexpr std::uint16_t kVersionMinor = 4;
+// kMetaFlagCompact); 1.4 the texture-filter hint; 1.5 the drawing folder
+// (kMetaFlagDrawingFolder). Older files load unchanged.
+constexpr std::uint16_t kVersionMinor = 5;
 constexpr std::uint32_t kHeaderSize = 64;
 constexpr std::uint32_t kSectionEntrySize = 24;
 constexpr std::uint32_t kSectionAlignment = 16;
@@ -91,6 +92,11 @@ constexpr std::uint32_t kMetaFlagCompact = 4u;
 // 1.4: the drawings are pixel art: renderers should sample them nearest (a
 // hint; it changes no number the runtime computes).
 constexpr std::uint32_t kMetaFlagNearestFilter = 8u;
+// 1.5: STRS ends with one more string, the folder the image references
+// resolve against (the description's folder at bake), relative to the rig
+// file's folder, '/'-separated; for tools on the machine that baked
+// (Rig::drawing_folder).
+constexpr std::uint32_t kMetaFlagDrawingFolder = 16u;
 constexpr std::uint32_t kQuantPositions = Tag('Q', 'P', 'O', 'S');
 constexpr std::uint32_t kQuantTriangles = Tag('Q', 'T', 'R', 'I');
 constexpr std::uint32_t kQuantPermutation = Tag('Q', 'P', 'R', 'M');

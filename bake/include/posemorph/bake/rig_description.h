@@ -97,6 +97,10 @@ struct BakeParameters {
 
 struct RigDescription {
   std::string file;  // where it came from, for messages
+  // Where the rig will be written, if known (the CLI's -o): the rig then
+  // records the description's folder, where its drawing references resolve,
+  // relative to the rig's folder (format 1.5, Rig::drawing_folder).
+  std::string rig_file;
   std::string name;
   bool nearest_filter = false;  // "filter": "nearest": the drawings are pixel art (a hint for renderers)
   std::vector<std::array<std::uint32_t, 3>> triangles;
