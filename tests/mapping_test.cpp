@@ -384,7 +384,7 @@ TEST_CASE("mapping: every stage keeps its promise on the corpus") {
       labels.push_back("pose " + std::to_string(i));
     }
     pb::MappingParameters prm;
-    const pm::MappingStages st = pm::MapPolygons(shapes, landmarks, prm, labels, "corpus");
+    const pm::MappingStages st = pm::MapPolygons(shapes, landmarks, {}, prm, labels, "corpus");
     const double tol = st.sizes.simplify_tolerance * st.grid_scale;
     for (std::size_t i = 0; i < shapes.size(); ++i) {
       CAPTURE(i);
@@ -483,7 +483,7 @@ TEST_CASE("mapping: outline limits name the pose and the limit") {
   }
   pb::MappingParameters prm;
   try {
-    pm::MapPolygons({many, many}, {{many[0]}, {many[0]}}, prm, {"pose 'a'", "pose 'b'"}, "limits.json");
+    pm::MapPolygons({many, many}, {{many[0]}, {many[0]}}, {}, prm, {"pose 'a'", "pose 'b'"}, "limits.json");
     FAIL("an outline over the limit was mapped");
   } catch (const pb::BakeError& e) {
     CHECK(std::string(e.what()) ==
@@ -494,7 +494,7 @@ TEST_CASE("mapping: outline limits name the pose and the limit") {
   for (std::size_t k = 0; k <= pm::kMaxLandmarks; ++k)
     landmarks.push_back({40.0 * double(k) / double(pm::kMaxLandmarks + 1), 0});
   try {
-    pm::MapPolygons({square, square}, {landmarks, landmarks}, prm, {"pose 'a'", "pose 'b'"}, "limits.json");
+    pm::MapPolygons({square, square}, {landmarks, landmarks}, {}, prm, {"pose 'a'", "pose 'b'"}, "limits.json");
     FAIL("landmarks over the limit were mapped");
   } catch (const pb::BakeError& e) {
     CHECK(std::string(e.what()) == "limits.json: pose 'a': gives 513 landmarks, more than the limit of 512");

@@ -68,7 +68,8 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     for (std::size_t v : m.outline_vertices) out << " " << v;
     out << " vertices; " << m.matched_vertices << " matched boundary points -> " << m.boundary_vertices
         << " after simplification (max error " << m.simplification_error << "); " << m.steiner_points
-        << " Steiner points; " << m.vertices << " vertices, " << m.triangles << " triangles after refinement; "
+        << " Steiner points; " << (m.features ? std::to_string(m.features) + " features; " : "") << m.vertices
+        << " vertices, " << m.triangles << " triangles after refinement; "
         << "min angle " << m.min_angle_degrees << " degrees over all poses; " << m.seconds * 1e3 << " ms\n";
   }
   return 0;

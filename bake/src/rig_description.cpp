@@ -129,10 +129,10 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
   const json& poses = root["poses"];
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const std::string w = "poses[" + std::to_string(i) + "]";
-    WarnUnknownKeys(
-        poses[i], w,
-        {"name", "point", "drawing", "origin", "outline", "landmarks", "vertices", "mesh", "deform", "uvs", "image"},
-        file, warnings);
+    WarnUnknownKeys(poses[i], w,
+                    {"name", "point", "drawing", "origin", "outline", "landmarks", "features", "vertices", "mesh",
+                     "deform", "uvs", "image"},
+                    file, warnings);
     if (poses[i].contains("deform")) {
       const json& d = poses[i]["deform"];
       WarnUnknownKeys(d, w + ".deform", {"from", "handles"}, file, warnings);
@@ -163,6 +163,7 @@ void ParseDrawnPose(const Reader& r, const json& jp, const std::string& w, const
     r.Fail(w, "missing \"landmarks\": [[x, y], ...] on the outline; the first is the start point every pose shares");
   pose.landmarks = r.Points(r.Array(jp, "landmarks", w), w + ".landmarks");
   if (pose.landmarks.empty()) r.Fail(w + ".landmarks", "needs at least the start point");
+  if (jp.contains("features")) pose.features = r.Points(r.Array(jp, "features", w), w + ".features");
   if (jp.contains("uvs")) r.Fail(w + ".uvs", "a drawn pose gets its uvs from its drawing; remove them");
   if (jp.contains("origin")) {
     if (!jp.contains("drawing"))
@@ -244,6 +245,9 @@ PoseDescription ParsePose(const Reader& r, const json& jp, std::size_t i, const 
     ParseDrawnPose(r, jp, w, base_dir, pose);
   } else if (jp.contains("origin")) {
     r.Fail(w + ".origin", "only a drawing has an origin");
+  } else if (jp.contains("features")) {
+    r.Fail(w + ".features",
+           "only a drawn pose (a drawing or an outline) has features; a mesh's vertices correspond already");
   } else if (jp.contains("deform")) {
     pose.deformed = true;
     pose.deform = ParseDeform(r, jp, w);

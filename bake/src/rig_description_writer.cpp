@@ -42,6 +42,7 @@ json PoseJson(const PoseDescription& pose) {
       j["outline"] = PointsJson(pose.outline);
     }
     j["landmarks"] = PointsJson(pose.landmarks);
+    if (!pose.features.empty()) j["features"] = PointsJson(pose.features);
   } else if (pose.deformed) {
     j["deform"] = DeformJson(pose.deform);
   } else {

@@ -68,11 +68,12 @@ Point BoundaryMidpoint(const Point& a, const Point& b) {
 class Refiner {
  public:
   Refiner(CompatibleMesh& m, std::size_t max_vertices)
-      : m_(m), boundary_(m.vertices[0].size(), false), max_vertices_(max_vertices) {
-    // Boundary = vertices on edges used by one triangle.
+      : m_(m), held_(m.vertices[0].size(), false), max_vertices_(max_vertices) {
+    // Held: the boundary (vertices on edges used by one triangle) and the features.
     EdgeMap em(m.triangles);
     for (const auto& [key, ts] : em.at)
-      if (ts[1] == EdgeMap::kNone) boundary_[key >> 32] = boundary_[key & 0xffffffffu] = true;
+      if (ts[1] == EdgeMap::kNone) held_[key >> 32] = held_[key & 0xffffffffu] = true;
+    for (std::size_t v : m.features) held_[v] = true;
   }
 
   bool SplitEdge(std::size_t a, std::size_t b, const EdgeMap& em) {
@@ -102,7 +103,7 @@ class Refiner {
       for (Polygon& v : m_.vertices) v.pop_back();
       return false;
     }
-    boundary_.push_back(on_boundary);
+    held_.push_back(on_boundary);
     m_.triangles[which[0]] = replaced[0];
     m_.triangles.push_back(replaced[1]);
     if (which.size() == 2) {
@@ -189,7 +190,7 @@ class Refiner {
       std::size_t moved = 0;
       for (Polygon& pos : m_.vertices)
         for (std::size_t v = 0; v < V; ++v) {
-          if (boundary_[v] || incident[v].empty()) continue;
+          if (held_[v] || incident[v].empty()) continue;
           // Around v: each triangle (v, a, b) counter-clockwise; neighbour a's ring
           // neighbours are the previous and next vertices around v.
           Point sum = Point::Zero();
@@ -277,7 +278,7 @@ class Refiner {
 
  private:
   CompatibleMesh& m_;
-  std::vector<bool> boundary_;
+  std::vector<bool> held_;  // never moved: boundary vertices and features
   std::size_t max_vertices_;
 };
 
@@ -300,6 +301,13 @@ bool RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& prm) {
     r.Flip();
   }
   return true;
+}
+
+void ImproveCompatibly(CompatibleMesh& mesh) {
+  Refiner r(mesh, mesh.vertices[0].size());
+  r.Flip();
+  r.Smooth(8);
+  r.Flip();
 }
 
 double MinAngleDegrees(const CompatibleMesh& mesh) {

@@ -46,6 +46,7 @@ struct DrawnPose {
   std::size_t index = 0;  // in rig.poses
   Polygon outline;        // rig coordinates (y up), counter-clockwise
   std::vector<Point> landmarks;
+  std::vector<Point> features;
   // uv = ((x - origin.x) / size.x, (-y - origin.y) / size.y) for drawings (rows go down)
   bool from_drawing = false;
   Point origin{0, 0}, size{1, 1};
@@ -153,10 +154,53 @@ std::vector<Point> PlaceLandmarks(const Polygon& outline, const Polygon& rig_out
   return on;
 }
 
+// The features on the grid: as many in every pose, strictly inside the
+// outline, apart by at least a quarter of the mesh's longest edge.
+std::vector<std::vector<Point>> GridFeatures(const std::vector<Polygon>& outlines,
+                                             const std::vector<std::vector<Point>>& rig_features,
+                                             const MappingSizes& sizes, const std::vector<std::string>& labels,
+                                             const Grid& grid, const std::string& file) {
+  std::vector<std::vector<Point>> out;
+  if (rig_features.empty()) return out;
+  const std::size_t F = rig_features[0].size();
+  for (std::size_t k = 0; k < outlines.size(); ++k) {
+    auto fail = [&](const std::string& problem) -> void { throw BakeError(file, labels[k] + ": " + problem); };
+    const std::vector<Point>& given = rig_features[k];
+    if (given.size() > kMaxFeatures)
+      fail("gives " + std::to_string(given.size()) + " features, more than the limit of " +
+           std::to_string(kMaxFeatures));
+    if (given.size() != F)
+      fail("gives " + std::to_string(given.size()) + " feature(s) but " + labels[0] + " gives " + std::to_string(F) +
+           "; every drawn pose lists the same features in the same order");
+    out.emplace_back();
+    for (std::size_t f = 0; f < F; ++f) {
+      if (!(given[f].cwiseAbs().maxCoeff() <= 1e9)) fail("feature " + std::to_string(f) + " lies beyond +-1e9");
+      const Point g = grid.ToGrid(given[f]);
+      Eigen::AlignedBox2d box;
+      for (const Point& p : outlines[k]) box.extend(p);
+      if (!box.contains(g) || PointInPolygon(outlines[k], g) != 1)
+        fail("feature " + std::to_string(f) +
+             " lies outside the outline (or on it): features are points inside "
+             "the shape");
+      const double resolution = sizes.max_edge_length / 4;
+      for (std::size_t e = 0; e < f; ++e) {
+        const double apart = (given[f] - given[e]).norm();
+        if (apart < resolution)
+          fail("features " + std::to_string(e) + " and " + std::to_string(f) + " are " + Format(apart) +
+               " apart, closer than the mesh resolution (a quarter of the longest edge, " + Format(resolution) +
+               "): give one feature, or a smaller mapping.max_edge_length");
+      }
+      out.back().push_back(g);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
-                          const std::vector<std::vector<Point>>& rig_landmarks, const MappingParameters& prm,
+                          const std::vector<std::vector<Point>>& rig_landmarks,
+                          const std::vector<std::vector<Point>>& rig_features, const MappingParameters& prm,
                           const std::vector<std::string>& labels, const std::string& file) {
   const std::size_t N = rig_outlines.size();
   auto fail = [&](std::size_t k, const std::string& problem) -> void {
@@ -167,6 +211,8 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   Eigen::AlignedBox2d box0;
   for (const Point& p : rig_outlines[0]) box0.extend(p);
   st.sizes = ResolveMappingSizes(prm, box0.diagonal().norm());
+  const std::vector<std::vector<Point>> features =
+      GridFeatures(st.outlines, rig_features, st.sizes, labels, grid, file);
   for (std::size_t k = 0; k < N; ++k)
     st.landmarks.push_back(PlaceLandmarks(st.outlines[k], rig_outlines[k], rig_landmarks[k], rig_landmarks[0].size(),
                                           labels[k], labels[0], prm, grid, file));
@@ -211,11 +257,22 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   rp.max_edge_length = st.sizes.max_edge_length * grid.scale;
   rp.min_angle_goal = prm.min_angle;
   rp.max_vertices = std::size_t(prm.max_vertices);
-  if (!RefineCompatibly(st.mesh, rp))
-    throw BakeError(file, "mapping.max_edge_length " + Format(rp.max_edge_length / grid.scale) +
-                              " needs more than mapping.max_vertices " + std::to_string(prm.max_vertices) +
-                              " mesh vertices; give a longer max_edge_length (0: from the shape's size) or a "
-                              "larger max_vertices");
+  auto refine = [&] {
+    if (!RefineCompatibly(st.mesh, rp))
+      throw BakeError(file, "mapping.max_edge_length " + Format(rp.max_edge_length / grid.scale) +
+                                " needs more than mapping.max_vertices " + std::to_string(prm.max_vertices) +
+                                " mesh vertices; give a longer max_edge_length (0: from the shape's size) or a "
+                                "larger max_vertices");
+  };
+  refine();
+  if (!features.empty() && !features[0].empty()) {
+    // Placed in the refined mesh (room for the interior to follow them), then
+    // refined again around them, the features held.
+    std::vector<ErrorSource> each;
+    for (const std::string& label : labels) each.emplace_back(file, label);
+    PlaceFeatures(st.mesh, features, each, grid.scale);
+    refine();
+  }
   return st;
 }
 
@@ -290,8 +347,12 @@ void ReadDrawnOutline(const RigDescription& rig, const MappingParameters& prm, D
       d.size = so.canvas_size;
     }
   }
-  if (d.from_drawing)
+  if (d.from_drawing) {
     for (const Point& p : pose.landmarks) d.landmarks.push_back(InRig(p, pose));
+    for (const Point& p : pose.features) d.features.push_back(InRig(p, pose));
+  } else {
+    d.features = pose.features;
+  }
   if (raw.size() > mapping::kMaxOutlinePoints)
     fail((d.from_drawing ? pose.drawing_path + ": " : std::string()) + "the outline has " + std::to_string(raw.size()) +
          " points, more than the limit of " + std::to_string(mapping::kMaxOutlinePoints));
@@ -347,7 +408,7 @@ std::vector<DrawnPose> DrawnPoses(const RigDescription& rig) {
 // Step 1 for every drawn pose: what MapPolygons takes.
 struct MappingInput {
   std::vector<Polygon> outlines;
-  std::vector<std::vector<Point>> landmarks;
+  std::vector<std::vector<Point>> landmarks, features;
   std::vector<std::string> labels;
 };
 MappingInput ReadDrawnOutlines(const RigDescription& rig, std::vector<DrawnPose>& drawn, MappingReport& report) {
@@ -356,6 +417,7 @@ MappingInput ReadDrawnOutlines(const RigDescription& rig, std::vector<DrawnPose>
     ReadDrawnOutline(rig, rig.mapping, d, report);
     in.outlines.push_back(d.outline);
     in.landmarks.push_back(d.landmarks);
+    in.features.push_back(d.features);
     in.labels.push_back(PoseLabel(rig.poses[d.index].name, d.index));
   }
   return in;
@@ -389,7 +451,8 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
 
   // 1. Outlines, in rig coordinates (y up).
   const MappingInput in = ReadDrawnOutlines(rig, drawn, report);
-  const mapping::MappingStages st = mapping::MapPolygons(in.outlines, in.landmarks, prm, in.labels, rig.file);
+  const mapping::MappingStages st =
+      mapping::MapPolygons(in.outlines, in.landmarks, in.features, prm, in.labels, rig.file);
   for (const std::string& w : st.warnings) report.warnings.push_back(rig.file + ": " + w);
   for (const std::string& w : SpinningWarnings(rig, drawn, in.labels, st)) report.warnings.push_back(w);
   const mapping::CompatibleMesh& mesh = st.mesh;
@@ -398,6 +461,8 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
   report.boundary_vertices = st.simplified.polygons[0].size();
   report.simplification_error = st.simplified.max_error / grid.scale;
   report.steiner_points = mesh.steiner_points;
+  report.features = mesh.features.size();
+  for (std::size_t v : mesh.features) result.feature_vertices.push_back(std::uint32_t(v));
   report.min_angle_degrees = mapping::MinAngleDegrees(mesh);
   report.vertices = mesh.vertices[0].size();
   report.triangles = mesh.triangles.size();
@@ -430,7 +495,8 @@ DrawnOutlines TraceDrawings(const RigDescription& rig) {
   }
   if (drawn.empty()) return result;
   try {
-    const mapping::MappingStages st = mapping::MapPolygons(in.outlines, in.landmarks, rig.mapping, in.labels, rig.file);
+    const mapping::MappingStages st =
+        mapping::MapPolygons(in.outlines, in.landmarks, in.features, rig.mapping, in.labels, rig.file);
     const mapping::Grid grid{st.grid_scale};
     result.simplify_tolerance = st.sizes.simplify_tolerance;
     for (std::size_t k = 0; k < drawn.size(); ++k) {

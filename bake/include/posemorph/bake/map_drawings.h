@@ -4,6 +4,7 @@
 // the stages are in bake/include/posemorph/bake/mapping/).
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@ struct MappingReport {
   std::size_t matched_vertices = 0;           // corresponding boundary points before simplification
   std::size_t boundary_vertices = 0;          // after simplification
   std::size_t steiner_points = 0;             // interior points the compatible triangulation added
+  std::size_t features = 0;                   // corresponding interior points given (shared vertices)
   std::size_t vertices = 0, triangles = 0;    // after refinement
   double min_angle_degrees = 0;               // over all triangles and drawn poses
   double simplification_error = 0;            // drawing units
@@ -30,9 +32,10 @@ struct MappingReport {
 };
 
 struct MappedDrawings {
-  Triangles triangles;             // shared by every drawn pose; empty when none is drawn
-  std::vector<std::size_t> poses;  // the drawn poses' indices in the description
-  std::vector<PoseMesh> meshes;    // one per entry of `poses`: vertices, uvs into its drawing, image, canvas
+  Triangles triangles;                          // shared by every drawn pose; empty when none is drawn
+  std::vector<std::uint32_t> feature_vertices;  // the features' vertex ids, in the description's order
+  std::vector<std::size_t> poses;               // the drawn poses' indices in the description
+  std::vector<PoseMesh> meshes;  // one per entry of `poses`: vertices, uvs into its drawing, image, canvas
   MappingReport report;
 };
 

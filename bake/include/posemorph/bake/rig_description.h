@@ -42,6 +42,11 @@ struct PoseDescription {
   std::string drawing_path;                // resolved against the description's folder
   std::vector<Eigen::Vector2d> outline;    // given directly (rig coordinates, y up)
   std::vector<Eigen::Vector2d> landmarks;  // corresponding boundary points; the first is the start point
+  // Corresponding points inside the shape (an eye's centre, a beak's tip),
+  // as many and in the same order in every drawn pose: each becomes one mesh
+  // vertex at exactly that point in every pose (drawing coordinates, or rig
+  // coordinates for an outline, like the landmarks).
+  std::vector<Eigen::Vector2d> features;
   // The drawing point (drawing units, y down) that becomes the rig origin, so
   // that drawings on canvases of different sizes or offsets line up; (0, 0)
   // by default: the drawing's own origin.

@@ -16,10 +16,15 @@ struct RefinementParameters {
 // Edge splits, flips legal in all N meshes that raise the smallest angle over
 // all poses, and angle-based smoothing of interior vertices that never
 // inverts a triangle or lowers the local smallest angle. Boundary vertices
-// stay where they are (only new points on boundary edges are added).
+// and features (mesh.features) stay where they are (only new points on
+// boundary edges are added).
 // Stops splitting at parameters.max_vertices; returns false when splitting
 // for max_edge_length stopped there (the edges are then longer than asked).
 bool RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& parameters);
+
+// Flips and smoothing only, no new vertices: the quality pass after the
+// interior moved (interior_features.h). Boundary vertices and features held.
+void ImproveCompatibly(CompatibleMesh& mesh);
 
 double MinAngleDegrees(const CompatibleMesh& mesh);  // over all triangles and poses
 

@@ -16,6 +16,7 @@ struct CompatibleMesh {
   std::vector<std::array<std::size_t, 3>> triangles;  // shared, CCW in every pose
   std::size_t boundary_vertices = 0;                  // vertices 0..boundary_vertices-1 are the polygon's, in order
   std::size_t steiner_points = 0;                     // interior vertices the triangulation added
+  std::vector<std::size_t> features;                  // feature vertices (interior_features.h); refinement holds them
 };
 // Splits all N polygons along chords valid in every pose (stage I), through
 // one Steiner point per pose (II) or the fewest over shortest link paths

@@ -23,5 +23,6 @@ constexpr std::size_t kMaxTracedBorder = 1000000;
 // Floyd-Warshall relaxations), a few seconds at most.
 constexpr std::uint64_t kMaxTriangulationWork = std::uint64_t(4) << 30;
 constexpr std::size_t kMaxLandmarks = 512;
+constexpr std::size_t kMaxFeatures = 256;  // per pose
 
 }  // namespace posemorph::bake::mapping

@@ -7,6 +7,7 @@
 //   enclosing_simplification.h        fewer points, still enclosing
 //   compatible_triangulation.h        stages I-III
 //   compatible_refinement.h           splits, flips, smoothing
+//   interior_features.h               points inside the shape that correspond
 //   polygon.h                         polygons and exact grid geometry
 //   limits.h                          bounds on work and memory
 //   mapping_sizes.h                   lengths that follow the drawing's size
@@ -24,6 +25,7 @@
 #include "posemorph/bake/mapping/compatible_refinement.h"
 #include "posemorph/bake/mapping/compatible_triangulation.h"
 #include "posemorph/bake/mapping/enclosing_simplification.h"
+#include "posemorph/bake/mapping/interior_features.h"
 #include "posemorph/bake/mapping/limits.h"
 #include "posemorph/bake/mapping/mapping_sizes.h"
 #include "posemorph/bake/mapping/outline_image.h"
@@ -54,11 +56,12 @@ struct MappingStages {
   };
   std::vector<SpinningStart> spinning;
 };
-// Outlines and landmarks in rig coordinates (y up, any orientation); labels
-// name each pose in messages. The driver behind MapDrawings, exposed so
-// tests can check every stage's promise. Throws BakeError naming `file`.
+// Outlines, landmarks and features (per pose; none, or as many in every pose)
+// in rig coordinates (y up, any orientation); labels name each pose in
+// messages. The driver behind MapDrawings, exposed so tests can check every
+// stage's promise. Throws BakeError naming `file`.
 MappingStages MapPolygons(const std::vector<Polygon>& outlines, const std::vector<std::vector<Point>>& landmarks,
-                          const MappingParameters& parameters, const std::vector<std::string>& labels,
-                          const std::string& file);
+                          const std::vector<std::vector<Point>>& features, const MappingParameters& parameters,
+                          const std::vector<std::string>& labels, const std::string& file);
 
 }  // namespace posemorph::bake::mapping
