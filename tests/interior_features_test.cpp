@@ -37,8 +37,7 @@ Polygon Ellipse(Point c, double a, double b, int samples = 96) {
 struct Head {
   std::vector<Polygon> outlines{Ellipse({0, 0}, 60, 50), Ellipse({0, -5}, 70, 42), Ellipse({12, 8}, 55, 56)};
   std::vector<std::vector<Point>> landmarks{{{60, 0}}, {{70, -5}}, {{67, 8}}};
-  std::vector<std::vector<Point>> eyes{
-      {{-20, 12}, {20, 12}}, {{-42, 0}, {-4, -2}}, {{6, 30}, {44, 26}}};
+  std::vector<std::vector<Point>> eyes{{{-20, 12}, {20, 12}}, {{-42, 0}, {-4, -2}}, {{6, 30}, {44, 26}}};
   std::vector<std::string> labels{"pose 'level' (index 0)", "pose 'left' (index 1)", "pose 'up' (index 2)"};
 };
 
@@ -82,8 +81,8 @@ TEST_CASE("features: each is one shared vertex at its point in every pose, every
       worst = std::max(worst, (st.mesh.vertices[k][st.mesh.features[f]] / st.grid_scale - h.eyes[k][f]).norm());
   const double angle = pm::MinAngleDegrees(st.mesh);
   MESSAGE("features: largest distance from its point " << worst << " (grid step " << 1 / st.grid_scale
-                                                        << "), smallest angle " << angle << " degrees, "
-                                                        << st.mesh.vertices[0].size() << " vertices");
+                                                       << "), smallest angle " << angle << " degrees, "
+                                                       << st.mesh.vertices[0].size() << " vertices");
   CHECK(worst <= 0.5 / st.grid_scale);  // the grid's rounding, about 1e-5 here
   CHECK(angle > 10);
   // Without features the eyes' points land elsewhere in the other poses: the
@@ -156,4 +155,37 @@ TEST_CASE("features: bad lists are refused naming the pose and the feature") {
                               "mesh.json", "."),
       "mesh.json: poses[0].features: only a drawn pose (a drawing or an outline) has features; a mesh's vertices "
       "correspond already");
+}
+
+TEST_CASE("features: Pip's eye centres are one vertex each, on the drawn eyes in every pose") {
+  // The eyes' centres in Pip's SVG sources (assets/pip/*.svg: the white
+  // circles; squash draws closed eyes, the chevrons' centres), drawing
+  // coordinates; Pip's rig coordinates are (x, -y).
+  const double eyes[5][2][2] = {{{110, 108}, {146, 108}},
+                                {{114, 70}, {142, 70}},
+                                {{108, 156}, {148, 156}},
+                                {{110, 106}, {146, 106}},
+                                {{98, 104}, {133, 100}}};
+  pb::RigDescription d = pb::ReadRigDescription(std::string(POSEMORPH_DRAWN_SAMPLES) + "/pip/pip.json");
+  d.parameters.compact = false;
+  const std::vector<unsigned char> bytes = pb::BakeRig(d);
+  posemorph::Rig rig;
+  posemorph::Error err;
+  REQUIRE_MESSAGE(posemorph::LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
+  REQUIRE(rig.pose_count() == 5);
+  for (int f = 0; f < 2; ++f) {
+    CAPTURE(f);
+    // The vertex nearest the eye in the rest pose.
+    const posemorph::Span<const double> rest = rig.pose_positions(0);
+    std::uint32_t v = 0;
+    auto distance = [&](const posemorph::Span<const double>& p, std::uint32_t u, int k) {
+      return std::hypot(p[2 * u] - eyes[k][f][0], p[2 * u + 1] + eyes[k][f][1]);
+    };
+    for (std::uint32_t u = 1; u < rig.vertex_count(); ++u)
+      if (distance(rest, u, 0) < distance(rest, v, 0)) v = u;
+    double worst = 0;
+    for (int k = 0; k < 5; ++k) worst = std::max(worst, distance(rig.pose_positions(std::uint32_t(k)), v, k));
+    MESSAGE("eye " << f << ": vertex " << v << ", largest distance from the drawn eye " << worst << " px");
+    CHECK(worst <= 1e-4);  // the mapping grid's rounding
+  }
 }

@@ -110,7 +110,8 @@ void Factor(const CompatibleMesh& mesh, const std::vector<char>& held, FreeLapla
       const int r = L.unknown[std::size_t(it.row())];
       if (r < 0) continue;
       free_rows.emplace_back(r, int(it.col()), it.value());
-      if (L.unknown[std::size_t(it.col())] >= 0) free_block.emplace_back(r, L.unknown[std::size_t(it.col())], it.value());
+      if (L.unknown[std::size_t(it.col())] >= 0)
+        free_block.emplace_back(r, L.unknown[std::size_t(it.col())], it.value());
     }
   L.coupling.resize(L.rows, int(V));
   L.coupling.setFromTriplets(free_rows.begin(), free_rows.end());
@@ -197,8 +198,7 @@ void PlaceFeatures(CompatibleMesh& mesh, const std::vector<std::vector<Point>>& 
     for (std::size_t f = 1; f < F; ++f)
       if ((features[bad_pose][f] - at).norm() < (features[bad_pose][nearest] - at).norm()) nearest = f;
     throw poses[bad_pose].Error(
-        "feature " + std::to_string(nearest) +
-        " cannot be moved to its point without turning a triangle over (" +
+        "feature " + std::to_string(nearest) + " cannot be moved to its point without turning a triangle over (" +
         Format((features[bad_pose][nearest] - pos[ids[nearest]]).norm() / grid_scale) +
         " short of it); add landmarks on the outline near it, or check that the features are listed in the same "
         "order in every pose");
