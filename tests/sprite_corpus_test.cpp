@@ -157,6 +157,26 @@ TEST_CASE("posemorph-bake outline: one picture per drawn pose, drawn from what t
   CHECK(err.find("(the pictures show the outlines and landmarks as traced)\n") != std::string::npos);
   CHECK(std::count(err.begin(), err.end(), '\n') == 1);
   CHECK(fs::exists(bad_dir / "0-rest.png"));
+  // Features (Pip's eyes) are amber crosses at their points: 256-pixel
+  // drawings at 2 pixels per drawing pixel.
+  const fs::path pip_dir = out_dir / "pip";
+  fs::create_directories(pip_dir);
+  const std::string pip = std::string(POSEMORPH_DRAWN_SAMPLES) + "/pip/pip.json";
+  REQUIRE(run({"outline", pip, "-o", pip_dir.string()}, &out, &err) == 0);
+  CHECK(out.find("4 landmarks, 2 features)") != std::string::npos);
+  const pb::RigDescription pip_rig = pb::ReadRigDescription(pip);
+  for (std::size_t i = 0; i < pip_rig.poses.size(); ++i) {
+    const pb::RgbaImage picture =
+        pb::ReadRgbaPng((pip_dir / (std::to_string(i) + "-" + pip_rig.poses[i].name + ".png")).string());
+    REQUIRE(picture.width == 512);
+    for (const Point& feature : pip_rig.poses[i].features) {
+      const Point at = feature * 2;
+      const unsigned char* p = &picture.rgba[(std::size_t(at.y()) * picture.width + std::size_t(at.x())) * 4];
+      CHECK(int(p[0]) == 255);
+      CHECK(int(p[1]) == 190);
+      CHECK(int(p[2]) == 0);
+    }
+  }
   // Usage: a folder is needed.
   CHECK(run({"outline", chick}, &out, &err) == 2);
   CHECK(run({"outline", chick, "-o", (out_dir / "missing").string()}, &out, &err) == 1);

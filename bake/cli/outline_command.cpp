@@ -45,12 +45,14 @@ int OutlineCommand(const std::vector<std::string>& a, std::size_t from, std::ost
     const std::string path = PicturePath(*dir, description, pose.pose);
     pictures.emplace_back(path, EncodePng(picture, path));
     out << "wrote " << path << " (" << pose.label << ", x" << scale << ", " << pose.traced.size() << " outline points, "
-        << pose.boundary.size() << " boundary vertices, " << pose.landmarks.size() << " landmarks)\n";
+        << pose.boundary.size() << " boundary vertices, " << pose.landmarks.size() << " landmarks"
+        << (pose.features.empty() ? std::string() : ", " + std::to_string(pose.features.size()) + " features") << ")\n";
   }
   for (const auto& [path, bytes] : pictures) WriteFileAtomic(path, bytes);
   out << "cyan: the traced outline; magenta: the mesh boundary (simplify_tolerance " << traced.simplify_tolerance
       << "), grey: the mesh; discs: landmarks as given (numbered, ring: how far off the outline one may lie), "
-         "white: where each lands on the outline; green: the start landmark, its arrow the way the landmarks go\n";
+         "white: where each lands on the outline; green: the start landmark, its arrow the way the landmarks go; "
+         "amber crosses: features (numbered)\n";
   if (!traced.mapping_error.empty()) {
     err << "posemorph-bake: error: " << Printable(traced.mapping_error)
         << " (the pictures show the outlines and landmarks as traced)\n";

@@ -15,7 +15,7 @@ struct Colour {
   unsigned char r, g, b;
 };
 constexpr Colour kOutline{0, 190, 230}, kBoundary{220, 0, 200}, kMesh{90, 90, 90}, kLandmark{225, 30, 30},
-    kStart{0, 170, 60}, kPlaced{255, 255, 255}, kInk{20, 20, 20};
+    kStart{0, 170, 60}, kPlaced{255, 255, 255}, kInk{20, 20, 20}, kFeature{255, 190, 0};
 
 // Digits 0-9 in a 3 x 5 grid, one row per 3 bits (most significant bit left).
 constexpr std::array<std::array<unsigned char, 5>, 10> kDigits{{
@@ -134,6 +134,7 @@ Eigen::AlignedBox2d PictureFrame(const DrawnPoseOutline& pose, const RgbaImage& 
   if (drawing.width > 0) return Eigen::AlignedBox2d(Vec(0, 0), Vec(drawing.width, drawing.height));
   for (const Vec& p : pose.traced) box.extend(p);
   for (const Vec& p : pose.landmarks) box.extend(p);
+  for (const Vec& p : pose.features) box.extend(p);
   for (const Vec& p : pose.boundary) box.extend(p);
   const Vec grow = Vec::Constant(std::max(box.sizes().maxCoeff() / 10, 1e-9));
   return Eigen::AlignedBox2d(box.min() - grow, box.max() + grow);
@@ -188,6 +189,12 @@ RgbaImage OutlinePicture(const DrawnPoseOutline& pose, const Triangles& triangle
     if (l < pose.placed.size()) c.Disc(c.At(pose.placed[l]), mark * 0.6, kPlaced);
     c.Disc(at, mark, colour);
     c.Number(l, at + Vec(mark + 2, mark + 2), cell);
+  }
+  for (std::size_t f = 0; f < pose.features.size(); ++f) {  // an amber cross, numbered
+    const Vec at = c.At(pose.features[f]);
+    c.Line(at - Vec(mark, mark), at + Vec(mark, mark), unit * 1.5, kFeature);
+    c.Line(at - Vec(mark, -mark), at + Vec(mark, -mark), unit * 1.5, kFeature);
+    c.Number(f, at + Vec(mark + 2, mark + 2), cell);
   }
   if (!pose.landmarks.empty())
     StartArrow(c, pose, pose.landmarks[0], std::max(3 * pose.landmark_distance, 24.0 / scale));

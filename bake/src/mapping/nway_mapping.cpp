@@ -490,6 +490,7 @@ DrawnOutlines TraceDrawings(const RigDescription& rig) {
     for (const Point& p : d.outline) box.extend(p), o.traced.push_back(InDrawing(p, pose));
     if (mapping::SignedArea(d.outline) < 0) std::reverse(o.traced.begin(), o.traced.end());
     for (const Point& p : d.landmarks) o.landmarks.push_back(InDrawing(p, pose));
+    for (const Point& p : d.features) o.features.push_back(InDrawing(p, pose));
     o.landmark_distance = rig.mapping.landmark_distance * box.diagonal().norm();
     result.poses.push_back(std::move(o));
   }

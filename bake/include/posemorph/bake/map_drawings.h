@@ -55,6 +55,7 @@ struct DrawnPoseOutline {
   std::string png_path;                    // the PNG drawing, resolved; empty for an SVG or an outline
   std::vector<Eigen::Vector2d> traced;     // the outline as traced or read, counter-clockwise as seen
   std::vector<Eigen::Vector2d> landmarks;  // as given; the first is the start point
+  std::vector<Eigen::Vector2d> features;   // as given (points inside the shape)
   double landmark_distance = 0;            // how far a landmark may lie off the outline
   // From the mapping, empty when it failed: the landmarks placed on the
   // outline, the simplified (enclosing) boundary, the mesh's triangles.
