@@ -186,9 +186,10 @@ WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, con
       warnings->push_back(s.str());
     }
 
-  // Inside the hull: the thin-plate spline, at every node of every cell
-  // within 3/4 of a cell of the hull (so each point of the hull is
-  // interpolated from spline values only).
+  // Near the hull: the thin-plate spline, at every node of every cell whose
+  // centre lies within two cells of the hull (so every point of the hull is
+  // interpolated from spline values only, and the field around a pose point
+  // on the hull is the spline's).
   const ThinPlateSpline spline(points);
   const std::vector<Eigen::Vector2d> hull = ConvexHull(points);
   std::vector<char> fixed(G, 0);

@@ -59,7 +59,7 @@ std::optional<std::string> DrawingFolder(const RigDescription& description, cons
 
 // META: counts, flags, the grid's geometry, sigma and the rig's size.
 fmt::Meta MakeMeta(const RigDescription& description, const PoseMeshes& meshes, const ArapSystem& system,
-                   const WeightGrid& grid) {
+                   const WeightGrid& grid, bool has_drawing_folder) {
   const std::size_t V = meshes.poses[0].vertices.size(), T = meshes.triangles.size(), N = meshes.poses.size();
   fmt::Meta meta{};
   meta.vertex_count = std::uint32_t(V);
@@ -72,7 +72,7 @@ fmt::Meta MakeMeta(const RigDescription& description, const PoseMeshes& meshes, 
   const bool has_uvs = !meshes.poses[0].uvs.empty();
   meta.flags = (has_uvs ? fmt::kMetaFlagHasUVs : 0) | (grid.centre_weights.empty() ? 0 : fmt::kMetaFlagGridCentres) |
                (description.nearest_filter ? fmt::kMetaFlagNearestFilter : 0) |
-               (DrawingFolder(description, meshes) ? fmt::kMetaFlagDrawingFolder : 0);
+               (has_drawing_folder ? fmt::kMetaFlagDrawingFolder : 0);
   meta.grid_origin_x = grid.origin_x;
   meta.grid_origin_y = grid.origin_y;
   meta.grid_cell_size = grid.cell;
@@ -113,13 +113,14 @@ PoseArrays FlattenPoses(const PoseMeshes& meshes, const std::vector<double>& ver
   return a;
 }
 
-// STRS (pose names, image references, path names), PATH and PKEY.
+// STRS (pose names, image references, path names, the drawings' folder), PATH and PKEY.
 struct NamesAndPaths {
   std::vector<unsigned char> strings, path_table;
   std::vector<double> keys;
 };
 
-NamesAndPaths FlattenNamesAndPaths(const RigDescription& description, const PoseMeshes& meshes) {
+NamesAndPaths FlattenNamesAndPaths(const RigDescription& description, const PoseMeshes& meshes,
+                                   const std::optional<std::string>& drawing_folder) {
   NamesAndPaths a;
   std::vector<unsigned char>&strings = a.strings, &path_table = a.path_table;
   std::vector<double>& keys = a.keys;
@@ -136,7 +137,7 @@ NamesAndPaths FlattenNamesAndPaths(const RigDescription& description, const Pose
     path_table.insert(path_table.end(), e, e + sizeof(entry));
     for (const auto& k : path.keys) keys.insert(keys.end(), k.begin(), k.end());
   }
-  if (const std::optional<std::string> folder = DrawingFolder(description, meshes)) AppendString(strings, *folder);
+  if (drawing_folder) AppendString(strings, *drawing_folder);
 
   return a;
 }
@@ -146,12 +147,13 @@ NamesAndPaths FlattenNamesAndPaths(const RigDescription& description, const Pose
 std::vector<unsigned char> SerialiseRig(const RigDescription& description, const PoseMeshes& meshes,
                                         const PoseAnalysis& analysis, const ArapSystem& system,
                                         const WeightGrid& grid) {
-  const fmt::Meta meta = MakeMeta(description, meshes, system, grid);
+  const std::optional<std::string> drawing_folder = DrawingFolder(description, meshes);
+  const fmt::Meta meta = MakeMeta(description, meshes, system, grid, drawing_folder.has_value());
   const bool has_uvs = !meshes.poses[0].uvs.empty();
   std::vector<std::uint32_t> tris;
   for (const auto& t : meshes.triangles) tris.insert(tris.end(), t.begin(), t.end());
   const PoseArrays poses = FlattenPoses(meshes, system.vertex_masses);
-  const NamesAndPaths names = FlattenNamesAndPaths(description, meshes);
+  const NamesAndPaths names = FlattenNamesAndPaths(description, meshes, drawing_folder);
   RigWriter w;
   w.Add(fmt::kMeta, Bytes(meta));
   w.AddArray(fmt::kTriangles, tris);
