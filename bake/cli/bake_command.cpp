@@ -10,7 +10,7 @@
 namespace posemorph::bake::cli {
 
 int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out, std::ostream& err) {
-  const Args args = Args::Parse(a, from, {"-o", "--precision", "--max-error"}, {"--allow-folds"});
+  const Args args = Args::Parse(a, from, {"-o", "--precision", "--max-error"}, {"--allow-folds", "--no-align"});
   if (args.positional.empty()) throw UsageError("no rig description given");
   std::string output;
   if (const std::string* o = args.Get("-o")) {
@@ -34,6 +34,7 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
       throw UsageError("--max-error must be in [1e-6, 10] pixels");
   }
   if (args.switches.count("--allow-folds")) rig.parameters.allow_folds = true;
+  if (args.switches.count("--no-align")) rig.mapping.align_interiors = false;
   BakeReport report;
   rig.rig_file = output;
   const std::vector<unsigned char> bytes = BakeRig(rig, &report);
@@ -59,6 +60,12 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
       << "smallest triangle area " << ib.min_area_ratio << " of its smallest in a pose (triangle " << ib.min_triangle
       << " at (" << ib.min_at.x() << ", " << ib.min_at.y() << ")); " << ib.folds.size() << " folded triangles; "
       << ib.seconds * 1e3 << " ms\n";
+  if (report.ghosting.pairs.empty())
+    out << "ghosting: not measured: "
+        << (report.ghosting_skipped.empty() ? "no adjacent poses" : report.ghosting_skipped) << "\n";
+  else
+    out << "ghosting (colour difference of adjacent poses' drawings at their midpoint): "
+        << Printable(DescribeGhosting(report.ghosting)) << "\n";
   for (const std::string& w : report.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
   const MappingReport& m = report.mapping;
   for (const std::string& w : rig.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
@@ -71,6 +78,17 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
         << " Steiner points; " << (m.features ? std::to_string(m.features) + " features; " : "") << m.vertices
         << " vertices, " << m.triangles << " triangles after refinement; "
         << "min angle " << m.min_angle_degrees << " degrees over all poses; " << m.seconds * 1e3 << " ms\n";
+    out << "interior alignment: ";
+    if (m.aligned) {
+      out << "colour difference against the first pose";
+      for (std::size_t k = 1; k < m.alignment_before.size(); ++k)
+        out << (k > 1 ? "," : "") << " " << m.alignment_before[k] * 255 << " -> " << m.alignment_after[k] * 255;
+      out << " (of 255); vertices moved up to " << m.alignment_max_move << " px; min angle "
+          << m.min_angle_before_alignment << " -> " << m.min_angle_degrees << " degrees; " << m.alignment_seconds * 1e3
+          << " ms\n";
+    } else {
+      out << "not done: " << m.alignment_skipped << "\n";
+    }
   }
   return 0;
 }

@@ -11,12 +11,15 @@
 #include <sstream>
 
 #include "command_args.h"
+#include "posemorph/bake/drawing_folder.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/ghosting.h"
 #include "posemorph/bake/inbetween_check.h"
 #include "posemorph/path.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
 #include "preview.h"
+#include "textured_sheet.h"
 
 namespace posemorph::bake::cli {
 namespace {
@@ -141,6 +144,28 @@ void PrintInbetweens(const std::string& file, const Rig& rig, std::ostream& out)
   for (const InbetweenFold& f : ib.folds) out << "    " << DescribeFold(rig, f) << "\n";
 }
 
+// The ghosting measure, with the drawings from `images` (or where the rig
+// says the bake found them); a line saying why not when they cannot be read.
+void PrintGhosting(const std::string& file, const Rig& rig, const std::string* images, std::ostream& out) {
+  if (rig.uvs(0).size == 0) {
+    out << "  ghosting: not measured (the rig has no drawings)\n";
+    return;
+  }
+  std::vector<RgbaImage> drawings;
+  const std::string folder = images ? *images : DefaultDrawingFolder(file, rig);
+  try {
+    drawings = ReadPoseDrawings(rig, file, folder);
+  } catch (const BakeError& e) {
+    out << "  ghosting: not measured: " << Printable(e.what()) << "\n";
+    return;
+  }
+  std::vector<DrawingPixels> pixels;
+  for (const RgbaImage& d : drawings) pixels.push_back({d.width, d.height, d.rgba.data()});
+  const Ghosting g = MeasureGhosting(rig, pixels, file);
+  out << "  ghosting (colour difference of adjacent poses' drawings at their midpoint, drawings in "
+      << Printable(folder) << "): " << Printable(DescribeGhosting(g)) << "\n";
+}
+
 void PrintPosesAndPaths(const Rig& rig, std::ostream& out) {
   const std::uint32_t N = rig.pose_count();
   for (std::uint32_t i = 0; i < N; ++i) {
@@ -165,13 +190,14 @@ void PrintPosesAndPaths(const Rig& rig, std::ostream& out) {
 }  // namespace
 
 int InfoCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
-  const Args args = Args::Parse(a, from, {}, {});
+  const Args args = Args::Parse(a, from, {"--images"}, {});
   if (args.positional.empty()) throw UsageError("no rig file given");
   const std::vector<unsigned char> bytes = ReadBytes(args.positional);
   const Rig rig = LoadRigFile(args.positional);
   PrintSummary(args.positional, bytes, rig, out);
   PrintSections(args.positional, bytes, rig, out);
   PrintInbetweens(args.positional, rig, out);
+  PrintGhosting(args.positional, rig, args.Get("--images"), out);
   PrintPosesAndPaths(rig, out);
   return 0;
 }

@@ -16,6 +16,7 @@
 #include "posemorph/bake/deform_poses.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/map_drawings.h"
+#include "posemorph/bake/mapping/outline_image.h"
 #include "posemorph/bake/orient_triangles.h"
 #include "posemorph/bake/pose_analysis.h"
 #include "posemorph/bake/pose_space_weights.h"
@@ -61,6 +62,32 @@ std::vector<std::string> FoldWarnings(const std::string& file, const Rig& rig, c
     warnings.push_back(file + ": the in-betweens fold: " + std::to_string(inbetweens.folds.size() - shown) +
                        " more triangles turn over");
   return warnings;
+}
+
+// The ghosting measure of the rig written, reading every pose's PNG drawing;
+// *skipped says why not when a pose has none (or draws another image).
+Ghosting MeasureBakedGhosting(const RigDescription& description, const Rig& rig, std::string* skipped) {
+  std::vector<std::vector<unsigned char>> pixels;
+  std::vector<DrawingPixels> drawings;
+  for (std::size_t i = 0; i < description.poses.size(); ++i) {
+    const PoseDescription& pose = description.poses[i];
+    const std::string& d = pose.drawing;
+    const bool png =
+        d.size() > 4 && (d.compare(d.size() - 4, 4, ".png") == 0 || d.compare(d.size() - 4, 4, ".PNG") == 0);
+    if (!pose.drawn || !pose.vertices.empty() || !png || (!pose.image.empty() && pose.image != pose.drawing)) {
+      *skipped = "pose '" + pose.name + "' does not draw the PNG drawing it was mapped from";
+      return {};
+    }
+    int width = 0, height = 0;
+    std::vector<unsigned char> rgba =
+        mapping::ReadPngRgba(pose.drawing_path, &width, &height,
+                             ErrorSource(description.file, "pose '" + pose.name + "': " + pose.drawing_path));
+    std::uint32_t w = std::uint32_t(width), h = std::uint32_t(height);
+    pixels.push_back(ReduceDrawing(std::move(rgba), &w, &h));
+    drawings.push_back({w, h, nullptr});
+  }
+  for (std::size_t i = 0; i < drawings.size(); ++i) drawings[i].rgba = pixels[i].data();
+  return MeasureGhosting(rig, drawings, description.file);
 }
 
 std::uint64_t LowerNonzeros(const Eigen::SparseMatrix<double>& K) {
@@ -203,6 +230,9 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
     r.inbetweens = a.inbetweens;
     r.mapping = a.drawings.report;
     r.mapping.fold_retries = tried;
+    BakeStage ghosting_stage("measuring the ghosting");
+    r.ghosting = MeasureBakedGhosting(description, a.written.rig, &r.ghosting_skipped);
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   return a.bytes;
 }

@@ -117,10 +117,11 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
   WarnUnknownKeys(root, "", {"posemorph", "name", "filter", "poses", "triangles", "mapping", "bake", "paths"}, file,
                   warnings);
   if (root.contains("mapping"))
-    WarnUnknownKeys(root["mapping"], "mapping",
-                    {"simplify_tolerance", "max_edge_length", "min_angle", "alpha_threshold", "curve_tolerance",
-                     "spacing", "landmark_distance", "max_steiner_points", "max_vertices"},
-                    file, warnings);
+    WarnUnknownKeys(
+        root["mapping"], "mapping",
+        {"simplify_tolerance", "max_edge_length", "min_angle", "alpha_threshold", "curve_tolerance", "spacing",
+         "landmark_distance", "max_steiner_points", "max_vertices", "align_interiors", "align_rigidity"},
+        file, warnings);
   if (root.contains("bake"))
     WarnUnknownKeys(
         root["bake"], "bake",
@@ -279,6 +280,11 @@ void ParseMapping(const Reader& r, const json& m, MappingParameters* parameters)
   number("spacing", p.spacing, 0, 1e9, "0 (automatic) or [1e-6, 1e9]");
   if (p.spacing > 0 && p.spacing < 1e-6) r.Fail("mapping.spacing", "must be 0 (automatic) or in [1e-6, 1e9]");
   number("landmark_distance", p.landmark_distance, 0, 1, "[0, 1]");
+  number("align_rigidity", p.align_rigidity, 1e-6, 1e6, "[1e-6, 1e6]");
+  if (m.contains("align_interiors")) {
+    if (!m["align_interiors"].is_boolean()) r.Fail("mapping.align_interiors", "expected true or false");
+    p.align_interiors = m["align_interiors"].get<bool>();
+  }
   if (m.contains("max_steiner_points")) {
     if (!m["max_steiner_points"].is_number_integer() || m["max_steiner_points"].get<long long>() < 0 ||
         m["max_steiner_points"].get<long long>() > 100000)

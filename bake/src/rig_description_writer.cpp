@@ -90,6 +90,8 @@ json MappingJson(const MappingParameters& p) {
   put("landmark_distance", p.landmark_distance, d.landmark_distance);
   put("max_steiner_points", p.max_steiner_points, d.max_steiner_points);
   put("max_vertices", p.max_vertices, d.max_vertices);
+  put("align_interiors", p.align_interiors, d.align_interiors);
+  put("align_rigidity", p.align_rigidity, d.align_rigidity);
   return j.empty() ? json() : j;
 }
 

@@ -4,11 +4,14 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "geometry.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/map_drawings.h"
+#include "posemorph/bake/mapping/interior_alignment.h"
+#include "posemorph/bake/mapping/outline_image.h"
 
 namespace posemorph {
 namespace bake {
@@ -395,6 +398,102 @@ void MeshesFromMapping(const RigDescription& rig, const std::vector<DrawnPose>& 
   }
 }
 
+// Vertices on an edge that only one triangle has.
+std::vector<std::uint32_t> BoundaryVertices(const Triangles& triangles) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
+  for (const auto& t : triangles)
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t a = t[std::size_t(e)], b = t[std::size_t((e + 1) % 3)];
+      ++edges[{std::min(a, b), std::max(a, b)}];
+    }
+  std::vector<std::uint32_t> out;
+  for (const auto& [edge, count] : edges)
+    if (count == 1) out.push_back(edge.first), out.push_back(edge.second);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// The smallest angle of any triangle in any pose, degrees.
+double MinAngleDegrees(const Triangles& triangles, const std::vector<PoseMesh>& meshes) {
+  double least = 180;
+  for (const PoseMesh& m : meshes)
+    for (const auto& t : triangles)
+      for (int k = 0; k < 3; ++k) {
+        const Point &p = m.vertices[t[std::size_t(k)]], &q = m.vertices[t[std::size_t((k + 1) % 3)]],
+                    &r = m.vertices[t[std::size_t((k + 2) % 3)]];
+        const Point u = q - p, v = r - p;
+        least = std::min(least, std::atan2(std::abs(u.x() * v.y() - u.y() * v.x()), u.dot(v)) * 180 / M_PI);
+      }
+  return least;
+}
+
+// Why the drawings cannot align the interiors, or empty when they can: it
+// needs two drawn poses or more, every one a PNG drawing that is also the
+// texture drawn.
+std::string AlignmentSkipped(const RigDescription& rig, const std::vector<DrawnPose>& drawn) {
+  if (!rig.mapping.align_interiors) return "turned off (mapping.align_interiors)";
+  if (drawn.size() < 2) return "one drawn pose";
+  for (const DrawnPose& d : drawn) {
+    const PoseDescription& pose = rig.poses[d.index];
+    if (!EndsWith(pose.drawing, ".png")) return PoseLabel(pose.name, d.index) + " is not a PNG drawing";
+    if (!pose.image.empty() && pose.image != pose.drawing)
+      return PoseLabel(pose.name, d.index) + " draws another image than its drawing";
+  }
+  return "";
+}
+
+// Stage 7: every drawn pose's interior vertices (all but the boundary's and
+// the features') move so that the drawings agree through the meshes
+// (interior_alignment.h), in each drawing's pixels; uvs follow.
+void AlignDrawnInteriors(const RigDescription& rig, const std::vector<DrawnPose>& drawn, MappedDrawings& result) {
+  MappingReport& report = result.report;
+  report.alignment_skipped = AlignmentSkipped(rig, drawn);
+  if (!report.alignment_skipped.empty()) return;
+  // One scale for every drawing: the largest brought to kAlignmentMaxSide.
+  int halvings = 0;
+  for (const DrawnPose& d : drawn)
+    halvings = std::max(halvings, mapping::AlignmentHalvings(int(d.size.x()), int(d.size.y())));
+  const double scale = std::ldexp(1.0, -halvings);
+  std::vector<mapping::AlignmentImage> images;
+  std::vector<Points> pixels;
+  for (std::size_t k = 0; k < drawn.size(); ++k) {
+    const DrawnPose& d = drawn[k];
+    const PoseDescription& pose = rig.poses[d.index];
+    int width = 0, height = 0;
+    const std::vector<unsigned char> rgba =
+        mapping::ReadPngRgba(pose.drawing_path, &width, &height,
+                             ErrorSource(rig.file, PoseLabel(pose.name, d.index) + ": " + pose.drawing_path));
+    images.push_back(mapping::AlignmentImageFromRgba(rgba.data(), width, height, halvings));
+    pixels.emplace_back();
+    for (const Point& p : result.meshes[k].vertices)
+      pixels.back().push_back(scale * Point(p.x() - d.origin.x(), -p.y() - d.origin.y()));
+  }
+  std::vector<bool> fixed(pixels[0].size(), false);
+  for (std::uint32_t v : BoundaryVertices(result.triangles)) fixed[v] = true;
+  for (std::uint32_t v : result.feature_vertices) fixed[v] = true;
+  mapping::AlignmentParameters parameters;
+  parameters.rigidity = rig.mapping.align_rigidity;
+  mapping::AlignmentReport aligned;
+  mapping::AlignInteriors(images, result.triangles, fixed, pixels, parameters, &aligned);
+  for (std::size_t k = 0; k < drawn.size(); ++k) {
+    const DrawnPose& d = drawn[k];
+    PoseMesh& pose = result.meshes[k];
+    for (std::size_t v = 0; v < pose.vertices.size(); ++v) {
+      if (fixed[v]) continue;  // exactly where the mapping put it
+      const Point q = pixels[k][v] / scale;
+      const Point p(q.x() + d.origin.x(), 0.0 - (q.y() + d.origin.y()));
+      pose.vertices[v] = p;
+      pose.uvs[v] = Point((p.x() - d.origin.x()) / d.size.x(), (-p.y() - d.origin.y()) / d.size.y()).cast<float>();
+    }
+  }
+  report.aligned = true;
+  report.alignment_before = aligned.difference_before;
+  report.alignment_after = aligned.difference_after;
+  for (double m : aligned.max_move) report.alignment_max_move = std::max(report.alignment_max_move, m / scale);
+  report.alignment_seconds = aligned.seconds;
+}
+
 std::vector<DrawnPose> DrawnPoses(const RigDescription& rig) {
   std::vector<DrawnPose> drawn;
   for (std::size_t i = 0; i < rig.poses.size(); ++i)
@@ -463,12 +562,15 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
   report.steiner_points = mesh.steiner_points;
   report.features = mesh.features.size();
   for (std::size_t v : mesh.features) result.feature_vertices.push_back(std::uint32_t(v));
-  report.min_angle_degrees = mapping::MinAngleDegrees(mesh);
+  report.min_angle_degrees = report.min_angle_before_alignment = mapping::MinAngleDegrees(mesh);
   report.vertices = mesh.vertices[0].size();
   report.triangles = mesh.triangles.size();
 
   // 5. Back to rig coordinates; uvs into each pose's own drawing.
   MeshesFromMapping(rig, drawn, mesh, grid, result);
+  // 7. The drawings align the interiors.
+  AlignDrawnInteriors(rig, drawn, result);
+  if (report.aligned) report.min_angle_degrees = MinAngleDegrees(result.triangles, result.meshes);
   report.mapped = true;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

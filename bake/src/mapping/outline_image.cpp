@@ -277,8 +277,9 @@ ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width
   return result;
 }
 
-static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char>& file, const ErrorSource& source,
-                                                 int* width, int* height) {
+// The alpha bytes, or with `rgba` straight-alpha RGBA bytes, row by row.
+static std::vector<unsigned char> DecodePng(const std::vector<unsigned char>& file, const ErrorSource& source,
+                                            int* width, int* height, bool rgba) {
   png_image image;
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;
@@ -290,7 +291,7 @@ static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char
         "has no alpha channel (and no transparent colour): the bake takes the character's shape from "
         "alpha; save the drawing with transparency");
   }
-  image.format = PNG_FORMAT_GA;  // grey + alpha: only the alpha is used
+  image.format = rgba ? PNG_FORMAT_RGBA : PNG_FORMAT_GA;  // grey + alpha: only the alpha is used
   // The header's size, checked before anything is decoded: a small file can
   // claim a huge image (a decompression bomb).
   if (image.width == 0 || image.height == 0 || image.width > 16384 || image.height > 16384 ||
@@ -306,18 +307,23 @@ static std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char
     png_image_free(&image);
     throw source.Error("cannot decode PNG: " + message);
   }
+  *width = int(image.width);
+  *height = int(image.height);
+  if (rgba) return ga;
   // Keep the alpha bytes in place (byte i moves down from 2i + 1).
   const std::size_t pixels = std::size_t(image.width) * image.height;
   for (std::size_t i = 0; i < pixels; ++i) ga[i] = ga[2 * i + 1];
   ga.resize(pixels);
   ga.shrink_to_fit();
-  *width = int(image.width);
-  *height = int(image.height);
   return ga;
 }
 
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height, const ErrorSource& source) {
-  return DecodePngAlpha(ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source), source, width, height);
+  return DecodePng(ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source), source, width, height, false);
+}
+
+std::vector<unsigned char> ReadPngRgba(const std::string& path, int* width, int* height, const ErrorSource& source) {
+  return DecodePng(ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source), source, width, height, true);
 }
 
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height) {
@@ -336,7 +342,7 @@ ImageOutline OutlineFromPng(const std::string& path, double threshold) {
 
 ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double threshold, const ErrorSource& source) {
   int width = 0, height = 0;
-  const std::vector<unsigned char> alpha = DecodePngAlpha(png, source, &width, &height);
+  const std::vector<unsigned char> alpha = DecodePng(png, source, &width, &height, false);
   return OutlineFromAlpha(alpha, width, height, threshold, source);
 }
 

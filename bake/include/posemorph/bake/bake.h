@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "posemorph/bake/compact_rig.h"
+#include "posemorph/bake/ghosting.h"
 #include "posemorph/bake/inbetween_check.h"
 #include "posemorph/bake/map_drawings.h"
 #include "posemorph/bake/rig_description.h"
@@ -28,6 +29,10 @@ struct BakeReport {
   InbetweenCheck inbetweens;          // the rig written, evaluated over the pose hull and the paths
   std::vector<std::string> warnings;  // "FILE: ..." (folds, when allowed)
   MappingReport mapping;              // what mapping the drawings made (mapped: false when none is drawn)
+  // The ghosting measure of the rig written (ghosting.h), when every pose
+  // draws a PNG drawing; else why not.
+  Ghosting ghosting;
+  std::string ghosting_skipped;
 };
 
 // The paper's pipeline, one step per header: map the drawings
@@ -38,7 +43,7 @@ struct BakeReport {
 // solve the pose-space weights (pose_space_weights.h) -> write
 // (serialise_rig.h; compact_rig.h within the error budget) -> check the
 // poses with the runtime (reproduction_check.h) -> check the in-betweens for
-// folds (inbetween_check.h). When the in-betweens fold inside the pose hull
+// folds (inbetween_check.h) -> measure the ghosting (ghosting.h). When the in-betweens fold inside the pose hull
 // and the meshes come from drawings, the bake maps them again, coarser
 // (kFoldRetries variants: matched-sample spacing x2, longest edge x1.5, both;
 // the first fold-free one is written, with a warning naming it); if every

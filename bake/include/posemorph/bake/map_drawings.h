@@ -22,9 +22,17 @@ struct MappingReport {
   std::size_t steiner_points = 0;             // interior points the compatible triangulation added
   std::size_t features = 0;                   // corresponding interior points given (shared vertices)
   std::size_t vertices = 0, triangles = 0;    // after refinement
-  double min_angle_degrees = 0;               // over all triangles and drawn poses
+  double min_angle_degrees = 0;               // over all triangles and drawn poses (after alignment)
+  double min_angle_before_alignment = 0;      // the same, as refinement left it
   double simplification_error = 0;            // drawing units
   double seconds = 0;
+  // Interior alignment by the drawings (mapping/interior_alignment.h): done,
+  // or why not; per drawn pose the mean colour difference (of 1) against the
+  // first over its mesh, before and after; the longest move (drawing units).
+  bool aligned = false;
+  std::string alignment_skipped;
+  std::vector<double> alignment_before, alignment_after;
+  double alignment_max_move = 0, alignment_seconds = 0;
   // The bake maps again, coarser, when the in-betweens fold (bake.h): the
   // mappings tried before the one written (0: the first was kept).
   int fold_retries = 0;

@@ -67,6 +67,10 @@ struct MappingParameters {
   double landmark_distance = 0.05;  // a landmark may lie this far off its outline, times the outline's size
   int max_steiner_points = 100;     // interior points the compatible triangulation may add
   int max_vertices = 20000;         // refinement's vertex budget (mesh vertices in all)
+  // PNG drawings align the interiors (mapping/interior_alignment.h): on by
+  // default; rigidity weighs the as-rigid-as-possible term against colour.
+  bool align_interiors = true;
+  double align_rigidity = 0.02;
   // Not in the description: the bake's own retries when the in-betweens fold
   // (bake.h) scale the spacing and the longest edge, automatic or given.
   double spacing_scale = 1, edge_scale = 1;

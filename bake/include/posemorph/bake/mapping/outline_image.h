@@ -31,6 +31,8 @@ ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double a
 // The alpha channel of a PNG (any colour type), row by row. Throws BakeError naming the file (or `source`).
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height);
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height, const ErrorSource& source);
+// Straight-alpha RGBA bytes of a PNG with alpha, row by row (the same checks).
+std::vector<unsigned char> ReadPngRgba(const std::string& path, int* width, int* height, const ErrorSource& source);
 ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width, int height, double alpha_threshold,
                               const ErrorSource& source);
 

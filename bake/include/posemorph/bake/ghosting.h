@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: MIT
+// The ghosting measure (issue "Interior correspondence"): how much two
+// poses' drawings disagree when the cross-fade lays them on the same
+// in-between. At the midpoint between two adjacent poses the runtime's mesh
+// is drawn twice, once with each pose's drawing at that pose's uvs, and the
+// measure is the mean absolute difference of the two pictures' premultiplied
+// RGBA (of 255, averaged over the four channels) over the pixels where either
+// is at least half opaque: 0 when the interiors line up, larger the more an
+// eye or a patch is drawn in two places.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "posemorph/rig.h"
+
+namespace posemorph::bake {
+
+// A pose's drawing: straight-alpha RGBA bytes, rows top to bottom.
+struct DrawingPixels {
+  std::uint32_t width = 0, height = 0;
+  const unsigned char* rgba = nullptr;
+};
+
+struct GhostingPair {
+  std::uint32_t a = 0, b = 0;  // pose indices, a < b
+  std::string name_a, name_b;  // their names
+  Eigen::Vector2d at;          // the midpoint of their pose points
+  double difference = 0;       // of 255
+  std::uint64_t pixels = 0;    // pixels compared (rig units are drawing pixels)
+};
+
+struct Ghosting {
+  std::vector<GhostingPair> pairs;  // in order of a, then b
+  double mean = 0;                  // over the pairs
+};
+
+// Adjacent poses: two pose points with no third strictly inside the circle
+// on their segment (the Gabriel graph: neighbours of the Delaunay
+// triangulation that face each other; on a line, the consecutive points).
+std::vector<std::pair<std::uint32_t, std::uint32_t>> AdjacentPoses(const Rig& rig);
+
+// The measure for every pair of adjacent poses of a rig baked from drawings
+// (drawings[i] is pose i's, at any size: it is sampled at the uvs),
+// rasterised at one pixel per rig unit, or coarser so that no in-between
+// takes more than kGhostingMaxPixels samples. Throws BakeError(file) when
+// the rig has no uvs or does not evaluate.
+constexpr double kGhostingMaxPixels = 1048576;
+Ghosting MeasureGhosting(const Rig& rig, const std::vector<DrawingPixels>& drawings, const std::string& file);
+
+// A drawing halved (premultiplied 2 x 2 means) until its longer side is at
+// most max_side: what the bake keeps of each drawing for the measure.
+std::vector<unsigned char> ReduceDrawing(std::vector<unsigned char> rgba, std::uint32_t* width, std::uint32_t* height,
+                                         std::uint32_t max_side = 1024);
+
+// "rest-stretch 4.1, rest-squash 3.2, ...; mean 3.6 (of 255)".
+std::string DescribeGhosting(const Ghosting& ghosting);
+
+}  // namespace posemorph::bake
