@@ -578,6 +578,13 @@ TEST_CASE("mapping: SVG outlines") {
           R"svg(<svg width="9" height="9"><path transform="scale(2)" d="M 0 0 L 9 0 L 9 9 Z"/></svg>)svg", 0.1,
           "t.svg"),
       doctest::Contains("has a transform"), pb::BakeError);
+  // A fuzz finding: a curve to y = 1e308 flattened to infinite points.
+  CHECK_THROWS_WITH_AS(
+      pm::OutlineFromSvgText(
+          R"svg(<svg viewBox="0 0 6 64"><path d="M 10 0 C 2 40 0 50 410 1e308V10 l 1 1 z"/></svg>)svg", 0.25,
+          "big.svg"),
+      doctest::Contains("big.svg: path data: the number at character 23 lies beyond +-1e9 drawing units"),
+      pb::BakeError);
   CHECK_THROWS_WITH_AS(pm::OutlineFromSvgText("<svg", 0.1, "x.svg"), doctest::Contains("x.svg: invalid SVG"),
                        pb::BakeError);
 }

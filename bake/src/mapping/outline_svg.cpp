@@ -38,6 +38,11 @@ struct PathScanner {
     const double v = std::strtod(begin, &end);
     if (end == begin || !std::isfinite(v))
       throw source.Error("path data: expected a number at character " + std::to_string(i));
+    // The mapping refuses outlines beyond +-1e9 anyway; refusing larger
+    // numbers here keeps every sum and midpoint of the flattening finite.
+    if (!(std::abs(v) <= 1e9))
+      throw source.Error("path data: the number at character " + std::to_string(i) +
+                         " lies beyond +-1e9 drawing units");
     i += std::size_t(end - begin);
     return v;
   }
