@@ -35,7 +35,7 @@ pb::BakeReport Bake(pb::RigDescription rig, bool align) {
 
 }  // namespace
 
-TEST_CASE("ghosting: adjacent poses are the Gabriel graph; a drawing over itself measures 0") {
+TEST_CASE("ghosting: adjacent poses are the Gabriel graph, a drawing over itself measures 0") {
   const std::string dir = Sample("sprites/ghost");
   REQUIRE_MESSAGE(std::filesystem::exists(dir + "/rest.png"), "the build rasterises the sprites");
   // Two poses drawn by the same drawing: the same mesh, the same uvs.
@@ -109,7 +109,7 @@ TEST_CASE("ghosting: a description that turns the alignment off, or gives it a b
                        "r.json: mapping.align_rigidity: must be in [1e-6, 1e6]", pb::BakeError);
 }
 
-TEST_CASE("ghosting: the bake and info print it per pair; --no-align says the alignment was not done") {
+TEST_CASE("ghosting: the bake and info print it per pair, --no-align says the alignment was not done") {
   namespace fs = std::filesystem;
   const std::string description = Sample("sprites/ghost/ghost.json");
   REQUIRE_MESSAGE(fs::exists(description), "the build rasterises the sprites");

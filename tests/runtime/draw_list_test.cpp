@@ -146,7 +146,7 @@ TEST_CASE("draw lists: linear interpolation and the rig's default sigma") {
   }
 }
 
-TEST_CASE("draw lists: transforms pass through; a mirrored one is flagged") {
+TEST_CASE("draw lists: transforms pass through, a mirrored one is flagged") {
   const Rig rig = LoadTestRig("snake");
   const std::vector<double> points = PointsOnPath(rig, 3);
   Lists l(rig, points);
@@ -160,7 +160,7 @@ TEST_CASE("draw lists: transforms pass through; a mirrored one is flagged") {
   for (int k = 0; k < 3; ++k) CHECK(std::memcmp(&l.out[k].transform, &t[k], sizeof(Transform2D)) == 0);
 }
 
-TEST_CASE("transforms: scale, flip, rotate, move, in that order; composition") {
+TEST_CASE("transforms: scale, flip, rotate, move, in that order, composition") {
   const Transform2D t = Transform2D::Make(5, -3, 3.14159265358979323846 / 2, 2, 3, true);
   double x = 0, y = 0;
   t.Apply(1, 0, &x, &y);  // (1,0) -scale-> (2,0) -flip-> (-2,0) -rotate 90-> (0,-2) -move-> (5,-5)

@@ -113,7 +113,7 @@ TEST_CASE("a format 1.2 rig loads to the arrays of the 1.4 exact file") {
   CHECK(a == b);
 }
 
-TEST_CASE("today's bake keeps the 1.4 file's angles and poses; the weight grid moved") {
+TEST_CASE("today's bake keeps the 1.4 file's angles and poses, the weight grid moved") {
   // The thin-plate spline changed the stored weights, not the geometry: the
   // same angles, and at the pose points the same poses.
   const Rig before = LoadCommitted("small-format-1.4.pmrig");

@@ -128,7 +128,7 @@ TEST_CASE("finite but huge stored numbers are refused at load, naming the sectio
   }
 }
 
-TEST_CASE("jobs take weights up to kMaxJobWeight and give finite positions; larger ones are refused") {
+TEST_CASE("jobs take weights up to kMaxJobWeight and give finite positions, larger ones are refused") {
   const Rig rig = LoadTestRig("snake");
   const std::size_t N = rig.pose_count();
   std::vector<double> w(N, 0.0), ws(N, 0.0);
@@ -159,7 +159,7 @@ TEST_CASE("the C API refuses to load over a live handle instead of leaking it") 
   pm_rig_free(rig);
 }
 
-TEST_CASE("drawn rigs carry each pose's canvas; a negative canvas is refused") {
+TEST_CASE("drawn rigs carry each pose's canvas, a negative canvas is refused") {
   const Rig pip = LoadTestRig("pip");
   for (std::uint32_t i = 0; i < pip.pose_count(); ++i) {
     const DrawingCanvas c = pip.pose_canvas(i);
