@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/ghosting.h"
 #include "posemorph/bake/input_file.h"
 #include "posemorph/image_reference.h"
 
@@ -42,29 +43,22 @@ RgbaImage DecodeRgba(const std::vector<unsigned char>& file, const std::string& 
 }
 
 // Premultiplied colour of a drawing at uv (0..1 across the canvas, y down);
-// transparent outside it, as the viewer's clamp-to-border sampler.
+// transparent outside it, as the viewer's clamp-to-border sampler. Linear is
+// the ghosting measure's sampler (ghosting.h).
 void Sample(const RgbaImage& d, double u, double v, TextureFilter filter, double out[4]) {
-  const double x = u * d.width - 0.5, y = v * d.height - 0.5;
-  auto texel = [&](long tx, long ty, double weight) {
-    if (tx < 0 || ty < 0 || tx >= long(d.width) || ty >= long(d.height) || weight == 0) return;
-    const unsigned char* p = &d.rgba[(std::size_t(ty) * d.width + std::size_t(tx)) * 4];
-    const double a = p[3] / 255.0;
-    out[0] += weight * a * p[0] / 255.0;
-    out[1] += weight * a * p[1] / 255.0;
-    out[2] += weight * a * p[2] / 255.0;
-    out[3] += weight * a;
-  };
-  out[0] = out[1] = out[2] = out[3] = 0;
-  if (filter == TextureFilter::kNearest) {
-    texel(long(std::floor(x + 0.5)), long(std::floor(y + 0.5)), 1);
+  if (filter != TextureFilter::kNearest) {
+    SampleDrawing(DrawingPixels{d.width, d.height, d.rgba.data()}, u, v, out);
     return;
   }
-  const double fx = std::floor(x), fy = std::floor(y), ax = x - fx, ay = y - fy;
-  const long x0 = long(fx), y0 = long(fy);
-  texel(x0, y0, (1 - ax) * (1 - ay));
-  texel(x0 + 1, y0, ax * (1 - ay));
-  texel(x0, y0 + 1, (1 - ax) * ay);
-  texel(x0 + 1, y0 + 1, ax * ay);
+  out[0] = out[1] = out[2] = out[3] = 0;
+  const double tx = std::floor(u * d.width - 0.5 + 0.5), ty = std::floor(v * d.height - 0.5 + 0.5);
+  if (!(tx >= 0 && ty >= 0 && tx < double(d.width) && ty < double(d.height))) return;
+  const unsigned char* p = &d.rgba[(std::size_t(ty) * d.width + std::size_t(tx)) * 4];
+  const double a = p[3] / 255.0;
+  out[0] = a * p[0] / 255.0;
+  out[1] = a * p[1] / 255.0;
+  out[2] = a * p[2] / 255.0;
+  out[3] = a;
 }
 
 }  // namespace

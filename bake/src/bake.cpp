@@ -218,7 +218,6 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
     r.grid_cells_y = std::uint32_t(a.grid_cells_y);
     r.bytes = a.bytes.size();
     r.max_reproduction_error = a.written.max_error;
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     r.compact = a.is_compact;
     r.exact_bytes = a.exact.size();
     r.max_error_px = description.parameters.compact ? description.parameters.max_error_px : 0;

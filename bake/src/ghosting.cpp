@@ -9,11 +9,10 @@
 #include "posemorph/bake/pose_space_samples.h"
 
 namespace posemorph::bake {
-namespace {
 
 // Premultiplied RGBA (of 1) of a drawing at uv, bilinear, transparent
 // outside it (the viewer's clamp-to-border sampler).
-void Sample(const DrawingPixels& d, double u, double v, double out[4]) {
+void SampleDrawing(const DrawingPixels& d, double u, double v, double out[4]) {
   const double x = u * d.width - 0.5, y = v * d.height - 0.5;
   out[0] = out[1] = out[2] = out[3] = 0;
   const double fx = std::floor(x), fy = std::floor(y), ax = x - fx, ay = y - fy;
@@ -31,8 +30,6 @@ void Sample(const DrawingPixels& d, double u, double v, double out[4]) {
   texel(x0, y0 + 1, (1 - ax) * ay);
   texel(x0 + 1, y0 + 1, ax * ay);
 }
-
-}  // namespace
 
 std::vector<std::pair<std::uint32_t, std::uint32_t>> AdjacentPoses(const Rig& rig) {
   const std::uint32_t N = rig.pose_count();
@@ -103,10 +100,10 @@ Ghosting MeasureGhosting(const Rig& rig, const std::vector<DrawingPixels>& drawi
           if (l0 < -1e-9 || l1 < -1e-9 || l2 < -1e-9) continue;
           covered[at] = 1;
           double ca[4], cb[4];
-          Sample(drawings[a], l0 * ua[2 * tri[0]] + l1 * ua[2 * tri[1]] + l2 * ua[2 * tri[2]],
-                 l0 * ua[2 * tri[0] + 1] + l1 * ua[2 * tri[1] + 1] + l2 * ua[2 * tri[2] + 1], ca);
-          Sample(drawings[b], l0 * ub[2 * tri[0]] + l1 * ub[2 * tri[1]] + l2 * ub[2 * tri[2]],
-                 l0 * ub[2 * tri[0] + 1] + l1 * ub[2 * tri[1] + 1] + l2 * ub[2 * tri[2] + 1], cb);
+          SampleDrawing(drawings[a], l0 * ua[2 * tri[0]] + l1 * ua[2 * tri[1]] + l2 * ua[2 * tri[2]],
+                        l0 * ua[2 * tri[0] + 1] + l1 * ua[2 * tri[1] + 1] + l2 * ua[2 * tri[2] + 1], ca);
+          SampleDrawing(drawings[b], l0 * ub[2 * tri[0]] + l1 * ub[2 * tri[1]] + l2 * ub[2 * tri[2]],
+                        l0 * ub[2 * tri[0] + 1] + l1 * ub[2 * tri[1] + 1] + l2 * ub[2 * tri[2] + 1], cb);
           if (!(ca[3] >= 0.5 || cb[3] >= 0.5)) continue;
           ++pair.pixels;
           for (int ch = 0; ch < 4; ++ch) sum += std::abs(ca[ch] - cb[ch]);

@@ -156,10 +156,6 @@ std::vector<Sample> Samples(const Level& level, const Triangles& triangles, cons
   return out;
 }
 
-double SignedArea(const Vec2& a, const Vec2& b, const Vec2& c) {
-  return 0.5 * ((b - a).x() * (c - a).y() - (b - a).y() * (c - a).x());
-}
-
 double SmallestAngle(const Vec2& a, const Vec2& b, const Vec2& c) {
   auto angle = [](const Vec2& p, const Vec2& q, const Vec2& r) {
     const Vec2 u = q - p, v = r - p;
@@ -244,7 +240,7 @@ struct LevelSolve {
   bool Acceptable(const Points& x) const {
     for (std::size_t t = 0; t < triangles.size(); ++t) {
       const Vec2 &a = x[triangles[t][0]], &b = x[triangles[t][1]], &c = x[triangles[t][2]];
-      if (!(SignedArea(a, b, c) * orientation[t] > 0)) return false;
+      if (!(SignedArea(x, triangles[t]) * orientation[t] > 0)) return false;
       if (!(SmallestAngle(a, b, c) >= min_angle[t])) return false;
     }
     return true;
@@ -390,7 +386,7 @@ void AlignInteriors(const std::vector<AlignmentImage>& images, const Triangles& 
       std::vector<double> min_angle(triangles.size()), orientation(triangles.size());
       for (std::size_t t = 0; t < triangles.size(); ++t) {
         const Vec2 &a = rest[triangles[t][0]], &b = rest[triangles[t][1]], &c = rest[triangles[t][2]];
-        orientation[t] = SignedArea(a, b, c) > 0 ? 1.0 : -1.0;
+        orientation[t] = SignedArea(rest, triangles[t]) > 0 ? 1.0 : -1.0;
         const double own = SmallestAngle(a, b, c);
         const double floor = std::min(least, parameters.min_angle_floor_degrees * M_PI / 180);
         min_angle[t] = std::min(own, std::max(parameters.angle_keep * own, floor));

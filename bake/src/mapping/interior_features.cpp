@@ -50,22 +50,6 @@ std::size_t SplitAtCentroid(CompatibleMesh& mesh, std::size_t t) {
   return w;
 }
 
-// Vertices on an edge that only one triangle uses.
-std::vector<char> BoundaryVertices(const CompatibleMesh& mesh) {
-  std::vector<std::pair<std::size_t, std::size_t>> edges;
-  for (const Tri& t : mesh.triangles)
-    for (int e = 0; e < 3; ++e) edges.emplace_back(std::min(t[e], t[(e + 1) % 3]), std::max(t[e], t[(e + 1) % 3]));
-  std::sort(edges.begin(), edges.end());
-  std::vector<char> boundary(mesh.vertices[0].size(), 0);
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j] == edges[i]) ++j;
-    if (j - i == 1) boundary[edges[i].first] = boundary[edges[i].second] = 1;
-    i = j;
-  }
-  return boundary;
-}
-
 // The bi-Laplacian energy |L d|^2 of the displacements d (L the uniform
 // graph Laplacian), restricted to the free vertices and factored once for
 // every pose (it depends on the connectivity only). A point displacement
@@ -138,6 +122,21 @@ void MoveInterior(Polygon& pos, const FreeLaplacian& L, const std::vector<Point>
 }
 
 }  // namespace
+
+std::vector<char> BoundaryVertices(const CompatibleMesh& mesh) {
+  std::vector<std::pair<std::size_t, std::size_t>> edges;
+  for (const Tri& t : mesh.triangles)
+    for (int e = 0; e < 3; ++e) edges.emplace_back(std::min(t[e], t[(e + 1) % 3]), std::max(t[e], t[(e + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  std::vector<char> boundary(mesh.vertices[0].size(), 0);
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) boundary[edges[i].first] = boundary[edges[i].second] = 1;
+    i = j;
+  }
+  return boundary;
+}
 
 void PlaceFeatures(CompatibleMesh& mesh, const std::vector<std::vector<Point>>& features,
                    const std::vector<ErrorSource>& poses, double grid_scale) {

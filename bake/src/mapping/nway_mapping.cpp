@@ -11,6 +11,7 @@
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/map_drawings.h"
 #include "posemorph/bake/mapping/interior_alignment.h"
+#include "posemorph/bake/mapping/interior_features.h"
 #include "posemorph/bake/mapping/outline_image.h"
 
 namespace posemorph {
@@ -398,22 +399,6 @@ void MeshesFromMapping(const RigDescription& rig, const std::vector<DrawnPose>& 
   }
 }
 
-// Vertices on an edge that only one triangle has.
-std::vector<std::uint32_t> BoundaryVertices(const Triangles& triangles) {
-  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edges;
-  for (const auto& t : triangles)
-    for (int e = 0; e < 3; ++e) {
-      const std::uint32_t a = t[std::size_t(e)], b = t[std::size_t((e + 1) % 3)];
-      ++edges[{std::min(a, b), std::max(a, b)}];
-    }
-  std::vector<std::uint32_t> out;
-  for (const auto& [edge, count] : edges)
-    if (count == 1) out.push_back(edge.first), out.push_back(edge.second);
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
-
 // The smallest angle of any triangle in any pose, degrees.
 double MinAngleDegrees(const Triangles& triangles, const std::vector<PoseMesh>& meshes) {
   double least = 180;
@@ -446,7 +431,8 @@ std::string AlignmentSkipped(const RigDescription& rig, const std::vector<DrawnP
 // Stage 7: every drawn pose's interior vertices (all but the boundary's and
 // the features') move so that the drawings agree through the meshes
 // (interior_alignment.h), in each drawing's pixels; uvs follow.
-void AlignDrawnInteriors(const RigDescription& rig, const std::vector<DrawnPose>& drawn, MappedDrawings& result) {
+void AlignDrawnInteriors(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
+                         const mapping::CompatibleMesh& mesh, MappedDrawings& result) {
   MappingReport& report = result.report;
   report.alignment_skipped = AlignmentSkipped(rig, drawn);
   if (!report.alignment_skipped.empty()) return;
@@ -469,8 +455,8 @@ void AlignDrawnInteriors(const RigDescription& rig, const std::vector<DrawnPose>
     for (const Point& p : result.meshes[k].vertices)
       pixels.back().push_back(scale * Point(p.x() - d.origin.x(), -p.y() - d.origin.y()));
   }
-  std::vector<bool> fixed(pixels[0].size(), false);
-  for (std::uint32_t v : BoundaryVertices(result.triangles)) fixed[v] = true;
+  const std::vector<char> boundary = mapping::BoundaryVertices(mesh);
+  std::vector<bool> fixed(boundary.begin(), boundary.end());
   for (std::uint32_t v : result.feature_vertices) fixed[v] = true;
   mapping::AlignmentParameters parameters;
   parameters.rigidity = rig.mapping.align_rigidity;
@@ -569,7 +555,7 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
   // 5. Back to rig coordinates; uvs into each pose's own drawing.
   MeshesFromMapping(rig, drawn, mesh, grid, result);
   // 7. The drawings align the interiors.
-  AlignDrawnInteriors(rig, drawn, result);
+  AlignDrawnInteriors(rig, drawn, mesh, result);
   if (report.aligned) report.min_angle_degrees = MinAngleDegrees(result.triangles, result.meshes);
   report.mapped = true;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

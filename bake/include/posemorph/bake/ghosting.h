@@ -24,6 +24,11 @@ struct DrawingPixels {
   const unsigned char* rgba = nullptr;
 };
 
+// Premultiplied RGBA (of 1) of a drawing at uv (0..1 across it, y down),
+// bilinear between pixel centres, transparent outside the drawing (the
+// viewer's clamp-to-border sampler).
+void SampleDrawing(const DrawingPixels& d, double u, double v, double out[4]);
+
 struct GhostingPair {
   std::uint32_t a = 0, b = 0;  // pose indices, a < b
   std::string name_a, name_b;  // their names

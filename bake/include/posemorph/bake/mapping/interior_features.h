@@ -23,6 +23,9 @@ namespace posemorph::bake::mapping {
 // vertex ids to mesh.features, in order. Throws poses[k].Error naming the
 // pose and the feature when moving the features would turn a triangle over.
 // grid_scale (grid units per rig unit) only for the messages.
+// Per vertex, 1 when it lies on an edge that only one triangle uses.
+std::vector<char> BoundaryVertices(const CompatibleMesh& mesh);
+
 void PlaceFeatures(CompatibleMesh& mesh, const std::vector<std::vector<Point>>& features,
                    const std::vector<ErrorSource>& poses, double grid_scale);
 
