@@ -53,8 +53,8 @@ for preset in release clang; do
   done
 done
 scripts/consumer-test.sh
-# Under AddressSanitizer the debug preset leaves out the two tests that re-measure
-# the ghosting figures of six characters (CMakePresets.json; 72 s there): the
+# Under AddressSanitizer the debug preset leaves out the three tests that re-measure
+# the ghosting figures of the drawn characters (CMakePresets.json): the
 # release and Clang runs check those figures, and the sanitized run still
 # aligns and measures through the synthetic, Gabriel and command-line tests.
 for preset in tsan debug; do

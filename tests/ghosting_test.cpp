@@ -4,8 +4,8 @@
 // points, a drawing laid over itself measures 0, and on the sprite corpus
 // and the drawn characters the alignment cuts the measure for every pair
 // while the bake's other checks (reproduction, fold-free in-betweens, the
-// smallest angle) hold; without features it carries eye centres closer to
-// where each pose draws them.
+// smallest angle) hold; without features it halves the measure on the
+// drawn characters and carries eye centres to where each pose draws them.
 #include <doctest/doctest.h>
 
 #include <filesystem>
@@ -64,12 +64,12 @@ TEST_CASE("ghosting: the interior alignment cuts it for every adjacent pair of t
     std::size_t pairs;
     double most;  // the largest share of the unaligned mean the aligned mean may keep
   };
-  // Measured: ghost 15.3 -> 4.89, slime 13.2 -> 5.99, cat 5.69 -> 2.94,
-  // and with their eye features Pip 9.81 -> 6.29, bobble 11.0 -> 5.77,
-  // owl 11.9 -> 5.98 (of 255).
-  for (const Case c : {Case{"sprites/ghost/ghost.json", 5, 0.4}, Case{"sprites/slime/slime.json", 5, 0.5},
-                       Case{"sprites/cat/cat.json", 5, 0.55}, Case{"pip/pip.json", 8, 0.7},
-                       Case{"bobble/bobble.json", 5, 0.6}, Case{"owl/owl.json", 5, 0.6}}) {
+  // Measured: ghost 15.3 -> 4.02, slime 13.2 -> 5.88, cat 5.69 -> 2.23,
+  // and with their eye features Pip 9.81 -> 4.76, bobble 11.0 -> 2.86,
+  // owl 11.9 -> 3.06 (of 255).
+  for (const Case c : {Case{"sprites/ghost/ghost.json", 5, 0.3}, Case{"sprites/slime/slime.json", 5, 0.5},
+                       Case{"sprites/cat/cat.json", 5, 0.45}, Case{"pip/pip.json", 8, 0.55},
+                       Case{"bobble/bobble.json", 5, 0.35}, Case{"owl/owl.json", 5, 0.35}}) {
     const std::string name = c.description;
     CAPTURE(name);
     REQUIRE_MESSAGE(std::filesystem::exists(Sample(c.description)), "the build rasterises the drawings");
@@ -87,13 +87,39 @@ TEST_CASE("ghosting: the interior alignment cuts it for every adjacent pair of t
     }
     CHECK(on.ghosting.mean < c.most * off.ghosting.mean);
     // Nothing else gives way: the poses reproduce, the in-betweens do not fold,
-    // the mesh's smallest angle stays at least min(before, 10 degrees).
+    // the mesh's smallest angle stays at least min(before, mapping.min_angle).
     CHECK(on.max_reproduction_error < 2 * off.max_reproduction_error + 1e-5);  // the compact budget, both ways
     CHECK(on.inbetweens.FoldsInHull() == 0);
-    CHECK(on.mapping.min_angle_degrees >= std::min(on.mapping.min_angle_before_alignment, 10.0) - 1e-9);
+    CHECK(on.mapping.min_angle_degrees >=
+          std::min(on.mapping.min_angle_before_alignment, rig.mapping.min_angle) - 1e-9);
     // The alignment's own figure agrees in direction for every pose.
     for (std::size_t k = 1; k < on.mapping.alignment_before.size(); ++k)
       CHECK(on.mapping.alignment_after[k] < on.mapping.alignment_before[k]);
+  }
+}
+
+TEST_CASE("ghosting: the alignment alone halves it on Pip, Sprout, Bobble and Owl, and keeps the mesh's quality") {
+  // Issue "Interior correspondence": against outline-only correspondence,
+  // with no feature given. Measured (of 255): Pip 10.9 -> 5.31, Sprout
+  // 8.29 -> 3.72, Bobble 13.0 -> 4.36, Owl 15.1 -> 4.34.
+  for (const char* character : {"pip", "sprout", "bobble", "owl"}) {
+    const std::string name = character, file = Sample(name + "/" + name + ".json");
+    CAPTURE(name);
+    REQUIRE_MESSAGE(std::filesystem::exists(file), "the build rasterises the drawings");
+    pb::RigDescription rig = pb::ReadRigDescription(file);
+    for (pb::PoseDescription& pose : rig.poses) pose.features.clear();
+    const pb::BakeReport off = Bake(rig, false), on = Bake(rig, true);
+    MESSAGE(name << ": ghosting " << pb::DescribeGhosting(off.ghosting) << " -> " << pb::DescribeGhosting(on.ghosting)
+                 << "; smallest angle " << on.mapping.min_angle_before_alignment << " -> "
+                 << on.mapping.min_angle_degrees << " degrees");
+    CHECK(on.ghosting.mean <= 0.5 * off.ghosting.mean);
+    CHECK(on.inbetweens.FoldsInHull() == 0);
+    CHECK(on.max_reproduction_error < 2 * off.max_reproduction_error + 1e-5);
+    CHECK(on.mapping.min_angle_degrees >=
+          std::min(on.mapping.min_angle_before_alignment, rig.mapping.min_angle) - 1e-9);
+    // Every pose found its drawn regions and paired some with the first's.
+    REQUIRE(on.mapping.regions_matched.size() == rig.poses.size());
+    for (std::size_t k = 1; k < rig.poses.size(); ++k) CHECK(on.mapping.regions_matched[k] >= 3);
   }
 }
 
@@ -128,7 +154,9 @@ TEST_CASE("ghosting: the bake and info print it per pair, --no-align says the al
   };
   std::string out;
   REQUIRE(run({description, "-o", rig}, &out) == 0);
-  CHECK(line(out, "interior alignment: colour difference against the first pose ").size() > 60);
+  const std::string aligned = line(out, "interior alignment: regions ");
+  CHECK(aligned.find(" paired); colour difference against the first pose ") != std::string::npos);
+  CHECK(aligned.size() > 100);
   const std::string baked = line(out, "ghosting (colour difference of adjacent poses' drawings at their midpoint): ");
   CHECK(baked.find(": rest-wave ") != std::string::npos);
   CHECK(baked.find(", lean-stretch ") != std::string::npos);
@@ -173,7 +201,10 @@ TEST_CASE("ghosting: without features, the alignment carries the eye centres tow
     const char* character;
     double mean_share, worst_share;  // of the outline-only errors the aligned ones may keep
   };
-  for (const Case c : {Case{"pip", 0.65, 0.75}, Case{"bobble", 0.7, 0.95}, Case{"owl", 0.8, 0.99}}) {
+  // Measured (mean, worst px): Pip 16.8, 26.8 -> 3.44, 7.23 (its stretch
+  // pose draws smaller eyes looking up); Bobble 28.0, 32.5 -> 0.24, 0.40;
+  // Owl 16.2, 21.3 -> 1.06, 4.55.
+  for (const Case c : {Case{"pip", 0.25, 0.35}, Case{"bobble", 0.02, 0.02}, Case{"owl", 0.1, 0.3}}) {
     const std::string name = c.character, file = Sample(name + "/" + name + ".json");
     CAPTURE(name);
     REQUIRE_MESSAGE(std::filesystem::exists(file), "the build rasterises the drawings");
@@ -198,5 +229,6 @@ TEST_CASE("ghosting: without features, the alignment carries the eye centres tow
                  << worst[0] << " px; aligned mean " << sum[1] / n << " px, worst " << worst[1] << " px");
     CHECK(sum[1] < c.mean_share * sum[0]);
     CHECK(worst[1] < c.worst_share * worst[0]);
+    if (name == "bobble") CHECK(worst[1] < 1.0);  // the issue's 1 px, with no feature given
   }
 }

@@ -80,7 +80,11 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
         << "min angle " << m.min_angle_degrees << " degrees over all poses; " << m.seconds * 1e3 << " ms\n";
     out << "interior alignment: ";
     if (m.aligned) {
-      out << "colour difference against the first pose";
+      out << "regions";
+      for (std::size_t k = 0; k < m.regions_found.size(); ++k)
+        out << (k ? ", " : " ") << m.regions_found[k]
+            << (k ? " (" + std::to_string(m.regions_matched[k]) + " paired)" : "");
+      out << "; colour difference against the first pose";
       for (std::size_t k = 1; k < m.alignment_before.size(); ++k)
         out << (k > 1 ? "," : "") << " " << m.alignment_before[k] * 255 << " -> " << m.alignment_after[k] * 255;
       out << " (of 255); vertices moved up to " << m.alignment_max_move << " px; min angle "

@@ -460,6 +460,9 @@ void AlignDrawnInteriors(const RigDescription& rig, const std::vector<DrawnPose>
   for (std::uint32_t v : result.feature_vertices) fixed[v] = true;
   mapping::AlignmentParameters parameters;
   parameters.rigidity = rig.mapping.align_rigidity;
+  // The quality the description asks of the mesh holds through the
+  // alignment (or what refinement reached, when that is less).
+  parameters.min_angle_floor_degrees = rig.mapping.min_angle;
   mapping::AlignmentReport aligned;
   mapping::AlignInteriors(images, result.triangles, fixed, pixels, parameters, &aligned);
   for (std::size_t k = 0; k < drawn.size(); ++k) {
@@ -478,6 +481,8 @@ void AlignDrawnInteriors(const RigDescription& rig, const std::vector<DrawnPose>
   report.alignment_after = aligned.difference_after;
   for (double m : aligned.max_move) report.alignment_max_move = std::max(report.alignment_max_move, m / scale);
   report.alignment_seconds = aligned.seconds;
+  report.regions_found = aligned.regions_found;
+  report.regions_matched = aligned.regions_matched;
 }
 
 std::vector<DrawnPose> DrawnPoses(const RigDescription& rig) {

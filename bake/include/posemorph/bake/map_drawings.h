@@ -33,6 +33,9 @@ struct MappingReport {
   std::string alignment_skipped;
   std::vector<double> alignment_before, alignment_after;
   double alignment_max_move = 0, alignment_seconds = 0;
+  // Per drawn pose its flat-colour regions (mapping/interior_regions.h), and
+  // how many of them were paired with the first pose's (0 for the first).
+  std::vector<int> regions_found, regions_matched;
   // The bake maps again, coarser, when the in-betweens fold (bake.h): the
   // mappings tried before the one written (0: the first was kept).
   int fold_retries = 0;

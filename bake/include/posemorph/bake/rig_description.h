@@ -70,7 +70,7 @@ struct MappingParameters {
   // PNG drawings align the interiors (mapping/interior_alignment.h): on by
   // default; rigidity weighs the as-rigid-as-possible term against colour.
   bool align_interiors = true;
-  double align_rigidity = 0.02;
+  double align_rigidity = 0.005;
   // Not in the description: the bake's own retries when the in-betweens fold
   // (bake.h) scale the spacing and the longest edge, automatic or given.
   double spacing_scale = 1, edge_scale = 1;

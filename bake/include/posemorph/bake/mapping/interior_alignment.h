@@ -43,15 +43,24 @@ constexpr int kAlignmentMaxSide = 1024;
 int AlignmentHalvings(int width, int height);
 
 struct AlignmentParameters {
-  double rigidity = 0.02;  // the ARAP term's weight against the colour term (colour^2 per pixel^2)
-  int levels = 4;          // pyramid levels: 1/8, 1/4, 1/2 and full resolution
-  int iterations = 12;     // Gauss-Newton steps per level, at most
+  double rigidity = 0.005;  // the ARAP term's weight against the colour term (colour^2 per pixel^2)
+  int levels = 4;           // pyramid levels: 1/8, 1/4, 1/2 and full resolution
+  int iterations = 30;      // Gauss-Newton steps per level, at most
   // A triangle's smallest angle may fall to angle_keep of its value before,
   // but not below min_angle_floor_degrees, nor below the smallest angle of
   // the whole mesh (every pose) before when that is less: the mesh's
-  // smallest angle ends at least min(before, the floor).
+  // smallest angle ends at least min(before, the floor). The bake passes the
+  // description's mapping.min_angle: the alignment keeps the quality asked
+  // of the mesh, or never lowers the smallest angle when refinement could
+  // not reach it.
   double angle_keep = 0.5;
-  double min_angle_floor_degrees = 10;
+  double min_angle_floor_degrees = 20;
+  // Regions of flat colour (interior_regions.h) matched between pose 0 and
+  // pose k pull their centres together: region_weight x the region's area
+  // (pixels) x the squared distance joins the energy, so the descent starts
+  // from where the regions went, not from where the outlines put them.
+  bool match_regions = true;
+  double region_weight = 0.003;
 };
 
 struct AlignmentReport {
@@ -60,7 +69,9 @@ struct AlignmentReport {
   // through the meshes, over the pixels of pose 0's mesh, before and after;
   // the largest distance a vertex moved (pixels).
   std::vector<double> difference_before, difference_after, max_move;
-  int steps = 0;  // Gauss-Newton steps taken, all poses
+  std::vector<int> regions_found;    // per pose: its interior regions
+  std::vector<int> regions_matched;  // per pose: those paired with pose 0's (0 for pose 0)
+  int steps = 0;                     // Gauss-Newton steps taken, all poses
   double seconds = 0;
 };
 
