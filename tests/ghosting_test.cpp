@@ -133,6 +133,10 @@ TEST_CASE("ghosting: a description that turns the alignment off, or gives it a b
                        "r.json: mapping.align_interiors: expected true or false", pb::BakeError);
   CHECK_THROWS_WITH_AS(pb::ParseRigDescription(base + R"({"align_rigidity": 0}})", "r.json", "."),
                        "r.json: mapping.align_rigidity: must be in [1e-6, 1e6]", pb::BakeError);
+  // Poses given as outlines have no drawing to measure: the bake says so.
+  const pb::BakeReport r = Bake(pb::ParseRigDescription(base + "{}}", "r.json", "."), true);
+  CHECK(!r.mapping.aligned);
+  CHECK(r.ghosting_skipped == "pose 'a' has no PNG drawing");
 }
 
 TEST_CASE("ghosting: the bake and info print it per pair, --no-align says the alignment was not done") {

@@ -74,8 +74,12 @@ Ghosting MeasureBakedGhosting(const RigDescription& description, const Rig& rig,
     const std::string& d = pose.drawing;
     const bool png =
         d.size() > 4 && (d.compare(d.size() - 4, 4, ".png") == 0 || d.compare(d.size() - 4, 4, ".PNG") == 0);
-    if (!pose.drawn || !pose.vertices.empty() || !png || (!pose.image.empty() && pose.image != pose.drawing)) {
-      *skipped = "pose '" + pose.name + "' does not draw the PNG drawing it was mapped from";
+    if (!pose.drawn || !pose.vertices.empty() || !png) {
+      *skipped = "pose '" + pose.name + "' has no PNG drawing";
+      return {};
+    }
+    if (!pose.image.empty() && pose.image != pose.drawing) {
+      *skipped = "pose '" + pose.name + "' draws another image than the PNG drawing it was mapped from";
       return {};
     }
     int width = 0, height = 0;
