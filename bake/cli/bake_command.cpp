@@ -63,9 +63,12 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   if (report.ghosting.pairs.empty())
     out << "ghosting: not measured: "
         << (report.ghosting_skipped.empty() ? "no adjacent poses" : report.ghosting_skipped) << "\n";
-  else
+  else {
     out << "ghosting (colour difference of adjacent poses' drawings at their midpoint): "
         << Printable(DescribeGhosting(report.ghosting)) << "\n";
+    out << "ghosting over the pose hull (the in-between check's points where two drawings or more cross-fade): "
+        << Printable(DescribeHullGhosting(report.ghosting)) << "\n";
+  }
   for (const std::string& w : report.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
   const MappingReport& m = report.mapping;
   for (const std::string& w : rig.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";

@@ -164,6 +164,8 @@ void PrintGhosting(const std::string& file, const Rig& rig, const std::string* i
   const Ghosting g = MeasureGhosting(rig, pixels, file);
   out << "  ghosting (colour difference of adjacent poses' drawings at their midpoint, drawings in "
       << Printable(folder) << "): " << Printable(DescribeGhosting(g)) << "\n";
+  out << "  ghosting over the pose hull (the in-between check's points where two drawings or more cross-fade): "
+      << Printable(DescribeHullGhosting(g)) << "\n";
 }
 
 void PrintPosesAndPaths(const Rig& rig, std::ostream& out) {

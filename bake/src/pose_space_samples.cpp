@@ -80,8 +80,14 @@ std::vector<PoseSpaceSample> SamplePoseSpace(const Rig& rig, const PoseSpaceSamp
 }
 
 bool EvaluateFrame(const Rig& rig, const Eigen::Vector2d& at, std::vector<double>& x) {
+  std::vector<double> limited;
+  return EvaluateFrame(rig, at, x, limited);
+}
+
+bool EvaluateFrame(const Rig& rig, const Eigen::Vector2d& at, std::vector<double>& x, std::vector<double>& limited) {
   const std::size_t N = rig.pose_count();
-  std::vector<double> raw(N), limited(N), work(rig.morph_workspace_size());
+  std::vector<double> raw(N), work(rig.morph_workspace_size());
+  limited.assign(N, 0.0);
   x.assign(2 * std::size_t(rig.vertex_count()), 0);
   WeightsJob wj;
   wj.rig = &rig;

@@ -37,10 +37,29 @@ struct GhostingPair {
   std::uint64_t pixels = 0;    // pixels compared (rig units are drawing pixels)
 };
 
+// A point of the pose hull where two drawings or more cross-fade (texture
+// weights of kGhostingMinTextureWeight or more): the same measure with
+// every such drawing, weighted: sum_(i<j) w_i w_j |c_i - c_j| over
+// sum_(i<j) w_i w_j, per pixel (for two drawings, their difference).
+struct GhostingSample {
+  Eigen::Vector2d at;
+  std::uint32_t drawings = 0;  // how many cross-fade there
+  double difference = 0;       // of 255
+  std::uint64_t pixels = 0;
+};
+
 struct Ghosting {
   std::vector<GhostingPair> pairs;  // in order of a, then b
   double mean = 0;                  // over the pairs
+  // Over the pose hull: the in-between check's points (pose_space_samples.h)
+  // on a kGhostingHullGrid grid and kGhostingHullEdge parts per hull edge,
+  // those where two drawings or more cross-fade; their mean and the worst.
+  std::vector<GhostingSample> hull;
+  double hull_mean = 0;
+  std::size_t hull_worst = 0;
 };
+constexpr int kGhostingHullGrid = 8, kGhostingHullEdge = 4;
+constexpr double kGhostingMinTextureWeight = 0.05;
 
 // Adjacent poses: two pose points with no third strictly inside the circle
 // on their segment (the Gabriel graph: neighbours of the Delaunay
@@ -48,11 +67,12 @@ struct Ghosting {
 std::vector<std::pair<std::uint32_t, std::uint32_t>> AdjacentPoses(const Rig& rig);
 
 // The measure for every pair of adjacent poses of a rig baked from drawings
-// (drawings[i] is pose i's, at any size: it is sampled at the uvs),
-// rasterised at one pixel per rig unit, or coarser so that no in-between
-// takes more than kGhostingMaxPixels samples. Throws BakeError(file) when
+// (drawings[i] is pose i's, at any size: it is sampled at the uvs), and at
+// the points of the pose hull, rasterised at one pixel per rig unit, or
+// coarser so that no in-between takes more than kGhostingMaxPixels samples
+// (per drawing drawn; the hull's points share kGhostingMaxHullPixels). Throws BakeError(file) when
 // the rig has no uvs or does not evaluate.
-constexpr double kGhostingMaxPixels = 1048576;
+constexpr double kGhostingMaxPixels = 1048576, kGhostingMaxHullPixels = 16777216;
 Ghosting MeasureGhosting(const Rig& rig, const std::vector<DrawingPixels>& drawings, const std::string& file);
 
 // A drawing halved (premultiplied 2 x 2 means) until its longer side is at
@@ -62,5 +82,7 @@ std::vector<unsigned char> ReduceDrawing(std::vector<unsigned char> rgba, std::u
 
 // "rest-stretch 4.1, rest-squash 3.2, ...; mean 3.6 (of 255)".
 std::string DescribeGhosting(const Ghosting& ghosting);
+// "mean 3.9 over 41 points, worst 6.2 at (0.5, 0.25) with 3 drawings (of 255)".
+std::string DescribeHullGhosting(const Ghosting& ghosting);
 
 }  // namespace posemorph::bake

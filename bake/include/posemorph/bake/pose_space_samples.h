@@ -37,5 +37,8 @@ std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> points);
 // The frame at a pose-space point with the rig's default settings (raw and
 // limited weights, as a game's first call gives). False if a job fails.
 bool EvaluateFrame(const Rig& rig, const Eigen::Vector2d& at, std::vector<double>& positions);
+// The same, with the limited weights (what the texture weights come from).
+bool EvaluateFrame(const Rig& rig, const Eigen::Vector2d& at, std::vector<double>& positions,
+                   std::vector<double>& limited_weights);
 
 }  // namespace posemorph::bake
