@@ -62,13 +62,14 @@ bool FrameAndTextureWeights(const Rig& rig, const Eigen::Vector2d& at, std::vect
   return true;
 }
 
-// The frame `x` rasterised at one sample per `step` rig units, each pixel
+// The frame `x` rasterised at one sample per `step` rig units (coarser than
+// one per rig unit only so that it takes at most `most` samples), each pixel
 // drawn with every pose in `poses` at its uvs: the mean over the pixels
 // where any is at least half opaque of sum_(i<j) w_i w_j |c_i - c_j| /
 // sum_(i<j) w_i w_j (of 255, over RGBA): for two poses, their mean absolute
 // difference whatever their weights.
 double Difference(const Rig& rig, std::vector<double> x, const std::vector<std::uint32_t>& poses,
-                  const std::vector<double>& weights, const std::vector<DrawingPixels>& drawings, double step,
+                  const std::vector<double>& weights, const std::vector<DrawingPixels>& drawings, double most,
                   std::uint64_t* pixels, const std::string& file) {
   const std::uint32_t T = rig.triangle_count(), V = rig.vertex_count();
   const std::uint32_t* tris = rig.triangles().data;
@@ -78,6 +79,7 @@ double Difference(const Rig& rig, std::vector<double> x, const std::vector<std::
     y1 = std::max(y1, -x[2 * v + 1]);
   if (!(std::isfinite(x1 - x0) && std::isfinite(y1 - y0)))
     throw BakeError(file, "the rig does not evaluate to finite positions");
+  const double step = std::max(1.0, std::ceil(std::sqrt((x1 - x0 + 2) * (y1 - y0 + 2) / most)));
   for (double& c : x) c /= step;
   x0 /= step, x1 /= step, y0 /= step, y1 /= step;
   const long ox = long(std::floor(x0)), oy = long(std::floor(y0));
@@ -130,16 +132,6 @@ double Difference(const Rig& rig, std::vector<double> x, const std::vector<std::
   return *pixels ? 255.0 * sum / (4.0 * double(*pixels)) : 0.0;
 }
 
-// Rig units per sample, so that an in-between of `x` takes at most
-// `most` samples.
-double SampleStep(const std::vector<double>& x, double most = kGhostingMaxPixels) {
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (std::size_t v = 0; v + 1 < x.size(); v += 2)
-    x0 = std::min(x0, x[v]), x1 = std::max(x1, x[v]), y0 = std::min(y0, -x[v + 1]), y1 = std::max(y1, -x[v + 1]);
-  if (!(std::isfinite(x1 - x0) && std::isfinite(y1 - y0))) return 1;
-  return std::max(1.0, std::ceil(std::sqrt((x1 - x0 + 2) * (y1 - y0 + 2) / most)));
-}
-
 }  // namespace
 
 Ghosting MeasureGhosting(const Rig& rig, const std::vector<DrawingPixels>& drawings, const std::string& file) {
@@ -156,7 +148,7 @@ Ghosting MeasureGhosting(const Rig& rig, const std::vector<DrawingPixels>& drawi
     pair.name_b = std::string(rig.pose_name(b).data, rig.pose_name(b).size);
     pair.at = 0.5 * Eigen::Vector2d(pts[2 * a] + pts[2 * b], pts[2 * a + 1] + pts[2 * b + 1]);
     if (!EvaluateFrame(rig, pair.at, x)) throw BakeError(file, "the rig does not evaluate at an in-between");
-    pair.difference = Difference(rig, x, {a, b}, {0.5, 0.5}, drawings, SampleStep(x), &pair.pixels, file);
+    pair.difference = Difference(rig, x, {a, b}, {0.5, 0.5}, drawings, kGhostingMaxPixels, &pair.pixels, file);
     g.mean += pair.difference;
     g.pairs.push_back(pair);
   }
@@ -180,7 +172,7 @@ Ghosting MeasureGhosting(const Rig& rig, const std::vector<DrawingPixels>& drawi
       if (texture[i] >= kGhostingMinTextureWeight) poses.push_back(i), weights.push_back(texture[i]);
     if (poses.size() < 2) continue;
     sample.drawings = std::uint32_t(poses.size());
-    sample.difference = Difference(rig, x, poses, weights, drawings, SampleStep(x, most), &sample.pixels, file);
+    sample.difference = Difference(rig, x, poses, weights, drawings, most, &sample.pixels, file);
     g.hull_mean += sample.difference;
     if (g.hull.empty() || sample.difference > g.hull[g.hull_worst].difference) g.hull_worst = g.hull.size();
     g.hull.push_back(sample);

@@ -138,17 +138,22 @@ struct Landmark {
   double weight;
 };
 
+// p's barycentric coordinates in the triangle (a, b, c) of doubled signed
+// area `area`: false when p lies outside it.
+bool Barycentric(const Vec2& a, const Vec2& b, const Vec2& c, double area, const Vec2& p, double l[3]) {
+  l[1] = ((p - a).x() * (c - a).y() - (p - a).y() * (c - a).x()) / area;
+  l[2] = ((b - a).x() * (p - a).y() - (b - a).y() * (p - a).x()) / area;
+  l[0] = 1 - l[1] - l[2];
+  return !(l[0] < -1e-9 || l[1] < -1e-9 || l[2] < -1e-9);
+}
+
 // Where in pose 0's mesh a point lies: false when in no triangle.
 bool Locate(const Triangles& triangles, const Points& mesh, const Vec2& p, std::uint32_t* triangle, double b[3]) {
   for (std::uint32_t t = 0; t < triangles.size(); ++t) {
     const Vec2 &a = mesh[triangles[t][0]], &u = mesh[triangles[t][1]], &v = mesh[triangles[t][2]];
     const double area = (u - a).x() * (v - a).y() - (u - a).y() * (v - a).x();
-    if (!(std::abs(area) > 1e-12)) continue;
-    const double l1 = ((p - a).x() * (v - a).y() - (p - a).y() * (v - a).x()) / area;
-    const double l2 = ((u - a).x() * (p - a).y() - (u - a).y() * (p - a).x()) / area;
-    const double l0 = 1 - l1 - l2;
-    if (l0 < -1e-9 || l1 < -1e-9 || l2 < -1e-9) continue;
-    *triangle = t, b[0] = l0, b[1] = l1, b[2] = l2;
+    if (!(std::abs(area) > 1e-12) || !Barycentric(a, u, v, area, p, b)) continue;
+    *triangle = t;
     return true;
   }
   return false;
@@ -171,13 +176,9 @@ std::vector<Sample> Samples(const Level& level, const Triangles& triangles, cons
       for (int x = x0; x <= x1; ++x) {
         const std::size_t at = std::size_t(y) * std::size_t(level.width) + std::size_t(x);
         if (taken[at]) continue;
-        const Vec2 p(x + 0.5, y + 0.5);
-        const double l1 = ((p - a).x() * (c - a).y() - (p - a).y() * (c - a).x()) / area;
-        const double l2 = ((b - a).x() * (p - a).y() - (b - a).y() * (p - a).x()) / area;
-        const double l0 = 1 - l1 - l2;
-        if (l0 < -1e-9 || l1 < -1e-9 || l2 < -1e-9) continue;
+        Sample s{t, {}, {}};
+        if (!Barycentric(a, b, c, area, Vec2(x + 0.5, y + 0.5), s.b)) continue;
         taken[at] = 1;
-        Sample s{t, {l0, l1, l2}, {}};
         for (int ch = 0; ch < 4; ++ch) s.colour[ch] = level.c[at * 4 + std::size_t(ch)];
         out.push_back(s);
       }
