@@ -111,6 +111,16 @@ int main(int argc, char** argv) {
     /* The snake has no drawings: the bake records no folder. */
     EXPECT(pm_rig_drawing_folder(rig, name, sizeof name, &length) == PM_OK && length == 0 && name[0] == 0);
     EXPECT(pm_rig_drawing_folder(NULL, name, sizeof name, &length) == PM_ERROR_INVALID_ARGUMENT);
+    /* The snake is one shape: one part, every triangle, named "", the poses' images. */
+    {
+      pm_part part;
+      EXPECT(pm_rig_part_count(rig) == 1 && pm_rig_part_count(NULL) == 0);
+      EXPECT(pm_rig_part(rig, 0, &part) == PM_OK && part.first_triangle == 0 &&
+             part.triangle_count == info.triangle_count && part.draw_order == 0);
+      EXPECT(pm_rig_part(rig, 1, &part) == PM_ERROR_INVALID_ARGUMENT);
+      EXPECT(pm_rig_part_name(rig, 0, name, sizeof name, &length) == PM_OK && length == 0);
+      EXPECT(pm_rig_part_image(rig, 0, info.pose_count, name, sizeof name, &length) == PM_ERROR_INVALID_ARGUMENT);
+    }
     if (info.path_count)
       EXPECT(pm_rig_path_name(rig, 0, name, sizeof name, NULL) == PM_OK && pm_path_find(rig, name) == 0);
     pm_grid_info grid;
@@ -136,7 +146,7 @@ int main(int argc, char** argv) {
     uint32_t crc = 0, crc_at = 0, major = 0, minor = 9;
     memcpy(&crc_at, bytes + 32, 4); /* the header's checksum field */
     EXPECT(pm_rig_checksum(rig, &crc) == PM_OK && crc == crc_at);
-    EXPECT(pm_rig_format_version(rig, &major, &minor) == PM_OK && major == 1 && minor == 5);
+    EXPECT(pm_rig_format_version(rig, &major, &minor) == PM_OK && major == 1 && minor == 6);
   }
   pm_rig_free(rig);
   free(bytes), free(raw), free(limited), free(tex), free(work), free(x), free(xf);

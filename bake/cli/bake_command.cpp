@@ -2,6 +2,8 @@
 // posemorph-bake RIG.json: bake a rig description.
 #include "commands.h"
 
+#include <algorithm>
+
 #include "command_args.h"
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/input_file.h"
@@ -45,6 +47,17 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
       << "nnz(L) " << report.factor_nonzeros << ", grid " << report.grid_cells_x << "x" << report.grid_cells_y << ", "
       << report.seconds * 1e3 << " ms; max pose reproduction error " << report.max_reproduction_error
       << " of the rig size\n";
+  if (!report.parts.empty()) {
+    out << "parts (back to front):";
+    std::vector<const MeshPart*> order;
+    for (const MeshPart& part : report.parts) order.push_back(&part);
+    std::stable_sort(order.begin(), order.end(),
+                     [](const MeshPart* x, const MeshPart* y) { return x->order < y->order; });
+    for (std::size_t k = 0; k < order.size(); ++k)
+      out << (k ? ", " : " ") << Printable(order[k]->name) << " (" << order[k]->triangle_count << " triangles)";
+    out << "; " << report.joints.size() << (report.joints.size() == 1 ? " joint" : " joints")
+        << ", each one vertex shared by its two parts\n";
+  }
   if (report.compact_report.fell_back)
     err << "posemorph-bake: warning: " << args.positional << ": no compact encoding stays within "
         << report.max_error_px << " px of the exact rig; wrote the exact encoding (" << report.bytes << " bytes)\n";

@@ -33,7 +33,8 @@ const char kUsage[] =
     "  posemorph-bake sheet RIG.pmrig --textured -o OUT.png [--images DIR] [--filter linear|nearest] ...\n"
     "        the same frames drawn with the drawings, cross-faded by the texture weights\n"
     "  posemorph-bake deform RIG.json --pose NAME -o MESH.json  write a deformation-made pose as a plain mesh file\n"
-    "  posemorph-bake outline RIG.json -o DIR   per drawn pose, DIR/INDEX-NAME.png: the drawing scaled up with\n"
+    "  posemorph-bake outline RIG.json -o DIR [--part NAME]   per drawn pose, DIR/INDEX-NAME.png: the drawing scaled "
+    "up with\n"
     "        the outline the bake traces, the mesh boundary, the landmarks numbered and their tolerance, the start\n";
 
 // The file a command works on, for messages that do not name one.

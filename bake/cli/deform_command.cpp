@@ -17,6 +17,8 @@ int DeformCommand(const std::vector<std::string>& a, std::size_t from, std::ostr
   const std::string *output = args.Get("-o"), *name = args.Get("--pose");
   if (!output || !name) throw UsageError("deform needs --pose NAME and -o MESH.json");
   const RigDescription rig = ReadRigDescription(args.positional);
+  if (!rig.parts.empty())
+    throw BakeError(args.positional, "has parts: deform makes poses of one shape (parts cannot be deformed yet)");
   const PoseMeshes meshes = ResolvePoseMeshes(rig);
   const auto it =
       std::find_if(rig.poses.begin(), rig.poses.end(), [&](const PoseDescription& p) { return p.name == *name; });

@@ -74,6 +74,8 @@ std::string DescribeSection(std::uint32_t tag, const unsigned char* d, std::uint
     s << "f32 uvs";
   else if (tag == f::kStrings)
     s << "names and image references";
+  else if (tag == f::kParts)
+    s << "u32 parts: first triangle, triangle count, draw order";
   else
     s << "f64";
   return s.str();
@@ -151,6 +153,10 @@ void PrintGhosting(const std::string& file, const Rig& rig, const std::string* i
     out << "  ghosting: not measured (the rig has no drawings)\n";
     return;
   }
+  if (rig.part_count() > 1) {
+    out << "  ghosting: not measured: the rig is drawn as parts, and the measure takes one drawing per pose\n";
+    return;
+  }
   std::vector<RgbaImage> drawings;
   const std::string folder = images ? *images : DefaultDrawingFolder(file, rig);
   try {
@@ -180,6 +186,19 @@ void PrintPosesAndPaths(const Rig& rig, std::ostream& out) {
           << canvas.pivot_y << ")";
     out << "\n";
   }
+  // A layered character's parts, back to front, with their drawings.
+  if (rig.part_count() > 1)
+    for (std::uint32_t p : rig.draw_sequence()) {
+      const PartView part = rig.part(p);
+      out << "  part " << p << " '" << Printable(std::string(part.name.data, part.name.size)) << "': triangles "
+          << part.first_triangle << ".." << part.first_triangle + part.triangle_count - 1 << ", draw order "
+          << part.draw_order;
+      for (std::uint32_t i = 0; i < N; ++i)
+        if (rig.part_image(p, i).size)
+          out << (i ? ", " : "; images ")
+              << Printable(std::string(rig.part_image(p, i).data, rig.part_image(p, i).size));
+      out << "\n";
+    }
   for (std::uint32_t p = 0; p < rig.path_count(); ++p) {
     const PathView path = rig.path(p);
     const double duration = path.end_time() - path.start_time();

@@ -9,6 +9,7 @@
 #include "outline_picture.h"
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/join_parts.h"
 #include "posemorph/bake/map_drawings.h"
 #include "posemorph/bake/rig_description.h"
 
@@ -26,13 +27,26 @@ std::string PicturePath(const std::string& dir, const PoseDescription& pose, std
 }  // namespace
 
 int OutlineCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out, std::ostream& err) {
-  const Args args = Args::Parse(a, from, {"-o"}, {});
+  const Args args = Args::Parse(a, from, {"-o", "--part"}, {});
   if (args.positional.empty()) throw UsageError("no rig description given");
   const std::string* dir = args.Get("-o");
   if (!dir) throw UsageError("outline needs -o DIR (a folder for one picture per drawn pose)");
   std::error_code ec;
   if (!std::filesystem::is_directory(*dir, ec)) throw BakeError(*dir, "is not a folder (create it first)");
-  const RigDescription rig = ReadRigDescription(args.positional);
+  RigDescription rig = ReadRigDescription(args.positional);
+  // A layered character: one part's drawings at a time (--part NAME).
+  const std::string* part = args.Get("--part");
+  if (!rig.parts.empty() || part) {
+    std::string names;
+    for (const PartDescription& p : rig.parts) names += (names.empty() ? "'" : ", '") + p.name + "'";
+    std::size_t index = rig.parts.size();
+    for (std::size_t p = 0; part && p < rig.parts.size(); ++p)
+      if (rig.parts[p].name == *part) index = p;
+    if (rig.parts.empty()) throw BakeError(args.positional, "has no parts (--part is for a layered character)");
+    if (!part) throw BakeError(args.positional, "has parts: trace one with --part NAME (" + names + ")");
+    if (index == rig.parts.size()) throw BakeError(args.positional, "has no part '" + *part + "' (" + names + ")");
+    rig = PartRigDescription(rig, index);
+  }
   const DrawnOutlines traced = TraceDrawings(rig);
   if (traced.poses.empty()) throw BakeError(args.positional, "has no drawn pose (nothing to trace)");
   // Every picture is made before any is written: a drawing that fails leaves nothing behind.

@@ -15,6 +15,7 @@
 #include "posemorph/bake/arap_system.h"
 #include "posemorph/bake/deform_poses.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/join_parts.h"
 #include "posemorph/bake/map_drawings.h"
 #include "posemorph/bake/mapping/outline_image.h"
 #include "posemorph/bake/orient_triangles.h"
@@ -67,6 +68,10 @@ std::vector<std::string> FoldWarnings(const std::string& file, const Rig& rig, c
 // The ghosting measure of the rig written, reading every pose's PNG drawing;
 // *skipped says why not when a pose has none (or draws another image).
 Ghosting MeasureBakedGhosting(const RigDescription& description, const Rig& rig, std::string* skipped) {
+  if (!description.parts.empty()) {
+    *skipped = "the rig is drawn as parts, and the measure takes one drawing per pose";
+    return {};
+  }
   std::vector<std::vector<unsigned char>> pixels;
   std::vector<DrawingPixels> drawings;
   for (std::size_t i = 0; i < description.poses.size(); ++i) {
@@ -114,15 +119,23 @@ struct Attempt {
   ReproductionCheck written;
   InbetweenCheck inbetweens;
   std::vector<std::string> weight_warnings;
+  std::vector<std::uint32_t> joints;  // a layered character's glue joints (join_parts.h)
 };
 
 Attempt BakeOnce(const RigDescription& description) {
   Attempt a;
   const std::string& file = description.file;
   BakeStage stage("mapping the drawings");
-  a.drawings = MapDrawings(description);
-  BakeStage deform_stage("deforming poses");
-  a.meshes = DeformPoses(description, a.drawings);
+  if (description.parts.empty()) {
+    a.drawings = MapDrawings(description);
+    BakeStage deform_stage("deforming poses");
+    a.meshes = DeformPoses(description, a.drawings);
+  } else {
+    JoinedParts joined = JoinParts(description);
+    a.meshes = std::move(joined.meshes);
+    a.drawings.report = std::move(joined.report);
+    a.joints = std::move(joined.joints);
+  }
   PoseMeshes& meshes = a.meshes;
   BakeStage validate_stage("validating the rig");
   meshes.triangles = OrientTriangles(meshes);
@@ -216,6 +229,8 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
     r.triangles = std::uint32_t(meshes.triangles.size());
     r.poses = std::uint32_t(meshes.poses.size());
     r.paths = std::uint32_t(description.paths.size());
+    r.parts = meshes.parts;
+    r.joints = a.joints;
     r.factor_nonzeros = a.factor_nonzeros;
     r.matrix_nonzeros = a.matrix_nonzeros;
     r.grid_cells_x = std::uint32_t(a.grid_cells_x);

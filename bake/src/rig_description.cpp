@@ -114,8 +114,24 @@ void WarnUnknownKeys(const json& object, const std::string& where, std::initiali
 }
 
 void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std::string>* warnings) {
-  WarnUnknownKeys(root, "", {"posemorph", "name", "filter", "poses", "triangles", "mapping", "bake", "paths"}, file,
-                  warnings);
+  WarnUnknownKeys(root, "",
+                  {"posemorph", "name", "filter", "poses", "triangles", "parts", "glue", "mapping", "bake", "paths"},
+                  file, warnings);
+  if (root.contains("parts") && root["parts"].is_array())
+    for (std::size_t p = 0; p < root["parts"].size(); ++p) {
+      const json& part = root["parts"][p];
+      const std::string w = "parts[" + std::to_string(p) + "]";
+      WarnUnknownKeys(part, w, {"name", "order", "triangles", "poses"}, file, warnings);
+      if (part.is_object() && part.contains("poses") && part["poses"].is_array())
+        for (std::size_t i = 0; i < part["poses"].size(); ++i)
+          WarnUnknownKeys(
+              part["poses"][i], w + ".poses[" + std::to_string(i) + "]",
+              {"name", "drawing", "origin", "outline", "landmarks", "features", "vertices", "mesh", "uvs", "image"},
+              file, warnings);
+    }
+  if (root.contains("glue") && root["glue"].is_array())
+    for (std::size_t g = 0; g < root["glue"].size(); ++g)
+      WarnUnknownKeys(root["glue"][g], "glue[" + std::to_string(g) + "]", {"part", "to", "at"}, file, warnings);
   if (root.contains("mapping"))
     WarnUnknownKeys(
         root["mapping"], "mapping",
@@ -226,16 +242,27 @@ std::vector<Eigen::Vector2d> ParseMeshFile(const Reader& r, const json& jp, cons
   return vertices;
 }
 
-// One entry of "poses"; a mesh file may give the rig its triangles (ParseMeshFile).
+// One entry of "poses", or of a part's "poses" (`rig_pose`: the rig's pose
+// it draws, whose name and point it takes; `w` where it is); a mesh file may
+// give the rig (or the part) its triangles (ParseMeshFile).
 PoseDescription ParsePose(const Reader& r, const json& jp, std::size_t i, const std::string& file,
                           const std::string& base_dir, std::vector<std::array<std::uint32_t, 3>>* triangles,
-                          bool* have_triangles) {
-  const std::string w = "poses[" + std::to_string(i) + "]";
+                          bool* have_triangles, const PoseDescription* rig_pose = nullptr, std::string w = "") {
+  if (w.empty()) w = "poses[" + std::to_string(i) + "]";
   if (!jp.is_object()) r.Fail(w, "expected an object");
   PoseDescription pose;
-  pose.name = jp.contains("name") ? r.String(jp["name"], w + ".name") : "pose" + std::to_string(i);
-  if (!jp.contains("point")) r.Fail(w, "missing \"point\" (its place in pose space)");
-  pose.point = r.Point(jp["point"], w + ".point");
+  if (rig_pose) {
+    pose.name = rig_pose->name;
+    pose.point = rig_pose->point;
+    if (jp.contains("name") && r.String(jp["name"], w + ".name") != pose.name)
+      r.Fail(w + ".name", "is \"" + jp["name"].get<std::string>() + "\", but the rig's pose " + std::to_string(i) +
+                              " is '" + pose.name + "': a part lists its poses in the rig's order");
+    if (jp.contains("point")) r.Fail(w + ".point", "a part's pose takes its point from the rig's \"poses\"; remove it");
+  } else {
+    pose.name = jp.contains("name") ? r.String(jp["name"], w + ".name") : "pose" + std::to_string(i);
+    if (!jp.contains("point")) r.Fail(w, "missing \"point\" (its place in pose space)");
+    pose.point = r.Point(jp["point"], w + ".point");
+  }
   if (int(jp.contains("vertices")) + int(jp.contains("mesh")) + int(jp.contains("deform")) +
           int(jp.contains("drawing")) + int(jp.contains("outline")) !=
       1)
@@ -365,15 +392,140 @@ PathDescription ParsePath(const Reader& r, const json& jp, std::size_t i, const 
   return path;
 }
 
-// Which poses are drawn decides where the triangles come from.
-void CheckPoseKinds(const Reader& r, const std::vector<PoseDescription>& poses, bool have_triangles) {
+// Which poses are drawn decides where the triangles come from (`w`: the
+// object that holds them, "" for the rig).
+void CheckPoseKinds(const Reader& r, const std::vector<PoseDescription>& poses, bool have_triangles,
+                    const std::string& w = "") {
+  const std::string prefix = w.empty() ? "" : w + ".";
   bool any_drawn = false, all_meshed = true;
   for (const PoseDescription& p : poses) any_drawn |= p.drawn, all_meshed &= p.drawn || p.deformed;
   if (any_drawn && have_triangles)
-    r.Fail("triangles", "drawn poses get their triangles from the mapping; remove \"triangles\" and mesh files");
+    r.Fail(prefix + "triangles",
+           "drawn poses get their triangles from the mapping; remove \"triangles\" and mesh files");
   if (any_drawn && !all_meshed)
-    r.Fail("poses", "when one pose is drawn, every pose must be drawn (\"drawing\" or \"outline\") or deformed");
-  if (!have_triangles && !any_drawn) r.Fail("triangles", "missing: give \"triangles\" or a mesh file that has them");
+    r.Fail(prefix + "poses",
+           "when one pose is drawn, every pose must be drawn (\"drawing\" or \"outline\") or deformed");
+  if (!have_triangles && !any_drawn)
+    r.Fail(prefix + "triangles", "missing: give \"triangles\" or a mesh file that has them");
+}
+
+// With "parts", the rig's poses give a name and a point each; what they look
+// like is in every part's "poses".
+std::vector<PoseDescription> ParseLayeredPoses(const Reader& r, const json& poses) {
+  std::vector<PoseDescription> out;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const std::string w = "poses[" + std::to_string(i) + "]";
+    const json& jp = poses[i];
+    if (!jp.is_object()) r.Fail(w, "expected an object");
+    for (const char* key :
+         {"drawing", "outline", "vertices", "mesh", "deform", "image", "uvs", "landmarks", "features", "origin"})
+      if (jp.contains(key))
+        r.Fail(w + "." + key,
+               "with \"parts\", a rig's pose gives its name and point only; what it looks like goes "
+               "in each part's \"poses\"");
+    PoseDescription pose;
+    pose.name = jp.contains("name") ? r.String(jp["name"], w + ".name") : "pose" + std::to_string(i);
+    if (!jp.contains("point")) r.Fail(w, "missing \"point\" (its place in pose space)");
+    pose.point = r.Point(jp["point"], w + ".point");
+    out.push_back(std::move(pose));
+  }
+  return out;
+}
+
+// "parts": [{"name", "order", "triangles", "poses"}, ...], each pose as in
+// the rig's "poses" less the name and point.
+std::vector<PartDescription> ParseParts(const Reader& r, const json& parts, const std::vector<PoseDescription>& poses,
+                                        const std::string& file, const std::string& base_dir) {
+  if (parts.empty()) r.Fail("parts", "needs at least one part");
+  if (parts.size() > format::kMaxParts)
+    r.Fail("parts", std::to_string(parts.size()) + " parts, more than the rig format's limit of " +
+                        std::to_string(format::kMaxParts));
+  std::vector<PartDescription> out;
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    const std::string w = "parts[" + std::to_string(p) + "]";
+    const json& jp = parts[p];
+    if (!jp.is_object()) r.Fail(w, "expected an object");
+    PartDescription part;
+    if (!jp.contains("name")) r.Fail(w, "missing \"name\"");
+    part.name = r.String(jp["name"], w + ".name");
+    if (part.name.empty()) r.Fail(w + ".name", "must not be empty");
+    for (const PartDescription& other : out)
+      if (other.name == part.name) r.Fail(w + ".name", "part '" + part.name + "' is defined twice");
+    part.order = int(p);
+    if (jp.contains("order")) {
+      if (!jp["order"].is_number_integer() || std::llabs(jp["order"].get<long long>()) > 1000000)
+        r.Fail(w + ".order", "expected an integer in -1000000..1000000 (lower draws first)");
+      part.order = int(jp["order"].get<long long>());
+    }
+    bool have_triangles = jp.contains("triangles");
+    if (have_triangles) part.triangles = r.ReadTriangles(r.Array(jp, "triangles", w), w + ".triangles");
+    const json& jposes = r.Array(jp, "poses", w);
+    if (jposes.size() != poses.size())
+      r.Fail(w + ".poses", "part '" + part.name + "' has " + std::to_string(jposes.size()) + " poses, the rig " +
+                               std::to_string(poses.size()) + ": every part is drawn in every pose (one that should " +
+                               "vanish is drawn tiny, or hidden behind another by its order)");
+    for (std::size_t i = 0; i < jposes.size(); ++i)
+      part.poses.push_back(ParsePose(
+          r, jposes[i], i, file, base_dir, &part.triangles, &have_triangles, &poses[i],
+          "part '" + part.name + "', pose '" + poses[i].name + "': " + w + ".poses[" + std::to_string(i) + "]"));
+    CheckPoseKinds(r, part.poses, have_triangles, w);
+    for (const PoseDescription& pose : part.poses)
+      if (pose.deformed)
+        r.Fail(w + ".poses",
+               "a part's pose is drawn or given as vertices (\"deform\" is not yet "
+               "supported in parts)");
+    out.push_back(std::move(part));
+  }
+  return out;
+}
+
+// "glue": [{"part", "to", "at"}, ...]: the parts and the glue between them
+// make a tree (every part reached from every other, in one way only).
+std::vector<GlueDescription> ParseGlue(const Reader& r, const json& glue, const std::vector<PartDescription>& parts,
+                                       std::size_t pose_count) {
+  std::vector<GlueDescription> out;
+  std::vector<std::size_t> root(parts.size());
+  for (std::size_t p = 0; p < parts.size(); ++p) root[p] = p;
+  auto find = [&](std::size_t p) {
+    while (root[p] != p) p = root[p] = root[root[p]];
+    return p;
+  };
+  auto index_of = [&](const std::string& name, const std::string& w) {
+    for (std::size_t p = 0; p < parts.size(); ++p)
+      if (parts[p].name == name) return p;
+    r.Fail(w, "no part is named '" + name + "'");
+  };
+  for (std::size_t g = 0; g < glue.size(); ++g) {
+    const std::string w = "glue[" + std::to_string(g) + "]";
+    const json& jg = glue[g];
+    if (!jg.is_object() || !jg.contains("part") || !jg.contains("to") || !jg.contains("at"))
+      r.Fail(w, "expected {\"part\": NAME, \"to\": NAME, \"at\": [x, y] or one [x, y] per pose}");
+    GlueDescription e;
+    e.part = r.String(jg["part"], w + ".part");
+    e.to = r.String(jg["to"], w + ".to");
+    e.part_index = index_of(e.part, w + ".part");
+    e.to_index = index_of(e.to, w + ".to");
+    if (e.part_index == e.to_index) r.Fail(w, "part '" + e.part + "' is glued to itself");
+    const json& at = jg["at"];
+    if (at.is_array() && at.size() == 2 && at[0].is_number()) {
+      e.at.push_back(r.Point(at, w + ".at"));
+    } else {
+      if (!at.is_array() || at.size() != pose_count)
+        r.Fail(w + ".at", "expected [x, y] or one [x, y] per pose (" + std::to_string(pose_count) + ")");
+      e.at = r.Points(at, w + ".at");
+    }
+    const std::size_t a = find(e.part_index), b = find(e.to_index);
+    if (a == b)
+      r.Fail(w, "gluing '" + e.part + "' to '" + e.to + "' closes a cycle: they are glued together already " +
+                    "(directly or through other parts), and a cycle of glue over-constrains the joints; remove one");
+    root[a] = b;
+    out.push_back(std::move(e));
+  }
+  for (std::size_t p = 1; p < parts.size(); ++p)
+    if (find(p) != find(0))
+      r.Fail("glue", "part '" + parts[p].name + "' is not glued to part '" + parts[0].name +
+                         "' (directly or through other parts): a character's parts are one piece");
+  return out;
 }
 
 }  // namespace
@@ -394,11 +546,22 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
     rig.nearest_filter = f == "nearest";
   }
   bool have_triangles = root.contains("triangles");
-  if (have_triangles) rig.triangles = r.ReadTriangles(r.Array(root, "triangles", ""), "triangles");
   const json& poses = r.Array(root, "poses", "");
-  for (std::size_t i = 0; i < poses.size(); ++i)
-    rig.poses.push_back(ParsePose(r, poses[i], i, file, base_dir, &rig.triangles, &have_triangles));
-  CheckPoseKinds(r, rig.poses, have_triangles);
+  if (root.contains("parts")) {
+    if (have_triangles) r.Fail("triangles", "with \"parts\", each part has its own triangles; remove it");
+    rig.poses = ParseLayeredPoses(r, poses);
+    rig.parts = ParseParts(r, r.Array(root, "parts", ""), rig.poses, file, base_dir);
+    if (root.contains("glue"))
+      rig.glue = ParseGlue(r, r.Array(root, "glue", ""), rig.parts, rig.poses.size());
+    else if (rig.parts.size() > 1)
+      r.Fail("", "missing \"glue\": the parts must be glued together at joints");
+  } else {
+    if (root.contains("glue")) r.Fail("glue", "only a rig with \"parts\" has glue");
+    if (have_triangles) rig.triangles = r.ReadTriangles(r.Array(root, "triangles", ""), "triangles");
+    for (std::size_t i = 0; i < poses.size(); ++i)
+      rig.poses.push_back(ParsePose(r, poses[i], i, file, base_dir, &rig.triangles, &have_triangles));
+    CheckPoseKinds(r, rig.poses, have_triangles);
+  }
   if (root.contains("mapping")) ParseMapping(r, root["mapping"], &rig.mapping);
   if (root.contains("bake")) ParseBakeParameters(r, root["bake"], &rig.parameters);
   if (root.contains("paths")) {

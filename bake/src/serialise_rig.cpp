@@ -46,6 +46,8 @@ std::optional<std::string> DrawingFolder(const RigDescription& description, cons
   namespace fs = std::filesystem;
   bool any_image = false;
   for (const PoseMesh& p : meshes.poses) any_image = any_image || !p.image.empty();
+  for (const MeshPart& part : meshes.parts)
+    for (const std::string& image : part.images) any_image = any_image || !image.empty();
   if (description.rig_file.empty() || description.file.empty() || !any_image) return std::nullopt;
   std::error_code ec;
   const fs::path from = fs::absolute(fs::path(description.rig_file), ec).lexically_normal().parent_path();
@@ -72,7 +74,8 @@ fmt::Meta MakeMeta(const RigDescription& description, const PoseMeshes& meshes, 
   const bool has_uvs = !meshes.poses[0].uvs.empty();
   meta.flags = (has_uvs ? fmt::kMetaFlagHasUVs : 0) | (grid.centre_weights.empty() ? 0 : fmt::kMetaFlagGridCentres) |
                (description.nearest_filter ? fmt::kMetaFlagNearestFilter : 0) |
-               (has_drawing_folder ? fmt::kMetaFlagDrawingFolder : 0);
+               (has_drawing_folder ? fmt::kMetaFlagDrawingFolder : 0) |
+               (meshes.parts.empty() ? 0 : fmt::kMetaFlagParts);
   meta.grid_origin_x = grid.origin_x;
   meta.grid_origin_y = grid.origin_y;
   meta.grid_cell_size = grid.cell;
@@ -138,6 +141,9 @@ NamesAndPaths FlattenNamesAndPaths(const RigDescription& description, const Pose
     for (const auto& k : path.keys) keys.insert(keys.end(), k.begin(), k.end());
   }
   if (drawing_folder) AppendString(strings, *drawing_folder);
+  for (const MeshPart& part : meshes.parts) AppendString(strings, part.name);
+  for (const MeshPart& part : meshes.parts)
+    for (const std::string& image : part.images) AppendString(strings, image);
 
   return a;
 }
@@ -181,6 +187,13 @@ std::vector<unsigned char> SerialiseRig(const RigDescription& description, const
     for (const PoseMesh& p : meshes.poses)
       canvases.insert(canvases.end(), {p.canvas_size.x(), p.canvas_size.y(), p.canvas_pivot.x(), p.canvas_pivot.y()});
     w.AddArray(fmt::kCanvases, canvases);
+  }
+  if (!meshes.parts.empty()) {
+    std::vector<std::uint32_t> parts;
+    for (const MeshPart& part : meshes.parts)
+      parts.insert(parts.end(),
+                   {part.first_triangle, part.triangle_count, std::uint32_t(std::int32_t(part.order)), 0u});
+    w.AddArray(fmt::kParts, parts);
   }
   return w.Finish();
 }

@@ -215,6 +215,11 @@ std::string CheckFormatLimits(const PoseMeshes& rig, const std::vector<PathDescr
     count(rig.poses[i].image, PoseLabel(rig.poses[i].name, i) + "'s image reference");
   }
   for (std::size_t k = 0; k < paths.size(); ++k) count(paths[k].name, "paths[" + std::to_string(k) + "].name");
+  for (const MeshPart& part : rig.parts) {
+    count(part.name, "part '" + part.name + "''s name");
+    for (std::size_t i = 0; i < part.images.size(); ++i)
+      count(part.images[i], "part '" + part.name + "''s image reference in " + PoseLabel(rig.poses[i].name, i));
+  }
   if (string_bytes > format::kMaxStringBytes)
     return "pose names, image references and path names take " + std::to_string(string_bytes) +
            " bytes, more than the rig format's limit of " + std::to_string(format::kMaxStringBytes) +

@@ -9,7 +9,7 @@
 //
 // Arrays returned are views into wasm memory, valid until the next call.
 
-const LAYOUT = [144, 0, 16, 20, 12, 4, 8, 140, 32, 48, 32, 24];  // wasm32 (bindings.c checks them)
+const LAYOUT = [152, 0, 16, 20, 12, 4, 8, 140, 32, 48, 32, 24];  // wasm32 (bindings.c checks them)
 
 export class Posemorph {
   static async create(createWasm) {
@@ -112,7 +112,7 @@ export class Rig {
     if (status !== 0) throw new Error(`pm_draw_lists failed (${status})`);
     const lists = [];
     for (let k = 0; k < count; ++k) {
-      const at = this.lists + 144 * k, u = m.HEAPU32, f = m.HEAPF32;
+      const at = this.lists + LAYOUT[0] * k, u = m.HEAPU32, f = m.HEAPF32;
       const drawings = [];
       for (let d = 0; d < u[(at + 16) >> 2]; ++d) {
         const e = at + 20 + 12 * d;
@@ -124,6 +124,7 @@ export class Rig {
         indices: u.subarray(u[(at + 4) >> 2] >> 2, (u[(at + 4) >> 2] >> 2) + 3 * this.triangleCount),
         drawings,
         mirrored: m.HEAP32[(at + 140) >> 2] !== 0,
+        parts: u.subarray(u[(at + 144) >> 2] >> 2, (u[(at + 144) >> 2] >> 2) + u[(at + 148) >> 2]),  // back to front
       });
     }
     return lists;
@@ -139,7 +140,7 @@ export class Rig {
     this.work = m._malloc(8 * this.workSize);
     this.positions = m._malloc(4 * this.positionSize);
     this.points = m._malloc(16 * count);
-    this.lists = m._malloc(144 * count);
+    this.lists = m._malloc(LAYOUT[0] * count);
     this.options = m._malloc(24);
     this.capacity = count;
   }

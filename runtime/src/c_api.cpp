@@ -152,6 +152,25 @@ int pm_rig_pose_image(const pm_rig* rig, uint32_t pose, char* out, size_t capaci
                     capacity, length);
 }
 
+uint32_t pm_rig_part_count(const pm_rig* rig) { return rig ? rig->rig.part_count() : 0; }
+
+int pm_rig_part(const pm_rig* rig, uint32_t part, pm_part* out) {
+  if (!rig || !out || part >= rig->rig.part_count()) return PM_ERROR_INVALID_ARGUMENT;
+  const posemorph::PartView view = rig->rig.part(part);
+  *out = pm_part{view.first_triangle, view.triangle_count, view.draw_order};
+  return PM_OK;
+}
+
+int pm_rig_part_name(const pm_rig* rig, uint32_t part, char* out, size_t capacity, size_t* length) {
+  return CopyString(rig ? rig->rig.part(part).name : posemorph::StringView{}, rig && part < rig->rig.part_count(), out,
+                    capacity, length);
+}
+
+int pm_rig_part_image(const pm_rig* rig, uint32_t part, uint32_t pose, char* out, size_t capacity, size_t* length) {
+  return CopyString(rig ? rig->rig.part_image(part, pose) : posemorph::StringView{},
+                    rig && part < rig->rig.part_count() && pose < rig->rig.pose_count(), out, capacity, length);
+}
+
 int pm_rig_drawing_folder(const pm_rig* rig, char* out, size_t capacity, size_t* length) {
   return CopyString(rig ? rig->rig.drawing_folder() : posemorph::StringView{}, rig != nullptr, out, capacity, length);
 }
@@ -390,6 +409,8 @@ int pm_draw_lists(const pm_rig* rig, const pm_draw_options* options, size_t coun
         const posemorph::Transform2D& t = list.transform;
         d.transform = {t.a, t.b, t.c, t.d, t.tx, t.ty};
         d.mirrored = list.mirrored ? 1 : 0;
+        d.parts = list.parts.data;
+        d.part_count = std::uint32_t(list.parts.size);
       });
   return ok ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
 }

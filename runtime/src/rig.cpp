@@ -35,6 +35,9 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   uvs_ = std::exchange(other.uvs_, {});
   canvases_ = std::exchange(other.canvases_, {});
   strings_ = std::exchange(other.strings_, {});
+  part_table_ = std::exchange(other.part_table_, {});
+  draw_sequence_ = std::exchange(other.draw_sequence_, {});
+  part_strings_ = std::exchange(other.part_strings_, {});
   paths_ = std::exchange(other.paths_, {});
   grid_ = std::exchange(other.grid_, {});
   factor_ = std::exchange(other.factor_, {});
@@ -72,6 +75,25 @@ DrawingCanvas Rig::pose_canvas(std::uint32_t pose) const {
   if (pose >= pose_count_ || canvases_.empty()) return {};
   const double* c = canvases_.data + 4 * std::size_t(pose);
   return {c[0], c[1], c[2], c[3]};
+}
+
+PartView Rig::part(std::uint32_t index) const {
+  if (!loaded() || index >= part_count()) return {};
+  if (part_table_.empty()) return {StringView{"", 0}, 0, triangle_count_, 0};
+  const std::uint32_t* e = part_table_.data + 4 * std::size_t(index);
+  return {part_strings_[index], e[0], e[1], std::int32_t(e[2])};
+}
+
+StringView Rig::part_image(std::uint32_t index, std::uint32_t pose) const {
+  if (!loaded() || index >= part_count() || pose >= pose_count_) return {};
+  if (part_table_.empty()) return pose_image(pose);
+  return part_strings_[part_count() + std::size_t(index) * pose_count_ + pose];
+}
+
+Span<const std::uint32_t> Rig::draw_sequence() const {
+  static const std::uint32_t kWhole[1] = {0};
+  if (!loaded()) return {};
+  return draw_sequence_.empty() ? Span<const std::uint32_t>{kWhole, 1} : draw_sequence_;
 }
 
 PathView Rig::path(std::uint32_t index) const { return index < path_count_ ? paths_[index] : PathView{}; }

@@ -150,7 +150,9 @@ struct Counts {
   fmt::Meta meta{};
   std::uint64_t V = 0, T = 0, N = 0, P = 0, nnz = 0;
   std::uint64_t n = 0;        // V - 1 unknowns (vertex 0 is pinned)
-  std::uint64_t strings = 0;  // 2N + P (+ 1): pose names, image references, path names (, drawing folder)
+  std::uint64_t strings = 0;  // 2N + P (+ 1) (+ M + MN): pose names, image references, path names (, drawing folder)
+                              // (, part names, part images)
+  std::uint64_t parts = 0;    // M: PART entries (format 1.6), 0 without
   std::uint64_t grid_corners = 0, grid_centres = 0, grid_vertices = 0;
   bool has_uvs = false, compact = false;
 };
@@ -161,7 +163,7 @@ struct Sources {
   const unsigned char *tris = nullptr, *poses = nullptr, *points = nullptr, *cents = nullptr, *masses = nullptr,
                       *grads = nullptr, *angles = nullptr, *stretches = nullptr, *perm = nullptr, *lcol = nullptr,
                       *lrow = nullptr, *lval = nullptr, *dinv = nullptr, *wgrid = nullptr, *uvs = nullptr,
-                      *paths = nullptr, *strs = nullptr, *pkeys = nullptr, *canvases = nullptr;
+                      *paths = nullptr, *strs = nullptr, *pkeys = nullptr, *canvases = nullptr, *parts = nullptr;
   std::uint64_t strings_size = 0, key_total = 0;
   detail::CompactLayout packed;
   detail::CompactCounts packed_counts{};
@@ -185,6 +187,7 @@ struct Scratch {
   std::uint32_t* row_fill = nullptr;
   std::uint64_t blocks = 0;
   double* blend = nullptr;
+  std::uint32_t* draw_sequence = nullptr;  // the parts back to front (format 1.6)
 };
 
 }  // namespace
@@ -213,6 +216,7 @@ struct RigLoader {
   static bool ReadStrings(const Counts& c, const Scratch& scratch, Rig* rig, Error* err);
   static bool ReadPaths(const Counts& c, const Sources& s, const Scratch& scratch, Rig* rig, Error* err);
   static bool CheckIndices(const Counts& c, const Scratch& scratch, const Rig& rig, Error* err);
+  static bool ReadParts(const Counts& c, const Scratch& scratch, Rig* rig, Error* err);
   static bool CheckFactor(const Counts& c, const Rig& rig, Error* err);
   static void BuildSolveRows(const Counts& c, const Scratch& scratch, Rig* rig);
   static void BuildBlendBlocks(const Counts& c, const Scratch& scratch, Rig* rig);
@@ -283,7 +287,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   }
   if (c.compact && !detail::DecodeCompact(s.packed, s.packed_counts, scratch.decoded, err)) return false;
   if (!ReadStrings(c, scratch, &rig, err) || !ReadPaths(c, s, scratch, &rig, err) ||
-      !CheckIndices(c, scratch, rig, err) || !CheckFactor(c, rig, err))
+      !CheckIndices(c, scratch, rig, err) || !CheckFactor(c, rig, err) || !ReadParts(c, scratch, &rig, err))
     return false;
   BuildSolveRows(c, scratch, &rig);
   BuildBlendBlocks(c, scratch, &rig);
@@ -384,7 +388,7 @@ bool RigLoader::ReadCounts(Parser& parser, Counts* c, Error* err) {
     return Fail(err, ErrorCode::kTooLarge, "factor has %llu nonzeros, above %u", (unsigned long long)nnz,
                 fmt::kMaxFactorNonzeros);
   if ((meta.flags & ~(fmt::kMetaFlagHasUVs | fmt::kMetaFlagGridCentres | fmt::kMetaFlagCompact |
-                      fmt::kMetaFlagNearestFilter | fmt::kMetaFlagDrawingFolder)) != 0)
+                      fmt::kMetaFlagNearestFilter | fmt::kMetaFlagDrawingFolder | fmt::kMetaFlagParts)) != 0)
     return Fail(err, ErrorCode::kBadVersion, "unknown META flags 0x%x", meta.flags);
   if (!std::isfinite(meta.grid_origin_x) || !std::isfinite(meta.grid_origin_y) || !std::isfinite(meta.grid_cell_size) ||
       !(meta.grid_cell_size > 0) || !std::isfinite(meta.grid_cell_size * meta.grid_cells_x) ||
@@ -398,7 +402,18 @@ bool RigLoader::ReadCounts(Parser& parser, Counts* c, Error* err) {
     return Fail(err, ErrorCode::kBadValue, "rig size %g is not finite and positive", meta.rig_size);
   c->V = V, c->T = T, c->N = N, c->P = P, c->nnz = nnz;
   c->n = V - 1;
-  c->strings = 2 * N + P + ((meta.flags & fmt::kMetaFlagDrawingFolder) ? 1 : 0);
+  if (meta.flags & fmt::kMetaFlagParts) {
+    const Section* parts = parser.table.Find(fmt::kParts);
+    if (!parts) return Fail(err, ErrorCode::kBadLayout, "META says the rig has parts, but there is no PART section");
+    if (parts->size % fmt::kPartEntrySize != 0 || parts->size < fmt::kPartEntrySize ||
+        parts->size > std::uint64_t(fmt::kMaxParts) * fmt::kPartEntrySize)
+      return Fail(err, ErrorCode::kBadLayout, "PART section of %llu bytes: 1..%u entries of %u bytes",
+                  (unsigned long long)parts->size, fmt::kMaxParts, fmt::kPartEntrySize);
+    c->parts = parts->size / fmt::kPartEntrySize;
+  } else if (parser.table.Find(fmt::kParts)) {
+    return Fail(err, ErrorCode::kBadLayout, "PART section present but META says the rig has no parts");
+  }
+  c->strings = 2 * N + P + ((meta.flags & fmt::kMetaFlagDrawingFolder) ? 1 : 0) + c->parts * (1 + N);
   c->grid_corners = std::uint64_t(meta.grid_cells_x + 1) * (meta.grid_cells_y + 1);
   c->grid_centres = (meta.flags & fmt::kMetaFlagGridCentres) ? std::uint64_t(meta.grid_cells_x) * meta.grid_cells_y : 0;
   c->grid_vertices = c->grid_corners + c->grid_centres;
@@ -443,6 +458,7 @@ bool RigLoader::FindSections(const unsigned char* bytes, const Header& h, Parser
   }
   if (c.has_uvs && !s->affine_uvs && !parser.Get(fmt::kUVs, N * V * 8, &s->uvs)) return false;
   if (parser.table.Find(fmt::kCanvases) && !parser.Get(fmt::kCanvases, N * 32, &s->canvases)) return false;
+  if (c.parts && !parser.Get(fmt::kParts, c.parts * fmt::kPartEntrySize, &s->parts)) return false;
   if (!c.has_uvs && parser.table.Find(fmt::kUVs))
     return Fail(err, ErrorCode::kBadLayout, "UVS section present but META says none");
   std::uint64_t key_total = 0;
@@ -597,6 +613,10 @@ void RigLoader::LayoutArena(ArenaLayout& arena, const Counts& c, const Sources& 
   else
     LayoutExact(arena, c, s, rig_out);
   if (s.canvases) rig.canvases_ = CopyInto<double>(arena, s.canvases, N * 4);
+  if (s.parts) {
+    rig.part_table_ = CopyInto<std::uint32_t>(arena, s.parts, c.parts * 4);
+    scratch->draw_sequence = arena.Take<std::uint32_t>(c.parts);
+  }
   scratch->chars = CopyInto<char>(arena, s.strs, s.strings_size);
   scratch->strings = arena.Take<StringView>(c.strings);
   scratch->path_views = arena.Take<PathView>(P);
@@ -675,6 +695,39 @@ bool RigLoader::CheckIndices(const Counts& c, const Scratch& scratch, const Rig&
       return Fail(err, ErrorCode::kBadValue, "permutation is not a permutation (entry %llu)", (unsigned long long)k);
     scratch.seen[v] = 1;
   }
+  return true;
+}
+
+// Parts (format 1.6): they tile the triangles in order, none empty, no
+// reserved bits; the draw sequence sorts them by draw order, then index.
+bool RigLoader::ReadParts(const Counts& c, const Scratch& scratch, Rig* rig, Error* err) {
+  if (!c.parts) return true;
+  const Span<const std::uint32_t> table = rig->part_table_;
+  std::uint64_t next = 0;
+  for (std::uint64_t p = 0; p < c.parts; ++p) {
+    const std::uint32_t first = table[4 * p], count = table[4 * p + 1];
+    if (first != next || count == 0 || count > c.T - next)
+      return Fail(err, ErrorCode::kBadValue, "part %llu covers triangles %u..+%u; parts must tile 0..%llu in order",
+                  (unsigned long long)p, first, count, (unsigned long long)c.T);
+    if (table[4 * p + 3] != 0)
+      return Fail(err, ErrorCode::kBadValue, "part %llu: reserved field set", (unsigned long long)p);
+    next += count;
+  }
+  if (next != c.T)
+    return Fail(err, ErrorCode::kBadValue, "the parts cover %llu of %llu triangles", (unsigned long long)next,
+                (unsigned long long)c.T);
+  // Insertion sort (at most kMaxParts): stable, so ties keep the part order.
+  std::uint32_t* sequence = scratch.draw_sequence;
+  for (std::uint32_t p = 0; p < std::uint32_t(c.parts); ++p) {
+    std::uint32_t at = p;
+    const std::int32_t order = std::int32_t(table[4 * p + 2]);
+    while (at > 0 && std::int32_t(table[4 * sequence[at - 1] + 2]) > order) {
+      sequence[at] = sequence[at - 1];
+      --at;
+    }
+    sequence[at] = p;
+  }
+  rig->draw_sequence_ = {sequence, std::size_t(c.parts)};
   return true;
 }
 
@@ -789,7 +842,10 @@ void RigLoader::Finish(const unsigned char* bytes, const Header& h, const Counts
   rig->texture_filter_ =
       (c.meta.flags & fmt::kMetaFlagNearestFilter) ? TextureFilter::kNearest : TextureFilter::kLinear;
   rig->rig_size_ = c.meta.rig_size;
-  if (c.meta.flags & fmt::kMetaFlagDrawingFolder) rig->drawing_folder_ = rig->strings_[std::size_t(c.strings - 1)];
+  if (c.meta.flags & fmt::kMetaFlagDrawingFolder) rig->drawing_folder_ = rig->strings_[std::size_t(2 * c.N + c.P)];
+  rig->part_strings_ =
+      c.parts ? rig->strings_.subspan(std::size_t(c.strings - c.parts * (1 + c.N)), std::size_t(c.parts * (1 + c.N)))
+              : Span<const StringView>{};
   rig->kernels_ = kernels;
   rig->checksum_ = ReadU32(bytes + fmt::kOffChecksum);
   rig->format_major_ = h.major;

@@ -95,6 +95,20 @@ PM_API int pm_rig_pose_point(const pm_rig* rig, uint32_t pose, double* x, double
 PM_API int pm_rig_pose_name(const pm_rig* rig, uint32_t pose, char* out, size_t capacity, size_t* length);
 PM_API int pm_rig_pose_image(const pm_rig* rig, uint32_t pose, char* out, size_t capacity, size_t* length);
 PM_API int pm_rig_path_name(const pm_rig* rig, uint32_t path, char* out, size_t capacity, size_t* length);
+/* Parts of a layered character (format 1.6): a rig without parts has one,
+ * covering every triangle, named "", drawing the poses' images. A part is
+ * the triangles first_triangle .. first_triangle + triangle_count - 1 of
+ * pm_rig_triangles; lower draw_order draws first (behind). */
+typedef struct pm_part {
+  uint32_t first_triangle, triangle_count;
+  int32_t draw_order;
+} pm_part;
+PM_API uint32_t pm_rig_part_count(const pm_rig* rig); /* 0 for NULL */
+PM_API int pm_rig_part(const pm_rig* rig, uint32_t part, pm_part* out);
+PM_API int pm_rig_part_name(const pm_rig* rig, uint32_t part, char* out, size_t capacity, size_t* length);
+/* The drawing a part shows in a pose (pm_rig_pose_image for a rig without parts). */
+PM_API int pm_rig_part_image(const pm_rig* rig, uint32_t part, uint32_t pose, char* out, size_t capacity,
+                             size_t* length);
 /* Where the bake found the drawings, relative to the rig file's folder
  * ('/'-separated, may contain ".."; empty before format 1.5 or when the bake
  * did not know): where tools on the baking machine look for the drawings.
@@ -202,6 +216,11 @@ typedef struct pm_draw_list {
   pm_blended_drawing drawings[PM_MAX_BLEND_DRAWINGS];
   pm_transform transform;
   int mirrored; /* the transform mirrors: triangles are clockwise in the world */
+  /* The parts back to front (pm_rig_part): draw each part's triangles in
+   * this order with its own drawings (pm_rig_part_image) and the same
+   * weights and uvs. One part, every triangle, for a rig without parts. */
+  const uint32_t* parts;
+  uint32_t part_count;
 } pm_draw_list;
 typedef struct pm_draw_options {
   double sigma; /* texture sharpening in [0, 1]; < 0: the rig's default */

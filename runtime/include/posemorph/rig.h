@@ -79,6 +79,15 @@ struct DrawingCanvas {
   double pivot_x = 0, pivot_y = 0;
 };
 
+// A part of a layered character (format 1.6): a run of the rig's triangles
+// with its own drawings, drawn in order. A rig without parts is one part
+// covering every triangle, named "", drawing the poses' images.
+struct PartView {
+  StringView name;
+  std::uint32_t first_triangle = 0, triangle_count = 0;
+  std::int32_t draw_order = 0;  // lower draws first (behind); ties in part order
+};
+
 struct LoadOptions {
   // Tests turn this off to prove the structural checks alone keep corrupted
   // bytes from crashing the loader; applications leave it on.
@@ -125,6 +134,14 @@ class PM_API Rig {
   StringView pose_name(std::uint32_t pose) const;
   StringView pose_image(std::uint32_t pose) const;  // reference as written by the bake; may be empty
   DrawingCanvas pose_canvas(std::uint32_t pose) const;
+  // Parts (format 1.6; 1 for older rigs and rigs baked without "parts").
+  std::uint32_t part_count() const { return part_table_.empty() ? 1u : std::uint32_t(part_table_.size / 4); }
+  PartView part(std::uint32_t index) const;  // an empty view beyond part_count()
+  // The drawing part `index` shows in `pose`: pose_image(pose) for a rig without parts.
+  StringView part_image(std::uint32_t index, std::uint32_t pose) const;
+  // Part indices back to front (by draw order, ties by index): the order a
+  // renderer draws them in. Never empty for a loaded rig.
+  Span<const std::uint32_t> draw_sequence() const;
   PathView path(std::uint32_t index) const;
   // Index of the path with this name, or -1.
   int FindPath(const char* name) const;
@@ -176,8 +193,11 @@ class PM_API Rig {
   Span<const double> pose_positions_, pose_points_, pose_centroids_, vertex_masses_;
   Span<const double> gradients_, angles_, stretches_, blend_blocks_;
   Span<const float> uvs_;
-  Span<const double> canvases_;     // 4N, or empty
-  Span<const StringView> strings_;  // N names, N images, P path names (, drawing folder)
+  Span<const double> canvases_;              // 4N, or empty
+  Span<const StringView> strings_;           // N names, N images, P path names (, drawing folder) (, part strings)
+  Span<const std::uint32_t> part_table_;     // 4 per part (PART), or empty
+  Span<const std::uint32_t> draw_sequence_;  // part indices back to front, or empty
+  Span<const StringView> part_strings_;      // M names, then M x N images, or empty
   Span<const PathView> paths_;
   PoseSpaceGrid grid_;
   Factor factor_;

@@ -12,8 +12,9 @@ constexpr std::uint16_t kVersionMajor = 1;
 // 1.1 added the optional CANV section; 1.2 the weight grid's cell centres
 // (META flag kMetaFlagGridCentres); 1.3 the compact encoding (META flag
 // kMetaFlagCompact); 1.4 the texture-filter hint; 1.5 the drawing folder
-// (kMetaFlagDrawingFolder). Older files load unchanged.
-constexpr std::uint16_t kVersionMinor = 5;
+// (kMetaFlagDrawingFolder); 1.6 parts drawn in order (kMetaFlagParts, PART).
+// Older files load unchanged.
+constexpr std::uint16_t kVersionMinor = 6;
 constexpr std::uint32_t kHeaderSize = 64;
 constexpr std::uint32_t kSectionEntrySize = 24;
 constexpr std::uint32_t kSectionAlignment = 16;
@@ -97,6 +98,17 @@ constexpr std::uint32_t kMetaFlagNearestFilter = 8u;
 // file's folder, '/'-separated; for tools on the machine that baked
 // (Rig::drawing_folder).
 constexpr std::uint32_t kMetaFlagDrawingFolder = 16u;
+// 1.6: the rig is drawn as parts (PART): STRS ends (after the drawing
+// folder, when there is one) with each part's name, then each part's image
+// reference for each pose (part by part, N each).
+constexpr std::uint32_t kMetaFlagParts = 32u;
+// PART section (1.6): per part u32 first triangle, u32 triangle count, i32
+// draw order (lower draws first, ties by part index), u32 reserved (zero).
+// The parts cover the triangles in order: part 0 starts at triangle 0, each
+// starts where the one before ends, the last ends at T; none is empty.
+constexpr std::uint32_t kParts = Tag('P', 'A', 'R', 'T');
+constexpr std::uint32_t kPartEntrySize = 16;
+constexpr std::uint32_t kMaxParts = 64;
 constexpr std::uint32_t kQuantPositions = Tag('Q', 'P', 'O', 'S');
 constexpr std::uint32_t kQuantTriangles = Tag('Q', 'T', 'R', 'I');
 constexpr std::uint32_t kQuantPermutation = Tag('Q', 'P', 'R', 'M');

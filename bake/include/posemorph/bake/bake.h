@@ -15,6 +15,10 @@ namespace posemorph::bake {
 
 struct BakeReport {
   std::uint32_t vertices = 0, triangles = 0, poses = 0, paths = 0;
+  // A layered character (join_parts.h): its parts (name, draw order,
+  // triangles) and glue joints (shared vertices); empty without "parts".
+  std::vector<MeshPart> parts;
+  std::vector<std::uint32_t> joints;
   std::uint64_t factor_nonzeros = 0;  // strict lower part of L
   std::uint64_t matrix_nonzeros = 0;  // lower part of K, diagonal included
   std::uint32_t grid_cells_x = 0, grid_cells_y = 0;

@@ -3,6 +3,7 @@
 // drawing. The first two steps of the bake make it from a description
 // (map_drawings.h, deform_poses.h); every later step reads it.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -24,9 +25,19 @@ struct PoseMesh {
   Eigen::Vector2d canvas_size = Eigen::Vector2d::Zero(), canvas_pivot = Eigen::Vector2d::Zero();
 };
 
+// A layered character's part in the joined mesh (join_parts.h): a run of
+// the triangles, drawn in order with its own drawings.
+struct MeshPart {
+  std::string name;
+  int order = 0;
+  std::uint32_t first_triangle = 0, triangle_count = 0;
+  std::vector<std::string> images;  // per pose, as written into the rig
+};
+
 struct PoseMeshes {
   Triangles triangles;
   std::vector<PoseMesh> poses;  // in the description's order
+  std::vector<MeshPart> parts;  // empty: one shape, drawn with the poses' images
 };
 
 // The description's poses as they are, drawn or deformed ones without vertices

@@ -104,6 +104,25 @@ struct BakeParameters {
   bool allow_folds = false;
 };
 
+// A part of a layered character (bake/RIG_DESCRIPTION.md, "parts"): its own
+// mesh or drawings in every pose, drawn in order.
+struct PartDescription {
+  std::string name;
+  int order = 0;                                        // draw order: lower draws first (behind); ties in part order
+  std::vector<std::array<std::uint32_t, 3>> triangles;  // when its poses are given as vertices
+  std::vector<PoseDescription> poses;                   // one per rig pose, in the rig's order
+};
+
+// Two parts held together at a joint: one point of `part` and one of `to`
+// become one vertex, so the solve keeps them together in every frame.
+struct GlueDescription {
+  std::string part, to;
+  std::size_t part_index = 0, to_index = 0;
+  // The joint: one point per pose (drawing coordinates for drawn parts, rig
+  // coordinates for meshes), or one point (meshes only: in pose 0).
+  std::vector<Eigen::Vector2d> at;
+};
+
 struct RigDescription {
   std::string file;  // where it came from, for messages
   // Where the rig will be written, if known (the CLI's -o): the rig then
@@ -113,7 +132,9 @@ struct RigDescription {
   std::string name;
   bool nearest_filter = false;  // "filter": "nearest": the drawings are pixel art (a hint for renderers)
   std::vector<std::array<std::uint32_t, 3>> triangles;
-  std::vector<PoseDescription> poses;
+  std::vector<PoseDescription> poses;  // with parts: names and points only
+  std::vector<PartDescription> parts;  // empty: one shape (the poses' own meshes or drawings)
+  std::vector<GlueDescription> glue;
   BakeParameters parameters;
   MappingParameters mapping;
   std::vector<PathDescription> paths;

@@ -1,0 +1,325 @@
+// SPDX-License-Identifier: MIT
+// Layered characters in the bake ("parts" and "glue"): the joint held by one
+// shared vertex against the same parts solved independently, draw order,
+// the compact encoding, and every bad-input message naming part and pose.
+#include <doctest/doctest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli.h"
+#include "posemorph/bake/bake.h"
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/rig_description.h"
+#include "posemorph/jobs.h"
+#include "posemorph/path.h"
+#include "posemorph/rig.h"
+
+using namespace posemorph;
+using nlohmann::json;
+
+namespace {
+
+// tests/runtime/rigs/arm.json (make_arm.py): a body and an arm glued at the
+// shoulder; the arm turns 120 degrees about it from rest to up.
+json ArmRig() {
+  std::ifstream in(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/arm.json");
+  REQUIRE(in.good());
+  return json::parse(in);
+}
+
+Rig Bake(const json& description, bool exact = true) {
+  json d = description;
+  d["bake"]["precision"] = exact ? "exact" : "compact";
+  const bake::RigDescription rig = bake::ParseRigDescription(d.dump(), "arm.json", ".");
+  const std::vector<unsigned char> bytes = bake::BakeRig(rig);
+  Rig out;
+  Error err;
+  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &out, &err), err.message);
+  return out;
+}
+
+std::vector<double> MorphAt(const Rig& rig, double px, double py) {
+  const std::size_t N = rig.pose_count();
+  std::vector<double> w(N), ws(N), tex(N), work(rig.morph_workspace_size()), x(2 * std::size_t(rig.vertex_count()));
+  WeightsJob weights;
+  weights.rig = &rig;
+  weights.x = px, weights.y = py;
+  weights.raw = {w.data(), N}, weights.limited = {ws.data(), N}, weights.texture = {tex.data(), N};
+  REQUIRE(weights.Run());
+  MorphJob morph;
+  morph.rig = &rig;
+  morph.weights = {w.data(), N}, morph.limited_weights = {ws.data(), N};
+  morph.workspace = {work.data(), work.size()}, morph.positions = {x.data(), x.size()};
+  REQUIRE(morph.Run());
+  return x;
+}
+
+// The vertex at `at` in pose 0.
+std::uint32_t VertexAt(const Rig& rig, double x, double y) {
+  const double* p = rig.pose_positions(0).data;
+  for (std::uint32_t v = 0; v < rig.vertex_count(); ++v)
+    if (std::hypot(p[2 * v] - x, p[2 * v + 1] - y) < 1e-9) return v;
+  FAIL("no vertex at (" << x << ", " << y << ")");
+  return 0;
+}
+
+json OnePart(const json& rig, int part) {
+  json one = rig;
+  one["parts"] = json::array({rig["parts"][part]});
+  one.erase("glue");
+  return one;
+}
+
+std::string BakeError(const json& description, const char* file = nullptr) {
+  try {
+    const bake::RigDescription rig = bake::ParseRigDescription(description.dump(), file ? file : "arm.json", ".");
+    bake::BakeRig(rig);
+  } catch (const bake::BakeError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST_CASE("layered: the glued shoulder holds along the path, where the same parts solved independently drift apart") {
+  const json description = ArmRig();
+  const double jx = description["glue"][0]["at"][0][0], jy = description["glue"][0]["at"][0][1];
+  const Rig glued = Bake(description), body = Bake(OnePart(description, 0)), arm = Bake(OnePart(description, 1));
+  const std::uint32_t joint = VertexAt(glued, jx, jy), body_joint = VertexAt(body, jx, jy),
+                      arm_joint = VertexAt(arm, jx, jy);
+  // Every triangle touching the joint on either part uses this one vertex.
+  int users_body = 0, users_arm = 0;
+  for (std::uint32_t t = 0; t < glued.triangle_count(); ++t)
+    for (int k = 0; k < 3; ++k)
+      if (glued.triangles()[3 * t + k] == joint) (t < glued.part(1).first_triangle ? users_body : users_arm)++;
+  CHECK(users_body > 0);
+  CHECK(users_arm > 0);
+  // Along the path: the glued arm's joint is where the glued body's is (the
+  // residual is exactly 0); independent solves place each part by its own
+  // centroid, and the arm's end slides off the shoulder along a chord.
+  const PathView path = glued.path(0);
+  double drift = 0, tip_error = 0;
+  const double* rest = glued.pose_positions(0).data;
+  const std::uint32_t glued_tip = glued.vertex_count() - 1;  // the arm's far corner (u = 40, v = 5 in make_arm.py)
+  const double rest_length =
+      std::hypot(rest[2 * glued_tip] - rest[2 * joint], rest[2 * glued_tip + 1] - rest[2 * joint + 1]);
+  for (int k = 0; k <= 40; ++k) {
+    double px = 0, py = 0;
+    REQUIRE(SamplePath(path, path.end_time() * k / 40.0, &px, &py));
+    const std::vector<double> b = MorphAt(body, px, py), a = MorphAt(arm, px, py), g = MorphAt(glued, px, py);
+    drift =
+        std::max(drift, std::hypot(a[2 * arm_joint] - b[2 * body_joint], a[2 * arm_joint + 1] - b[2 * body_joint + 1]));
+    const double length = std::hypot(g[2 * glued_tip] - g[2 * joint], g[2 * glued_tip + 1] - g[2 * joint + 1]);
+    tip_error = std::max(tip_error, std::fabs(length - rest_length));
+  }
+  MESSAGE("independent solves: the shoulder drifts up to " << drift
+                                                           << " units apart; glued: 0 (one vertex); the glued "
+                                                              "arm's tip stays within "
+                                                           << tip_error << " units of its length " << rest_length);
+  // About 1.9 units (7.6 px at the rig's 4 px per unit) between the poses,
+  // where the arm's end slides along a chord: 30 times the 0.25 px bound.
+  CHECK(drift > 1.0);
+  CHECK(tip_error < 0.01 * rest_length);
+}
+
+TEST_CASE("layered: each part's base poses are reproduced, exact and compact, and the part table survives both") {
+  const json description = ArmRig();
+  for (bool exact : {true, false}) {
+    CAPTURE(exact);
+    const Rig rig = Bake(description, exact);
+    CHECK(rig.compact_encoding() == !exact);
+    REQUIRE(rig.part_count() == 2);
+    CHECK(rig.part(1).triangle_count == 16);
+    const double tolerance = exact ? 1e-9 * rig.bounding_box_diagonal() : 0.01 / 4;  // 0.01 px at 4 px per unit
+    for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
+      const std::vector<double> x = MorphAt(rig, rig.pose_points()[2 * i], rig.pose_points()[2 * i + 1]);
+      double worst = 0;
+      for (std::size_t k = 0; k < x.size(); ++k) worst = std::max(worst, std::fabs(x[k] - rig.pose_positions(i)[k]));
+      CHECK(worst <= tolerance);
+    }
+  }
+}
+
+TEST_CASE("layered: draw order is the parts' order, lower first, ties in part order") {
+  json description = ArmRig();
+  description["parts"][0]["order"] = 5;  // the body in front of the arm
+  Rig rig = Bake(description);
+  REQUIRE(rig.draw_sequence().size == 2);
+  CHECK(rig.draw_sequence()[0] == 1);
+  CHECK(rig.draw_sequence()[1] == 0);
+  CHECK(rig.part(0).draw_order == 5);
+  description["parts"][0]["order"] = -3;
+  description["parts"][1]["order"] = -3;
+  rig = Bake(description);
+  CHECK(rig.draw_sequence()[0] == 0);
+  CHECK(rig.draw_sequence()[1] == 1);
+  CHECK(rig.part(1).draw_order == -3);
+}
+
+TEST_CASE("layered: bad parts and glue are refused with the part, the pose and the problem") {
+  const json good = ArmRig();
+  {
+    json d = good;
+    d["parts"][1]["poses"].erase(2);
+    CHECK(BakeError(d) ==
+          "arm.json: parts[1].poses: part 'arm' has 2 poses, the rig 3: every part is drawn in every "
+          "pose (one that should vanish is drawn tiny, or hidden behind another by its order)");
+  }
+  {
+    json d = good;
+    d["glue"][0]["to"] = "torso";
+    CHECK(BakeError(d) == "arm.json: glue[0].to: no part is named 'torso'");
+  }
+  {
+    json d = good;
+    d["glue"][0]["at"] = json::array({12.5, 3});
+    CHECK(BakeError(d).find("arm.json: part 'body': glue[0] ('arm' to 'body'): no vertex of part 'body' lies at the "
+                            "joint (12.5, 3) in pose 'rest' (index 0) (the nearest is ") == 0);
+  }
+  {
+    json d = good;
+    d["glue"].push_back(d["glue"][0]);
+    CHECK(BakeError(d) ==
+          "arm.json: glue[1]: gluing 'arm' to 'body' closes a cycle: they are glued together already "
+          "(directly or through other parts), and a cycle of glue over-constrains the joints; remove one");
+  }
+  {
+    json d = good;
+    d.erase("glue");
+    CHECK(BakeError(d) == "arm.json: missing \"glue\": the parts must be glued together at joints");
+  }
+  {
+    json d = good;
+    json hat = d["parts"][1];
+    hat["name"] = "hat";
+    d["parts"].push_back(hat);
+    CHECK(BakeError(d) ==
+          "arm.json: glue: part 'hat' is not glued to part 'body' (directly or through other parts): "
+          "a character's parts are one piece");
+  }
+  {
+    json d = good;
+    for (int k = 0; k < 64; ++k) {
+      json extra = d["parts"][1];
+      extra["name"] = "extra" + std::to_string(k);
+      d["parts"].push_back(extra);
+    }
+    CHECK(BakeError(d) == "arm.json: parts: 66 parts, more than the rig format's limit of 64");
+  }
+  {
+    // The arm's end moved off the body's corner in pose 'mid', the joint given in pose 0 only.
+    json d = good;
+    d["glue"][0]["at"] = d["glue"][0]["at"][0];
+    const double x = d["parts"][1]["poses"][1]["vertices"][5][0];
+    d["parts"][1]["poses"][1]["vertices"][5][0] = x + 1;
+    const std::string e = BakeError(d);
+    CHECK(e.find("arm.json: glue[0] ('arm' to 'body'): in pose 'mid' (index 1) the joint is at (") == 0);
+    CHECK(e.find("on part 'arm' but at (") != std::string::npos);
+    CHECK(e.find("on part 'body': a joint is one point in every pose") != std::string::npos);
+  }
+  {
+    json d = good;
+    d["parts"][1]["poses"][0]["vertices"][3] = json::array({1e300, 0});
+    CHECK(BakeError(d) ==
+          "arm.json: part 'arm', pose 'rest': parts[1].poses[0].vertices[3]: "
+          "coordinate beyond +-1e9 ([1e+300,0])");
+  }
+  {
+    json d = good;
+    d["poses"][0]["vertices"] = d["parts"][0]["poses"][0]["vertices"];
+    CHECK(BakeError(d) ==
+          "arm.json: poses[0].vertices: with \"parts\", a rig's pose gives its name and point only; "
+          "what it looks like goes in each part's \"poses\"");
+  }
+}
+
+TEST_CASE("layered: drawn parts are mapped on their own and share a vertex exactly at the joint in every pose") {
+  // Outlines (rig coordinates): a body rectangle and an arm bar turning
+  // 120 degrees about the shoulder at (30, -10), inside both.
+  auto rotated = [](double x, double y, double degrees) {
+    const double t = degrees * M_PI / 180;
+    return json::array({30 + std::cos(t) * x - std::sin(t) * y, -10 + std::sin(t) * x + std::cos(t) * y});
+  };
+  const json body =
+      json::array({json::array({-40, -120}), json::array({40, -120}), json::array({40, 0}), json::array({-40, 0})});
+  json d = {{"posemorph", 1}, {"bake", {{"grid_resolution", 16}, {"precision", "exact"}}}};
+  json body_poses = json::array(), arm_poses = json::array(), at = json::array();
+  const double angles[3] = {-90, -30, 30};
+  for (int i = 0; i < 3; ++i) {
+    d["poses"].push_back({{"name", "p" + std::to_string(i)}, {"point", json::array({i, 0})}});
+    body_poses.push_back({{"outline", body}, {"landmarks", json::array({body[0]})}});
+    json arm = json::array({rotated(-10, -10, angles[i]), rotated(80, -10, angles[i]), rotated(80, 10, angles[i]),
+                            rotated(-10, 10, angles[i])});
+    arm_poses.push_back({{"outline", arm}, {"landmarks", json::array({arm[0]})}});
+    at.push_back(json::array({30, -10}));
+  }
+  d["parts"] =
+      json::array({{{"name", "body"}, {"poses", body_poses}}, {{"name", "arm"}, {"order", 1}, {"poses", arm_poses}}});
+  d["glue"] = json::array({{{"part", "arm"}, {"to", "body"}, {"at", at}}});
+  const bake::RigDescription description = bake::ParseRigDescription(d.dump(), "drawn.json", ".");
+  bake::BakeReport report;
+  const std::vector<unsigned char> bytes = bake::BakeRig(description, &report);
+  Rig rig;
+  REQUIRE(LoadRig(bytes.data(), bytes.size(), &rig, nullptr));
+  REQUIRE(rig.part_count() == 2);
+  REQUIRE(report.joints.size() == 1);
+  const std::uint32_t joint = report.joints[0];
+  for (std::uint32_t i = 0; i < 3; ++i) {
+    CHECK(rig.pose_positions(i)[2 * joint] == 30);
+    CHECK(rig.pose_positions(i)[2 * joint + 1] == -10);
+  }
+  CHECK(report.max_reproduction_error <= 1e-9);
+  // Exactly one vertex is in both parts' triangles.
+  std::vector<int> in(rig.vertex_count(), 0);
+  for (std::uint32_t p = 0; p < 2; ++p)
+    for (std::uint32_t t = rig.part(p).first_triangle; t < rig.part(p).first_triangle + rig.part(p).triangle_count; ++t)
+      for (int k = 0; k < 3; ++k) in[rig.triangles()[3 * t + k]] |= 1 << p;
+  CHECK(std::count(in.begin(), in.end(), 3) == 1);
+  CHECK(in[joint] == 3);
+  // A joint off the body in one pose is refused, naming the part and the pose.
+  d["glue"][0]["at"][1] = json::array({200, 50});
+  CHECK(BakeError(d, "drawn.json")
+            .find("drawn.json: part 'body': pose 'p1' (index 1): feature 0 lies outside the outline") !=
+        std::string::npos);
+}
+
+TEST_CASE("layered: the command line bakes parts, info lists them, deform and outline say what they need") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("posemorph-layered-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string input = std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/arm.json";
+  const std::string rig = (dir / "arm.pmrig").string();
+  auto run = [](const std::vector<std::string>& args, std::string* text) {
+    std::ostringstream out, err;
+    const int status = bake::RunBakeCommand(args, out, err);
+    *text = out.str() + err.str();
+    return status;
+  };
+  std::string text;
+  REQUIRE(run({input, "-o", rig}, &text) == 0);
+  CHECK(text.find("parts (back to front): body (32 triangles), arm (16 triangles); 1 joint, each one vertex shared "
+                  "by its two parts\n") != std::string::npos);
+  CHECK(text.find("ghosting: not measured: the rig is drawn as parts") != std::string::npos);
+  REQUIRE(run({"info", rig}, &text) == 0);
+  CHECK(text.find("  part 0 'body': triangles 0..31, draw order 0\n  part 1 'arm': triangles 32..47, draw order 1\n") !=
+        std::string::npos);
+  CHECK(text.find("PART        32  u32 parts: first triangle, triangle count, draw order") != std::string::npos);
+  CHECK(run({"deform", input, "--pose", "rest", "-o", (dir / "x.json").string()}, &text) == 1);
+  CHECK(text.find(input + ": has parts: deform makes poses of one shape") != std::string::npos);
+  CHECK(run({"outline", input, "-o", dir.string()}, &text) == 1);
+  CHECK(text.find(input + ": has parts: trace one with --part NAME ('body', 'arm')") != std::string::npos);
+  CHECK(run({"outline", input, "-o", dir.string(), "--part", "leg"}, &text) == 1);
+  CHECK(text.find(input + ": has no part 'leg' ('body', 'arm')") != std::string::npos);
+  CHECK(!fs::exists(dir / "x.json"));
+  fs::remove_all(dir);
+}
