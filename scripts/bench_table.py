@@ -34,6 +34,32 @@ def print_paths(median, data):
               f"{r['solve_vs_eigen']:.2f} | {r['solve_vs_cholmod']:.2f} |")
 
 
+def print_parts(median, label, data):
+    """A layered character glued in one solve against its parts solved apart (parts_bench.cpp)."""
+    if not any(n.startswith("BM_PartsFrame/") for n in median):
+        return
+    gaps = {}
+    for b in data["benchmarks"]:
+        if b.get("aggregate_name") == "median" and b["run_name"].startswith("BM_PartsFrame/"):
+            gaps[b["run_name"]] = b.get("joint_gap")
+    print("\nA layered character (the body and arm of tests/runtime/rigs/make_arm.py, generated at two densities): "
+          "its parts glued in one solve against the same parts baked as two rigs and solved one after the "
+          "other; the joint gap is the largest distance between the two copies of the shoulder over the "
+          "frames timed (rig units; 4 px per unit):\n")
+    print("| character | frame | crowd of 1000, 1 thread | joint gap |")
+    print("|---|---|---|---|")
+    for density in (0, 1):
+        for mode in (0, 1):
+            key = f"/{density}/{mode}"
+            frame, crowd = median.get("BM_PartsFrame" + key), median.get("BM_PartsCrowd1000" + key)
+            if frame is None:
+                continue
+            gap = gaps.get("BM_PartsFrame" + key)
+            crowd_cell = f"{crowd / 1e3:.2f} ms" if crowd is not None else "-"
+            gap_cell = f"{gap:.3g}" if gap is not None else "-"
+            print(f"| {label['BM_PartsFrame' + key]} | {frame:.{1 if frame >= 1 else 3}f} us | {crowd_cell} | {gap_cell} |")
+
+
 def main(path, paths_only=False):
     with open(path) as f:
         data = json.load(f)
@@ -81,6 +107,7 @@ def main(path, paths_only=False):
         t = median[name]
         print(f"| {count} | {threads} | {t:.0f} us | {t / count:.1f} us |")
 
+    print_parts(median, label, data)
     print_paths(median, data)
 
     print("\nSamples (single character):\n")

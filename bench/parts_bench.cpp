@@ -1,0 +1,199 @@
+// SPDX-License-Identifier: MIT
+// A layered character's frame cost: its parts glued in one solve (one rig,
+// joint vertices shared) against the same parts baked as rigs of their own
+// and solved one after the other, as a game without glue would. The
+// character is tests/runtime/rigs/make_arm.py's body and arm (an arm turning
+// 120 degrees about the shoulder of a leaning body), generated here at two
+// densities: the test rig's grids (39 vertices) and grids ten times finer
+// each way (2,541 vertices). The counter `joint_gap` is the largest
+// distance between the two parts' copies of the shoulder over the frames
+// timed, in rig units (0 when glued: the joint is one vertex).
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
+#include "posemorph/bake/bake.h"
+#include "posemorph/bake/join_parts.h"
+#include "posemorph/jobs.h"
+
+using namespace posemorph;
+
+namespace {
+
+using Triangles = std::vector<std::array<std::uint32_t, 3>>;
+
+void Grid(int nx, int ny, double x0, double x1, double y0, double y1, std::vector<Eigen::Vector2d>* v, Triangles* t) {
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) v->emplace_back(x0 + (x1 - x0) * i / nx, y0 + (y1 - y0) * j / ny);
+  const auto at = [&](int i, int j) { return std::uint32_t(j * (nx + 1) + i); };
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      t->push_back({at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      t->push_back({at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+}
+
+Eigen::Vector2d Rotate(const Eigen::Vector2d& p, const Eigen::Vector2d& about, double degrees) {
+  return about + Eigen::Rotation2Dd(degrees * M_PI / 180) * (p - about);
+}
+
+// `fine` quads per test-rig quad along each side.
+bake::RigDescription ArmCharacter(int fine) {
+  bake::RigDescription rig;
+  rig.file = "parts_bench";
+  rig.parameters.compact = false;
+  rig.parameters.grid_resolution = 16;
+  rig.parameters.pixels_per_unit = 4;
+  std::vector<Eigen::Vector2d> body, arm;
+  bake::PartDescription b, a;
+  b.name = "body", a.name = "arm", a.order = 1;
+  Grid(4 * fine, 4 * fine, -20, 20, -60, 0, &body, &b.triangles);
+  Grid(4 * fine, 2 * fine, 0, 40, -5, 5, &arm, &a.triangles);
+  const Eigen::Vector2d base(0, -60), shoulder(20, 0);
+  const std::size_t arm_joint = std::size_t(fine) * std::size_t(4 * fine + 1);  // (0, 0): row `fine`, column 0
+  bake::GlueDescription glue;
+  glue.part = "arm", glue.to = "body", glue.part_index = 1, glue.to_index = 0;
+  const struct {
+    const char* name;
+    double x, arm_angle, lean;
+  } poses[] = {{"rest", 0, -90, 0}, {"mid", 1, -30, 5}, {"up", 2, 30, 10}};
+  for (const auto& p : poses) {
+    bake::PoseDescription pose;
+    pose.name = p.name, pose.point = {p.x, 0};
+    rig.poses.push_back(pose);
+    const Eigen::Vector2d joint = Rotate(shoulder, base, p.lean);
+    bake::PoseDescription bp = pose, ap = pose;
+    for (const Eigen::Vector2d& v : body) bp.vertices.push_back(Rotate(v, base, p.lean));
+    for (const Eigen::Vector2d& v : arm) ap.vertices.push_back(joint + Rotate(v, {0, 0}, p.arm_angle));
+    ap.vertices[arm_joint] = joint;
+    b.poses.push_back(bp), a.poses.push_back(ap);
+    glue.at.push_back(joint);
+  }
+  rig.parts = {b, a};
+  rig.glue = {glue};
+  return rig;
+}
+
+struct Loaded {
+  std::vector<unsigned char> bytes;
+  Rig rig;
+  explicit Loaded(bake::RigDescription desc) : bytes(bake::BakeRig(desc)) {
+    LoadRig(bytes.data(), bytes.size(), &rig, nullptr);
+  }
+};
+
+// The character glued, or its parts as rigs of their own; the shoulder's
+// vertex in each rig.
+struct Character {
+  std::vector<Loaded*> rigs;
+  std::vector<std::uint32_t> joint;  // per rig
+};
+
+const Character& Get(int density, bool glued) {
+  static std::map<std::pair<int, bool>, Character> made;
+  auto [it, inserted] = made.try_emplace({density, glued});
+  if (inserted) {
+    const bake::RigDescription desc = ArmCharacter(density == 0 ? 1 : 10);
+    const Eigen::Vector2d joint = desc.glue[0].at[0];
+    std::vector<bake::RigDescription> parts;
+    if (glued)
+      parts.push_back(desc);
+    else
+      for (std::size_t p = 0; p < desc.parts.size(); ++p) parts.push_back(bake::PartRigDescription(desc, p));
+    for (bake::RigDescription& d : parts) {
+      Loaded* l = new Loaded(d);  // kept for the process's life, like the other benchmarks' fixtures
+      const Rig& rig = l->rig;
+      const Span<const double> rest = rig.pose_positions(0);
+      const auto distance = [&](std::uint32_t v) {
+        return std::hypot(rest[2 * v] - joint.x(), rest[2 * v + 1] - joint.y());
+      };
+      std::uint32_t best = 0;
+      for (std::uint32_t v = 1; v < rig.vertex_count(); ++v)
+        if (distance(v) < distance(best)) best = v;
+      it->second.rigs.push_back(l);
+      it->second.joint.push_back(best);
+    }
+  }
+  return it->second;
+}
+
+void Label(benchmark::State& state, const Character& c) {
+  std::uint32_t vertices = 0, triangles = 0;
+  for (const Loaded* l : c.rigs) vertices += l->rig.vertex_count(), triangles += l->rig.triangle_count();
+  state.SetLabel(std::to_string(vertices) + " vertices, " + std::to_string(triangles) + " triangles, " +
+                 (c.rigs.size() == 1 ? "glued, one solve" : std::to_string(c.rigs.size()) + " rigs solved apart"));
+}
+
+// One frame: every rig of the character at the same pose-space point.
+void BM_PartsFrame(benchmark::State& state) {
+  const Character& c = Get(int(state.range(0)), state.range(1) == 0);
+  std::vector<std::vector<double>> raw, limited, work, x;
+  std::vector<std::vector<float>> xf;
+  for (const Loaded* l : c.rigs) {
+    raw.emplace_back(l->rig.pose_count()), limited.emplace_back(l->rig.pose_count());
+    work.emplace_back(l->rig.morph_workspace_size()), x.emplace_back(2 * l->rig.vertex_count());
+    xf.emplace_back(2 * l->rig.vertex_count());
+  }
+  double t = 0, gap = 0;
+  for (auto _ : state) {
+    const double px = 1 + std::sin(t);
+    t += 1.0 / 60;
+    for (std::size_t r = 0; r < c.rigs.size(); ++r) {
+      WeightsJob wj;
+      wj.rig = &c.rigs[r]->rig, wj.x = px, wj.y = 0;
+      wj.raw = MakeSpan(raw[r]), wj.limited = MakeSpan(limited[r]);
+      wj.Run();
+      MorphJob mj;
+      mj.rig = &c.rigs[r]->rig, mj.weights = MakeSpan(raw[r]), mj.limited_weights = MakeSpan(limited[r]);
+      mj.workspace = MakeSpan(work[r]), mj.positions = MakeSpan(x[r]), mj.positions_f32 = MakeSpan(xf[r]);
+      mj.Run();
+    }
+    benchmark::DoNotOptimize(xf.data());
+    if (c.rigs.size() == 2) {
+      const std::size_t j0 = 2 * std::size_t(c.joint[0]), j1 = 2 * std::size_t(c.joint[1]);
+      gap = std::max(gap, std::hypot(x[0][j0] - x[1][j1], x[0][j0 + 1] - x[1][j1 + 1]));
+    }
+  }
+  state.counters["joint_gap"] = gap;
+  Label(state, c);
+}
+
+// A crowd of 1000 characters on one thread, each at its own point.
+void BM_PartsCrowd1000(benchmark::State& state) {
+  const Character& c = Get(int(state.range(0)), state.range(1) == 0);
+  const std::size_t count = 1000;
+  std::vector<std::vector<double>> w, ws, work;
+  std::vector<std::vector<float>> xf;
+  for (const Loaded* l : c.rigs) {
+    const std::size_t N = l->rig.pose_count();
+    w.emplace_back(count * N), ws.emplace_back(count * N), work.emplace_back(l->rig.batch_workspace_size());
+    xf.emplace_back(count * 2 * std::size_t(l->rig.vertex_count()));
+    for (std::size_t k = 0; k < count; ++k) {
+      WeightsJob wj;
+      wj.rig = &l->rig, wj.x = 2.0 * double(k) / double(count - 1), wj.y = 0;
+      wj.raw = {w.back().data() + k * N, N}, wj.limited = {ws.back().data() + k * N, N};
+      wj.Run();
+    }
+  }
+  for (auto _ : state) {
+    for (std::size_t r = 0; r < c.rigs.size(); ++r) {
+      MorphBatchJob job;
+      job.rig = &c.rigs[r]->rig, job.count = count;
+      job.weights = MakeSpan(w[r]), job.limited_weights = MakeSpan(ws[r]);
+      job.workspace = MakeSpan(work[r]), job.positions_f32 = MakeSpan(xf[r]);
+      job.Run();
+    }
+    benchmark::DoNotOptimize(xf.data());
+  }
+  Label(state, c);
+}
+
+}  // namespace
+
+// Arguments: density (0: the test rig's grids, 1: ten times finer), then
+// 0 glued or 1 apart.
+BENCHMARK(BM_PartsFrame)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PartsCrowd1000)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
