@@ -120,6 +120,13 @@ int main(int argc, char** argv) {
       EXPECT(pm_rig_part(rig, 1, &part) == PM_ERROR_INVALID_ARGUMENT);
       EXPECT(pm_rig_part_name(rig, 0, name, sizeof name, &length) == PM_OK && length == 0);
       EXPECT(pm_rig_part_image(rig, 0, info.pose_count, name, sizeof name, &length) == PM_ERROR_INVALID_ARGUMENT);
+      {
+        int32_t order = 9;
+        EXPECT(pm_rig_part_draw_order(rig, 0, info.pose_count - 1, &order) == PM_OK && order == 0);
+        EXPECT(pm_rig_part_draw_order(rig, 0, info.pose_count, &order) == PM_ERROR_INVALID_ARGUMENT);
+        EXPECT(pm_rig_part_draw_order(rig, 1, 0, &order) == PM_ERROR_INVALID_ARGUMENT);
+        EXPECT(pm_rig_part_draw_order(rig, 0, 0, NULL) == PM_ERROR_INVALID_ARGUMENT);
+      }
     }
     if (info.path_count)
       EXPECT(pm_rig_path_name(rig, 0, name, sizeof name, NULL) == PM_OK && pm_path_find(rig, name) == 0);

@@ -7,6 +7,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
+#include <cstring>
 #include <filesystem>
 #include <cmath>
 #include <fstream>
@@ -19,9 +21,11 @@
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/rig_description.h"
+#include "posemorph/draw_list.h"
 #include "posemorph/jobs.h"
 #include "posemorph/path.h"
 #include "posemorph/rig.h"
+#include "posemorph/rig_format.h"
 
 using namespace posemorph;
 using nlohmann::json;
@@ -164,6 +168,107 @@ TEST_CASE("layered: draw order is the parts' order, lower first, ties in part or
   CHECK(rig.draw_sequence()[0] == 0);
   CHECK(rig.draw_sequence()[1] == 1);
   CHECK(rig.part(1).draw_order == -3);
+}
+
+TEST_CASE("layered: the draw order may change with the pose, and the dominant drawing's pose decides each frame's") {
+  json description = ArmRig();
+  description["parts"][1]["order"] = json::array({-1, -1, 1});  // the arm behind the body, then in front when up
+  for (bool exact : {true, false}) {
+    CAPTURE(exact);
+    const Rig rig = Bake(description, exact);
+    REQUIRE(rig.draw_order_changes());
+    CHECK(rig.part(1).draw_order == -1);  // pose 0's
+    CHECK(rig.part_draw_order(1, 0) == -1);
+    CHECK(rig.part_draw_order(1, 2) == 1);
+    CHECK(rig.part_draw_order(0, 2) == 0);
+    CHECK(rig.part_draw_order(2, 0) == 0);  // beyond the parts
+    CHECK(rig.draw_sequence(3).size == 0);  // beyond the poses
+    const std::vector<std::vector<std::uint32_t>> expected = {{1, 0}, {1, 0}, {0, 1}};
+    for (std::uint32_t i = 0; i < 3; ++i) {
+      const Span<const std::uint32_t> sequence = rig.draw_sequence(i);
+      CHECK(std::vector<std::uint32_t>(sequence.data, sequence.data + sequence.size) == expected[i]);
+    }
+    // Sweep the path's line: each frame draws in its first drawing's pose's
+    // order, and the arm comes to the front once 'up' dominates.
+    const std::size_t count = 41;
+    std::vector<double> points;
+    for (std::size_t k = 0; k < count; ++k) points.insert(points.end(), {2.0 * double(k) / double(count - 1), 0.0});
+    const CharacterBuffers buffers = CharacterBuffers::For(rig, count);
+    std::vector<double> block((buffers.bytes + sizeof(double) - 1) / sizeof(double));
+    DrawListJob job;
+    REQUIRE(buffers.Bind(rig, block.data(), block.size() * sizeof(double), &job));
+    job.points = {points.data(), points.size()};
+    REQUIRE(job.Run());
+    int switches = 0;
+    for (std::size_t k = 0; k < count; ++k) {
+      const DrawList& list = job.output[k];
+      const Span<const std::uint32_t> want = rig.draw_sequence(list.drawings[0].pose);
+      REQUIRE(list.parts.size == 2);
+      CHECK(list.parts.data == want.data);
+      if (k > 0 && list.parts[1] != job.output[k - 1].parts[1]) ++switches;
+    }
+    CHECK(job.output[0].parts[1] == 0);          // rest: the body in front
+    CHECK(job.output[count - 1].parts[1] == 1);  // up: the arm in front
+    CHECK(switches == 1);
+  }
+  // One order per pose, all equal: a fixed order, no PORD.
+  description["parts"][1]["order"] = json::array({2, 2, 2});
+  const Rig fixed = Bake(description);
+  CHECK_FALSE(fixed.draw_order_changes());
+  CHECK(fixed.part(1).draw_order == 2);
+  CHECK(fixed.draw_sequence(2).data == fixed.draw_sequence(0).data);
+  // Bad orders.
+  description["parts"][1]["order"] = json::array({1, 2});
+  CHECK(BakeError(description) ==
+        "arm.json: parts[1].order: part 'arm' has 2 draw orders, the rig 3 poses: give one order, or one per pose");
+  description["parts"][1]["order"] = json::array({1, 2, 0.5});
+  CHECK(BakeError(description) ==
+        "arm.json: parts[1].order[2]: expected an integer in -1000000..1000000 (lower "
+        "draws first)");
+}
+
+TEST_CASE("layered: the loader refuses per-pose draw orders that disagree with the part table or lack their flag") {
+  json description = ArmRig();
+  description["parts"][1]["order"] = json::array({-1, -1, 1});
+  description["bake"]["precision"] = "exact";
+  std::vector<unsigned char> bytes = bake::BakeRig(bake::ParseRigDescription(description.dump(), "arm.json", "."));
+  RigSection sections[format::kMaxSections];
+  std::uint32_t count = 0;
+  REQUIRE(ReadRigSections(bytes.data(), bytes.size(), sections, format::kMaxSections, &count));
+  std::uint64_t pord_at = 0, meta_at = 0;
+  for (std::uint32_t k = 0; k < count; ++k) {
+    if (sections[k].tag == format::kPartPoseOrders) pord_at = sections[k].offset;
+    if (sections[k].tag == format::kMeta) meta_at = sections[k].offset;
+  }
+  REQUIRE(pord_at != 0);
+  LoadOptions no_checksum;
+  no_checksum.verify_checksum = false;
+  const auto refused = [&](const std::vector<unsigned char>& b) {
+    Rig rig;
+    Error err;
+    CHECK_FALSE(LoadRig(b.data(), b.size(), &rig, &err, no_checksum));
+    return std::string(err.message);
+  };
+  const auto put = [](std::vector<unsigned char>& b, std::uint64_t at, std::uint32_t v) { std::memcpy(&b[at], &v, 4); };
+  std::vector<unsigned char> disagree = bytes;
+  put(disagree, pord_at + 4, 7);  // pose 0, part 1: 7, where PART says -1
+  CHECK(refused(disagree) == "part 1: PART's draw order -1 is not pose 0's in PORD (7)");
+  std::uint32_t flags = 0;
+  std::memcpy(&flags, &bytes[meta_at + 28], 4);
+  std::vector<unsigned char> unflagged = bytes;
+  put(unflagged, meta_at + 28, flags & ~format::kMetaFlagPartPoseOrders);
+  CHECK(refused(unflagged) == "PORD section present but META says the draw order is fixed");
+  std::vector<unsigned char> no_parts = bytes;
+  put(no_parts, meta_at + 28, flags & ~format::kMetaFlagParts);
+  CHECK(refused(no_parts) == "PART section present but META says the rig has no parts");  // checked first
+  // Pose 1's entries may be anything: the sequences are sorted at load, ties in part order.
+  std::vector<unsigned char> tie = bytes;
+  put(tie, pord_at + 8, std::uint32_t(-1)), put(tie, pord_at + 12, std::uint32_t(-1));
+  Rig rig;
+  Error err;
+  REQUIRE_MESSAGE(LoadRig(tie.data(), tie.size(), &rig, &err, no_checksum), err.message);
+  CHECK(rig.draw_sequence(1)[0] == 0);
+  CHECK(rig.draw_sequence(1)[1] == 1);
 }
 
 TEST_CASE("layered: bad parts and glue are refused with the part, the pose and the problem") {
@@ -321,5 +426,140 @@ TEST_CASE("layered: the command line bakes parts, info lists them, deform and ou
   CHECK(run({"outline", input, "-o", dir.string(), "--part", "leg"}, &text) == 1);
   CHECK(text.find(input + ": has no part 'leg' ('body', 'arm')") != std::string::npos);
   CHECK(!fs::exists(dir / "x.json"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("layered: parts drawn as layers of one SVG per pose, by Inkscape label or group id") {
+  // Each pose is one drawing: a background layer that is no part, the body
+  // as an Inkscape layer, and the arm as a plain group inside a layer of
+  // arms, turning 120 degrees about the shoulder at (130, 130), inside both.
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("posemorph-svg-layers-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const double sx = 130, sy = 130;
+  auto rotated = [&](double x, double y, double degrees) {
+    const double t = degrees * M_PI / 180;
+    return std::array<double, 2>{sx + std::cos(t) * x - std::sin(t) * y, sy + std::sin(t) * x + std::cos(t) * y};
+  };
+  const double angles[3] = {-90, -30, 30};
+  json d = {{"posemorph", 1}, {"bake", {{"grid_resolution", 16}, {"precision", "exact"}}}};
+  json body_poses = json::array(), arm_poses = json::array();
+  for (int i = 0; i < 3; ++i) {
+    const std::string name = "p" + std::to_string(i) + ".svg";
+    std::ostringstream arm;
+    const double corners[4][2] = {{-10, -10}, {80, -10}, {80, 10}, {-10, 10}};
+    for (int k = 0; k < 4; ++k) {
+      const auto c = rotated(corners[k][0], corners[k][1], angles[i]);
+      arm << (k ? " L " : "M ") << c[0] << ' ' << c[1];
+    }
+    std::ofstream(dir / name)
+        << "<svg xmlns=\"http://www.w3.org/2000/svg\" "
+           "xmlns:inkscape=\"http://www.inkscape.org/namespaces/inkscape\" viewBox=\"0 0 300 300\">\n"
+           "<g inkscape:groupmode=\"layer\" inkscape:label=\"background\" id=\"layer1\">"
+           "<path d=\"M 0 0 H 300 V 300 H 0 Z\"/></g>\n"
+           "<g inkscape:groupmode=\"layer\" inkscape:label=\"body\" id=\"layer2\">"
+           "<polygon points=\"60,120 140,120 140,240 60,240\"/></g>\n"
+           "<g inkscape:groupmode=\"layer\" inkscape:label=\"arms\" id=\"layer3\">"
+           "<g id=\"empty\"/><g id=\"arm-front\"><path d=\""
+        << arm.str() << " Z\"/></g></g>\n</svg>\n";
+    d["poses"].push_back({{"name", "p" + std::to_string(i)}, {"point", json::array({i, 0})}});
+    body_poses.push_back({{"drawing", name}, {"landmarks", json::array({json::array({60, 120})})}});
+    const auto start = rotated(-10, -10, angles[i]);
+    arm_poses.push_back(
+        {{"drawing", name}, {"layer", "arm-front"}, {"landmarks", json::array({json::array({start[0], start[1]})})}});
+  }
+  d["parts"] =
+      json::array({{{"name", "body"}, {"poses", body_poses}}, {{"name", "arm"}, {"order", 1}, {"poses", arm_poses}}});
+  const json at = json::array({sx, sy});
+  d["glue"] = json::array({{{"part", "arm"}, {"to", "body"}, {"at", json::array({at, at, at})}}});
+  const auto in_dir = [&](const char* file) { return (dir / file).string(); };
+  const auto bake_error = [&](const json& description) {
+    try {
+      bake::BakeRig(bake::ParseRigDescription(description.dump(), "layers.json", dir.string()));
+    } catch (const bake::BakeError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+
+  bake::BakeReport report;
+  const std::vector<unsigned char> bytes =
+      bake::BakeRig(bake::ParseRigDescription(d.dump(), "layers.json", dir.string()), &report);
+  Rig rig;
+  REQUIRE(LoadRig(bytes.data(), bytes.size(), &rig, nullptr));
+  REQUIRE(rig.part_count() == 2);
+  REQUIRE(report.joints.size() == 1);
+  CHECK(report.max_reproduction_error <= 1e-9);
+  const std::uint32_t joint = report.joints[0];
+  for (std::uint32_t i = 0; i < 3; ++i) {
+    // Each part's vertices span its own layer's shape (to the outline's
+    // simplification), not the background's 300 x 300.
+    const double* x = rig.pose_positions(i).data;
+    double body_lo[2] = {1e9, 1e9}, body_hi[2] = {-1e9, -1e9}, arm_reach = 0;
+    for (std::uint32_t p = 0; p < 2; ++p)
+      for (std::uint32_t t = rig.part(p).first_triangle; t < rig.part(p).first_triangle + rig.part(p).triangle_count;
+           ++t)
+        for (int k = 0; k < 3; ++k) {
+          const std::uint32_t v = rig.triangles()[3 * t + k];
+          if (p == 0) {
+            for (int c = 0; c < 2; ++c)
+              body_lo[c] = std::min(body_lo[c], x[2 * v + c]), body_hi[c] = std::max(body_hi[c], x[2 * v + c]);
+          } else {
+            arm_reach = std::max(arm_reach, std::hypot(x[2 * v] - x[2 * joint], x[2 * v + 1] - x[2 * joint + 1]));
+          }
+        }
+    CHECK(body_hi[0] - body_lo[0] == doctest::Approx(80).epsilon(1e-4));
+    CHECK(body_hi[1] - body_lo[1] == doctest::Approx(120).epsilon(1e-4));
+    CHECK(arm_reach == doctest::Approx(std::hypot(80, 10)).epsilon(1e-4));
+    CHECK(x[2 * joint] == rig.pose_positions(0)[2 * joint]);
+    CHECK(x[2 * joint + 1] == rig.pose_positions(0)[2 * joint + 1]);
+  }
+
+  // The part's own name is its layer by default; a drawing of several
+  // layers, none of them the part's, is refused rather than read whole.
+  {
+    json e = d;
+    for (json& pose : e["parts"][1]["poses"]) pose.erase("layer");
+    CHECK(bake_error(e) ==
+          "layers.json: part 'arm': pose 'p0' (index 0): " + in_dir("p0.svg") +
+              ": no layer or group is named 'arm' "
+              "(its named groups: 'background', 'layer1', 'body', 'layer2', 'arms', 'layer3', 'empty', 'arm-front'); "
+              "name the part like its layer, or give the pose a \"layer\"");
+  }
+  {
+    json e = d;
+    e["parts"][1]["poses"][2]["layer"] = "arm-back";
+    CHECK(bake_error(e).find("layers.json: part 'arm': pose 'p2' (index 2): " + in_dir("p2.svg") +
+                             ": no layer or group is named 'arm-back' (its named groups: 'background', ") == 0);
+  }
+  {
+    json e = d;
+    e["parts"][1]["poses"][1]["layer"] = "empty";
+    CHECK(bake_error(e) == "layers.json: part 'arm': pose 'p1' (index 1): " + in_dir("p1.svg") +
+                               ": layer 'empty' has no <path> or <polygon> to take the outline from");
+  }
+  {
+    // Two groups answer to one name.
+    std::ifstream in(dir / "p0.svg");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("id=\"layer1\""), 11, "id=\"body\"");
+    std::ofstream(dir / "twice.svg") << text;
+    json e = d;
+    e["parts"][0]["poses"][0]["drawing"] = "twice.svg";
+    CHECK(bake_error(e) == "layers.json: part 'body': pose 'p0' (index 0): " + in_dir("twice.svg") +
+                               ": 2 groups are named 'body' (inkscape:label or id): a layer's name must pick one");
+  }
+  {
+    json e = d;
+    e["parts"][1]["poses"][0]["drawing"] = "p0.png";
+    CHECK(bake_error(e) ==
+          "layers.json: part 'arm', pose 'p0': parts[1].poses[0].layer: only an SVG drawing has "
+          "layers (a PNG part is its own file)");
+    e["parts"][1]["poses"][0]["drawing"] = "p0.svg";
+    e["parts"][1]["poses"][0]["layer"] = "";
+    CHECK(bake_error(e) ==
+          "layers.json: part 'arm', pose 'p0': parts[1].poses[0].layer: must not be empty (leave "
+          "it out for the whole drawing)");
+  }
   fs::remove_all(dir);
 }

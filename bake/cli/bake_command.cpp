@@ -48,7 +48,10 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
       << report.seconds * 1e3 << " ms; max pose reproduction error " << report.max_reproduction_error
       << " of the rig size\n";
   if (!report.parts.empty()) {
-    out << "parts (back to front):";
+    bool changes = false;
+    for (const MeshPart& part : report.parts)
+      for (int order : part.pose_orders) changes = changes || order != part.order;
+    out << (changes ? "parts (back to front in pose 0; the order changes with the pose):" : "parts (back to front):");
     std::vector<const MeshPart*> order;
     for (const MeshPart& part : report.parts) order.push_back(&part);
     std::stable_sort(order.begin(), order.end(),

@@ -76,6 +76,8 @@ std::string DescribeSection(std::uint32_t tag, const unsigned char* d, std::uint
     s << "names and image references";
   else if (tag == f::kParts)
     s << "u32 parts: first triangle, triangle count, draw order";
+  else if (tag == f::kPartPoseOrders)
+    s << "i32 draw order per pose per part";
   else
     s << "f64";
   return s.str();
@@ -191,8 +193,11 @@ void PrintPosesAndPaths(const Rig& rig, std::ostream& out) {
     for (std::uint32_t p : rig.draw_sequence()) {
       const PartView part = rig.part(p);
       out << "  part " << p << " '" << Printable(std::string(part.name.data, part.name.size)) << "': triangles "
-          << part.first_triangle << ".." << part.first_triangle + part.triangle_count - 1 << ", draw order "
-          << part.draw_order;
+          << part.first_triangle << ".." << part.first_triangle + part.triangle_count - 1 << ", draw order ";
+      if (rig.draw_order_changes())  // per pose, '/'-separated
+        for (std::uint32_t i = 0; i < N; ++i) out << (i ? "/" : "") << rig.part_draw_order(p, i);
+      else
+        out << part.draw_order;
       for (std::uint32_t i = 0; i < N; ++i)
         if (rig.part_image(p, i).size)
           out << (i ? ", " : "; images ")

@@ -330,8 +330,8 @@ struct Encoder {
       }
       if (report) report->affine_uvs = affine;
     }
-    for (std::uint32_t tag :
-         {fmt::kPosePoints, fmt::kStrings, fmt::kPaths, fmt::kPathKeys, fmt::kCanvases, fmt::kParts}) {
+    for (std::uint32_t tag : {fmt::kPosePoints, fmt::kStrings, fmt::kPaths, fmt::kPathKeys, fmt::kCanvases, fmt::kParts,
+                              fmt::kPartPoseOrders}) {
       const auto it = raw.find(tag);
       if (it == raw.end()) continue;
       w.Add(tag, it->second);

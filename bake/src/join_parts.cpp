@@ -242,6 +242,7 @@ JoinedParts JoinParts(const RigDescription& d) {
     MeshPart part;
     part.name = d.parts[p].name;
     part.order = d.parts[p].order;
+    part.pose_orders = d.parts[p].pose_orders;
     part.first_triangle = std::uint32_t(meshes.triangles.size());
     for (const auto& t : parts[p].meshes.triangles)
       meshes.triangles.push_back({std::uint32_t(id[offset[p] + t[0]]), std::uint32_t(id[offset[p] + t[1]]),

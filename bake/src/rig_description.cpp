@@ -124,10 +124,10 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
       WarnUnknownKeys(part, w, {"name", "order", "triangles", "poses"}, file, warnings);
       if (part.is_object() && part.contains("poses") && part["poses"].is_array())
         for (std::size_t i = 0; i < part["poses"].size(); ++i)
-          WarnUnknownKeys(
-              part["poses"][i], w + ".poses[" + std::to_string(i) + "]",
-              {"name", "drawing", "origin", "outline", "landmarks", "features", "vertices", "mesh", "uvs", "image"},
-              file, warnings);
+          WarnUnknownKeys(part["poses"][i], w + ".poses[" + std::to_string(i) + "]",
+                          {"name", "drawing", "layer", "origin", "outline", "landmarks", "features", "vertices", "mesh",
+                           "uvs", "image"},
+                          file, warnings);
     }
   if (root.contains("glue") && root["glue"].is_array())
     for (std::size_t g = 0; g < root["glue"].size(); ++g)
@@ -147,8 +147,8 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const std::string w = "poses[" + std::to_string(i) + "]";
     WarnUnknownKeys(poses[i], w,
-                    {"name", "point", "drawing", "origin", "outline", "landmarks", "features", "vertices", "mesh",
-                     "deform", "uvs", "image"},
+                    {"name", "point", "drawing", "layer", "origin", "outline", "landmarks", "features", "vertices",
+                     "mesh", "deform", "uvs", "image"},
                     file, warnings);
     if (poses[i].contains("deform")) {
       const json& d = poses[i]["deform"];
@@ -181,6 +181,14 @@ void ParseDrawnPose(const Reader& r, const json& jp, const std::string& w, const
   pose.landmarks = r.Points(r.Array(jp, "landmarks", w), w + ".landmarks");
   if (pose.landmarks.empty()) r.Fail(w + ".landmarks", "needs at least the start point");
   if (jp.contains("features")) pose.features = r.Points(r.Array(jp, "features", w), w + ".features");
+  if (jp.contains("layer")) {
+    const std::string& d = pose.drawing;
+    if (d.size() < 4 || d.compare(d.size() - 4, 4, ".svg") != 0)
+      r.Fail(w + ".layer", "only an SVG drawing has layers (a PNG part is its own file)");
+    pose.layer = r.String(jp["layer"], w + ".layer");
+    if (pose.layer.empty()) r.Fail(w + ".layer", "must not be empty (leave it out for the whole drawing)");
+    pose.layer_required = true;
+  }
   if (jp.contains("uvs")) r.Fail(w + ".uvs", "a drawn pose gets its uvs from its drawing; remove them");
   if (jp.contains("origin")) {
     if (!jp.contains("drawing"))
@@ -273,6 +281,8 @@ PoseDescription ParsePose(const Reader& r, const json& jp, std::size_t i, const 
     ParseDrawnPose(r, jp, w, base_dir, pose);
   } else if (jp.contains("origin")) {
     r.Fail(w + ".origin", "only a drawing has an origin");
+  } else if (jp.contains("layer")) {
+    r.Fail(w + ".layer", "only an SVG drawing has layers");
   } else if (jp.contains("features")) {
     r.Fail(w + ".features",
            "only a drawn pose (a drawing or an outline) has features; a mesh's vertices correspond already");
@@ -417,8 +427,8 @@ std::vector<PoseDescription> ParseLayeredPoses(const Reader& r, const json& pose
     const std::string w = "poses[" + std::to_string(i) + "]";
     const json& jp = poses[i];
     if (!jp.is_object()) r.Fail(w, "expected an object");
-    for (const char* key :
-         {"drawing", "outline", "vertices", "mesh", "deform", "image", "uvs", "landmarks", "features", "origin"})
+    for (const char* key : {"drawing", "layer", "outline", "vertices", "mesh", "deform", "image", "uvs", "landmarks",
+                            "features", "origin"})
       if (jp.contains(key))
         r.Fail(w + "." + key,
                "with \"parts\", a rig's pose gives its name and point only; what it looks like goes "
@@ -453,9 +463,24 @@ std::vector<PartDescription> ParseParts(const Reader& r, const json& parts, cons
       if (other.name == part.name) r.Fail(w + ".name", "part '" + part.name + "' is defined twice");
     part.order = int(p);
     if (jp.contains("order")) {
-      if (!jp["order"].is_number_integer() || std::llabs(jp["order"].get<long long>()) > 1000000)
-        r.Fail(w + ".order", "expected an integer in -1000000..1000000 (lower draws first)");
-      part.order = int(jp["order"].get<long long>());
+      // One order, or one per pose (an arm that passes behind the body).
+      const auto read_order = [&](const json& v, const std::string& where) {
+        if (!v.is_number_integer() || std::llabs(v.get<long long>()) > 1000000)
+          r.Fail(where, "expected an integer in -1000000..1000000 (lower draws first)");
+        return int(v.get<long long>());
+      };
+      const json& order = jp["order"];
+      if (order.is_array()) {
+        if (order.size() != poses.size())
+          r.Fail(w + ".order", "part '" + part.name + "' has " + std::to_string(order.size()) +
+                                   " draw orders, the rig " + std::to_string(poses.size()) +
+                                   " poses: give one order, or one per pose");
+        for (std::size_t i = 0; i < order.size(); ++i)
+          part.pose_orders.push_back(read_order(order[i], w + ".order[" + std::to_string(i) + "]"));
+        part.order = part.pose_orders[0];
+      } else {
+        part.order = read_order(order, w + ".order");
+      }
     }
     bool have_triangles = jp.contains("triangles");
     if (have_triangles) part.triangles = r.ReadTriangles(r.Array(jp, "triangles", w), w + ".triangles");
@@ -469,6 +494,11 @@ std::vector<PartDescription> ParseParts(const Reader& r, const json& parts, cons
           r, jposes[i], i, file, base_dir, &part.triangles, &have_triangles, &poses[i],
           "part '" + part.name + "', pose '" + poses[i].name + "': " + w + ".poses[" + std::to_string(i) + "]"));
     CheckPoseKinds(r, part.poses, have_triangles, w);
+    // An SVG drawing shared by the parts: each takes the layer of its name.
+    for (PoseDescription& pose : part.poses)
+      if (pose.drawn && pose.layer.empty() && pose.drawing.size() >= 4 &&
+          pose.drawing.compare(pose.drawing.size() - 4, 4, ".svg") == 0)
+        pose.layer = part.name;
     for (const PoseDescription& pose : part.poses)
       if (pose.deformed)
         r.Fail(w + ".poses",

@@ -39,6 +39,14 @@ bool HasCanvases(const PoseMeshes& meshes) {
 
 namespace {
 
+// Some part's draw order differs between poses (format 1.6, PORD).
+bool DrawOrderChanges(const PoseMeshes& meshes) {
+  for (const MeshPart& part : meshes.parts)
+    for (int order : part.pose_orders)
+      if (order != part.order) return true;
+  return false;
+}
+
 // The description's folder relative to the folder of the rig file, when the
 // rig file is known, some pose references a drawing, and one folder can be
 // reached from the other by a relative path.
@@ -75,7 +83,8 @@ fmt::Meta MakeMeta(const RigDescription& description, const PoseMeshes& meshes, 
   meta.flags = (has_uvs ? fmt::kMetaFlagHasUVs : 0) | (grid.centre_weights.empty() ? 0 : fmt::kMetaFlagGridCentres) |
                (description.nearest_filter ? fmt::kMetaFlagNearestFilter : 0) |
                (has_drawing_folder ? fmt::kMetaFlagDrawingFolder : 0) |
-               (meshes.parts.empty() ? 0 : fmt::kMetaFlagParts);
+               (meshes.parts.empty() ? 0 : fmt::kMetaFlagParts) |
+               (DrawOrderChanges(meshes) ? fmt::kMetaFlagPartPoseOrders : 0);
   meta.grid_origin_x = grid.origin_x;
   meta.grid_origin_y = grid.origin_y;
   meta.grid_cell_size = grid.cell;
@@ -194,6 +203,13 @@ std::vector<unsigned char> SerialiseRig(const RigDescription& description, const
       parts.insert(parts.end(),
                    {part.first_triangle, part.triangle_count, std::uint32_t(std::int32_t(part.order)), 0u});
     w.AddArray(fmt::kParts, parts);
+  }
+  if (DrawOrderChanges(meshes)) {
+    std::vector<std::uint32_t> orders;  // pose-major
+    for (std::size_t i = 0; i < meshes.poses.size(); ++i)
+      for (const MeshPart& part : meshes.parts)
+        orders.push_back(std::uint32_t(std::int32_t(part.pose_orders.empty() ? part.order : part.pose_orders[i])));
+    w.AddArray(fmt::kPartPoseOrders, orders);
   }
   return w.Finish();
 }

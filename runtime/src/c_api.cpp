@@ -161,6 +161,12 @@ int pm_rig_part(const pm_rig* rig, uint32_t part, pm_part* out) {
   return PM_OK;
 }
 
+int pm_rig_part_draw_order(const pm_rig* rig, uint32_t part, uint32_t pose, int32_t* out) {
+  if (!rig || !out || part >= rig->rig.part_count() || pose >= rig->rig.pose_count()) return PM_ERROR_INVALID_ARGUMENT;
+  *out = rig->rig.part_draw_order(part, pose);
+  return PM_OK;
+}
+
 int pm_rig_part_name(const pm_rig* rig, uint32_t part, char* out, size_t capacity, size_t* length) {
   return CopyString(rig ? rig->rig.part(part).name : posemorph::StringView{}, rig && part < rig->rig.part_count(), out,
                     capacity, length);

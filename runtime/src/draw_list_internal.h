@@ -38,8 +38,9 @@ bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emi
     DrawList list;
     list.positions = job.positions.subspan(k * v2, v2);
     list.indices = rig.triangles();
-    list.parts = rig.draw_sequence();
     list.drawing_count = PickDrawings({texture, n}, job.max_drawings, {list.drawings, kMaxBlendDrawings});
+    // The dominant drawing's pose decides the draw order (when it changes with the pose).
+    list.parts = rig.draw_sequence(list.drawing_count ? list.drawings[0].pose : 0);
     for (std::uint32_t d = 0; d < list.drawing_count; ++d) {
       const Span<const float> uv = rig.uvs(list.drawings[d].pose);
       list.drawings[d].uvs = uv.size ? uv.data : nullptr;

@@ -37,6 +37,7 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   strings_ = std::exchange(other.strings_, {});
   part_table_ = std::exchange(other.part_table_, {});
   draw_sequence_ = std::exchange(other.draw_sequence_, {});
+  part_pose_orders_ = std::exchange(other.part_pose_orders_, {});
   part_strings_ = std::exchange(other.part_strings_, {});
   paths_ = std::exchange(other.paths_, {});
   grid_ = std::exchange(other.grid_, {});
@@ -90,10 +91,18 @@ StringView Rig::part_image(std::uint32_t index, std::uint32_t pose) const {
   return part_strings_[part_count() + std::size_t(index) * pose_count_ + pose];
 }
 
-Span<const std::uint32_t> Rig::draw_sequence() const {
+Span<const std::uint32_t> Rig::draw_sequence(std::uint32_t pose) const {
   static const std::uint32_t kWhole[1] = {0};
-  if (!loaded()) return {};
-  return draw_sequence_.empty() ? Span<const std::uint32_t>{kWhole, 1} : draw_sequence_;
+  if (!loaded() || pose >= pose_count_) return {};
+  if (draw_sequence_.empty()) return {kWhole, 1};
+  const std::size_t M = part_count();
+  return part_pose_orders_.empty() ? draw_sequence_ : draw_sequence_.subspan(std::size_t(pose) * M, M);
+}
+
+std::int32_t Rig::part_draw_order(std::uint32_t index, std::uint32_t pose) const {
+  if (!loaded() || index >= part_count() || pose >= pose_count_) return 0;
+  if (part_pose_orders_.empty()) return part(index).draw_order;
+  return std::int32_t(part_pose_orders_[std::size_t(pose) * part_count() + index]);
 }
 
 PathView Rig::path(std::uint32_t index) const { return index < path_count_ ? paths_[index] : PathView{}; }

@@ -153,6 +153,7 @@ struct Counts {
   std::uint64_t strings = 0;  // 2N + P (+ 1) (+ M + MN): pose names, image references, path names (, drawing folder)
                               // (, part names, part images)
   std::uint64_t parts = 0;    // M: PART entries (format 1.6), 0 without
+  bool part_pose_orders = false;  // PORD: a draw order per pose (format 1.6)
   std::uint64_t grid_corners = 0, grid_centres = 0, grid_vertices = 0;
   bool has_uvs = false, compact = false;
 };
@@ -163,7 +164,8 @@ struct Sources {
   const unsigned char *tris = nullptr, *poses = nullptr, *points = nullptr, *cents = nullptr, *masses = nullptr,
                       *grads = nullptr, *angles = nullptr, *stretches = nullptr, *perm = nullptr, *lcol = nullptr,
                       *lrow = nullptr, *lval = nullptr, *dinv = nullptr, *wgrid = nullptr, *uvs = nullptr,
-                      *paths = nullptr, *strs = nullptr, *pkeys = nullptr, *canvases = nullptr, *parts = nullptr;
+                      *paths = nullptr, *strs = nullptr, *pkeys = nullptr, *canvases = nullptr, *parts = nullptr,
+                      *pose_orders = nullptr;
   std::uint64_t strings_size = 0, key_total = 0;
   detail::CompactLayout packed;
   detail::CompactCounts packed_counts{};
@@ -187,7 +189,7 @@ struct Scratch {
   std::uint32_t* row_fill = nullptr;
   std::uint64_t blocks = 0;
   double* blend = nullptr;
-  std::uint32_t* draw_sequence = nullptr;  // the parts back to front (format 1.6)
+  std::uint32_t* draw_sequence = nullptr;  // the parts back to front (format 1.6); per pose with PORD
 };
 
 }  // namespace
@@ -387,8 +389,9 @@ bool RigLoader::ReadCounts(Parser& parser, Counts* c, Error* err) {
   if (nnz > fmt::kMaxFactorNonzeros)
     return Fail(err, ErrorCode::kTooLarge, "factor has %llu nonzeros, above %u", (unsigned long long)nnz,
                 fmt::kMaxFactorNonzeros);
-  if ((meta.flags & ~(fmt::kMetaFlagHasUVs | fmt::kMetaFlagGridCentres | fmt::kMetaFlagCompact |
-                      fmt::kMetaFlagNearestFilter | fmt::kMetaFlagDrawingFolder | fmt::kMetaFlagParts)) != 0)
+  if ((meta.flags &
+       ~(fmt::kMetaFlagHasUVs | fmt::kMetaFlagGridCentres | fmt::kMetaFlagCompact | fmt::kMetaFlagNearestFilter |
+         fmt::kMetaFlagDrawingFolder | fmt::kMetaFlagParts | fmt::kMetaFlagPartPoseOrders)) != 0)
     return Fail(err, ErrorCode::kBadVersion, "unknown META flags 0x%x", meta.flags);
   if (!std::isfinite(meta.grid_origin_x) || !std::isfinite(meta.grid_origin_y) || !std::isfinite(meta.grid_cell_size) ||
       !(meta.grid_cell_size > 0) || !std::isfinite(meta.grid_cell_size * meta.grid_cells_x) ||
@@ -413,6 +416,11 @@ bool RigLoader::ReadCounts(Parser& parser, Counts* c, Error* err) {
   } else if (parser.table.Find(fmt::kParts)) {
     return Fail(err, ErrorCode::kBadLayout, "PART section present but META says the rig has no parts");
   }
+  c->part_pose_orders = (meta.flags & fmt::kMetaFlagPartPoseOrders) != 0;
+  if (c->part_pose_orders && !c->parts)
+    return Fail(err, ErrorCode::kBadLayout, "META says the draw order changes with the pose, but the rig has no parts");
+  if (!c->part_pose_orders && parser.table.Find(fmt::kPartPoseOrders))
+    return Fail(err, ErrorCode::kBadLayout, "PORD section present but META says the draw order is fixed");
   c->strings = 2 * N + P + ((meta.flags & fmt::kMetaFlagDrawingFolder) ? 1 : 0) + c->parts * (1 + N);
   c->grid_corners = std::uint64_t(meta.grid_cells_x + 1) * (meta.grid_cells_y + 1);
   c->grid_centres = (meta.flags & fmt::kMetaFlagGridCentres) ? std::uint64_t(meta.grid_cells_x) * meta.grid_cells_y : 0;
@@ -459,6 +467,7 @@ bool RigLoader::FindSections(const unsigned char* bytes, const Header& h, Parser
   if (c.has_uvs && !s->affine_uvs && !parser.Get(fmt::kUVs, N * V * 8, &s->uvs)) return false;
   if (parser.table.Find(fmt::kCanvases) && !parser.Get(fmt::kCanvases, N * 32, &s->canvases)) return false;
   if (c.parts && !parser.Get(fmt::kParts, c.parts * fmt::kPartEntrySize, &s->parts)) return false;
+  if (c.part_pose_orders && !parser.Get(fmt::kPartPoseOrders, N * c.parts * 4, &s->pose_orders)) return false;
   if (!c.has_uvs && parser.table.Find(fmt::kUVs))
     return Fail(err, ErrorCode::kBadLayout, "UVS section present but META says none");
   std::uint64_t key_total = 0;
@@ -615,7 +624,8 @@ void RigLoader::LayoutArena(ArenaLayout& arena, const Counts& c, const Sources& 
   if (s.canvases) rig.canvases_ = CopyInto<double>(arena, s.canvases, N * 4);
   if (s.parts) {
     rig.part_table_ = CopyInto<std::uint32_t>(arena, s.parts, c.parts * 4);
-    scratch->draw_sequence = arena.Take<std::uint32_t>(c.parts);
+    if (s.pose_orders) rig.part_pose_orders_ = CopyInto<std::uint32_t>(arena, s.pose_orders, N * c.parts);
+    scratch->draw_sequence = arena.Take<std::uint32_t>(c.parts * (s.pose_orders ? N : 1));
   }
   scratch->chars = CopyInto<char>(arena, s.strs, s.strings_size);
   scratch->strings = arena.Take<StringView>(c.strings);
@@ -717,17 +727,30 @@ bool RigLoader::ReadParts(const Counts& c, const Scratch& scratch, Rig* rig, Err
     return Fail(err, ErrorCode::kBadValue, "the parts cover %llu of %llu triangles", (unsigned long long)next,
                 (unsigned long long)c.T);
   // Insertion sort (at most kMaxParts): stable, so ties keep the part order.
-  std::uint32_t* sequence = scratch.draw_sequence;
-  for (std::uint32_t p = 0; p < std::uint32_t(c.parts); ++p) {
-    std::uint32_t at = p;
-    const std::int32_t order = std::int32_t(table[4 * p + 2]);
-    while (at > 0 && std::int32_t(table[4 * sequence[at - 1] + 2]) > order) {
-      sequence[at] = sequence[at - 1];
-      --at;
+  // One sequence, or one per pose (PORD).
+  const std::uint32_t M = std::uint32_t(c.parts);
+  const std::uint64_t sequences = rig->part_pose_orders_.empty() ? 1 : c.N;
+  for (std::uint64_t i = 0; i < sequences; ++i) {
+    const auto order_of = [&](std::uint32_t p) {
+      return std::int32_t(rig->part_pose_orders_.empty() ? table[4 * p + 2] : rig->part_pose_orders_[i * M + p]);
+    };
+    std::uint32_t* sequence = scratch.draw_sequence + i * M;
+    for (std::uint32_t p = 0; p < M; ++p) {
+      std::uint32_t at = p;
+      const std::int32_t order = order_of(p);
+      while (at > 0 && order_of(sequence[at - 1]) > order) {
+        sequence[at] = sequence[at - 1];
+        --at;
+      }
+      sequence[at] = p;
     }
-    sequence[at] = p;
   }
-  rig->draw_sequence_ = {sequence, std::size_t(c.parts)};
+  if (!rig->part_pose_orders_.empty())
+    for (std::uint32_t p = 0; p < M; ++p)
+      if (rig->part_pose_orders_[p] != table[4 * p + 2])
+        return Fail(err, ErrorCode::kBadValue, "part %u: PART's draw order %d is not pose 0's in PORD (%d)", p,
+                    std::int32_t(table[4 * p + 2]), std::int32_t(rig->part_pose_orders_[p]));
+  rig->draw_sequence_ = {scratch.draw_sequence, std::size_t(sequences * M)};
   return true;
 }
 

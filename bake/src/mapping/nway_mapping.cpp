@@ -344,7 +344,8 @@ void ReadDrawnOutline(const RigDescription& rig, const MappingParameters& prm, D
       d.origin = Point(0.0 - pose.origin.x(), 0.0 - pose.origin.y());  // the canvas's corner from the pose's origin
       d.size = Point(io.width, io.height);
     } else {
-      mapping::SvgOutline so = mapping::OutlineFromSvg(pose.drawing_path, prm.curve_tolerance, source);
+      mapping::SvgOutline so =
+          mapping::OutlineFromSvg(pose.drawing_path, prm.curve_tolerance, source, {pose.layer, pose.layer_required});
       for (const Point& p : so.outline) raw.push_back(InRig(p, pose));
       d.from_drawing = true;
       d.origin = so.canvas_origin - pose.origin;

@@ -204,7 +204,34 @@ Polygon FlattenSvgPath(const std::string& d, double tol, const ErrorSource& sour
   return Deduplicated(std::move(out));
 }
 
-SvgOutline OutlineFromSvgText(const std::string& text, double tol, const ErrorSource& source) {
+namespace {
+
+// The groups named `name` (inkscape:label or id), every group name in
+// document order, and how many groups are Inkscape layers.
+void FindGroups(const tinyxml2::XMLElement* root, const std::string& name,
+                std::vector<const tinyxml2::XMLElement*>* matches, std::vector<std::string>* names,
+                int* inkscape_layers) {
+  std::vector<const tinyxml2::XMLElement*> stack{root};
+  while (!stack.empty()) {
+    const tinyxml2::XMLElement* e = stack.back();
+    stack.pop_back();
+    if (std::string(e->Name()) == "g") {
+      const char* label = e->Attribute("inkscape:label");
+      const char* id = e->Attribute("id");
+      if ((label && name == label) || (id && name == id)) matches->push_back(e);
+      if (e->Attribute("inkscape:groupmode", "layer")) ++*inkscape_layers;
+      if (label) names->push_back(label);
+      if (id && (!label || std::string(id) != label)) names->push_back(id);
+    }
+    std::vector<const tinyxml2::XMLElement*> children;
+    for (const tinyxml2::XMLElement* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) children.push_back(c);
+    for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(*it);
+  }
+}
+
+}  // namespace
+
+SvgOutline OutlineFromSvgText(const std::string& text, double tol, const ErrorSource& source, const SvgLayer& layer) {
   tinyxml2::XMLDocument doc;
   if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS)
     throw source.Error(std::string("invalid SVG (XML): ") + doc.ErrorStr());
@@ -227,10 +254,33 @@ SvgOutline OutlineFromSvgText(const std::string& text, double tol, const ErrorSo
       throw source.Error("the <svg> element needs a viewBox or width and height");
   }
 
+  // The layer: a named group, or the whole document.
+  const tinyxml2::XMLElement* top = root;
+  if (!layer.name.empty()) {
+    std::vector<const tinyxml2::XMLElement*> matches;
+    std::vector<std::string> names;
+    int inkscape_layers = 0;
+    FindGroups(root, layer.name, &matches, &names, &inkscape_layers);
+    if (matches.size() > 1)
+      throw source.Error(std::to_string(matches.size()) + " groups are named '" + layer.name +
+                         "' (inkscape:label or id): a layer's name must pick one");
+    if (matches.size() == 1) {
+      top = matches[0];
+    } else if (layer.required || inkscape_layers > 1) {
+      // A drawing in several layers, none of them the part's: taking its
+      // first path would take another part's outline.
+      std::string listed;
+      for (std::size_t k = 0; k < names.size() && k < 16; ++k) listed += (k ? ", '" : "'") + names[k] + "'";
+      throw source.Error("no layer or group is named '" + layer.name + "' (" +
+                         (names.empty() ? std::string("the drawing names no group")
+                                        : "its named groups: " + listed + (names.size() > 16 ? ", ..." : "")) +
+                         ")" + (layer.required ? "" : "; name the part like its layer, or give the pose a \"layer\""));
+    }
+  }
   // Depth-first, document order; id="outline" wins.
   const tinyxml2::XMLElement* chosen = nullptr;
   const tinyxml2::XMLElement* first = nullptr;
-  std::vector<const tinyxml2::XMLElement*> stack{root};
+  std::vector<const tinyxml2::XMLElement*> stack{top};
   while (!stack.empty() && !chosen) {
     const tinyxml2::XMLElement* e = stack.back();
     stack.pop_back();
@@ -245,7 +295,9 @@ SvgOutline OutlineFromSvgText(const std::string& text, double tol, const ErrorSo
     for (auto it = children.rbegin(); it != children.rend(); ++it) stack.push_back(*it);
   }
   if (!chosen) chosen = first;
-  if (!chosen) throw source.Error("no <path> or <polygon> to take the outline from");
+  if (!chosen)
+    throw source.Error(top == root ? std::string("no <path> or <polygon> to take the outline from")
+                                   : "layer '" + layer.name + "' has no <path> or <polygon> to take the outline from");
   for (const tinyxml2::XMLNode* n = chosen; n && n->ToElement(); n = n->Parent())
     if (n->ToElement()->Attribute("transform"))
       throw source.Error("the outline element (or a group around it) has a transform; apply it to the coordinates");
@@ -270,9 +322,9 @@ SvgOutline OutlineFromSvgText(const std::string& text, double tol, const ErrorSo
   return result;
 }
 
-SvgOutline OutlineFromSvg(const std::string& path, double tol, const ErrorSource& source) {
+SvgOutline OutlineFromSvg(const std::string& path, double tol, const ErrorSource& source, const SvgLayer& layer) {
   const std::vector<unsigned char> bytes = ReadInputFile(path, kMaxTextFileBytes, "an SVG drawing", source);
-  return OutlineFromSvgText(std::string(bytes.begin(), bytes.end()), tol, source);
+  return OutlineFromSvgText(std::string(bytes.begin(), bytes.end()), tol, source, layer);
 }
 
 SvgOutline OutlineFromSvg(const std::string& path, double tol) { return OutlineFromSvg(path, tol, ErrorSource(path)); }

@@ -64,7 +64,8 @@ PM_API std::uint32_t PickDrawings(Span<const double> texture_weights, std::uint3
 struct DrawList {
   Span<const float> positions;        // 2 x V, interleaved x, y, rig units (y up): a slice of the job's positions
   Span<const std::uint32_t> indices;  // 3 x T, the rig's triangles (counter-clockwise in pose 0)
-  // The rig's parts back to front (rig.draw_sequence()): draw each part's
+  // The rig's parts back to front (rig.draw_sequence(drawings[0].pose): the
+  // dominant drawing's pose decides, when the order changes with the pose): draw each part's
   // triangles (rig.part(p): indices 3 x first_triangle on, 3 x
   // triangle_count of them) in this order, each with its own drawings
   // (rig.part_image(p, drawings[k].pose)) and the same weights and uvs. A

@@ -98,7 +98,9 @@ PM_API int pm_rig_path_name(const pm_rig* rig, uint32_t path, char* out, size_t 
 /* Parts of a layered character (format 1.6): a rig without parts has one,
  * covering every triangle, named "", drawing the poses' images. A part is
  * the triangles first_triangle .. first_triangle + triangle_count - 1 of
- * pm_rig_triangles; lower draw_order draws first (behind). */
+ * pm_rig_triangles; lower draw_order draws first (behind). draw_order is
+ * pose 0's: a rig may change it with the pose (pm_rig_part_draw_order), and
+ * each draw list's parts are then in its dominant drawing's pose's order. */
 typedef struct pm_part {
   uint32_t first_triangle, triangle_count;
   int32_t draw_order;
@@ -106,6 +108,8 @@ typedef struct pm_part {
 PM_API uint32_t pm_rig_part_count(const pm_rig* rig); /* 0 for NULL */
 PM_API int pm_rig_part(const pm_rig* rig, uint32_t part, pm_part* out);
 PM_API int pm_rig_part_name(const pm_rig* rig, uint32_t part, char* out, size_t capacity, size_t* length);
+/* A part's draw order in a pose. */
+PM_API int pm_rig_part_draw_order(const pm_rig* rig, uint32_t part, uint32_t pose, int32_t* out);
 /* The drawing a part shows in a pose (pm_rig_pose_image for a rig without parts). */
 PM_API int pm_rig_part_image(const pm_rig* rig, uint32_t part, uint32_t pose, char* out, size_t capacity,
                              size_t* length);

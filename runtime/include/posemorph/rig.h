@@ -140,8 +140,16 @@ class PM_API Rig {
   // The drawing part `index` shows in `pose`: pose_image(pose) for a rig without parts.
   StringView part_image(std::uint32_t index, std::uint32_t pose) const;
   // Part indices back to front (by draw order, ties by index): the order a
-  // renderer draws them in. Never empty for a loaded rig.
-  Span<const std::uint32_t> draw_sequence() const;
+  // renderer draws them in. Never empty for a loaded rig. A rig whose order
+  // changes with the pose (RIG_DESCRIPTION.md, "order" per pose) has one
+  // sequence per pose: a frame draws in its dominant drawing's pose's order
+  // (DrawList::parts); without a pose, pose 0's.
+  Span<const std::uint32_t> draw_sequence() const { return draw_sequence(0); }
+  Span<const std::uint32_t> draw_sequence(std::uint32_t pose) const;  // empty beyond pose_count()
+  // Part `index`'s draw order in `pose` (part(index).draw_order when it does
+  // not change with the pose); 0 beyond the counts.
+  std::int32_t part_draw_order(std::uint32_t index, std::uint32_t pose) const;
+  bool draw_order_changes() const { return !part_pose_orders_.empty(); }
   PathView path(std::uint32_t index) const;
   // Index of the path with this name, or -1.
   int FindPath(const char* name) const;
@@ -193,11 +201,12 @@ class PM_API Rig {
   Span<const double> pose_positions_, pose_points_, pose_centroids_, vertex_masses_;
   Span<const double> gradients_, angles_, stretches_, blend_blocks_;
   Span<const float> uvs_;
-  Span<const double> canvases_;              // 4N, or empty
-  Span<const StringView> strings_;           // N names, N images, P path names (, drawing folder) (, part strings)
-  Span<const std::uint32_t> part_table_;     // 4 per part (PART), or empty
-  Span<const std::uint32_t> draw_sequence_;  // part indices back to front, or empty
-  Span<const StringView> part_strings_;      // M names, then M x N images, or empty
+  Span<const double> canvases_;                 // 4N, or empty
+  Span<const StringView> strings_;              // N names, N images, P path names (, drawing folder) (, part strings)
+  Span<const std::uint32_t> part_table_;        // 4 per part (PART), or empty
+  Span<const std::uint32_t> draw_sequence_;     // part indices back to front, or empty; N x M with PORD
+  Span<const std::uint32_t> part_pose_orders_;  // N x M i32 (PORD), or empty
+  Span<const StringView> part_strings_;         // M names, then M x N images, or empty
   Span<const PathView> paths_;
   PoseSpaceGrid grid_;
   Factor factor_;

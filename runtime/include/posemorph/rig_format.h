@@ -12,7 +12,8 @@ constexpr std::uint16_t kVersionMajor = 1;
 // 1.1 added the optional CANV section; 1.2 the weight grid's cell centres
 // (META flag kMetaFlagGridCentres); 1.3 the compact encoding (META flag
 // kMetaFlagCompact); 1.4 the texture-filter hint; 1.5 the drawing folder
-// (kMetaFlagDrawingFolder); 1.6 parts drawn in order (kMetaFlagParts, PART).
+// (kMetaFlagDrawingFolder); 1.6 parts drawn in order (kMetaFlagParts, PART),
+// optionally an order per pose (kMetaFlagPartPoseOrders, PORD).
 // Older files load unchanged.
 constexpr std::uint16_t kVersionMinor = 6;
 constexpr std::uint32_t kHeaderSize = 64;
@@ -109,6 +110,12 @@ constexpr std::uint32_t kMetaFlagParts = 32u;
 constexpr std::uint32_t kParts = Tag('P', 'A', 'R', 'T');
 constexpr std::uint32_t kPartEntrySize = 16;
 constexpr std::uint32_t kMaxParts = 64;
+// 1.6, with kMetaFlagParts: the draw order changes with the pose (PORD):
+// per pose, per part an i32 draw order (N x M, pose-major). A frame draws in
+// the order of its dominant drawing's pose (the largest texture weight);
+// PART's order is pose 0's.
+constexpr std::uint32_t kMetaFlagPartPoseOrders = 64u;
+constexpr std::uint32_t kPartPoseOrders = Tag('P', 'O', 'R', 'D');
 constexpr std::uint32_t kQuantPositions = Tag('Q', 'P', 'O', 'S');
 constexpr std::uint32_t kQuantTriangles = Tag('Q', 'T', 'R', 'I');
 constexpr std::uint32_t kQuantPermutation = Tag('Q', 'P', 'R', 'M');

@@ -29,7 +29,8 @@ struct PoseMesh {
 // the triangles, drawn in order with its own drawings.
 struct MeshPart {
   std::string name;
-  int order = 0;
+  int order = 0;                 // pose 0's when pose_orders is given
+  std::vector<int> pose_orders;  // empty: fixed; else one per pose
   std::uint32_t first_triangle = 0, triangle_count = 0;
   std::vector<std::string> images;  // per pose, as written into the rig
 };

@@ -38,7 +38,12 @@ struct PoseDescription {
   DeformDescription deform;
   // A drawn pose: its mesh comes from N-way mapping (map_drawings.h).
   bool drawn = false;
-  std::string drawing;                     // PNG or SVG as written; empty for an outline
+  std::string drawing;  // PNG or SVG as written; empty for an outline
+  // SVG: the layer (group) the outline comes from (mapping/outline_svg.h):
+  // "layer" as given (required), or a part's own name (taken when the
+  // drawing has a group of that name); empty: the whole drawing.
+  std::string layer;
+  bool layer_required = false;
   std::string drawing_path;                // resolved against the description's folder
   std::vector<Eigen::Vector2d> outline;    // given directly (rig coordinates, y up)
   std::vector<Eigen::Vector2d> landmarks;  // corresponding boundary points; the first is the start point
@@ -109,6 +114,7 @@ struct BakeParameters {
 struct PartDescription {
   std::string name;
   int order = 0;                                        // draw order: lower draws first (behind); ties in part order
+  std::vector<int> pose_orders;                         // empty, or one draw order per rig pose (order is pose 0's)
   std::vector<std::array<std::uint32_t, 3>> triangles;  // when its poses are given as vertices
   std::vector<PoseDescription> poses;                   // one per rig pose, in the rig's order
 };
