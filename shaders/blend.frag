@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #version 460
-// Cross-fades a character's drawings: each pose's own drawing sampled
+// Cross-fades a character's drawings (of the part drawn, for a layered
+// character: its layers start at layer_offset): each pose's own drawing sampled
 // through that pose's uvs, weighted by the texture weights w''
 // (premultiplied alpha, so the sum is a premultiplied colour too). With
 // only_slot = s >= 0 it draws one drawing instead, at opacity
@@ -25,7 +26,7 @@ layout(location = 7) flat in ivec4 layers1;
 layout(location = 0) out vec4 colour;
 
 vec4 Drawing(float w, vec2 uv, int layer) {
-  return w == 0.0 ? vec4(0.0) : w * texture(drawings, vec3(uv, float(layer)));
+  return w == 0.0 ? vec4(0.0) : w * texture(drawings, vec3(uv, float(layer + pc.layer_offset)));
 }
 
 void main() {

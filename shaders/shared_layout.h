@@ -27,4 +27,5 @@ struct PushData {
   uint flat_colour;  // 1: one flat colour (the wireframe overlay)
   int only_slot;     // >= 0: only this drawing slot, at weight / (sum of the weights up to it):
                      // one pass of the sequential "over" approximation (blend.frag)
+  int layer_offset;  // the part drawn: its drawings are array layers part * N + pose
 };

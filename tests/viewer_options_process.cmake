@@ -33,3 +33,13 @@ foreach(case
     message(FATAL_ERROR "${option} ${value}: a refused option still wrote a frame")
   endif()
 endforeach()
+
+# --hide-part on a rig without parts: exit status 1, the rig named, no frame.
+execute_process(COMMAND ${VIEW} ${RIG} --headless -o ${WORK}/never.png --hide-part arm
+                RESULT_VARIABLE status ERROR_VARIABLE err OUTPUT_VARIABLE out)
+if(NOT status EQUAL 1 OR NOT err MATCHES "pip.pmrig: has no parts, so --hide-part has nothing to hide")
+  message(FATAL_ERROR "--hide-part arm: expected exit status 1 and 'has no parts', got '${status}' (${err})")
+endif()
+if(EXISTS ${WORK}/never.png)
+  message(FATAL_ERROR "--hide-part arm: a refused option still wrote a frame")
+endif()

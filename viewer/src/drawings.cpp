@@ -20,29 +20,51 @@ std::string Printable(const std::string& text, std::size_t max) {
   return text.size() > max ? out + "..." : out;
 }
 
+namespace {
+
+bool TooMany(std::uint32_t parts, std::uint32_t poses, std::string* error) {
+  *error = "the drawings (" + (parts > 1 ? std::to_string(parts) + " parts in " : std::string()) +
+           std::to_string(poses) + " poses) would share a texture array of more than " +
+           std::to_string(kMaxTexturePixels) + " pixels in all; draw them smaller";
+  return false;
+}
+
+}  // namespace
+
 bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::string* error) {
-  const std::uint32_t N = rig.pose_count();
+  const std::uint32_t N = rig.pose_count(), P = rig.part_count();
   if (rig.uvs(0).size == 0) {
     *error = "the rig has no uvs, so there is nothing to draw its drawings with (bake it from drawings)";
     return false;
   }
-  std::vector<std::vector<unsigned char>> images(N);
-  std::vector<std::uint32_t> w(N), h(N);
-  for (std::uint32_t i = 0; i < N; ++i) {
-    const StringView name = rig.pose_image(i);
-    if (name.size == 0) {
-      *error = "pose " + std::to_string(i) + " has no image reference";
-      return false;
+  // Layer p * N + i: part p's drawing in pose i (one part for a rig without parts).
+  std::uint64_t read_pixels = 0;
+  std::vector<std::vector<unsigned char>> images(std::size_t(P) * N);
+  std::vector<std::uint32_t> w(images.size()), h(images.size());
+  for (std::uint32_t p = 0; p < P; ++p)
+    for (std::uint32_t i = 0; i < N; ++i) {
+      const std::size_t layer = std::size_t(p) * N + i;
+      const StringView part_name = rig.part(p).name;
+      const std::string which =
+          (P > 1 ? "part '" + Printable(std::string(part_name.data, part_name.size)) + "', " : "") + "pose " +
+          std::to_string(i);
+      const StringView name = rig.part_image(p, i);
+      if (name.size == 0) {
+        *error = which + " has no image reference";
+        return false;
+      }
+      const std::string reference(name.data, name.size);
+      if (!ImageReferenceStaysInside(reference)) {
+        *error = which + ": image reference '" + Printable(reference) +
+                 "' leaves the images folder (absolute, '..', or a control character); refusing to open it";
+        return false;
+      }
+      const std::string path = dir + "/" + reference;
+      if (!ReadPng(path, &images[layer], &w[layer], &h[layer], error)) return false;
+      read_pixels += std::uint64_t(w[layer]) * h[layer];
+      if (read_pixels > kMaxTexturePixels) return TooMany(P, N, error);
     }
-    const std::string reference(name.data, name.size);
-    if (!ImageReferenceStaysInside(reference)) {
-      *error = "pose " + std::to_string(i) + ": image reference '" + Printable(reference) +
-               "' leaves the images folder (absolute, '..', or a control character); refusing to open it";
-      return false;
-    }
-    const std::string path = dir + "/" + reference;
-    if (!ReadPng(path, &images[i], &w[i], &h[i], error)) return false;
-  }
+  out->layers_per_part = N;
   out->width = *std::max_element(w.begin(), w.end());
   out->height = *std::max_element(h.begin(), h.end());
   // All drawings are resampled to one size for the texture array: drawings
@@ -53,8 +75,9 @@ bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::st
              " pixels; draw the poses on canvases of one size";
     return false;
   }
-  out->rgba.assign(N, std::vector<unsigned char>(std::size_t(out->width) * out->height * 4));
-  for (std::uint32_t i = 0; i < N; ++i)
+  if (std::uint64_t(out->width) * out->height * images.size() > kMaxTexturePixels) return TooMany(P, N, error);
+  out->rgba.assign(images.size(), std::vector<unsigned char>(std::size_t(out->width) * out->height * 4));
+  for (std::size_t i = 0; i < images.size(); ++i)
     for (std::uint32_t y = 0; y < out->height; ++y)
       for (std::uint32_t x = 0; x < out->width; ++x) {
         // Nearest resampling to the common size (uvs are relative, so they still fit).

@@ -16,12 +16,16 @@ namespace posemorph::viewer {
 // The rig's drawings, premultiplied RGBA8, all resampled to one size.
 struct Drawings {
   std::uint32_t width = 0, height = 0;
-  std::vector<std::vector<unsigned char>> rgba;  // one per pose
+  std::vector<std::vector<unsigned char>> rgba;  // one per part and pose: layer part * N + pose
+  std::uint32_t layers_per_part = 0;             // N
 };
-// Reads each pose's image (rig.pose_image) from `dir`. False with a message
+// Reads each part's image in each pose (rig.part_image; rig.pose_image for
+// a rig without parts) from `dir`. False with a message
 // naming the file when one is missing or unreadable, or the rig has no uvs.
 // Limits on the drawings the viewer loads (rig files are hostile input):
-// kMaxDrawingPixels (png_io.h) each, and so the texture array they share.
+// kMaxDrawingPixels (png_io.h) each and as the size they are resampled to,
+// and kMaxTexturePixels for all of them (the texture array they share).
+constexpr std::uint64_t kMaxTexturePixels = std::uint64_t(1) << 26;  // 256 MiB of RGBA8
 // Image references must stay inside `dir`:
 // (posemorph/image_reference.h: the runtime's check, which the bake's
 // textured contact sheet uses too).

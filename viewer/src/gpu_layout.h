@@ -41,7 +41,8 @@ static_assert(offsetof(PushData, view_offset) == 32, "PushData.view_offset");
 static_assert(offsetof(PushData, vertex_count) == 40, "PushData.vertex_count");
 static_assert(offsetof(PushData, flat_colour) == 44, "PushData.flat_colour");
 static_assert(offsetof(PushData, only_slot) == 48, "PushData.only_slot");
-static_assert(sizeof(PushData) == 52, "PushData: 52 bytes (push constants: at most 128)");
+static_assert(offsetof(PushData, layer_offset) == 52, "PushData.layer_offset");
+static_assert(sizeof(PushData) == 56, "PushData: 56 bytes (push constants: at most 128)");
 
 // A buffer device address as the shaders' uvec2 (low, high).
 inline uvec2 Address(std::uint64_t a) { return uvec2(std::uint32_t(a), std::uint32_t(a >> 32)); }

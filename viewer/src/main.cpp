@@ -33,7 +33,8 @@ const char* kUsage =
     "         [--at X,Y | --path NAME [--time T] [--frames K]] [--crowd K] [--sigma S]\n"
     "         [--no-weight-limit] [--linear] [--compare] [--bases] [--wireframe] [--validation]\n"
     "         [--camera X,Y,ZOOM | --camera 1:1] [--transform T] [--seed S] [--drawings K] [--blend B]\n"
-    "         [--filter linear|nearest] [--smoke-test SHOT.png [--frames K]] [--description RIG.json]\n"
+    "         [--filter linear|nearest] [--hide-part NAME]... [--smoke-test SHOT.png [--frames K]]\n"
+    "         [--description RIG.json]\n"
     "  --images DIR  where the rig's drawings are (default: where the bake found them, recorded in the rig\n"
     "                relative to its file; else the rig's folder)\n"
     "  --frames K    with --path: K frames over the path's duration, OUT-000.png ...\n"
@@ -47,6 +48,7 @@ const char* kUsage =
     "  --drawings K  blend the K (1..8) most weighted drawings per character (default 8)\n"
     "  --filter F    sample the drawings linear or nearest (pixel art); default: as the rig asks\n"
     "  --blend B     exact (one pass, weighted sum; default) or over (sequential passes, approximate)\n"
+    "  --hide-part NAME  a layered character: do not draw this part (repeatable)\n"
     "  --compare     rigid (left) and linear (right) interpolation side by side\n"
     "  --bases       the N base poses in a row\n"
     "  --validation  enable the Vulkan validation layer; any message fails (exit 3)\n"
@@ -145,6 +147,7 @@ struct Options {
   enum class CameraMode { kFit, kOneToOne, kGiven } camera_mode = CameraMode::kFit;
   Camera given_camera;
   Blend blend = Blend::kExact;
+  std::vector<std::string> hidden_parts;  // --hide-part, resolved once the rig is loaded
 };
 using CameraMode = Options::CameraMode;
 
@@ -212,6 +215,8 @@ int ParseOptions(int argc, char** argv, Options& o) {
       o.window.smoke_test = v;
     else if (a == "--description" && (v = value()))
       o.window.description = v;
+    else if (a == "--hide-part" && (v = value()))
+      o.hidden_parts.push_back(v);
     else if (a == "--images" && (v = value()))
       o.images = v;
     else if (a == "--path" && (v = value()))
@@ -345,6 +350,19 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
   if (!o.scene.path.empty() && rig.FindPath(o.scene.path.c_str()) < 0)
     return Fail(o.rig_path + ": has no path named \"" + o.scene.path + "\"");
   if (o.frames > 0 && o.headless && o.scene.path.empty()) return Usage("--frames needs --path NAME");
+  for (const std::string& name : o.hidden_parts) {
+    std::string names;
+    bool found = false;
+    for (std::uint32_t p = 0; p < rig.part_count() && p < 64; ++p) {
+      const std::string part(rig.part(p).name.data, rig.part(p).name.size);
+      if (part == name && rig.part_count() > 1) o.scene.hidden_parts |= std::uint64_t(1) << p, found = true;
+      names += (names.empty() ? "'" : ", '") + part + "'";
+    }
+    if (!found)
+      return Fail(o.rig_path + ": " +
+                  (rig.part_count() > 1 ? "has no part '" + name + "' (" + names + ")"
+                                        : std::string("has no parts, so --hide-part has nothing to hide")));
+  }
   if (o.images.empty()) o.images = bake::DefaultDrawingFolder(o.rig_path, rig);
   Drawings drawings;
   std::string problem;

@@ -55,6 +55,11 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   uvs_ = gpu.CreateBuffer(8ull * V * N, storage);
   for (std::uint32_t i = 0; i < N; ++i)
     std::memcpy(static_cast<char*>(uvs_.mapped) + 8ull * V * i, rig.uvs(i).data, 8ull * V);
+  pose_count_ = N;
+  parts_.clear();
+  for (std::uint32_t p = 0; p < rig.part_count(); ++p)
+    parts_.push_back({3 * rig.part(p).first_triangle, 3 * rig.part(p).triangle_count});
+  sequences_.assign(max_instances, rig.draw_sequence().data);
   positions_ = gpu.CreateBuffer(8ull * V * max_instances, storage);
   instances_ = gpu.CreateBuffer(sizeof(Instance) * max_instances, storage);
   UploadDrawings(drawings, N);
@@ -62,8 +67,9 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   return CreatePipelines(target_format, error);
 }
 
-// The drawings as one texture array, N layers.
-void RigRenderer::UploadDrawings(const Drawings& drawings, std::uint32_t N) {
+// The drawings as one texture array: N layers per part.
+void RigRenderer::UploadDrawings(const Drawings& drawings, std::uint32_t) {
+  const std::uint32_t N = std::uint32_t(drawings.rgba.size());
   Gpu& gpu = *gpu_;
   const std::size_t layer_bytes = std::size_t(drawings.width) * drawings.height * 4;
   Buffer staging = gpu.CreateBuffer(layer_bytes * N, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
@@ -207,6 +213,11 @@ RigRenderer::~RigRenderer() {
   for (Buffer* b : {&indices_, &uvs_, &positions_, &instances_}) gpu_->Destroy(*b);
 }
 
+void RigRenderer::SetCharacter(std::uint32_t k, const DrawList& list) {
+  instances()[k] = ToInstance(list);
+  if (k < sequences_.size() && list.parts.size == parts_.size()) sequences_[k] = list.parts.data;
+}
+
 void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const Camera& camera, std::uint32_t width,
                          std::uint32_t height, bool wireframe, std::int32_t x, std::int32_t y, Blend blend) const {
   VkViewport viewport{float(x), float(y), float(width), float(height), 0, 1};
@@ -224,17 +235,36 @@ void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const Camera&
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
   vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, fill_);
-  if (blend == Blend::kExact) {
-    vkCmdPushConstants(cmd, layout_, stages, 0, sizeof push, &push);
-    vkCmdDrawIndexed(cmd, index_count_, count, 0, 0, 0);
-  } else {
+  // One range of triangles for `instances` characters from `first`: one
+  // draw, or one per drawing slot for the sequential blend.
+  const auto draw = [&](std::uint32_t first_index, std::uint32_t indices, std::uint32_t first,
+                        std::uint32_t instances) {
+    if (blend == Blend::kExact) {
+      push.only_slot = -1;
+      vkCmdPushConstants(cmd, layout_, stages, 0, sizeof push, &push);
+      vkCmdDrawIndexed(cmd, indices, instances, first_index, 0, first);
+      return;
+    }
     for (std::int32_t slot = 0; slot < std::int32_t(kDrawingsPerCharacter); ++slot) {
       push.only_slot = slot;
       vkCmdPushConstants(cmd, layout_, stages, 0, sizeof push, &push);
-      vkCmdDrawIndexed(cmd, index_count_, count, 0, 0, 0);
+      vkCmdDrawIndexed(cmd, indices, instances, first_index, 0, first);
     }
-    push.only_slot = -1;
+  };
+  if (parts_.size() <= 1) {
+    if (!(hidden_parts_ & 1)) draw(0, index_count_, 0, count);
+  } else {
+    // Character by character, back to front, each one's parts in its order.
+    for (std::uint32_t k = 0; k < count && k < sequences_.size(); ++k)
+      for (std::size_t s = 0; s < parts_.size(); ++s) {
+        const std::uint32_t p = sequences_[k][s];
+        if (p >= parts_.size() || (p < 64 && (hidden_parts_ >> p) & 1)) continue;
+        push.layer_offset = std::int32_t(p * pose_count_);
+        draw(parts_[p].first_index, parts_[p].index_count, k, 1);
+      }
+    push.layer_offset = 0;
   }
+  push.only_slot = -1;
   if (wireframe && lines_) {
     push.flat_colour = 1;
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lines_);

@@ -45,10 +45,19 @@ class RigRenderer {
   // Written by the caller before Record: instance-major float x, y per vertex.
   float* positions() { return static_cast<float*>(positions_.mapped); }
   Instance* instances() { return static_cast<Instance*>(instances_.mapped); }
+  // Character k's drawings and, for a layered character, the order its
+  // parts are drawn in (list.parts, which points into the rig).
+  void SetCharacter(std::uint32_t k, const DrawList& list);
+  // Parts not drawn: bit p hides part p (a layered character's toggles).
+  void SetHiddenParts(std::uint64_t mask) { hidden_parts_ = mask; }
+  std::uint64_t hidden_parts() const { return hidden_parts_; }
   std::uint32_t max_instances() const { return max_instances_; }
   // Inside dynamic rendering on a target of the format given to Init: the
   // camera looks at the world through the viewport of `width` x `height`
-  // pixels at (x, y) of the target.
+  // pixels at (x, y) of the target. A rig without parts is one instanced
+  // draw for the whole crowd; a layered character is drawn one character
+  // after the other (the crowd is sorted back to front), its parts in its
+  // draw list's order, each sampling its own drawings.
   void Record(VkCommandBuffer cmd, std::uint32_t instance_count, const Camera& camera, std::uint32_t width,
               std::uint32_t height, bool wireframe, std::int32_t x = 0, std::int32_t y = 0,
               Blend blend = Blend::kExact) const;
@@ -59,7 +68,13 @@ class RigRenderer {
   void CreateDescriptors(TextureFilter filter);
   bool CreatePipelines(VkFormat target_format, std::string* error);
   Gpu* gpu_ = nullptr;
-  std::uint32_t vertex_count_ = 0, index_count_ = 0, max_instances_ = 0;
+  std::uint32_t vertex_count_ = 0, index_count_ = 0, max_instances_ = 0, pose_count_ = 0;
+  struct PartRange {
+    std::uint32_t first_index = 0, index_count = 0;
+  };
+  std::vector<PartRange> parts_;                 // one per part (one for a rig without parts)
+  std::vector<const std::uint32_t*> sequences_;  // per character: its parts back to front
+  std::uint64_t hidden_parts_ = 0;
   Buffer indices_, uvs_, positions_, instances_;
   Image drawings_;
   VkSampler sampler_ = VK_NULL_HANDLE;

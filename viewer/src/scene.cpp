@@ -162,10 +162,11 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
   }
   View all{1e300, 1e300, -1e300, -1e300};
   for (std::uint32_t k = 0; k < K; ++k) {
-    renderer.instances()[k] = ToInstance(scratch.lists[k]);
+    renderer.SetCharacter(k, scratch.lists[k]);
     const View b = TransformBounds(scratch.transforms[k], one);
     all = {std::min(all.x0, b.x0), std::min(all.y0, b.y0), std::max(all.x1, b.x1), std::max(all.y1, b.y1)};
   }
+  renderer.SetHiddenParts(scene.hidden_parts);
   bounds->all = all;
   bounds->first = TransformBounds(scratch.transforms[0], one);
   *count = K;

@@ -23,9 +23,10 @@ struct Scene {
   Transform2D transform;    // a single character's place in the world
   std::uint32_t max_drawings = kDrawingsPerCharacter;  // K drawings blended per character
   bool wireframe = false;
-  bool compare_linear = false;  // two characters: rigid (left) and linear (right) at the same point
-  bool show_bases = false;      // the N base poses in a row, each exactly at its point
-  int filter = -1;              // drawings sampled: 0 linear, 1 nearest, -1 as the rig asks (its "filter")
+  bool compare_linear = false;     // two characters: rigid (left) and linear (right) at the same point
+  bool show_bases = false;         // the N base poses in a row, each exactly at its point
+  int filter = -1;                 // drawings sampled: 0 linear, 1 nearest, -1 as the rig asks (its "filter")
+  std::uint64_t hidden_parts = 0;  // a layered character's parts not drawn: bit p hides part p
 };
 
 // How many characters the scene draws.

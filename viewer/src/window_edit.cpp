@@ -88,7 +88,8 @@ bool Viewer::EditScene(SceneBounds* bounds, std::uint32_t* count) {
   list.drawing_count = 1;
   list.drawings[0].pose = std::uint32_t(edit_.pose);
   list.drawings[0].weight = 1;
-  renderer_->instances()[0] = ToInstance(list);
+  list.parts = rig_.draw_sequence(std::uint32_t(edit_.pose));
+  renderer_->SetCharacter(0, list);
   bounds->all = bounds->first = CharacterBounds(rig_);
   *count = 1;
   return true;

@@ -53,6 +53,20 @@ void Viewer::BuildUi() {
   ImGui::Checkbox("wireframe", &scene_.wireframe);
   ImGui::Checkbox("rigid | linear side by side", &scene_.compare_linear);
   ImGui::Checkbox("base drawings", &scene_.show_bases);
+  if (rig_.part_count() > 1) {
+    // A layered character's parts, back to front in pose 0: each one's toggle.
+    ImGui::TextUnformatted("Parts");
+    const Span<const std::uint32_t> sequence = rig_.draw_sequence();
+    for (std::size_t s = 0; s < sequence.size && sequence[s] < 64; ++s) {
+      const std::uint32_t p = sequence[s];
+      const std::string name(rig_.part(p).name.data, rig_.part(p).name.size);
+      bool shown = !((scene_.hidden_parts >> p) & 1);
+      if (ImGui::Checkbox((Printable(name, 40) + "##part" + std::to_string(p)).c_str(), &shown))
+        scene_.hidden_parts =
+            shown ? scene_.hidden_parts & ~(std::uint64_t(1) << p) : scene_.hidden_parts | (std::uint64_t(1) << p);
+      if (s + 1 < sequence.size && (s + 1) % 4 != 0) ImGui::SameLine();
+    }
+  }
   EditUi();
   int crowd = int(scene_.crowd);
   if (ImGui::SliderInt("crowd", &crowd, 1, int(kMaxCharacters))) scene_.crowd = std::uint32_t(crowd);
