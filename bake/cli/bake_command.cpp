@@ -90,9 +90,14 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   for (const std::string& w : rig.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
   for (const std::string& w : m.warnings) err << "posemorph-bake: warning: " << Printable(w) << "\n";
   if (m.mapped) {
-    out << "mapped drawings: outlines";
-    for (std::size_t v : m.outline_vertices) out << " " << v;
-    out << " vertices; " << m.matched_vertices << " matched boundary points -> " << m.boundary_vertices
+    if (m.outline_vertices.empty()) {  // parts: each mapped on its own, the figures summed
+      out << "mapped drawings, part by part: ";
+    } else {
+      out << "mapped drawings: outlines";
+      for (std::size_t v : m.outline_vertices) out << " " << v;
+      out << " vertices; ";
+    }
+    out << m.matched_vertices << " matched boundary points -> " << m.boundary_vertices
         << " after simplification (max error " << m.simplification_error << "); " << m.steiner_points
         << " Steiner points; " << (m.features ? std::to_string(m.features) + " features; " : "") << m.vertices
         << " vertices, " << m.triangles << " triangles after refinement; "

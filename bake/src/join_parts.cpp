@@ -17,6 +17,11 @@ namespace {
 
 // How far apart two points may be and still be one joint, times the rig's size.
 constexpr double kJointTolerance = 1e-9;
+// Drawn parts: the mapping works on an integer grid per part (scaled to the
+// part's extent), so one joint point lands on each part's grid, up to half
+// a cell apart (3e-5 drawing units on a 256-pixel canvas). Copies this close
+// are one joint; the joined vertex is the first part's copy.
+constexpr double kDrawnJointTolerance = 1e-3;
 // How far a joint given to a mesh may lie off its vertex, times the part's size.
 constexpr double kVertexTolerance = 1e-6;
 
@@ -231,7 +236,8 @@ JoinedParts JoinParts(const RigDescription& d) {
     for (std::size_t i = 0; i < N; ++i) {
       const Eigen::Vector2d& pa = parts[glue.part_index].meshes.poses[i].vertices[a];
       const Eigen::Vector2d& pb = parts[glue.to_index].meshes.poses[i].vertices[b];
-      if (!((pa - pb).norm() <= tolerance))
+      const bool drawn = d.parts[glue.part_index].poses[i].drawn || d.parts[glue.to_index].poses[i].drawn;
+      if (!((pa - pb).norm() <= (drawn ? std::max(tolerance, kDrawnJointTolerance) : tolerance)))
         throw BakeError(d.file, GlueLabel(d, g) + ": in " + PoseLabel(d.poses[i].name, i) + " the joint is at " +
                                     Point(pa) + " on part '" + glue.part + "' but at " + Point(pb) + " on part '" +
                                     glue.to + "': a joint is one point in every pose");
