@@ -563,3 +563,42 @@ TEST_CASE("layered: parts drawn as layers of one SVG per pose, by Inkscape label
   }
   fs::remove_all(dir);
 }
+
+TEST_CASE("layered: Pell, the drawn layered sample, bakes its seven parts with their joints exact in every pose") {
+  const std::string dir = std::string(POSEMORPH_DRAWN_SAMPLES) + "/pell";
+  const bake::RigDescription description = bake::ReadRigDescription(dir + "/pell.json");
+  REQUIRE(description.parts.size() == 7);
+  for (bool exact : {true, false}) {
+    CAPTURE(exact);
+    bake::RigDescription d = description;
+    d.parameters.compact = !exact;
+    bake::BakeReport report;
+    const std::vector<unsigned char> bytes = bake::BakeRig(d, &report);
+    Rig rig;
+    Error err;
+    REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
+    REQUIRE(rig.part_count() == 7);
+    CHECK(rig.draw_order_changes());
+    CHECK(report.max_reproduction_error <= (exact ? 1e-9 : 1e-4));
+    REQUIRE(report.joints.size() == 6);
+    // Each joint is one vertex of both its parts, at the point the
+    // description gives in every pose (drawing pixels, y down; rig y up).
+    for (std::size_t g = 0; g < 6; ++g) {
+      const bake::GlueDescription& glue = description.glue[g];
+      const std::uint32_t v = report.joints[g];
+      for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
+        const double* x = rig.pose_positions(i).data;
+        CHECK(std::hypot(x[2 * v] - glue.at[i].x(), x[2 * v + 1] + glue.at[i].y()) < (exact ? 1e-3 : 0.02));
+      }
+      int parts_using = 0;
+      for (std::size_t p : {glue.part_index, glue.to_index}) {
+        const PartView part = rig.part(std::uint32_t(p));
+        bool uses = false;
+        for (std::uint32_t t = part.first_triangle; t < part.first_triangle + part.triangle_count; ++t)
+          for (int k = 0; k < 3; ++k) uses |= rig.triangles()[3 * t + k] == v;
+        parts_using += uses;
+      }
+      CHECK(parts_using == 2);
+    }
+  }
+}
