@@ -7,16 +7,19 @@
 // densities: the test rig's grids (39 vertices) and grids ten times finer
 // each way (2,541 vertices). The counter `joint_gap` is the largest
 // distance between the two parts' copies of the shoulder over the frames
-// timed, in rig units (0 when glued: the joint is one vertex).
+// timed, in rig units (0 when glued: the joint is one vertex). Pell, the
+// drawn layered sample, is timed the same way (its six joints).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <fstream>
 #include <map>
 
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/join_parts.h"
+#include "posemorph/bake/rig_description.h"
 #include "posemorph/jobs.h"
 
 using namespace posemorph;
@@ -77,6 +80,13 @@ bake::RigDescription ArmCharacter(int fine) {
   return rig;
 }
 
+// The pose-space point at phase t (radians): the arm's line from rest (0)
+// through mid to up (2), or a loop through Pell's four poses.
+Eigen::Vector2d PointAt(int density, double t) {
+  if (density < 2) return {1 + std::sin(t), 0};
+  return {std::sin(t), 0.5 * (1 - std::cos(t))};
+}
+
 struct Loaded {
   std::vector<unsigned char> bytes;
   Rig rig;
@@ -85,37 +95,59 @@ struct Loaded {
   }
 };
 
-// The character glued, or its parts as rigs of their own; the shoulder's
-// vertex in each rig.
+// The character glued, or its parts as rigs of their own; for each joint,
+// its two copies (rig, vertex) when the parts are apart.
 struct Character {
   std::vector<Loaded*> rigs;
-  std::vector<std::uint32_t> joint;  // per rig
+  struct Joint {
+    std::size_t rig[2];
+    std::uint32_t vertex[2];
+  };
+  std::vector<Joint> joints;  // apart only
+  bool missing = false;       // Pell's drawings were not built (no rsvg-convert)
 };
+
+// Density 0 and 1: the arm; 2: Pell, the drawn layered sample (seven parts).
+bake::RigDescription Description(int density, bool* missing) {
+  if (density < 2) return ArmCharacter(density == 0 ? 1 : 10);
+  const std::string path = std::string(POSEMORPH_DRAWN_SAMPLES) + "/pell/pell.json";
+  *missing = !std::ifstream(path).good();
+  if (*missing) return {};
+  bake::RigDescription d = bake::ReadRigDescription(path);
+  d.parameters.compact = false;
+  return d;
+}
 
 const Character& Get(int density, bool glued) {
   static std::map<std::pair<int, bool>, Character> made;
   auto [it, inserted] = made.try_emplace({density, glued});
-  if (inserted) {
-    const bake::RigDescription desc = ArmCharacter(density == 0 ? 1 : 10);
-    const Eigen::Vector2d joint = desc.glue[0].at[0];
-    std::vector<bake::RigDescription> parts;
-    if (glued)
-      parts.push_back(desc);
-    else
-      for (std::size_t p = 0; p < desc.parts.size(); ++p) parts.push_back(bake::PartRigDescription(desc, p));
-    for (bake::RigDescription& d : parts) {
-      Loaded* l = new Loaded(d);  // kept for the process's life, like the other benchmarks' fixtures
-      const Rig& rig = l->rig;
+  if (!inserted) return it->second;
+  const bake::RigDescription desc = Description(density, &it->second.missing);
+  if (it->second.missing) return it->second;
+  std::vector<bake::RigDescription> parts;
+  if (glued)
+    parts.push_back(desc);
+  else
+    for (std::size_t p = 0; p < desc.parts.size(); ++p) parts.push_back(bake::PartRigDescription(desc, p));
+  for (bake::RigDescription& d : parts)
+    it->second.rigs.push_back(new Loaded(d));  // kept for the process's life, like the other benchmarks' fixtures
+  if (glued) return it->second;
+  for (const bake::GlueDescription& glue : desc.glue) {
+    // The joint in rig coordinates (a drawing's y points down).
+    const bool drawn = desc.parts[glue.part_index].poses[0].drawn;
+    const Eigen::Vector2d at(glue.at[0].x(), drawn ? -glue.at[0].y() : glue.at[0].y());
+    Character::Joint joint{};
+    for (int side = 0; side < 2; ++side) {
+      const std::size_t r = side == 0 ? glue.part_index : glue.to_index;
+      const Rig& rig = it->second.rigs[r]->rig;
       const Span<const double> rest = rig.pose_positions(0);
-      const auto distance = [&](std::uint32_t v) {
-        return std::hypot(rest[2 * v] - joint.x(), rest[2 * v + 1] - joint.y());
-      };
+      const auto distance = [&](std::uint32_t v) { return std::hypot(rest[2 * v] - at.x(), rest[2 * v + 1] - at.y()); };
       std::uint32_t best = 0;
       for (std::uint32_t v = 1; v < rig.vertex_count(); ++v)
         if (distance(v) < distance(best)) best = v;
-      it->second.rigs.push_back(l);
-      it->second.joint.push_back(best);
+      joint.rig[side] = r, joint.vertex[side] = best;
     }
+    it->second.joints.push_back(joint);
   }
   return it->second;
 }
@@ -123,13 +155,16 @@ const Character& Get(int density, bool glued) {
 void Label(benchmark::State& state, const Character& c) {
   std::uint32_t vertices = 0, triangles = 0;
   for (const Loaded* l : c.rigs) vertices += l->rig.vertex_count(), triangles += l->rig.triangle_count();
-  state.SetLabel(std::to_string(vertices) + " vertices, " + std::to_string(triangles) + " triangles, " +
+  const char* names[] = {"arm", "arm, finer", "Pell"};
+  state.SetLabel(std::string(names[state.range(0)]) + ": " + std::to_string(vertices) + " vertices, " +
+                 std::to_string(triangles) + " triangles, " +
                  (c.rigs.size() == 1 ? "glued, one solve" : std::to_string(c.rigs.size()) + " rigs solved apart"));
 }
 
 // One frame: every rig of the character at the same pose-space point.
 void BM_PartsFrame(benchmark::State& state) {
   const Character& c = Get(int(state.range(0)), state.range(1) == 0);
+  if (c.missing) return state.SkipWithError("Pell's drawings were not built (rsvg-convert)");
   std::vector<std::vector<double>> raw, limited, work, x;
   std::vector<std::vector<float>> xf;
   for (const Loaded* l : c.rigs) {
@@ -139,11 +174,11 @@ void BM_PartsFrame(benchmark::State& state) {
   }
   double t = 0, gap = 0;
   for (auto _ : state) {
-    const double px = 1 + std::sin(t);
+    const Eigen::Vector2d p = PointAt(int(state.range(0)), t);
     t += 1.0 / 60;
     for (std::size_t r = 0; r < c.rigs.size(); ++r) {
       WeightsJob wj;
-      wj.rig = &c.rigs[r]->rig, wj.x = px, wj.y = 0;
+      wj.rig = &c.rigs[r]->rig, wj.x = p.x(), wj.y = p.y();
       wj.raw = MakeSpan(raw[r]), wj.limited = MakeSpan(limited[r]);
       wj.Run();
       MorphJob mj;
@@ -152,9 +187,10 @@ void BM_PartsFrame(benchmark::State& state) {
       mj.Run();
     }
     benchmark::DoNotOptimize(xf.data());
-    if (c.rigs.size() == 2) {
-      const std::size_t j0 = 2 * std::size_t(c.joint[0]), j1 = 2 * std::size_t(c.joint[1]);
-      gap = std::max(gap, std::hypot(x[0][j0] - x[1][j1], x[0][j0 + 1] - x[1][j1 + 1]));
+    for (const Character::Joint& j : c.joints) {
+      const double* a = &x[j.rig[0]][2 * std::size_t(j.vertex[0])];
+      const double* b = &x[j.rig[1]][2 * std::size_t(j.vertex[1])];
+      gap = std::max(gap, std::hypot(a[0] - b[0], a[1] - b[1]));
     }
   }
   state.counters["joint_gap"] = gap;
@@ -164,6 +200,7 @@ void BM_PartsFrame(benchmark::State& state) {
 // A crowd of 1000 characters on one thread, each at its own point.
 void BM_PartsCrowd1000(benchmark::State& state) {
   const Character& c = Get(int(state.range(0)), state.range(1) == 0);
+  if (c.missing) return state.SkipWithError("Pell's drawings were not built (rsvg-convert)");
   const std::size_t count = 1000;
   std::vector<std::vector<double>> w, ws, work;
   std::vector<std::vector<float>> xf;
@@ -173,7 +210,8 @@ void BM_PartsCrowd1000(benchmark::State& state) {
     xf.emplace_back(count * 2 * std::size_t(l->rig.vertex_count()));
     for (std::size_t k = 0; k < count; ++k) {
       WeightsJob wj;
-      wj.rig = &l->rig, wj.x = 2.0 * double(k) / double(count - 1), wj.y = 0;
+      const Eigen::Vector2d p = PointAt(int(state.range(0)), 2 * M_PI * double(k) / double(count));
+      wj.rig = &l->rig, wj.x = p.x(), wj.y = p.y();
       wj.raw = {w.back().data() + k * N, N}, wj.limited = {ws.back().data() + k * N, N};
       wj.Run();
     }
@@ -193,7 +231,7 @@ void BM_PartsCrowd1000(benchmark::State& state) {
 
 }  // namespace
 
-// Arguments: density (0: the test rig's grids, 1: ten times finer), then
-// 0 glued or 1 apart.
-BENCHMARK(BM_PartsFrame)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_PartsCrowd1000)->ArgsProduct({{0, 1}, {0, 1}})->Unit(benchmark::kMillisecond);
+// Arguments: the character (0: the arm at the test rig's grids, 1: ten
+// times finer, 2: Pell), then 0 glued or 1 apart.
+BENCHMARK(BM_PartsFrame)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_PartsCrowd1000)->ArgsProduct({{0, 1, 2}, {0, 1}})->Unit(benchmark::kMillisecond);

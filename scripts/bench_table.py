@@ -42,13 +42,14 @@ def print_parts(median, label, data):
     for b in data["benchmarks"]:
         if b.get("aggregate_name") == "median" and b["run_name"].startswith("BM_PartsFrame/"):
             gaps[b["run_name"]] = b.get("joint_gap")
-    print("\nA layered character (the body and arm of tests/runtime/rigs/make_arm.py, generated at two densities): "
-          "its parts glued in one solve against the same parts baked as two rigs and solved one after the "
-          "other; the joint gap is the largest distance between the two copies of the shoulder over the "
-          "frames timed (rig units; 4 px per unit):\n")
+    print("\nLayered characters, their parts glued in one solve against the same parts baked as rigs of their "
+          "own and solved one after the other: the body and arm of tests/runtime/rigs/make_arm.py at two "
+          "densities (rig units, 4 px per unit), and Pell, the drawn layered sample (seven parts; rig units are "
+          "drawing pixels). The joint gap is the largest distance between a joint's two copies over the frames "
+          "timed:\n")
     print("| character | frame | crowd of 1000, 1 thread | joint gap |")
     print("|---|---|---|---|")
-    for density in (0, 1):
+    for density in (0, 1, 2):
         for mode in (0, 1):
             key = f"/{density}/{mode}"
             frame, crowd = median.get("BM_PartsFrame" + key), median.get("BM_PartsCrowd1000" + key)
