@@ -66,6 +66,10 @@ void Viewer::BuildUi() {
             shown ? scene_.hidden_parts & ~(std::uint64_t(1) << p) : scene_.hidden_parts | (std::uint64_t(1) << p);
       if (s + 1 < sequence.size && (s + 1) % 4 != 0) ImGui::SameLine();
     }
+    // The glue: each joint is one vertex of its two parts, so the parts
+    // cannot come apart there in any frame.
+    if (joints_ < 0) joints_ = int(CountJoints(rig_));
+    ImGui::TextWrapped("glue: %d joint(s), each one vertex shared by its parts: residual 0 px in every frame", joints_);
   }
   EditUi();
   int crowd = int(scene_.crowd);
@@ -145,6 +149,18 @@ std::uint32_t Viewer::PrepareCharacters(const Scene& shown) {
 }
 
 // The characters, then the panel; and a copy of the image for a screenshot.
+std::size_t CountJoints(const Rig& rig) {
+  std::vector<std::uint64_t> parts(rig.vertex_count(), 0);
+  std::size_t joints = 0;
+  for (std::uint32_t p = 0; p < rig.part_count() && p < 64; ++p) {
+    const PartView part = rig.part(p);
+    for (std::uint32_t t = part.first_triangle; t < part.first_triangle + part.triangle_count; ++t)
+      for (int k = 0; k < 3; ++k) parts[rig.triangles()[3 * t + k]] |= std::uint64_t(1) << p;
+  }
+  for (std::uint64_t mask : parts) joints += (mask & (mask - 1)) != 0;
+  return joints;
+}
+
 void Viewer::RecordFrame(std::uint32_t index, std::uint32_t count, const Scene& shown, bool screenshot) {
   const std::uint32_t view_w = sc_.extent.width > kPanelWidth ? sc_.extent.width - std::uint32_t(kPanelWidth) : 1;
   VkCheck(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");

@@ -135,7 +135,12 @@ class Viewer {
   Camera camera_;
   bool one_to_one_ = false;  // applied once the next frame's bounds are known
   bool panning_ = false;
+  int joints_ = -1;  // a layered character's joints (CountJoints), once counted
 };
+
+// The vertices used by triangles of two parts or more: a layered
+// character's joints.
+std::size_t CountJoints(const Rig& rig);
 
 bake::Triangles RigTriangles(const Rig& rig);
 
