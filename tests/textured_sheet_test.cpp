@@ -85,6 +85,68 @@ TEST_CASE("sheet --textured: each base pose is drawn as its own drawing, the in-
   CHECK(linear.rgba != sheet.rgba);
 }
 
+TEST_CASE("sheet --textured: a layered character's parts are drawn back to front, each with its own drawings") {
+  // Pell: seven parts, each drawn on its own per pose; the right arm passes in
+  // front of the body in pose 'cross' only (its draw order changes).
+  const std::string images = std::string(POSEMORPH_DRAWN_SAMPLES) + "/pell";
+  const std::vector<unsigned char> bytes = bake::BakeRig(bake::ReadRigDescription(images + "/pell.json"));
+  Rig rig;
+  REQUIRE(LoadRig(bytes.data(), bytes.size(), &rig, nullptr));
+  const std::uint32_t N = rig.pose_count(), M = rig.part_count();
+  REQUIRE(M == 7);
+  REQUIRE(rig.draw_order_changes());
+  const std::vector<bake::RgbaImage> drawings = bake::ReadPoseDrawings(rig, "pell.pmrig", images);
+  REQUIRE(drawings.size() == std::size_t(M) * N);
+  const std::uint32_t cell = 200;
+  bake::TexturedSheetLayout layout;
+  const bake::RgbaImage sheet =
+      bake::TexturedSheet(rig, drawings, 3, 1, bake::EvalOptions{}, TextureFilter::kNearest, cell, &layout);
+  // Base pose i in cell (i, 0) is its parts' drawings laid over each other in
+  // that pose's order. Compared where every part's drawing is either opaque
+  // or empty all around (no part's anti-aliased edge), and some part opaque:
+  // there the sheet shows the front-most opaque part's own pixel. Pixels
+  // where two parts overlap prove the order: the other order shows the other part.
+  for (std::uint32_t i = 0; i < N; ++i) {
+    CAPTURE(i);
+    const DrawingCanvas canvas = rig.pose_canvas(i);
+    const Span<const std::uint32_t> order = rig.draw_sequence(i);
+    std::size_t compared = 0, same = 0, overlapping = 0, overlapping_same = 0;
+    for (std::uint32_t py = 0; py < cell; ++py)
+      for (std::uint32_t px = i * cell; px < (i + 1) * cell; ++px) {
+        const double x = (px + 0.5 - (i + 0.5) * cell) / layout.scale + layout.centre_x;
+        const double y = -(py + 0.5 - 0.5 * cell) / layout.scale + layout.centre_y;
+        const long dx = long(std::floor(x + canvas.pivot_x)), dy = long(std::floor(-y + canvas.pivot_y));
+        const unsigned char* front = nullptr;
+        int opaque_parts = 0;
+        bool clean = true;
+        for (std::uint32_t s = 0; s < order.size && clean; ++s) {
+          const bake::RgbaImage& d = drawings[std::size_t(order[s]) * N + i];
+          int opaque = 0, empty = 0;
+          for (long ny = dy - 1; ny <= dy + 1; ++ny)
+            for (long nx = dx - 1; nx <= dx + 1; ++nx) {
+              const bool inside = nx >= 0 && ny >= 0 && nx < long(d.width) && ny < long(d.height);
+              const unsigned a = inside ? d.rgba[(std::size_t(ny) * d.width + std::size_t(nx)) * 4 + 3] : 0;
+              opaque += a == 255, empty += a == 0;
+            }
+          clean = opaque == 9 || empty == 9;
+          if (opaque == 9) front = &d.rgba[(std::size_t(dy) * d.width + std::size_t(dx)) * 4], ++opaque_parts;
+        }
+        if (!clean || !front) continue;
+        const unsigned char* got = &sheet.rgba[(std::size_t(py) * sheet.width + px) * 4];
+        int off = 0;
+        for (int c = 0; c < 3; ++c) off = std::max(off, std::abs(int(got[c]) - int(front[c])));
+        ++compared, same += off <= 2;
+        if (opaque_parts > 1) ++overlapping, overlapping_same += off <= 2;
+      }
+    MESSAGE("pose " << i << ": " << same << " of " << compared << " interior pixels are the front part's, "
+                    << overlapping_same << " of " << overlapping << " where parts overlap");
+    CHECK(compared > 3000);
+    CHECK(double(same) >= 0.99 * double(compared));
+    CHECK(overlapping > 100);
+    CHECK(double(overlapping_same) >= 0.99 * double(overlapping));
+  }
+}
+
 TEST_CASE("posemorph-bake sheet --textured writes a PNG, and refuses what it cannot draw") {
   Pip pip;
   const fs::path dir = fs::temp_directory_path() / ("posemorph-sheet-" + std::to_string(::getpid()));

@@ -66,45 +66,59 @@ void Sample(const RgbaImage& d, double u, double v, TextureFilter filter, double
 std::vector<RgbaImage> ReadPoseDrawings(const Rig& rig, const std::string& rig_file, const std::string& images) {
   std::vector<RgbaImage> out;
   if (rig.uvs(0).size == 0) throw BakeError(rig_file, "has no uvs: --textured needs a rig baked from drawings");
-  for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
-    const std::string ref = Name(rig.pose_image(i));
-    if (ref.empty())
-      throw BakeError(rig_file, "pose '" + Name(rig.pose_name(i)) + "' has no drawing: --textured needs one per pose");
-    if (!ImageReferenceStaysInside(StringView{ref.data(), ref.size()}))
-      throw BakeError(rig_file,
-                      "pose '" + Name(rig.pose_name(i)) + "': image reference '" + ref + "' leaves the images folder");
-    const std::string path = (std::filesystem::path(images) / ref).string();
-    out.push_back(DecodeRgba(ReadInputFile(path, kMaxTextFileBytes, "a drawing"), path));
-    const DrawingCanvas c = rig.pose_canvas(i);
-    if (c.width > 0 && (double(out.back().width) != c.width || double(out.back().height) != c.height))
-      throw BakeError(path, "is " + std::to_string(out.back().width) + " x " + std::to_string(out.back().height) +
-                                " pixels; the rig was baked from a drawing of " + std::to_string(long(c.width)) +
-                                " x " + std::to_string(long(c.height)));
-  }
+  const bool parts = rig.part_count() > 1;
+  for (std::uint32_t p = 0; p < rig.part_count(); ++p)
+    for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
+      // "pose 'x'" for a rig without parts, "part 'a' in pose 'x'" for a layered one.
+      const std::string whose =
+          (parts ? "part '" + Name(rig.part(p).name) + "' in pose '" : "pose '") + Name(rig.pose_name(i)) + "'";
+      const std::string ref = Name(rig.part_image(p, i));
+      if (ref.empty())
+        throw BakeError(rig_file,
+                        whose + " has no drawing: --textured needs one per " + (parts ? "part and " : "") + "pose");
+      if (!ImageReferenceStaysInside(StringView{ref.data(), ref.size()}))
+        throw BakeError(rig_file, whose + ": image reference '" + ref + "' leaves the images folder");
+      const std::string path = (std::filesystem::path(images) / ref).string();
+      out.push_back(DecodeRgba(ReadInputFile(path, kMaxTextFileBytes, "a drawing"), path));
+      const DrawingCanvas c = rig.pose_canvas(i);
+      if (c.width > 0 && (double(out.back().width) != c.width || double(out.back().height) != c.height))
+        throw BakeError(path, "is " + std::to_string(out.back().width) + " x " + std::to_string(out.back().height) +
+                                  " pixels; the rig was baked from a drawing of " + std::to_string(long(c.width)) +
+                                  " x " + std::to_string(long(c.height)));
+    }
   return out;
 }
 
 namespace {
 
 // The sheet being drawn: premultiplied colour accumulated per pixel, and
-// which pixels a triangle has covered (a pixel on a shared edge is drawn once).
+// which pixels a triangle of the part being drawn has covered (a pixel on a
+// shared edge is drawn once per part): the stamp of the last part that drew
+// it, each part of each frame drawn with a stamp of its own.
 struct SheetCanvas {
   std::uint32_t width = 0;
   std::vector<double> acc;
-  std::vector<unsigned char> covered;
+  std::vector<std::uint32_t> stamp;
+  std::uint32_t next_stamp = 0;
 };
 
-// One frame into its cell (centred at ox, oy; cell column cx, row cy): each
-// triangle rasterised, each pixel the texture-weighted mix of the drawings.
-void DrawFrame(const Rig& rig, const std::vector<RgbaImage>& drawings, const Frame& f, std::uint32_t cx,
-               std::uint32_t cy, const TexturedSheetLayout& lay, TextureFilter filter, SheetCanvas& canvas) {
-  const std::uint32_t N = rig.pose_count(), T = rig.triangle_count(), cell = lay.cell;
+// One part of a frame into its cell (centred at ox, oy; cell column cx, row
+// cy): each triangle rasterised, each pixel the texture-weighted mix of the
+// part's drawings (drawings[part * N + pose]), laid over what the parts
+// behind it left there (premultiplied "over").
+void DrawPart(const Rig& rig, const std::vector<RgbaImage>& drawings, const Frame& f, std::uint32_t part,
+              std::uint32_t cx, std::uint32_t cy, const TexturedSheetLayout& lay, TextureFilter filter,
+              SheetCanvas& canvas) {
+  const std::uint32_t N = rig.pose_count(), cell = lay.cell;
+  const PartView range = rig.part(part);
+  const std::uint32_t first = rig.part_count() > 1 ? range.first_triangle : 0;
+  const std::uint32_t end = rig.part_count() > 1 ? first + range.triangle_count : rig.triangle_count();
   const double ox = (cx + 0.5) * cell, oy = (cy + 0.5) * cell;
   std::vector<double>& acc = canvas.acc;
-  std::vector<unsigned char>& covered = canvas.covered;
+  const std::uint32_t stamp = ++canvas.next_stamp;
   auto sx = [&](std::uint32_t v) { return ox + (f.positions[2 * v] - lay.centre_x) * lay.scale; };
   auto sy = [&](std::uint32_t v) { return oy - (f.positions[2 * v + 1] - lay.centre_y) * lay.scale; };
-  for (std::uint32_t t = 0; t < T; ++t) {
+  for (std::uint32_t t = first; t < end; ++t) {
     const std::uint32_t* tri = rig.triangles().data + 3 * t;
     const double ax = sx(tri[0]), ay = sy(tri[0]), bx = sx(tri[1]), by = sy(tri[1]), qx = sx(tri[2]), qy = sy(tri[2]);
     const double area = (bx - ax) * (qy - ay) - (by - ay) * (qx - ax);
@@ -116,13 +130,14 @@ void DrawFrame(const Rig& rig, const std::vector<RgbaImage>& drawings, const Fra
     for (long py = py0; py <= py1; ++py)
       for (long px = px0; px <= px1; ++px) {
         const std::size_t at = std::size_t(py) * canvas.width + std::size_t(px);
-        if (covered[at]) continue;  // a pixel on a shared edge is drawn once
+        if (canvas.stamp[at] == stamp) continue;  // a pixel on a shared edge is drawn once
         const double x = px + 0.5, y = py + 0.5;
         const double l1 = ((x - ax) * (qy - ay) - (y - ay) * (qx - ax)) / area;
         const double l2 = ((bx - ax) * (y - ay) - (by - ay) * (x - ax)) / area;
         const double l0 = 1 - l1 - l2;
         if (l0 < -1e-9 || l1 < -1e-9 || l2 < -1e-9) continue;
-        covered[at] = 1;
+        canvas.stamp[at] = stamp;
+        double colour[4] = {0, 0, 0, 0};
         for (std::uint32_t i = 0; i < N; ++i) {
           const double w = f.texture[i];
           if (!(w > 1e-6)) continue;
@@ -130,11 +145,24 @@ void DrawFrame(const Rig& rig, const std::vector<RgbaImage>& drawings, const Fra
           const double u = l0 * uv[2 * tri[0]] + l1 * uv[2 * tri[1]] + l2 * uv[2 * tri[2]];
           const double v = l0 * uv[2 * tri[0] + 1] + l1 * uv[2 * tri[1] + 1] + l2 * uv[2 * tri[2] + 1];
           double c[4];
-          Sample(drawings[i], u, v, filter, c);
-          for (int ch = 0; ch < 4; ++ch) acc[at * 4 + std::size_t(ch)] += w * c[ch];
+          Sample(drawings[std::size_t(part) * N + i], u, v, filter, c);
+          for (int ch = 0; ch < 4; ++ch) colour[ch] += w * c[ch];
         }
+        for (int ch = 0; ch < 4; ++ch)
+          acc[at * 4 + std::size_t(ch)] = colour[ch] + (1 - colour[3]) * acc[at * 4 + std::size_t(ch)];
       }
   }
+}
+
+// One frame: its parts back to front, in the order of its dominant
+// drawing's pose (the largest texture weight, ties to the lower pose), as
+// the runtime's DrawList orders them.
+void DrawFrame(const Rig& rig, const std::vector<RgbaImage>& drawings, const Frame& f, std::uint32_t cx,
+               std::uint32_t cy, const TexturedSheetLayout& lay, TextureFilter filter, SheetCanvas& canvas) {
+  std::uint32_t dominant = 0;
+  for (std::uint32_t i = 1; i < rig.pose_count(); ++i)
+    if (f.texture[i] > f.texture[dominant]) dominant = i;
+  for (std::uint32_t part : rig.draw_sequence(dominant)) DrawPart(rig, drawings, f, part, cx, cy, lay, filter, canvas);
 }
 
 }  // namespace
@@ -172,9 +200,8 @@ RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, 
   SheetCanvas canvas;
   canvas.width = sheet.width;
   canvas.acc.assign(std::size_t(sheet.width) * sheet.height * 4, 0.0);
-  canvas.covered.assign(std::size_t(sheet.width) * sheet.height, 0);
+  canvas.stamp.assign(std::size_t(sheet.width) * sheet.height, 0);
   const std::vector<double>& acc = canvas.acc;
-  const std::vector<unsigned char>& covered = canvas.covered;
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const std::uint32_t cx = k < N ? std::uint32_t(k) : std::uint32_t(k - N) % std::uint32_t(columns);
     const std::uint32_t cy = k < N ? 0 : 1 + std::uint32_t(k - N) / std::uint32_t(columns);
@@ -183,7 +210,7 @@ RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, 
   // Over a light background, as the viewer's.
   const double background[3] = {0.93, 0.94, 0.95};
   sheet.rgba.resize(acc.size());
-  for (std::size_t p = 0; p < covered.size(); ++p) {
+  for (std::size_t p = 0; p < canvas.stamp.size(); ++p) {
     const double a = std::clamp(acc[p * 4 + 3], 0.0, 1.0);
     for (int ch = 0; ch < 3; ++ch)
       sheet.rgba[p * 4 + std::size_t(ch)] = static_cast<unsigned char>(

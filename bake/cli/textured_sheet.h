@@ -2,9 +2,11 @@
 // The contact sheet drawn with the drawings (`posemorph-bake sheet --textured`):
 // each frame rasterised on the CPU, every pixel of a triangle taking each
 // pose's drawing at that pose's uvs, blended by the texture weights as the
-// viewer's exact cross-fade does, over a light background. The base poses
-// in the first row, then the sheet's grid of pose-space points: ghosting and
-// texture swimming show without a GPU.
+// viewer's exact cross-fade does, over a light background. A layered
+// character's parts are drawn back to front, each with its own drawings, in
+// the order of the frame's dominant drawing's pose (as the runtime's
+// DrawList orders them). The base poses in the first row, then the sheet's
+// grid of pose-space points: ghosting and texture swimming show without a GPU.
 #pragma once
 #include <cstdint>
 #include <string>
@@ -20,7 +22,8 @@ struct RgbaImage {
   std::vector<unsigned char> rgba;  // straight (not premultiplied) alpha, rows top to bottom
 };
 
-// Reads every pose's drawing: references relative to `images`, never leaving
+// Reads every part's drawing in every pose, part after part (drawings[part *
+// N + pose]; a rig without parts is one part, the poses' drawings): references relative to `images`, never leaving
 // it ('..', absolute paths, backslashes and control characters are refused),
 // regular files of at most 64 MiB and 16,777,216 pixels, each the size its
 // pose's canvas records. Throws BakeError naming the rig or the file.
