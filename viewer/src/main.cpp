@@ -33,7 +33,7 @@ const char* kUsage =
     "         [--at X,Y | --path NAME [--time T] [--frames K]] [--crowd K] [--sigma S]\n"
     "         [--no-weight-limit] [--linear] [--compare] [--bases] [--wireframe] [--validation]\n"
     "         [--camera X,Y,ZOOM | --camera 1:1] [--transform T] [--seed S] [--drawings K] [--blend B]\n"
-    "         [--filter linear|nearest] [--hide-part NAME]... [--smoke-test SHOT.png [--frames K]]\n"
+    "         [--filter linear|nearest] [--hide-part NAME]... [--joints] [--smoke-test SHOT.png [--frames K]]\n"
     "         [--description RIG.json]\n"
     "  --images DIR  where the rig's drawings are (default: where the bake found them, recorded in the rig\n"
     "                relative to its file; else the rig's folder)\n"
@@ -49,6 +49,7 @@ const char* kUsage =
     "  --filter F    sample the drawings linear or nearest (pixel art); default: as the rig asks\n"
     "  --blend B     exact (one pass, weighted sum; default) or over (sequential passes, approximate)\n"
     "  --hide-part NAME  a layered character: do not draw this part (repeatable)\n"
+    "  --joints      window: mark a layered character's joints over the frame\n"
     "  --compare     rigid (left) and linear (right) interpolation side by side\n"
     "  --bases       the N base poses in a row\n"
     "  --validation  enable the Vulkan validation layer; any message fails (exit 3)\n"
@@ -167,6 +168,8 @@ bool ParseSwitch(const std::string& a, Options& o) {
     o.scene.compare_linear = true;
   else if (a == "--bases")
     o.scene.show_bases = true;
+  else if (a == "--joints")
+    o.window.show_joints = true;
   else
     return false;
   return true;

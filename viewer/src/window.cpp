@@ -149,6 +149,10 @@ int Viewer::Run() {
       if (edit_.on)
         EditInput(std::int32_t(kPanelWidth), sc_.extent.width - std::uint32_t(kPanelWidth), sc_.extent.height);
     }
+    std::uint32_t index = 0, count = 0;
+    Scene shown;
+    const bool drawing = BeginFrame(&index, &count, &shown);
+    JointOverlay(drawing ? count : 0);
     ImGui::Render();
     const bool last_frame = smoke && smoke_frame_ + 1 >= options_.smoke_frames;
     if (last_frame && !options_.description.empty()) {
@@ -158,7 +162,7 @@ int Viewer::Run() {
       SavePose();
       std::printf("%s\n", status_.c_str());
     }
-    Frame(last_frame);
+    if (drawing) EndFrame(index, count, shown, last_frame);
     if (smoke) SmokeAfterFrame();
     if (smoke && ++smoke_frame_ >= options_.smoke_frames) {
       status = WriteSmokeShot();

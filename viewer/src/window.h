@@ -13,7 +13,8 @@ struct WindowOptions {
   bool validation = false;
   std::string smoke_test;  // non-empty: drive the pad for `smoke_frames` frames, save this screenshot, exit
   std::uint32_t smoke_frames = 60;
-  std::string description;  // rig description to save recorded gestures into
+  std::string description;   // rig description to save recorded gestures into
+  bool show_joints = false;  // a layered character's joints marked over the frame
 };
 
 // Runs until the window closes; returns the process exit status.

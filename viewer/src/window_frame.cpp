@@ -68,8 +68,9 @@ void Viewer::BuildUi() {
     }
     // The glue: each joint is one vertex of its two parts, so the parts
     // cannot come apart there in any frame.
-    if (joints_ < 0) joints_ = int(CountJoints(rig_));
-    ImGui::TextWrapped("glue: %d joint(s), each one vertex shared by its parts: residual 0 px in every frame", joints_);
+    ImGui::TextWrapped("glue: %zu joint(s), each one vertex shared by its parts: residual 0 px in every frame",
+                       joints_.size());
+    if (!joints_.empty()) ImGui::Checkbox("mark the joints", &show_joints_);
   }
   EditUi();
   int crowd = int(scene_.crowd);
@@ -82,26 +83,62 @@ void Viewer::BuildUi() {
   ImGui::End();
 }
 
-void Viewer::Frame(bool screenshot) {
+bool Viewer::BeginFrame(std::uint32_t* index, std::uint32_t* count, Scene* shown) {
   VkDevice dev = gpu_.device();
   VkCheck(vkWaitForFences(dev, 1, &fence_, VK_TRUE, UINT64_MAX), "vkWaitForFences");
   if (resized_ || sc_.handle == VK_NULL_HANDLE) {
     resized_ = false;
-    if (!CreateSwapchain()) return;
+    if (!CreateSwapchain()) return false;
     ImGui_ImplVulkan_SetMinImageCount(std::uint32_t(sc_.images.size()));
   }
-  std::uint32_t index = 0;
-  const VkResult acquired = vkAcquireNextImageKHR(dev, sc_.handle, UINT64_MAX, acquired_, VK_NULL_HANDLE, &index);
+  const VkResult acquired = vkAcquireNextImageKHR(dev, sc_.handle, UINT64_MAX, acquired_, VK_NULL_HANDLE, index);
   if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
     resized_ = true;
-    return;
+    return false;
   }
   VkCheck(vkResetFences(dev, 1, &fence_), "vkResetFences");
   // The characters: the runtime, timed, then into the GPU buffers.
-  const Scene shown = ShownScene();
-  const std::uint32_t count = PrepareCharacters(shown);
+  *shown = ShownScene();
+  *count = PrepareCharacters(*shown);
+  return true;
+}
+
+void Viewer::EndFrame(std::uint32_t index, std::uint32_t count, const Scene& shown, bool screenshot) {
   RecordFrame(index, count, shown, screenshot);
   SubmitAndPresent(index);
+}
+
+// Each drawn character's joints where this frame puts them: the positions
+// its draw list holds (rig units) through its transform and the camera (in
+// edit mode, the edited pose where it stands unmoved).
+void Viewer::JointOverlay(std::uint32_t count) {
+  joint_marks_.clear();
+  if (!show_joints_ || joints_.empty() || sc_.extent.width <= kPanelWidth + 8) return;
+  const ViewMap map{camera_, std::int32_t(kPanelWidth), sc_.extent.width - std::uint32_t(kPanelWidth),
+                    sc_.extent.height};
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const float right = float(sc_.extent.width), bottom = float(sc_.extent.height);
+  auto mark = [&](double x, double y) {
+    const ImVec2 p = map.ToScreen(Eigen::Vector2d(x, y));
+    if (!(p.x >= kPanelWidth + 8 && p.y >= 8 && p.x < right - 8 && p.y < bottom - 8)) return;  // off the view
+    draw->AddCircleFilled(p, 5, kJointColour);
+    draw->AddCircle(p, 6, IM_COL32(20, 20, 20, 255), 0, 1.5f);
+    joint_marks_.push_back(p);
+  };
+  if (edit_.on) {
+    for (std::uint32_t v : joints_)
+      if (v < edit_.current.size()) mark(edit_.current[v].x(), edit_.current[v].y());
+    return;
+  }
+  for (std::uint32_t k = 0; k < count && k < scratch_.lists.size(); ++k) {
+    const DrawList& list = scratch_.lists[k];
+    for (std::uint32_t v : joints_) {
+      if (2 * std::size_t(v) + 1 >= list.positions.size) continue;
+      double x = 0, y = 0;
+      list.transform.Apply(list.positions[2 * std::size_t(v)], list.positions[2 * std::size_t(v) + 1], &x, &y);
+      mark(x, y);
+    }
+  }
 }
 
 // The scene as this frame shows it: along the playing path or gesture, the
@@ -148,19 +185,20 @@ std::uint32_t Viewer::PrepareCharacters(const Scene& shown) {
   return count;
 }
 
-// The characters, then the panel; and a copy of the image for a screenshot.
-std::size_t CountJoints(const Rig& rig) {
+std::vector<std::uint32_t> JointVertices(const Rig& rig) {
   std::vector<std::uint64_t> parts(rig.vertex_count(), 0);
-  std::size_t joints = 0;
   for (std::uint32_t p = 0; p < rig.part_count() && p < 64; ++p) {
     const PartView part = rig.part(p);
     for (std::uint32_t t = part.first_triangle; t < part.first_triangle + part.triangle_count; ++t)
       for (int k = 0; k < 3; ++k) parts[rig.triangles()[3 * t + k]] |= std::uint64_t(1) << p;
   }
-  for (std::uint64_t mask : parts) joints += (mask & (mask - 1)) != 0;
+  std::vector<std::uint32_t> joints;
+  for (std::uint32_t v = 0; v < rig.vertex_count(); ++v)
+    if ((parts[v] & (parts[v] - 1)) != 0) joints.push_back(v);
   return joints;
 }
 
+// The characters, then the panel; and a copy of the image for a screenshot.
 void Viewer::RecordFrame(std::uint32_t index, std::uint32_t count, const Scene& shown, bool screenshot) {
   const std::uint32_t view_w = sc_.extent.width > kPanelWidth ? sc_.extent.width - std::uint32_t(kPanelWidth) : 1;
   VkCheck(vkResetCommandBuffer(cmd_, 0), "vkResetCommandBuffer");

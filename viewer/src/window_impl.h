@@ -61,10 +61,22 @@ struct Gesture {
 
 ImU32 PoseColour(std::uint32_t i, int alpha);  // the pad's colour of pose i (pose_colours.h)
 
+// The vertices used by triangles of two parts or more: a layered
+// character's joints, in index order.
+std::vector<std::uint32_t> JointVertices(const Rig& rig);
+
+// The joint markers' fill: a colour no sample draws, found again in screenshots.
+constexpr ImU32 kJointColour = IM_COL32(255, 0, 255, 255);
+
 class Viewer {
  public:
   Viewer(const Rig& rig, const Drawings& drawings, Scene scene, const WindowOptions& options)
-      : rig_(rig), drawings_(drawings), scene_(scene), options_(options) {}
+      : rig_(rig),
+        drawings_(drawings),
+        scene_(scene),
+        options_(options),
+        joints_(JointVertices(rig)),
+        show_joints_(options.show_joints) {}
   int Run();
 
  private:
@@ -81,7 +93,15 @@ class Viewer {
   void DestroySwapchain();
   void BuildUi();
   void Pad();
-  void Frame(bool screenshot);
+  // A frame in two steps around ImGui::Render: BeginFrame waits for the GPU,
+  // acquires an image and evaluates the characters (false when the
+  // swapchain is out of date: nothing to draw this time), so that the
+  // overlays drawn before Render follow this frame's characters; EndFrame
+  // records, submits and presents.
+  bool BeginFrame(std::uint32_t* index, std::uint32_t* count, Scene* shown);
+  void EndFrame(std::uint32_t index, std::uint32_t count, const Scene& shown, bool screenshot);
+  // A marker on every joint of the characters drawn (when shown_joints_ is on).
+  void JointOverlay(std::uint32_t count);
   // Frame's steps.
   Scene ShownScene();
   std::uint32_t PrepareCharacters(const Scene& shown);
@@ -135,12 +155,11 @@ class Viewer {
   Camera camera_;
   bool one_to_one_ = false;  // applied once the next frame's bounds are known
   bool panning_ = false;
-  int joints_ = -1;  // a layered character's joints (CountJoints), once counted
+  std::vector<std::uint32_t> joints_;  // a layered character's joint vertices (JointVertices)
+  bool show_joints_ = false;           // markers on the joints (--joints, or the panel's toggle)
+  // The last overlay's markers in window pixels (the smoke test finds them in its shot).
+  std::vector<ImVec2> joint_marks_;
 };
-
-// The vertices used by triangles of two parts or more: a layered
-// character's joints.
-std::size_t CountJoints(const Rig& rig);
 
 bake::Triangles RigTriangles(const Rig& rig);
 

@@ -2,7 +2,8 @@
 // The window's smoke test (--smoke-test OUT.png): a scripted session of
 // options_.smoke_frames frames that drags the pad and records the drag as a
 // gesture, zooms and pans the camera, edits a pose, resizes the window
-// half-way, saves what it authored, and writes the last frame.
+// half-way, saves what it authored, and writes the last frame (with
+// --joints, fitted to the character again, its joint markers checked).
 #include "window_impl.h"
 
 namespace posemorph::viewer::window_impl {
@@ -41,6 +42,10 @@ void Viewer::SmokeInput() {
   }
   if (edit_.on && edit_.targets.size() == 2)
     edit_.targets[1].x() += 0.2 * rig_.bounding_box_diagonal() / options_.smoke_frames;
+  // With --joints, the last frame leaves edit mode and fits the camera to the
+  // character again (the "fit character" button): every joint is on screen
+  // for the shot to be checked against.
+  if (show_joints_ && smoke_frame_ + 1 >= options_.smoke_frames) edit_.on = false, fit_ = Fit::kCharacter;
 }
 
 // After a frame: timing, and half-way the resize that rebuilds the swapchain under validation.
@@ -79,6 +84,22 @@ int Viewer::WriteSmokeShot() {
           SceneCharacters(rig_, scene_), smoke_fps_, options_.width, options_.height, gpu_.device_name().c_str());
       std::printf("camera: zoom %.4g pixels per unit at (%.2f, %.2f), %s\n", camera_.zoom, camera_.centre.x,
                   camera_.centre.y, fit_ == Fit::kNone ? "zoomed and panned by the user" : "fitted");
+      if (show_joints_) {
+        // Each joint marker of the last frame, found again in the shot: its
+        // centre pixel is the marker's fill (magenta: no sample draws it).
+        std::size_t seen = 0;
+        for (const ImVec2& m : joint_marks_) {
+          const std::size_t at = (std::size_t(m.y) * sc_.extent.width + std::size_t(m.x)) * 4;
+          seen += at + 2 < rgba.size() && rgba[at] > 200 && rgba[at + 1] < 80 && rgba[at + 2] > 200;
+        }
+        std::printf("joints: %zu marker(s) on screen for %zu joint(s), %zu seen in the shot\n", joint_marks_.size(),
+                    joints_.size(), seen);
+        if (seen != joint_marks_.size() || joint_marks_.empty()) {
+          std::fprintf(stderr, "posemorph-view: error: %zu of %zu joint markers are missing from the shot\n",
+                       joint_marks_.size() - seen, joint_marks_.size());
+          return 1;
+        }
+      }
     }
   }
   return 0;
