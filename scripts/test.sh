@@ -17,6 +17,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 jobs=$(nproc)
+# Each step's banner says when it began (seconds since the start): where CI's time goes.
+say() { echo "== [${SECONDS}s] $*"; }
 scripts/check-format.sh  # the layout (.clang-format)
 python3 scripts/readme-figures.py --check examples  # README tables that depend only on the sources
 
@@ -29,7 +31,7 @@ if [ "$(uname -m)" = x86_64 ]; then
 fi
 
 build() {
-  echo "== $1: build"
+  say "$1: build"
   cmake --preset "$1" -DPOSEMORPH_WERROR=ON >/dev/null  # warnings fail CI
   cmake --build --preset "$1" -j"$jobs"
 }
@@ -37,13 +39,13 @@ build() {
 for preset in release clang; do
   build "$preset"
   if [ "$preset" = release ]; then
-    echo "== clang-tidy (.clang-tidy) on the runtime, the bake and the viewer"
+    say "clang-tidy (.clang-tidy) on the runtime, the bake and the viewer"
     scripts/check-tidy.sh build/release
   fi
-  echo "== $preset: every test, default path"
+  say "$preset: every test, default path"
   ctest --preset "$preset" -j"$jobs"
   for isa in "${forced[@]}"; do
-    echo "== $preset: the runtime suite, POSEMORPH_ISA=$isa"
+    say "$preset: the runtime suite, POSEMORPH_ISA=$isa"
     # The kernel path changes only the runtime's per-frame arithmetic, and the
     # runtime suite checks on each path that its bits are the committed ones
     # (tests/goldens/frame-hashes.txt: single, batched and threaded frames of
@@ -52,6 +54,7 @@ for preset in release clang; do
     POSEMORPH_ISA=$isa ctest --preset "$preset" -j"$jobs" -L runtime
   done
 done
+say "consumers (scripts/consumer-test.sh)"
 scripts/consumer-test.sh
 # Under AddressSanitizer the debug preset leaves out the three tests that re-measure
 # the ghosting figures of the drawn characters (CMakePresets.json): the
@@ -59,9 +62,11 @@ scripts/consumer-test.sh
 # aligns and measures through the synthetic, Gabriel and command-line tests.
 for preset in tsan debug; do
   build "$preset"
-  echo "== $preset"
+  say "$preset: tests"
   ctest --preset "$preset" -j"$jobs"
 done
-echo "== fuzz: each libFuzzer harness for ${POSEMORPH_FUZZ_SECONDS:-60} s"
+say "fuzz: each libFuzzer harness for ${POSEMORPH_FUZZ_SECONDS:-60} s"
 scripts/fuzz.sh "${POSEMORPH_FUZZ_SECONDS:-60}"
+say "cross builds (scripts/cross-test.sh)"
 scripts/cross-test.sh
+say "done"
