@@ -55,7 +55,7 @@ bool SameBits(const double* a, const double* b, std::size_t n) { return std::mem
 }  // namespace
 
 TEST_CASE("a batch gives each character exactly what MorphJob gives it") {
-  for (const char* name : {"snake", "gingerbread", "snake.compact", "pip.compact"}) {
+  for (const char* name : {"snake", "gingerbread", "snake.compact", "pip.compact", "pell"}) {
     const Rig rig = LoadTestRig(name);
     const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
     for (std::size_t count : {1u, 3u, 8u, 13u, 64u}) {
@@ -76,7 +76,7 @@ TEST_CASE("a batch gives each character exactly what MorphJob gives it") {
 }
 
 TEST_CASE("splitting a crowd across threads changes no bit") {
-  for (const char* name : {"snake", "snake.compact"}) {
+  for (const char* name : {"snake", "snake.compact", "pell.compact"}) {
     const Rig rig = LoadTestRig(name);
     const std::size_t count = 100, v2 = 2 * std::size_t(rig.vertex_count());
     const Crowd crowd = RandomCrowd(rig, count, 42);

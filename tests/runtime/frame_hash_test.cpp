@@ -21,10 +21,22 @@ using namespace posemorph::test;
 namespace {
 
 // The exact rigs and their compact encodings (derived at load: the same
-// bits on every target too).
-const char* const kSampleRigs[] = {"snake",       "worm-line",     "gingerbread",       "pip",
-                                   "sprout",      "snake.compact", "worm-line.compact", "gingerbread.compact",
-                                   "pip.compact", "sprout.compact"};
+// bits on every target too); Pell and the arm are layered (parts glued in
+// one solve).
+const char* const kSampleRigs[] = {"snake",
+                                   "worm-line",
+                                   "gingerbread",
+                                   "pip",
+                                   "sprout",
+                                   "pell",
+                                   "arm",
+                                   "snake.compact",
+                                   "worm-line.compact",
+                                   "gingerbread.compact",
+                                   "pip.compact",
+                                   "sprout.compact",
+                                   "pell.compact",
+                                   "arm.compact"};
 
 // FNV-1a, 64 bits, over the bytes of every value in order.
 struct Fnv64 {
