@@ -22,15 +22,21 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A sample as the build baked it (build/<preset>/rigs/NAME.compact.pmrig:
+// `posemorph-bake DRAWINGS/NAME.json`, the default compact encoding), read
+// rather than baked again by every test case.
+std::vector<unsigned char> BakedRigBytes(const std::string& name) {
+  const std::string path = std::string(POSEMORPH_TEST_RIGS) + "/" + name + ".compact.pmrig";
+  std::ifstream in(path, std::ios::binary);
+  REQUIRE_MESSAGE(in, "cannot read " << path << " (the build bakes it: target posemorph-test-rigs)");
+  return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
+}
+
 struct Pip {
   std::string images = std::string(POSEMORPH_DRAWN_SAMPLES) + "/pip";
-  std::vector<unsigned char> bytes;
+  std::vector<unsigned char> bytes = BakedRigBytes("pip");
   Rig rig;
-  Pip() {
-    bake::RigDescription d = bake::ReadRigDescription(images + "/pip.json");
-    bytes = bake::BakeRig(d);
-    REQUIRE(LoadRig(bytes.data(), bytes.size(), &rig, nullptr));
-  }
+  Pip() { REQUIRE(LoadRig(bytes.data(), bytes.size(), &rig, nullptr)); }
 };
 
 }  // namespace
@@ -89,7 +95,7 @@ TEST_CASE("sheet --textured: a layered character's parts are drawn back to front
   // Pell: seven parts, each drawn on its own per pose; the right arm passes in
   // front of the body in pose 'cross' only (its draw order changes).
   const std::string images = std::string(POSEMORPH_DRAWN_SAMPLES) + "/pell";
-  const std::vector<unsigned char> bytes = bake::BakeRig(bake::ReadRigDescription(images + "/pell.json"));
+  const std::vector<unsigned char> bytes = BakedRigBytes("pell");
   Rig rig;
   REQUIRE(LoadRig(bytes.data(), bytes.size(), &rig, nullptr));
   const std::uint32_t N = rig.pose_count(), M = rig.part_count();
@@ -151,8 +157,10 @@ TEST_CASE("posemorph-bake sheet --textured writes a PNG, and refuses what it can
   Pip pip;
   const fs::path dir = fs::temp_directory_path() / ("posemorph-sheet-" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  fs::create_directories(dir);
-  const fs::path rig = dir / "pip.pmrig", out = dir / "sheet.png";
+  // The rig one folder down: the drawing folder it records (../assets/pip,
+  // from build/<preset>/rigs/) is then dir/assets/pip, which does not exist.
+  fs::create_directories(dir / "rigs");
+  const fs::path rig = dir / "rigs" / "pip.pmrig", out = dir / "sheet.png";
   std::ofstream(rig, std::ios::binary)
       .write(reinterpret_cast<const char*>(pip.bytes.data()), std::streamsize(pip.bytes.size()));
   auto run = [](const std::vector<std::string>& args, std::string* text) {
@@ -179,7 +187,7 @@ TEST_CASE("posemorph-bake sheet --textured writes a PNG, and refuses what it can
   CHECK(text.find("sheet --textured needs -o OUT.png") != std::string::npos);
   // The drawings are not beside the rig (no --images): the first missing one is named.
   CHECK(run({"sheet", rig.string(), "--textured", "-o", (dir / "t.png").string()}, &text) == 1);
-  CHECK(text.find("posemorph-bake: error: " + (dir / "rest.png").string() + ": ") != std::string::npos);
+  CHECK(text.find("posemorph-bake: error: " + (dir / "rigs" / "rest.png").string() + ": ") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "t.png"));
   fs::remove_all(dir);
 }
