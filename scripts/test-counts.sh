@@ -11,16 +11,16 @@ count() {
   [ -f "$dir/CTestTestfile.cmake" ] || { echo "scripts/test-counts.sh: $dir is not built" >&2; exit 1; }
   ctest --test-dir "$dir" -N "$@" | sed -n 's/^Total Tests: //p'
 }
-release=$(count release) isa=$(count release -L runtime) clang=$(count clang)
+release=$(count release) isa=$(count release -L runtime) clang=$(count clang-runtime)
 tsan=$(count tsan)
 # The debug preset's filter (CMakePresets.json) leaves two tests out: count as it runs.
 debug=$(ctest --preset debug -N | sed -n 's/^Total Tests: //p')
 echo "| build | preset | tests | what |"
 echo "|---|---|---|---|"
 echo "| GCC 12, -O3 | \`release\` | $release | every test (examples included); then the runtime suite again with \`POSEMORPH_ISA=avx2\`, \`sse2\` and \`scalar\` ($isa each: the kernel path changes only the runtime's frame arithmetic, and the suite checks its bits on each path against the committed frame hashes; the default run takes AVX-512 where the CPU has it) |"
-echo "| Clang 14, -O3 | \`clang\` | $clang | the same four runs: every test on the default path, the runtime suite on the three others |"
+echo "| Clang 14, -O3 | \`clang-runtime\` | $clang | the runtime suite, built alone and reading the rigs release baked, on the same four paths: the same bits from the other compiler (the frame hashes). The \`clang\` preset builds everything with Clang for local use; CI builds everything with Clang once, in \`debug\` |"
 echo "| Clang, ThreadSanitizer | \`tsan\` | $tsan | the runtime suite (threads splitting a crowd, batch = single) |"
-echo "| GCC, AddressSanitizer + UBSan, -O1 | \`debug\` | $debug | every test but the viewer's (the Vulkan loader and driver are not built with the sanitisers), allocation counting (the sanitiser owns malloc), the hostile-input corpus (its 1 GiB address-space limit leaves no room for the shadow memory) and the three tests that re-measure the ghosting figures (release and Clang run them) |"
+echo "| Clang 14, AddressSanitizer + UBSan, -O1 | \`debug\` | $debug | everything built with Clang (warnings as errors); every test but the viewer's (the Vulkan loader and driver are not built with the sanitisers), allocation counting (the sanitiser owns malloc), the hostile-input corpus (its 1 GiB address-space limit leaves no room for the shadow memory) and the three tests that re-measure the ghosting figures (release runs them) |"
 echo "| Clang, libFuzzer + ASan + UBSan | \`fuzz\` (\`scripts/fuzz.sh\`) | 4 harnesses | 60 s each: rig loader and frames, rig description, SVG outlines, PNG tracer (\"Hostile input and fuzzing\" below) |"
 echo "| aarch64 (g++-aarch64-linux-gnu) under qemu-aarch64 | \`scripts/cross-test.sh\` | runtime suite | NEON and scalar paths |"
 echo "| Windows x64 (mingw-w64) under wine64 | \`scripts/cross-test.sh\` | runtime suite | every x86-64 path the CPU runs |"
