@@ -153,7 +153,7 @@ int main(int argc, char** argv) {
     uint32_t crc = 0, crc_at = 0, major = 0, minor = 9;
     memcpy(&crc_at, bytes + 32, 4); /* the header's checksum field */
     EXPECT(pm_rig_checksum(rig, &crc) == PM_OK && crc == crc_at);
-    EXPECT(pm_rig_format_version(rig, &major, &minor) == PM_OK && major == 1 && minor == 6);
+    EXPECT(pm_rig_format_version(rig, &major, &minor) == PM_OK && major == 1 && minor == 7);
   }
   pm_rig_free(rig);
   free(bytes), free(raw), free(limited), free(tex), free(work), free(x), free(xf);

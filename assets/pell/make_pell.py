@@ -7,6 +7,13 @@
 # groups with a stylesheet), so every part has a PNG per pose on one
 # 256 x 256 canvas. Landmarks and joints follow the parts' rotations here,
 # so run it again after changing the geometry.
+#
+# It also writes Pell's face channel: one SVG per expression (face-calm,
+# face-joy, face-surprise, face-sleepy), holding the eyes and the mouth
+# drawn on the rest pose's head, and pell-face.json, Pell with two control
+# channels: "body" (the four poses above) drives the body, arms and head,
+# "face" (the four expressions) the eyes and the mouth, each glued to the
+# head at one joint (bake/RIG_DESCRIPTION.md, "channels").
 import json, math, os, re
 
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -115,9 +122,72 @@ rig = {
          "keys": [[0, 0, 0], [0.8, 1, 0], [1.6, 0, 0], [2.4, 0, 1], [3.2, 0, 0], [4, -1, 0], [4.8, 0, 0]]},
     ],
 }
-text = json.dumps(rig, indent=1)
-text = re.sub(r"\[\s*(-?[\d.]+),\s*(-?[\d.]+)\s*\]", r"[\1, \2]", text)
-text = re.sub(r"\[\s*(-?[\d.]+),\s*(-?[\d.]+),\s*(-?[\d.]+)\s*\]", r"[\1, \2, \3]", text)
-text = re.sub(r"\[\s*(-?[\d.]+),\s*(-?[\d.]+),\s*(-?[\d.]+),\s*(-?[\d.]+)\s*\]", r"[\1, \2, \3, \4]", text)
-with open(os.path.join(HERE, "pell.json"), "w") as f:
-    f.write(text + "\n")
+def write_json(name, value):
+    text = json.dumps(value, indent=1)
+    text = re.sub(r"\[\s*(-?[\d.]+),\s*(-?[\d.]+)\s*\]", r"[\1, \2]", text)
+    text = re.sub(r"\[\s*(-?[\d.]+),\s*(-?[\d.]+),\s*(-?[\d.]+)\s*\]", r"[\1, \2, \3]", text)
+    text = re.sub(r"\[\s*(-?[\d.]+),\s*(-?[\d.]+),\s*(-?[\d.]+),\s*(-?[\d.]+)\s*\]", r"[\1, \2, \3, \4]", text)
+    with open(os.path.join(HERE, name), "w") as f:
+        f.write(text + "\n")
+
+write_json("pell.json", rig)
+
+# The face channel. Each expression: the eyes' half-height (they stay
+# centred on their joints), and the mouth as a closed path around its joint
+# with the lowest point of its outline (the mouth's start point).
+FACES = [
+    # name, point, eye rx, eye ry, mouth path, mouth's lowest point
+    ("calm", [0, 0], 7, 9, "M 114 95 Q 128 98 142 95 Q 141 110 128 110 Q 115 110 114 95 Z", (128, 110)),
+    ("joy", [1, 0], 8, 5, "M 110 93 Q 128 99 146 93 Q 144 116 128 116 Q 112 116 110 93 Z", (128, 116)),
+    ("surprise", [0, 1], 8, 11, "M 121 103 Q 121 94 128 94 Q 135 94 135 103 Q 135 112 128 112 Q 121 112 121 103 Z",
+     (128, 112)),
+    ("sleepy", [-1, 0], 8, 4, "M 118 99 Q 128 101 138 99 Q 137 106 128 106 Q 119 106 118 99 Z", (128, 106)),
+]
+
+def face_svg(name, rx, ry, mouth):
+    def eye(part):
+        ex, ey = EYES[part]
+        return (f'  <g id="{part}">\n'
+                f'    <ellipse cx="{ex}" cy="{ey}" rx="{rx}" ry="{ry}" fill="#2b2b2b"/>\n'
+                f'    <circle cx="{ex + 2}" cy="{ey - ry / 3:g}" r="{min(2.5, ry / 3):g}" fill="#ffffff"/>\n  </g>\n')
+    return (
+        '<!-- SPDX-License-Identifier: MIT -->\n'
+        '<svg xmlns="http://www.w3.org/2000/svg" width="256" height="256" viewBox="0 0 256 256">\n'
+        f'  <!-- Pell\'s face, expression "{name}", on the rest pose\'s head: written by make_pell.py. -->\n'
+        + eye("eye-left") + eye("eye-right") +
+        '  <g id="mouth">\n'
+        f'    <path d="{mouth}" fill="#8a2b2b"/>\n  </g>\n'
+        '</svg>\n')
+
+FACE_PARTS = ["eye-left", "eye-right", "mouth"]
+face_poses, face_part_poses = [], {p: [] for p in FACE_PARTS}
+face_joints = {p: [] for p in FACE_PARTS}
+for name, point, rx, ry, mouth, lowest in FACES:
+    with open(os.path.join(HERE, f"face-{name}.svg"), "w") as f:
+        f.write(face_svg(name, rx, ry, mouth))
+    face_poses.append({"name": name, "point": point})
+    for eye in EYES:
+        face_part_poses[eye].append({"drawing": f"face-{name}-{eye}.png",
+                                     "landmarks": [[EYES[eye][0], EYES[eye][1] + ry]]})
+        face_joints[eye].append(list(EYES[eye]))
+    face_part_poses["mouth"].append({"drawing": f"face-{name}-mouth.png", "landmarks": [list(lowest)]})
+    face_joints["mouth"].append(list(MOUTH))
+
+layered = {
+    "posemorph": 1,
+    "name": "pell-face",
+    "channels": [
+        {"name": "body", "poses": poses, "paths": rig["paths"]},
+        {"name": "face", "poses": face_poses,
+         "paths": [{"name": "chatter", "loop": True, "interpolation": "catmull-rom",
+                    "keys": [[0, 0, 0], [0.6, 1, 0], [1.2, 0, 0], [1.8, 0, 1], [2.4, 0, 0], [3, -1, 0],
+                             [3.6, 0, 0]]}]},
+    ],
+    "parts": [p for p in parts if p["name"] not in FACE_PARTS]
+    + [{"name": p, "channel": "face", "order": ORDER[p], "poses": face_part_poses[p]} for p in FACE_PARTS],
+    "glue": [g for g in glue if g["part"] not in FACE_PARTS]
+    + [{"part": p, "to": "head", "at": face_joints[p]} for p in FACE_PARTS],
+    "mapping": rig["mapping"],
+    "bake": rig["bake"],
+}
+write_json("pell-face.json", layered)

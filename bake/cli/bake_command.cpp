@@ -58,8 +58,24 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
                      [](const MeshPart* x, const MeshPart* y) { return x->order < y->order; });
     for (std::size_t k = 0; k < order.size(); ++k)
       out << (k ? ", " : " ") << Printable(order[k]->name) << " (" << order[k]->triangle_count << " triangles)";
-    out << "; " << report.joints.size() << (report.joints.size() == 1 ? " joint" : " joints")
-        << ", each one vertex shared by its two parts\n";
+    if (!report.joints.empty())
+      out << "; " << report.joints.size() << (report.joints.size() == 1 ? " joint" : " joints")
+          << ", each one vertex shared by its two parts";
+    out << "\n";
+  }
+  if (!report.attachments.empty()) {
+    out << "channels:";
+    for (std::size_t c = 0; c < report.channels.size(); ++c)
+      out << (c ? ", " : " ") << Printable(report.channels[c]) << (c ? "" : " (the figures above: its parts)");
+    out << "; " << report.attachments.size() << " attached part(s), each solved on its own, pinned at its joint:";
+    for (std::size_t k = 0; k < report.attachments.size(); ++k) {
+      const AttachmentReport& at = report.attachments[k];
+      out << (k ? "; " : " ") << Printable(at.part) << " (channel " << Printable(at.channel) << ", on "
+          << Printable(at.parent) << " triangle " << at.parent_triangle << ": " << at.vertices << " vertices, "
+          << at.triangles << " triangles, " << at.poses << " poses, " << at.bytes << " bytes, reproduction error "
+          << at.max_reproduction_error << ", placed within " << at.placed_error << ")";
+    }
+    out << "\n";
   }
   if (report.compact_report.fell_back)
     err << "posemorph-bake: warning: " << args.positional << ": no compact encoding stays within "

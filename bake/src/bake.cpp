@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "posemorph/bake/arap_system.h"
+#include "posemorph/bake/bake_channels.h"
 #include "posemorph/bake/deform_poses.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/join_parts.h"
@@ -204,6 +205,7 @@ std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, i
 }  // namespace
 
 std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport* report) {
+  if (description.channels.size() > 1) return BakeChannels(description, report);
   const auto start = std::chrono::steady_clock::now();
   const std::string& file = description.file;
   Attempt first = BakeOnce(description);

@@ -114,14 +114,15 @@ void WarnUnknownKeys(const json& object, const std::string& where, std::initiali
 }
 
 void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std::string>* warnings) {
-  WarnUnknownKeys(root, "",
-                  {"posemorph", "name", "filter", "poses", "triangles", "parts", "glue", "mapping", "bake", "paths"},
-                  file, warnings);
+  WarnUnknownKeys(
+      root, "",
+      {"posemorph", "name", "filter", "poses", "triangles", "parts", "glue", "mapping", "bake", "paths", "channels"},
+      file, warnings);
   if (root.contains("parts") && root["parts"].is_array())
     for (std::size_t p = 0; p < root["parts"].size(); ++p) {
       const json& part = root["parts"][p];
       const std::string w = "parts[" + std::to_string(p) + "]";
-      WarnUnknownKeys(part, w, {"name", "order", "triangles", "poses"}, file, warnings);
+      WarnUnknownKeys(part, w, {"name", "order", "triangles", "poses", "channel"}, file, warnings);
       if (part.is_object() && part.contains("poses") && part["poses"].is_array())
         for (std::size_t i = 0; i < part["poses"].size(); ++i)
           WarnUnknownKeys(part["poses"][i], w + ".poses[" + std::to_string(i) + "]",
@@ -143,7 +144,22 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
         root["bake"], "bake",
         {"grid_resolution", "margin", "epsilon", "sigma", "precision", "max_error", "pixels_per_unit", "allow_folds"},
         file, warnings);
-  const json& poses = root["poses"];
+  if (root.contains("channels") && root["channels"].is_array())
+    for (std::size_t c = 0; c < root["channels"].size(); ++c) {
+      const json& channel = root["channels"][c];
+      const std::string w = "channels[" + std::to_string(c) + "]";
+      WarnUnknownKeys(channel, w, {"name", "poses", "paths"}, file, warnings);
+      if (channel.is_object() && channel.contains("poses") && channel["poses"].is_array())
+        for (std::size_t i = 0; i < channel["poses"].size(); ++i)
+          WarnUnknownKeys(channel["poses"][i], w + ".poses[" + std::to_string(i) + "]", {"name", "point"}, file,
+                          warnings);
+      if (channel.is_object() && channel.contains("paths") && channel["paths"].is_array())
+        for (std::size_t i = 0; i < channel["paths"].size(); ++i)
+          WarnUnknownKeys(channel["paths"][i], w + ".paths[" + std::to_string(i) + "]",
+                          {"name", "loop", "interpolation", "keys"}, file, warnings);
+    }
+  const json no_poses = json::array();
+  const json& poses = root.contains("poses") && root["poses"].is_array() ? root["poses"] : no_poses;
   for (std::size_t i = 0; i < poses.size(); ++i) {
     const std::string w = "poses[" + std::to_string(i) + "]";
     WarnUnknownKeys(poses[i], w,
@@ -370,8 +386,9 @@ void ParseBakeParameters(const Reader& r, const json& b, BakeParameters* paramet
 }
 
 // One entry of "paths"; `earlier` are the ones before it (names are unique).
-PathDescription ParsePath(const Reader& r, const json& jp, std::size_t i, const std::vector<PathDescription>& earlier) {
-  const std::string w = "paths[" + std::to_string(i) + "]";
+PathDescription ParsePath(const Reader& r, const json& jp, std::size_t i, const std::vector<PathDescription>& earlier,
+                          const std::string& prefix = "") {
+  const std::string w = prefix + "paths[" + std::to_string(i) + "]";
   if (!jp.is_object()) r.Fail(w, "expected an object");
   PathDescription path;
   if (!jp.contains("name")) r.Fail(w, "missing \"name\"");
@@ -421,10 +438,10 @@ void CheckPoseKinds(const Reader& r, const std::vector<PoseDescription>& poses, 
 
 // With "parts", the rig's poses give a name and a point each; what they look
 // like is in every part's "poses".
-std::vector<PoseDescription> ParseLayeredPoses(const Reader& r, const json& poses) {
+std::vector<PoseDescription> ParseLayeredPoses(const Reader& r, const json& poses, const std::string& prefix = "") {
   std::vector<PoseDescription> out;
   for (std::size_t i = 0; i < poses.size(); ++i) {
-    const std::string w = "poses[" + std::to_string(i) + "]";
+    const std::string w = prefix + "poses[" + std::to_string(i) + "]";
     const json& jp = poses[i];
     if (!jp.is_object()) r.Fail(w, "expected an object");
     for (const char* key : {"drawing", "layer", "outline", "vertices", "mesh", "deform", "image", "uvs", "landmarks",
@@ -444,8 +461,9 @@ std::vector<PoseDescription> ParseLayeredPoses(const Reader& r, const json& pose
 
 // "parts": [{"name", "order", "triangles", "poses"}, ...], each pose as in
 // the rig's "poses" less the name and point.
-std::vector<PartDescription> ParseParts(const Reader& r, const json& parts, const std::vector<PoseDescription>& poses,
-                                        const std::string& file, const std::string& base_dir) {
+std::vector<PartDescription> ParseParts(const Reader& r, const json& parts,
+                                        const std::vector<ChannelDescription>& channels, const std::string& file,
+                                        const std::string& base_dir) {
   if (parts.empty()) r.Fail("parts", "needs at least one part");
   if (parts.size() > format::kMaxParts)
     r.Fail("parts", std::to_string(parts.size()) + " parts, more than the rig format's limit of " +
@@ -458,6 +476,16 @@ std::vector<PartDescription> ParseParts(const Reader& r, const json& parts, cons
     PartDescription part;
     if (!jp.contains("name")) r.Fail(w, "missing \"name\"");
     part.name = r.String(jp["name"], w + ".name");
+    if (jp.contains("channel")) {
+      if (channels.size() < 2) r.Fail(w + ".channel", "the rig has no \"channels\"; remove it");
+      const std::string name = r.String(jp["channel"], w + ".channel");
+      part.channel = channels.size();
+      for (std::size_t c = 0; c < channels.size(); ++c)
+        if (channels[c].name == name) part.channel = c;
+      if (part.channel == channels.size()) r.Fail(w + ".channel", "no channel is named '" + name + "'");
+    }
+    const std::vector<PoseDescription>& poses = channels[part.channel].poses;
+    const std::string rig_poses = channels.size() < 2 ? "the rig" : "its channel '" + channels[part.channel].name + "'";
     if (part.name.empty()) r.Fail(w + ".name", "must not be empty");
     for (const PartDescription& other : out)
       if (other.name == part.name) r.Fail(w + ".name", "part '" + part.name + "' is defined twice");
@@ -472,8 +500,8 @@ std::vector<PartDescription> ParseParts(const Reader& r, const json& parts, cons
       const json& order = jp["order"];
       if (order.is_array()) {
         if (order.size() != poses.size())
-          r.Fail(w + ".order", "part '" + part.name + "' has " + std::to_string(order.size()) +
-                                   " draw orders, the rig " + std::to_string(poses.size()) +
+          r.Fail(w + ".order", "part '" + part.name + "' has " + std::to_string(order.size()) + " draw orders, " +
+                                   rig_poses + " " + std::to_string(poses.size()) +
                                    " poses: give one order, or one per pose");
         for (std::size_t i = 0; i < order.size(); ++i)
           part.pose_orders.push_back(read_order(order[i], w + ".order[" + std::to_string(i) + "]"));
@@ -486,8 +514,9 @@ std::vector<PartDescription> ParseParts(const Reader& r, const json& parts, cons
     if (have_triangles) part.triangles = r.ReadTriangles(r.Array(jp, "triangles", w), w + ".triangles");
     const json& jposes = r.Array(jp, "poses", w);
     if (jposes.size() != poses.size())
-      r.Fail(w + ".poses", "part '" + part.name + "' has " + std::to_string(jposes.size()) + " poses, the rig " +
-                               std::to_string(poses.size()) + ": every part is drawn in every pose (one that should " +
+      r.Fail(w + ".poses", "part '" + part.name + "' has " + std::to_string(jposes.size()) + " poses, " + rig_poses +
+                               " " + std::to_string(poses.size()) +
+                               ": every part is drawn in every pose (one that should " +
                                "vanish is drawn tiny, or hidden behind another by its order)");
     for (std::size_t i = 0; i < jposes.size(); ++i)
       part.poses.push_back(ParsePose(
@@ -512,7 +541,7 @@ std::vector<PartDescription> ParseParts(const Reader& r, const json& parts, cons
 // "glue": [{"part", "to", "at"}, ...]: the parts and the glue between them
 // make a tree (every part reached from every other, in one way only).
 std::vector<GlueDescription> ParseGlue(const Reader& r, const json& glue, const std::vector<PartDescription>& parts,
-                                       std::size_t pose_count) {
+                                       const std::vector<ChannelDescription>& channels) {
   std::vector<GlueDescription> out;
   std::vector<std::size_t> root(parts.size());
   for (std::size_t p = 0; p < parts.size(); ++p) root[p] = p;
@@ -536,6 +565,17 @@ std::vector<GlueDescription> ParseGlue(const Reader& r, const json& glue, const 
     e.part_index = index_of(e.part, w + ".part");
     e.to_index = index_of(e.to, w + ".to");
     if (e.part_index == e.to_index) r.Fail(w, "part '" + e.part + "' is glued to itself");
+    const PartDescription& attached = parts[e.part_index];
+    const std::size_t pose_count = attached.poses.size();
+    if (parts[e.to_index].channel != 0)
+      r.Fail(w + ".to", "part '" + e.to + "' is driven by channel '" + channels[parts[e.to_index].channel].name +
+                            "': a part is glued to a part of the first channel ('" + channels[0].name +
+                            "'), which carries the others");
+    if (attached.channel != 0)
+      for (const GlueDescription& other : out)
+        if (other.part_index == e.part_index)
+          r.Fail(w, "part '" + e.part + "' (channel '" + channels[attached.channel].name +
+                        "') is glued twice: a part of another channel hangs from one joint");
     const json& at = jg["at"];
     if (at.is_array() && at.size() == 2 && at[0].is_number()) {
       e.at.push_back(r.Point(at, w + ".at"));
@@ -544,6 +584,10 @@ std::vector<GlueDescription> ParseGlue(const Reader& r, const json& glue, const 
         r.Fail(w + ".at", "expected [x, y] or one [x, y] per pose (" + std::to_string(pose_count) + ")");
       e.at = r.Points(at, w + ".at");
     }
+    if (attached.channel != 0) {
+      out.push_back(std::move(e));
+      continue;
+    }
     const std::size_t a = find(e.part_index), b = find(e.to_index);
     if (a == b)
       r.Fail(w, "gluing '" + e.part + "' to '" + e.to + "' closes a cycle: they are glued together already " +
@@ -551,11 +595,62 @@ std::vector<GlueDescription> ParseGlue(const Reader& r, const json& glue, const 
     root[a] = b;
     out.push_back(std::move(e));
   }
-  for (std::size_t p = 1; p < parts.size(); ++p)
-    if (find(p) != find(0))
-      r.Fail("glue", "part '" + parts[p].name + "' is not glued to part '" + parts[0].name +
+  std::size_t first = 0;
+  while (first < parts.size() && parts[first].channel != 0) ++first;
+  if (first == parts.size()) r.Fail("parts", "no part is driven by the first channel ('" + channels[0].name + "')");
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    if (parts[p].channel != 0) {
+      bool glued = false;
+      for (const GlueDescription& e : out) glued = glued || e.part_index == p;
+      if (!glued)
+        r.Fail("glue", "part '" + parts[p].name + "' (channel '" + channels[parts[p].channel].name +
+                           "') is glued to nothing: glue it to a part of channel '" + channels[0].name + "'");
+    } else if (find(p) != find(first)) {
+      r.Fail("glue", "part '" + parts[p].name + "' is not glued to part '" + parts[first].name +
                          "' (directly or through other parts): a character's parts are one piece");
+    }
+  }
   return out;
+}
+
+// "channels": [{"name", "poses": [{"name", "point"}, ...], "paths"}, ...]:
+// two or more pose spaces; the first is the rig's ("poses" and "paths" go
+// in it), each part names its channel.
+void ParseChannels(const Reader& r, const json& root, RigDescription* rig) {
+  if (!root.contains("parts"))
+    r.Fail("channels", "a rig with channels is drawn as parts: give \"parts\", each naming its channel");
+  if (root.contains("poses"))
+    r.Fail("poses", "with \"channels\", each channel lists its poses: move them into channels[0].poses");
+  if (root.contains("paths"))
+    r.Fail("paths", "with \"channels\", each channel lists its paths: move them into channels[0].paths");
+  const json& channels = r.Array(root, "channels", "");
+  if (channels.size() < 2 || channels.size() > format::kMaxChannels)
+    r.Fail("channels", std::to_string(channels.size()) + " channels: give 2 to " +
+                           std::to_string(format::kMaxChannels) + " (the rig format's limit), or none");
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    const std::string w = "channels[" + std::to_string(c) + "]";
+    const json& jc = channels[c];
+    if (!jc.is_object()) r.Fail(w, "expected an object");
+    ChannelDescription channel;
+    if (!jc.contains("name")) r.Fail(w, "missing \"name\"");
+    channel.name = r.String(jc["name"], w + ".name");
+    if (channel.name.empty() || channel.name.size() > format::kMaxChannelName)
+      r.Fail(w + ".name", "must be 1 to " + std::to_string(format::kMaxChannelName) + " bytes");
+    for (const ChannelDescription& other : rig->channels)
+      if (other.name == channel.name) r.Fail(w + ".name", "channel '" + channel.name + "' is defined twice");
+    channel.poses = ParseLayeredPoses(r, r.Array(jc, "poses", w), w + ".");
+    if (channel.poses.size() < 2 || channel.poses.size() > format::kMaxPoses)
+      r.Fail(w + ".poses", "channel '" + channel.name + "' has " + std::to_string(channel.poses.size()) +
+                               " poses: a channel needs 2 to " + std::to_string(format::kMaxPoses));
+    if (jc.contains("paths")) {
+      const json& paths = r.Array(jc, "paths", w);
+      for (std::size_t i = 0; i < paths.size(); ++i) {
+        PathDescription path = ParsePath(r, paths[i], i, channel.paths, w + ".");
+        channel.paths.push_back(std::move(path));
+      }
+    }
+    rig->channels.push_back(std::move(channel));
+  }
 }
 
 }  // namespace
@@ -576,18 +671,27 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
     rig.nearest_filter = f == "nearest";
   }
   bool have_triangles = root.contains("triangles");
-  const json& poses = r.Array(root, "poses", "");
+  if (root.contains("channels")) ParseChannels(r, root, &rig);
   if (root.contains("parts")) {
+    if (rig.channels.empty()) rig.channels.push_back({"", ParseLayeredPoses(r, r.Array(root, "poses", "")), {}});
     if (have_triangles) r.Fail("triangles", "with \"parts\", each part has its own triangles; remove it");
-    rig.poses = ParseLayeredPoses(r, poses);
-    rig.parts = ParseParts(r, r.Array(root, "parts", ""), rig.poses, file, base_dir);
+    rig.poses = rig.channels[0].poses;
+    rig.parts = ParseParts(r, r.Array(root, "parts", ""), rig.channels, file, base_dir);
+    if (rig.parts.size() > 1 || rig.channels.size() > 1) {
+      std::size_t attachments = 0;
+      for (const PartDescription& part : rig.parts) attachments += part.channel != 0;
+      if (attachments > format::kMaxAttachments)
+        r.Fail("parts", std::to_string(attachments) + " parts are driven by channels after the first, more than " +
+                            "the rig format's limit of " + std::to_string(format::kMaxAttachments));
+    }
     if (root.contains("glue"))
-      rig.glue = ParseGlue(r, r.Array(root, "glue", ""), rig.parts, rig.poses.size());
+      rig.glue = ParseGlue(r, r.Array(root, "glue", ""), rig.parts, rig.channels);
     else if (rig.parts.size() > 1)
       r.Fail("", "missing \"glue\": the parts must be glued together at joints");
   } else {
     if (root.contains("glue")) r.Fail("glue", "only a rig with \"parts\" has glue");
     if (have_triangles) rig.triangles = r.ReadTriangles(r.Array(root, "triangles", ""), "triangles");
+    const json& poses = r.Array(root, "poses", "");
     for (std::size_t i = 0; i < poses.size(); ++i)
       rig.poses.push_back(ParsePose(r, poses[i], i, file, base_dir, &rig.triangles, &have_triangles));
     CheckPoseKinds(r, rig.poses, have_triangles);
@@ -597,6 +701,11 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
   if (root.contains("paths")) {
     const json& paths = r.Array(root, "paths", "");
     for (std::size_t i = 0; i < paths.size(); ++i) rig.paths.push_back(ParsePath(r, paths[i], i, rig.paths));
+  }
+  if (rig.channels.size() > 1) {
+    rig.paths = rig.channels[0].paths;
+  } else {
+    rig.channels.clear();
   }
   WarnUnknownKeys(root, file, &rig.warnings);
   return rig;

@@ -40,6 +40,13 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   part_pose_orders_ = std::exchange(other.part_pose_orders_, {});
   part_strings_ = std::exchange(other.part_strings_, {});
   paths_ = std::exchange(other.paths_, {});
+  attachments_ = std::exchange(other.attachments_, {});
+  channel_names_ = std::exchange(other.channel_names_, {});
+  channel_offsets_ = std::exchange(other.channel_offsets_, {});
+  channel_count_ = std::exchange(other.channel_count_, 1);
+  attached_vertex_count_ = std::exchange(other.attached_vertex_count_, 0);
+  attached_weight_count_ = std::exchange(other.attached_weight_count_, 0);
+  attach_workspace_ = std::exchange(other.attach_workspace_, 0);
   grid_ = std::exchange(other.grid_, {});
   factor_ = std::exchange(other.factor_, {});
   default_sigma_ = std::exchange(other.default_sigma_, 0);
@@ -113,6 +120,33 @@ int Rig::FindPath(const char* name) const {
   for (std::uint32_t i = 0; i < path_count_; ++i)
     if (paths_[i].name.size == n && std::memcmp(paths_[i].name.data, name, n) == 0) return int(i);
   return -1;
+}
+
+StringView Rig::channel_name(std::uint32_t channel) const {
+  return channel < channel_names_.size ? channel_names_[channel] : StringView{};
+}
+
+const Rig* Rig::channel_rig(std::uint32_t channel) const {
+  if (channel == 0) return loaded() ? this : nullptr;
+  for (std::size_t a = 0; a < attachments_.size; ++a)
+    if (attachments_[a].channel == channel) return attachments_[a].rig;
+  return nullptr;
+}
+
+int Rig::FindChannel(const char* name) const {
+  if (!name) return -1;
+  const std::size_t n = std::strlen(name);
+  for (std::uint32_t c = 0; c < channel_names_.size; ++c)
+    if (channel_names_[c].size == n && std::memcmp(channel_names_[c].data, name, n) == 0) return int(c);
+  return -1;
+}
+
+AttachmentView Rig::attachment(std::uint32_t index) const {
+  return index < attachments_.size ? attachments_[index] : AttachmentView{};
+}
+
+std::uint32_t Rig::channel_weight_offset(std::uint32_t channel) const {
+  return channel < channel_offsets_.size ? channel_offsets_[channel] : 0;
 }
 
 const char* ErrorCodeName(ErrorCode code) {

@@ -135,6 +135,7 @@ struct ArenaSource {
   void* memory = nullptr;
   std::size_t memory_size = 0;
   std::size_t* needed = nullptr;
+  bool nested = false;  // an attachment's rig (format 1.7): no CHAN of its own
 };
 
 // The header's fields the later steps use.
@@ -192,6 +193,37 @@ struct Scratch {
   std::uint32_t* draw_sequence = nullptr;  // the parts back to front (format 1.6); per pose with PORD
 };
 
+// CHAN (format 1.7), read before the arena is laid out: the records, the
+// names and each nested rig's bytes and arena size.
+struct Channels {
+  std::uint32_t C = 1, A = 0;
+  struct Entry {
+    std::uint32_t channel = 0, parent_triangle = 0, joint_triangle = 0;
+    double parent_weights[3] = {0, 0, 0}, joint_weights[3] = {0, 0, 0};
+    const unsigned char* bytes = nullptr;
+    std::uint64_t size = 0;
+    std::size_t arena = 0;  // the nested rig's arena (RigMemorySize)
+  } entries[fmt::kMaxAttachments];
+  const unsigned char* names[fmt::kMaxChannels] = {};
+  std::uint32_t name_sizes[fmt::kMaxChannels] = {};
+  std::uint64_t name_bytes = 0;
+};
+
+// A nested rig's error, prefixed with the attachment it came from.
+bool NestedFail(Error* err, std::uint32_t a) {
+  if (err) {
+    char prefix[32];
+    const int n = std::snprintf(prefix, sizeof(prefix), "attachment %u: ", a);
+    const std::size_t p = n > 0 ? std::size_t(n) : 0, room = sizeof(err->message) - 1 - p;
+    const std::size_t length = std::strlen(err->message);
+    const std::size_t kept = length < room ? length : room;
+    std::memmove(err->message + p, err->message, kept);
+    std::memcpy(err->message, prefix, p);
+    err->message[p + kept] = 0;
+  }
+  return false;
+}
+
 }  // namespace
 
 // The one loader behind LoadRig, RigMemorySize and LoadRigInPlace (a friend
@@ -223,6 +255,11 @@ struct RigLoader {
   static void BuildSolveRows(const Counts& c, const Scratch& scratch, Rig* rig);
   static void BuildBlendBlocks(const Counts& c, const Scratch& scratch, Rig* rig);
   static bool CheckNumbers(const Rig& rig, Error* err);
+  static bool ReadChannels(const unsigned char* bytes, const Parser& parser, const Counts& c,
+                           const LoadOptions& options, bool nested, Channels* ch, Error* err);
+  static void LayoutChannels(ArenaLayout& arena, const Channels& ch, Rig* rig, Rig** nested, unsigned char** memory);
+  static bool LoadAttachments(const Channels& ch, const LoadOptions& options, Rig* nested, unsigned char* const* memory,
+                              Rig* rig, Error* err);
   static void Finish(const unsigned char* bytes, const Header& h, const Counts& c, const detail::KernelTable* kernels,
                      Rig* rig);
 };
@@ -269,17 +306,25 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   if (!ReadCounts(parser, &c, err)) return false;
   Sources s;
   if (!FindSections(bytes, h, parser, c, &s, err)) return false;
+  Channels channels;
+  if (!ReadChannels(bytes, parser, c, options, source.nested, &channels, err)) return false;
 
   // Two passes over one layout: size the arena, then fill it.
   Rig rig;
+  Rig* nested = nullptr;
+  unsigned char* nested_memory[fmt::kMaxAttachments] = {};
   Scratch scratch;
   for (int pass = 0; pass < 2; ++pass) {
     ArenaLayout arena;
     if (!PlaceArena(source, pass, &rig, &arena, err)) return false;
     scratch = Scratch{};
     LayoutArena(arena, c, s, options, &rig, &scratch);
+    if (pass == 0 && !CheckArenaSize(arena, c, h.file_size, err)) return false;
+    LayoutChannels(arena, channels, &rig, &nested, nested_memory);
     if (pass == 0) {
-      if (!CheckArenaSize(arena, c, h.file_size, err)) return false;
+      if (arena.used > std::uint64_t(SIZE_MAX / 2))
+        return Fail(err, ErrorCode::kTooLarge, "the rig needs %llu bytes in memory, more than this target addresses",
+                    (unsigned long long)arena.used);
       rig.arena_size_ = std::size_t(arena.used);
       if (source.kind == ArenaSource::kSizeOnly) {
         *source.needed = rig.arena_size_;
@@ -295,6 +340,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   BuildBlendBlocks(c, scratch, &rig);
   if (!CheckNumbers(rig, err)) return false;
   Finish(bytes, h, c, kernels, &rig);
+  if (channels.A && !LoadAttachments(channels, options, nested, nested_memory, &rig, err)) return false;
   *out = std::move(rig);
   return true;
 }
@@ -874,6 +920,170 @@ void RigLoader::Finish(const unsigned char* bytes, const Header& h, const Counts
   rig->format_major_ = h.major;
   rig->format_minor_ = h.minor;
   rig->compact_encoding_ = c.compact;
+}
+
+// CHAN: the table, the names and the nested rigs' places, each nested rig's
+// header, table and counts (its arena size); its values when it is loaded.
+bool RigLoader::ReadChannels(const unsigned char* bytes, const Parser& parser, const Counts& c,
+                             const LoadOptions& options, bool nested, Channels* ch, Error* err) {
+  const Section* section = parser.table.Find(fmt::kChannels);
+  if (!section) return true;
+  if (nested) return Fail(err, ErrorCode::kBadLayout, "an attachment's rig has a CHAN section of its own");
+  const unsigned char* p = bytes + section->offset;
+  const std::uint64_t size = section->size;
+  if (size < fmt::kChannelsHeaderSize)
+    return Fail(err, ErrorCode::kBadLayout, "CHAN section of %llu bytes is shorter than its header",
+                (unsigned long long)size);
+  ch->C = ReadU32(p);
+  ch->A = ReadU32(p + 4);
+  if (ch->C < 2 || ch->C > fmt::kMaxChannels)
+    return Fail(err, ch->C < 2 ? ErrorCode::kBadValue : ErrorCode::kTooLarge, "channel count %u outside 2..%u", ch->C,
+                fmt::kMaxChannels);
+  if (ch->A < 1 || ch->A > fmt::kMaxAttachments)
+    return Fail(err, ch->A < 1 ? ErrorCode::kBadValue : ErrorCode::kTooLarge, "attachment count %u outside 1..%u",
+                ch->A, fmt::kMaxAttachments);
+  if (ReadU32(p + 8) != 0 || ReadU32(p + 12) != 0)
+    return Fail(err, ErrorCode::kBadLayout, "CHAN's reserved header fields are not zero");
+  std::uint64_t at = fmt::kChannelsHeaderSize + std::uint64_t(ch->A) * fmt::kAttachmentEntrySize;
+  if (at > size) return Fail(err, ErrorCode::kBadLayout, "CHAN's %u attachment entries run past the section", ch->A);
+  for (std::uint32_t k = 0; k < ch->C; ++k) {
+    if (at + 4 > size) return Fail(err, ErrorCode::kBadLayout, "CHAN's channel names run past the section");
+    const std::uint32_t n = ReadU32(p + at);
+    if (n < 1 || n > fmt::kMaxChannelName)
+      return Fail(err, ErrorCode::kBadValue, "channel %u's name is %u bytes, outside 1..%u", k, n,
+                  fmt::kMaxChannelName);
+    if (at + 4 + n > size) return Fail(err, ErrorCode::kBadLayout, "CHAN's channel names run past the section");
+    ch->names[k] = p + at + 4;
+    ch->name_sizes[k] = n;
+    ch->name_bytes += n;
+    for (std::uint32_t j = 0; j < k; ++j)
+      if (ch->name_sizes[j] == n && std::memcmp(ch->names[j], ch->names[k], n) == 0)
+        return Fail(err, ErrorCode::kBadValue, "channels %u and %u have the same name", j, k);
+    at += 4 + n;
+  }
+  bool driven[fmt::kMaxChannels] = {};
+  for (std::uint32_t a = 0; a < ch->A; ++a) {
+    const unsigned char* e = p + fmt::kChannelsHeaderSize + std::size_t(a) * fmt::kAttachmentEntrySize;
+    Channels::Entry& entry = ch->entries[a];
+    entry.channel = ReadU32(e);
+    entry.parent_triangle = ReadU32(e + 4);
+    entry.joint_triangle = ReadU32(e + 8);
+    if (ReadU32(e + 12) != 0) return Fail(err, ErrorCode::kBadLayout, "attachment %u: reserved field is not zero", a);
+    std::memcpy(entry.parent_weights, e + 16, 24);
+    std::memcpy(entry.joint_weights, e + 40, 24);
+    const std::uint64_t offset = ReadU64(e + 64);
+    entry.size = ReadU64(e + 72);
+    if (entry.channel < 1 || entry.channel >= ch->C)
+      return Fail(err, ErrorCode::kBadValue, "attachment %u: channel %u outside 1..%u", a, entry.channel, ch->C - 1);
+    driven[entry.channel] = true;
+    if (entry.parent_triangle >= c.T)
+      return Fail(err, ErrorCode::kBadValue, "attachment %u: parent triangle %u of %llu", a, entry.parent_triangle,
+                  (unsigned long long)c.T);
+    for (const double* w : {entry.parent_weights, entry.joint_weights}) {
+      const double sum = w[0] + w[1] + w[2];
+      for (int k = 0; k < 3; ++k)
+        if (!(w[k] >= -fmt::kMaxJointWeightOutside && w[k] <= 1 + fmt::kMaxJointWeightOutside))
+          return Fail(err, ErrorCode::kBadValue, "attachment %u: a joint weight (%g) is outside [0, 1]", a, w[k]);
+      if (!(std::fabs(sum - 1) <= fmt::kMaxJointWeightOutside))
+        return Fail(err, ErrorCode::kBadValue, "attachment %u: joint weights sum to %g, not 1", a, sum);
+    }
+    if (offset % fmt::kSectionAlignment != 0 || offset < at || entry.size > size || offset > size - entry.size)
+      return Fail(err, ErrorCode::kBadLayout,
+                  "attachment %u: its rig's bytes (%llu at %llu) are not aligned, after the last, inside CHAN", a,
+                  (unsigned long long)entry.size, (unsigned long long)offset);
+    entry.bytes = p + offset;
+    at = offset + entry.size;
+    std::size_t needed = 0;
+    ArenaSource size_only;
+    size_only.kind = ArenaSource::kSizeOnly;
+    size_only.needed = &needed;
+    size_only.nested = true;
+    Rig scratch;
+    if (!Load(entry.bytes, std::size_t(entry.size), &scratch, err, options, size_only)) return NestedFail(err, a);
+    entry.arena = needed;
+  }
+  for (std::uint32_t k = 1; k < ch->C; ++k)
+    if (!driven[k]) return Fail(err, ErrorCode::kBadValue, "channel %u drives no attachment", k);
+  return true;
+}
+
+// The attachments' views, the channel names and offsets, the nested Rig
+// objects and each nested rig's arena.
+void RigLoader::LayoutChannels(ArenaLayout& arena, const Channels& ch, Rig* rig, Rig** nested, unsigned char** memory) {
+  if (ch.A == 0) return;
+  AttachmentView* views = arena.Take<AttachmentView>(ch.A);
+  StringView* names = arena.Take<StringView>(ch.C);
+  std::uint32_t* offsets = arena.Take<std::uint32_t>(ch.C);
+  char* chars = arena.Take<char>(ch.name_bytes);
+  *nested = arena.Take<Rig>(ch.A);
+  static_assert(alignof(Rig) <= kRigMemoryAlignment, "Rig objects live in the arena");
+  for (std::uint32_t a = 0; a < ch.A; ++a) memory[a] = arena.Take<unsigned char>(ch.entries[a].arena);
+  if (!views) return;  // the sizing pass
+  std::size_t used = 0;
+  for (std::uint32_t k = 0; k < ch.C; ++k) {
+    std::memcpy(chars + used, ch.names[k], ch.name_sizes[k]);
+    names[k] = {chars + used, ch.name_sizes[k]};
+    used += ch.name_sizes[k];
+  }
+  for (std::uint32_t a = 0; a < ch.A; ++a) {
+    new (*nested + a) Rig();
+    AttachmentView& v = views[a];
+    v = AttachmentView{};
+    v.rig = *nested + a;
+    v.channel = ch.entries[a].channel;
+    v.parent_triangle = ch.entries[a].parent_triangle;
+    v.joint_triangle = ch.entries[a].joint_triangle;
+    for (int k = 0; k < 3; ++k)
+      v.parent_weights[k] = ch.entries[a].parent_weights[k], v.joint_weights[k] = ch.entries[a].joint_weights[k];
+  }
+  rig->attachments_ = {views, ch.A};
+  rig->channel_names_ = {names, ch.C};
+  rig->channel_offsets_ = {offsets, ch.C};
+  rig->channel_count_ = ch.C;
+}
+
+// Each nested rig, loaded into its part of the arena; then what the jobs
+// need across them: a channel's attachments share its pose count, and the
+// joint triangle is in range.
+bool RigLoader::LoadAttachments(const Channels& ch, const LoadOptions& options, Rig* nested,
+                                unsigned char* const* memory, Rig* rig, Error* err) {
+  std::uint32_t poses[fmt::kMaxChannels] = {};
+  poses[0] = rig->pose_count_;
+  std::uint64_t vertices = 0, workspace = 0;
+  for (std::uint32_t a = 0; a < ch.A; ++a) {
+    ArenaSource in_place;
+    in_place.kind = ArenaSource::kCaller;
+    in_place.memory = memory[a];
+    in_place.memory_size = ch.entries[a].arena;
+    in_place.nested = true;
+    Rig& r = nested[a];
+    if (!Load(ch.entries[a].bytes, std::size_t(ch.entries[a].size), &r, err, options, in_place))
+      return NestedFail(err, a);
+    const std::uint32_t k = ch.entries[a].channel;
+    if (ch.entries[a].joint_triangle >= r.triangle_count_)
+      return Fail(err, ErrorCode::kBadValue, "attachment %u: joint triangle %u of %u", a, ch.entries[a].joint_triangle,
+                  r.triangle_count_);
+    if (poses[k] == 0) poses[k] = r.pose_count_;
+    if (poses[k] != r.pose_count_)
+      return Fail(err, ErrorCode::kBadValue, "attachment %u has %u poses, its channel %u has %u", a, r.pose_count_, k,
+                  poses[k]);
+    vertices += r.vertex_count_;
+    const std::uint64_t need = r.batch_workspace_size();
+    if (need > workspace) workspace = need;
+  }
+  if (vertices > fmt::kMaxVertices)
+    return Fail(err, ErrorCode::kTooLarge, "the attachments have %llu vertices, above %u", (unsigned long long)vertices,
+                fmt::kMaxVertices);
+  auto* offsets = const_cast<std::uint32_t*>(rig->channel_offsets_.data);
+  std::uint32_t total = 0;
+  for (std::uint32_t k = 0; k < ch.C; ++k) {
+    offsets[k] = k == 0 ? 0 : total;
+    if (k) total += poses[k];
+  }
+  rig->attached_vertex_count_ = std::uint32_t(vertices);
+  rig->attached_weight_count_ = total;
+  rig->attach_workspace_ = std::size_t(workspace);
+  return true;
 }
 
 bool RigLoader::ReadSections(const void* data, std::size_t size, RigSection* out, std::uint32_t capacity,

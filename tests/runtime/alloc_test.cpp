@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Evaluating a frame allocates nothing: every global operator new and malloc
 // is counted while frames run.
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <cstdlib>
@@ -102,6 +103,52 @@ TEST_CASE("a frame performs zero heap allocations") {
   }
 }
 
+TEST_CASE("a character with channels: weights per channel, the body and its attachments allocate nothing") {
+  const Rig rig = LoadTestRig("pell-face.compact");
+  REQUIRE(rig.attachment_count() == 3);
+  const Rig& face = *rig.channel_rig(1);
+  const std::uint32_t N = rig.pose_count(), NF = face.pose_count();
+  const std::size_t count = 13, v2 = 2 * std::size_t(rig.vertex_count()),
+                    a2 = 2 * std::size_t(rig.attached_vertex_count());
+  std::vector<double> raw(count * N), limited(count * N), fraw(count * NF), flimited(count * NF);
+  std::vector<double> work(std::max(rig.batch_workspace_size(), rig.attach_workspace_size()));
+  std::vector<double> body(count * v2), attached(count * a2);
+  std::vector<float> attached_f32(count * a2);
+  g_allocations = 0;
+  g_counting = true;
+  bool ok = true;
+  for (int frame = 0; frame < 20; ++frame) {
+    for (std::size_t k = 0; k < count; ++k) {
+      double bx, by, fx, fy;
+      ok &= SamplePath(rig, 0, 0.1 * double(frame + k), &bx, &by);
+      ok &= SamplePath(face, 0, 0.13 * double(frame + k), &fx, &fy);
+      WeightsJob wj;
+      wj.rig = &rig, wj.x = bx, wj.y = by;
+      wj.raw = {raw.data() + k * N, N}, wj.limited = {limited.data() + k * N, N};
+      ok &= wj.Run();
+      WeightsJob fj;
+      fj.rig = &face, fj.x = fx, fj.y = fy;
+      fj.raw = {fraw.data() + k * NF, NF}, fj.limited = {flimited.data() + k * NF, NF};
+      ok &= fj.Run();
+    }
+    MorphBatchJob batch;
+    batch.rig = &rig, batch.count = count;
+    batch.weights = MakeSpan(raw), batch.limited_weights = MakeSpan(limited);
+    batch.workspace = MakeSpan(work), batch.positions = MakeSpan(body);
+    ok &= batch.Run();
+    AttachJob attach;
+    attach.rig = &rig, attach.count = frame % 2 ? count : 1;
+    attach.body_positions = MakeSpan(body);
+    attach.weights = MakeSpan(fraw), attach.limited_weights = MakeSpan(flimited);
+    attach.workspace = MakeSpan(work), attach.positions = MakeSpan(attached),
+    attach.positions_f32 = MakeSpan(attached_f32);
+    ok &= attach.Run();
+  }
+  g_counting = false;
+  CHECK(ok);
+  CHECK(g_allocations.load() == 0);
+}
+
 TEST_CASE("draw lists for a crowd allocate nothing, in C++ and through the C API") {
   const Rig rig = LoadTestRig("snake");
   constexpr std::size_t kCount = 12;
@@ -188,7 +235,7 @@ TEST_CASE("the C API reports a failed allocation with a message, whichever alloc
 TEST_CASE("loading in place allocates nothing at all, in C++ and through the C API") {
   // The exact rig, and the compact one (whose factor, angles and grid are
   // computed at load, in the caller's memory too).
-  for (const char* name : {"snake", "snake.compact"}) {
+  for (const char* name : {"snake", "snake.compact", "pell-face.compact"}) {
     const std::string rig_name = name;
     CAPTURE(rig_name);
     const std::vector<unsigned char> bytes = TestRigBytes(name);

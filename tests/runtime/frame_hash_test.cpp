@@ -22,7 +22,8 @@ namespace {
 
 // The exact rigs and their compact encodings (derived at load: the same
 // bits on every target too); Pell and the arm are layered (parts glued in
-// one solve).
+// one solve); Pell with a face channel has attachments (format 1.7), whose
+// positions join its hashes.
 const char* const kSampleRigs[] = {"snake",
                                    "worm-line",
                                    "gingerbread",
@@ -30,13 +31,15 @@ const char* const kSampleRigs[] = {"snake",
                                    "sprout",
                                    "pell",
                                    "arm",
+                                   "pell-face",
                                    "snake.compact",
                                    "worm-line.compact",
                                    "gingerbread.compact",
                                    "pip.compact",
                                    "sprout.compact",
                                    "pell.compact",
-                                   "arm.compact"};
+                                   "arm.compact",
+                                   "pell-face.compact"};
 
 // FNV-1a, 64 bits, over the bytes of every value in order.
 struct Fnv64 {
@@ -82,6 +85,61 @@ std::vector<std::pair<double, double>> FramePoints(const Rig& rig) {
   return pts;
 }
 
+// A character with channels: frame k puts every other channel at its own
+// k-th frame point; the attachments' positions (AttachJob, one character at
+// a time, then all as one batch, which must agree) join the hashes.
+void HashAttachments(const Rig& rig, const std::vector<std::pair<double, double>>& pts,
+                     const std::vector<double>& singles, const std::vector<double>& batch, Fnv64* hw, Fnv64* hx,
+                     Fnv64* hf) {
+  const std::size_t count = pts.size(), v2 = 2 * std::size_t(rig.vertex_count());
+  const std::size_t a2 = 2 * std::size_t(rig.attached_vertex_count()), NW = rig.attached_weight_count();
+  std::vector<std::vector<std::pair<double, double>>> channel_points(rig.channel_count());
+  for (std::uint32_t c = 1; c < rig.channel_count(); ++c) channel_points[c] = FramePoints(*rig.channel_rig(c));
+  std::vector<double> all_w(count * NW), all_ws(count * NW), single_out(count * a2);
+  std::vector<double> work(rig.attach_workspace_size());
+  for (std::size_t k = 0; k < count; ++k) {
+    std::vector<double> w(NW), ws(NW), xa(a2);
+    std::vector<float> xaf(a2);
+    for (std::uint32_t c = 1; c < rig.channel_count(); ++c) {
+      const Rig& channel = *rig.channel_rig(c);
+      const auto& pt = channel_points[c][k % channel_points[c].size()];
+      const Weights cw = WeightsAt(channel, pt.first, pt.second, 0.5);
+      hw->Add(cw.raw), hw->Add(cw.limited), hw->Add(cw.texture);
+      const std::size_t n = channel.pose_count(), at = rig.channel_weight_offset(c);
+      for (std::size_t i = 0; i < n; ++i) {
+        w[at + i] = cw.raw[i], ws[at + i] = cw.limited[i];
+        all_w[at * count + k * n + i] = cw.raw[i], all_ws[at * count + k * n + i] = cw.limited[i];
+      }
+    }
+    AttachJob job;
+    job.rig = &rig;
+    job.body_positions = {singles.data() + k * v2, v2};
+    job.weights = MakeSpan(w), job.limited_weights = MakeSpan(ws);
+    job.workspace = MakeSpan(work), job.positions = MakeSpan(xa), job.positions_f32 = MakeSpan(xaf);
+    REQUIRE(job.Run());
+    hx->Add(xa), hf->Add(xaf);
+    std::memcpy(single_out.data() + k * a2, xa.data(), a2 * sizeof(double));
+  }
+  std::vector<double> batch_out(count * a2);
+  AttachJob job;
+  job.rig = &rig, job.count = count;
+  job.body_positions = {batch.data(), batch.size()};
+  job.weights = MakeSpan(all_w), job.limited_weights = MakeSpan(all_ws);
+  job.workspace = MakeSpan(work), job.positions = MakeSpan(batch_out);
+  REQUIRE(job.Run());
+  // The batch holds attachment after attachment, each character after character.
+  std::size_t at = 0;
+  bool same = true;
+  for (std::uint32_t a = 0; a < rig.attachment_count(); ++a) {
+    const std::size_t p2 = 2 * std::size_t(rig.attachment(a).rig->vertex_count());
+    for (std::size_t k = 0; k < count; ++k)
+      same = same && std::memcmp(batch_out.data() + at * count + k * p2, single_out.data() + k * a2 + at,
+                                 p2 * sizeof(double)) == 0;
+    at += p2;
+  }
+  CHECK(same);
+}
+
 struct FrameHashes {
   std::string weights, positions, positions_f32;
 };
@@ -119,6 +177,7 @@ FrameHashes HashFrames(const Rig& rig) {
   CHECK(std::memcmp(batch.data(), singles.data(), batch.size() * sizeof(double)) == 0);
   CHECK(std::memcmp(batch_f32.data(), singles_f32.data(), batch_f32.size() * sizeof(float)) == 0);
   (void)N;
+  if (rig.attachment_count() > 0) HashAttachments(rig, pts, singles, batch, &hw, &hx, &hf);
   return {Hex(hw.h), Hex(hx.h), Hex(hf.h)};
 }
 

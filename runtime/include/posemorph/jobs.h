@@ -96,6 +96,51 @@ struct PM_API MorphBatchJob {
   bool Run() const;
 };
 
+// The attachments of a character with several control channels (format
+// 1.7, Rig::attachment), for `count` characters sharing one rig: each
+// attachment's own rigid solve with its channel's weights (as MorphBatchJob,
+// or MorphJob for one character, gives it), turned by the rotation of its
+// parent triangle in the character's body positions and moved so that its
+// joint lies on the parent's joint (DESIGN.md section 8). The body's
+// positions are MorphJob's (or MorphBatchJob's) output on the same rig. Only
+// the channel's own weights move an attachment's shape; the body moves it
+// as a whole. With the same inputs, every character's result is the same
+// bits whatever `count` and whichever kernel path.
+//
+// Layouts: weights and limited_weights hold, channel by channel (1 .. C-1),
+// count x rig->channel_rig(c)->pose_count() values (character after
+// character); for one character that is rig->attached_weight_count() values
+// starting at rig->channel_weight_offset(c). positions (and positions_f32)
+// hold, attachment by attachment, count x 2 x that attachment's vertex count:
+// for one character, the attachments side by side, 2 x
+// rig->attached_vertex_count() in all.
+//
+// Validate() fails (and Run() does nothing) when: rig is null, not loaded or
+// has no attachments; count is so large that count x (2 x
+// attached_vertex_count + attached_weight_count) overflows half of size_t;
+// body_positions is null or shorter than count x 2V; weights or
+// limited_weights is null or shorter than count x attached_weight_count(); a
+// weight is not finite or above kMaxJobWeight in magnitude; a body position
+// is not finite; workspace is null or shorter than
+// rig->attach_workspace_size(); positions is null or shorter than count x 2 x
+// attached_vertex_count(); positions_f32 is given but null or that short;
+// interpolation is not one of the enum's values. A count of 0 is valid and
+// does nothing.
+struct PM_API AttachJob {
+  const Rig* rig = nullptr;
+  std::size_t count = 1;               // characters
+  Span<const double> body_positions;   // count x 2V: each character's body (channel 0)
+  Span<const double> weights;          // raw weights of channels 1 .. C-1 (layout above)
+  Span<const double> limited_weights;  // the same layout; pass weights again for no limiting
+  Interpolation interpolation = Interpolation::kRigid;
+  Span<double> workspace;     // rig->attach_workspace_size() doubles
+  Span<double> positions;     // count x 2 x attached_vertex_count() (layout above)
+  Span<float> positions_f32;  // optional copy for the GPU, the same layout
+
+  bool Validate() const;
+  bool Run() const;
+};
+
 // The scalar maps behind WeightsJob, exposed for tests and renderers.
 PM_API double LimitWeight(double w);  // smoothstep clamped to [0, 1]
 [[deprecated("use LimitWeight")]] inline double ShearLimit(double w) { return LimitWeight(w); }

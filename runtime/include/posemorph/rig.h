@@ -88,6 +88,25 @@ struct PartView {
   std::int32_t draw_order = 0;  // lower draws first (behind); ties in part order
 };
 
+class Rig;
+
+// An attachment of a character with several control channels (format 1.7):
+// a part driven by its own channel (a face's eyes and mouth by "face" while
+// "body" drives the rest). It is a rig of its own, whose poses are its
+// channel's; a frame solves it on its own, as rigidly as possible with its
+// joint pinned, then turns it by the rotation of the parent triangle (the
+// polar factor of that triangle's deformation from this rig's pose 0) and
+// moves its joint onto the parent's joint (AttachJob, jobs.h; DESIGN.md
+// section 8). So a channel's weights move no vertex of another channel.
+struct AttachmentView {
+  const Rig* rig = nullptr;              // the attachment's own rig: mesh, poses, drawings, paths
+  std::uint32_t channel = 0;             // 1 .. channel_count() - 1
+  std::uint32_t parent_triangle = 0;     // in the rig holding the attachment
+  double parent_weights[3] = {0, 0, 0};  // the joint's barycentric weights in it (pose 0)
+  std::uint32_t joint_triangle = 0;      // in the attachment's rig
+  double joint_weights[3] = {0, 0, 0};   // the joint's barycentric weights there (its pose 0)
+};
+
 struct LoadOptions {
   // Tests turn this off to prove the structural checks alone keep corrupted
   // bytes from crashing the loader; applications leave it on.
@@ -150,6 +169,30 @@ class PM_API Rig {
   // not change with the pose); 0 beyond the counts.
   std::int32_t part_draw_order(std::uint32_t index, std::uint32_t pose) const;
   bool draw_order_changes() const { return !part_pose_orders_.empty(); }
+  // Control channels (format 1.7; 1 for older rigs and rigs with one). The
+  // rig is channel 0; every other channel drives one or more attachments.
+  std::uint32_t channel_count() const { return channel_count_; }
+  // The channel's name; "" for a rig with one channel.
+  StringView channel_name(std::uint32_t channel) const;
+  // The rig whose poses, pose points, weight grid and paths are the
+  // channel's: this rig for channel 0, the channel's first attachment's rig
+  // for another (every attachment of a channel has its pose count). A
+  // WeightsJob on it gives the channel's weights. Null beyond the count.
+  const Rig* channel_rig(std::uint32_t channel) const;
+  // Index of the channel with this name, or -1.
+  int FindChannel(const char* name) const;
+  std::uint32_t attachment_count() const { return std::uint32_t(attachments_.size); }
+  AttachmentView attachment(std::uint32_t index) const;  // an empty view beyond the count
+  // Vertices of all attachments together (what AttachJob writes per character).
+  std::uint32_t attached_vertex_count() const { return attached_vertex_count_; }
+  // The channels' weights side by side, as AttachJob reads them: channels 1
+  // .. C-1, each its channel_rig's pose count; 0 for a rig with one channel.
+  std::uint32_t attached_weight_count() const { return attached_weight_count_; }
+  // Where channel c's weights start in that layout (c >= 1; 0 otherwise).
+  std::uint32_t channel_weight_offset(std::uint32_t channel) const;
+  // Doubles an AttachJob needs as workspace, whatever its character count.
+  std::size_t attach_workspace_size() const { return attach_workspace_; }
+
   PathView path(std::uint32_t index) const;
   // Index of the path with this name, or -1.
   int FindPath(const char* name) const;
@@ -208,6 +251,13 @@ class PM_API Rig {
   Span<const std::uint32_t> part_pose_orders_;  // N x M i32 (PORD), or empty
   Span<const StringView> part_strings_;         // M names, then M x N images, or empty
   Span<const PathView> paths_;
+  // Format 1.7: the attachments (each a Rig in the arena, loaded in place)
+  // and the channel names; empty for a rig with one channel.
+  Span<const AttachmentView> attachments_;
+  Span<const StringView> channel_names_;
+  Span<const std::uint32_t> channel_offsets_;  // C: channel_weight_offset
+  std::uint32_t channel_count_ = 1, attached_vertex_count_ = 0, attached_weight_count_ = 0;
+  std::size_t attach_workspace_ = 0;
   PoseSpaceGrid grid_;
   Factor factor_;
   double default_sigma_ = 0, rig_size_ = 0;

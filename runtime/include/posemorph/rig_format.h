@@ -13,9 +13,10 @@ constexpr std::uint16_t kVersionMajor = 1;
 // (META flag kMetaFlagGridCentres); 1.3 the compact encoding (META flag
 // kMetaFlagCompact); 1.4 the texture-filter hint; 1.5 the drawing folder
 // (kMetaFlagDrawingFolder); 1.6 parts drawn in order (kMetaFlagParts, PART),
-// optionally an order per pose (kMetaFlagPartPoseOrders, PORD).
+// optionally an order per pose (kMetaFlagPartPoseOrders, PORD); 1.7 control
+// channels (CHAN: attachments, each a nested rig driven by its own channel).
 // Older files load unchanged.
-constexpr std::uint16_t kVersionMinor = 6;
+constexpr std::uint16_t kVersionMinor = 7;
 constexpr std::uint32_t kHeaderSize = 64;
 constexpr std::uint32_t kSectionEntrySize = 24;
 constexpr std::uint32_t kSectionAlignment = 16;
@@ -116,6 +117,29 @@ constexpr std::uint32_t kMaxParts = 64;
 // PART's order is pose 0's.
 constexpr std::uint32_t kMetaFlagPartPoseOrders = 64u;
 constexpr std::uint32_t kPartPoseOrders = Tag('P', 'O', 'R', 'D');
+// CHAN section (1.7): a character with several control channels. The rig
+// itself is channel 0; each attachment is a complete rig file (the nested
+// rig, its own header, sections and checksum; never with a CHAN of its own)
+// driven by another channel and pinned to a triangle of this rig:
+//   u32 channel count C (2..kMaxChannels), u32 attachment count A
+//   (1..kMaxAttachments), u32 zero, u32 zero;
+//   A entries of kAttachmentEntrySize bytes: u32 channel (1..C-1), u32 parent
+//   triangle (this rig's), u32 joint triangle (the nested rig's), u32 zero,
+//   f64 x 3 the joint's barycentric weights in the parent triangle (pose 0),
+//   f64 x 3 its weights in the joint triangle (the nested rig's pose 0),
+//   u64 offset of the nested rig from the section's start (a multiple of 16),
+//   u64 its size;
+//   then C names, each u32 length (1..kMaxChannelName) + bytes;
+//   then the nested rigs, in attachment order, apart and inside the section.
+constexpr std::uint32_t kChannels = Tag('C', 'H', 'A', 'N');
+constexpr std::uint32_t kChannelsHeaderSize = 16;
+constexpr std::uint32_t kAttachmentEntrySize = 80;
+constexpr std::uint32_t kMaxChannels = 8;
+constexpr std::uint32_t kMaxAttachments = 32;
+constexpr std::uint32_t kMaxChannelName = 64;
+// A joint's barycentric weights are at most this far outside [0, 1].
+constexpr double kMaxJointWeightOutside = 1e-3;
+
 constexpr std::uint32_t kQuantPositions = Tag('Q', 'P', 'O', 'S');
 constexpr std::uint32_t kQuantTriangles = Tag('Q', 'T', 'R', 'I');
 constexpr std::uint32_t kQuantPermutation = Tag('Q', 'P', 'R', 'M');

@@ -13,6 +13,19 @@
 
 namespace posemorph::bake {
 
+// One attachment of a character with control channels (bake_channels.h).
+struct AttachmentReport {
+  std::string part, channel, parent;  // the part, its channel, the body part it hangs from
+  std::uint32_t vertices = 0, triangles = 0, poses = 0;
+  std::uint32_t parent_triangle = 0;  // the body triangle under its joint
+  std::uint64_t bytes = 0, exact_bytes = 0;
+  double max_reproduction_error = 0;  // its own rig's, relative to its size
+  // The attachment's drawn shape in each of its channel's poses, placed with
+  // its joint on the body's (body at pose 0): the largest vertex distance from
+  // what the whole rig evaluates there, in rig units.
+  double placed_error = 0;
+};
+
 struct BakeReport {
   std::uint32_t vertices = 0, triangles = 0, poses = 0, paths = 0;
   // A layered character (join_parts.h): its parts (name, draw order,
@@ -37,6 +50,12 @@ struct BakeReport {
   // draws a PNG drawing; else why not.
   Ghosting ghosting;
   std::string ghosting_skipped;
+  // Control channels (format 1.7): their names (empty with one channel) and
+  // the attachments; the fields above are then the body's (the first
+  // channel's parts), but bytes and seconds the whole rig's, and
+  // exact_bytes the body's and the attachments' exact encodings summed.
+  std::vector<std::string> channels;
+  std::vector<AttachmentReport> attachments;
 };
 
 // The paper's pipeline, one step per header: map the drawings

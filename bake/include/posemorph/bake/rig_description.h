@@ -116,7 +116,8 @@ struct PartDescription {
   int order = 0;                                        // draw order: lower draws first (behind); ties in part order
   std::vector<int> pose_orders;                         // empty, or one draw order per rig pose (order is pose 0's)
   std::vector<std::array<std::uint32_t, 3>> triangles;  // when its poses are given as vertices
-  std::vector<PoseDescription> poses;                   // one per rig pose, in the rig's order
+  std::vector<PoseDescription> poses;                   // one per pose of its channel, in the channel's order
+  std::size_t channel = 0;  // the control channel driving it (index into RigDescription::channels)
 };
 
 // Two parts held together at a joint: one point of `part` and one of `to`
@@ -127,6 +128,14 @@ struct GlueDescription {
   // The joint: one point per pose (drawing coordinates for drawn parts, rig
   // coordinates for meshes), or one point (meshes only: in pose 0).
   std::vector<Eigen::Vector2d> at;
+};
+
+// A control channel (bake/RIG_DESCRIPTION.md, "channels"): a pose space of
+// its own, driving some of the parts.
+struct ChannelDescription {
+  std::string name;
+  std::vector<PoseDescription> poses;  // names and points
+  std::vector<PathDescription> paths;
 };
 
 struct RigDescription {
@@ -141,6 +150,9 @@ struct RigDescription {
   std::vector<PoseDescription> poses;  // with parts: names and points only
   std::vector<PartDescription> parts;  // empty: one shape (the poses' own meshes or drawings)
   std::vector<GlueDescription> glue;
+  // Empty, or two channels or more: then `poses` and `paths` are the first
+  // channel's, and each part names its channel (PartDescription::channel).
+  std::vector<ChannelDescription> channels;
   BakeParameters parameters;
   MappingParameters mapping;
   std::vector<PathDescription> paths;

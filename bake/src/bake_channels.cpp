@@ -1,0 +1,326 @@
+// SPDX-License-Identifier: MIT
+#include "posemorph/bake/bake_channels.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+
+#include "posemorph/bake/error.h"
+#include "posemorph/jobs.h"
+#include "posemorph/rig.h"
+#include "posemorph/rig_format.h"
+#include "rig_writer.h"
+
+namespace posemorph::bake {
+namespace {
+
+namespace fmt = format;
+
+std::string Point(const Eigen::Vector2d& p) {
+  std::ostringstream s;
+  s << "(" << p.x() << ", " << p.y() << ")";
+  return s.str();
+}
+
+Rig LoadBaked(const std::vector<unsigned char>& bytes, const std::string& file, const std::string& what) {
+  Rig rig;
+  Error err;
+  if (!LoadRig(bytes.data(), bytes.size(), &rig, &err))
+    throw BakeError(file, what + " does not load in the runtime: " + err.message);
+  return rig;
+}
+
+// A point of a pose-0 drawing in the rig's units (y up, origin at the
+// canvas's pivot); a rig given as vertices has no canvas and takes it as is.
+Eigen::Vector2d ToRig(const Rig& rig, const Eigen::Vector2d& p) {
+  const DrawingCanvas c = rig.pose_canvas(0);
+  if (!(c.width > 0)) return p;
+  return {p.x() - c.pivot_x, c.pivot_y - p.y()};
+}
+
+struct Located {
+  std::uint32_t triangle = 0;
+  double weights[3] = {0, 0, 0};
+  double inside = -HUGE_VAL;  // the smallest barycentric weight: >= 0 inside
+};
+
+// The triangle of [first, first + count) holding p in pose 0, the most
+// inside one where p lies on an edge.
+Located Locate(const Rig& rig, std::uint32_t first, std::uint32_t count, const Eigen::Vector2d& p) {
+  const double* x = rig.pose_positions(0).data;
+  const std::uint32_t* tri = rig.triangles().data;
+  Located best;
+  for (std::uint32_t t = first; t < first + count; ++t) {
+    const std::uint32_t* v = tri + 3 * std::size_t(t);
+    const Eigen::Vector2d a(x[2 * v[0]], x[2 * v[0] + 1]), b(x[2 * v[1]], x[2 * v[1] + 1]),
+        c(x[2 * v[2]], x[2 * v[2] + 1]);
+    const double det = (a.x() - c.x()) * (b.y() - c.y()) - (b.x() - c.x()) * (a.y() - c.y());
+    if (!(std::fabs(det) > 0)) continue;
+    const double l0 = ((b.y() - c.y()) * (p.x() - c.x()) - (b.x() - c.x()) * (p.y() - c.y())) / det;
+    const double l1 = ((c.y() - a.y()) * (p.x() - c.x()) + (a.x() - c.x()) * (p.y() - c.y())) / det;
+    const double l2 = 1 - l0 - l1;
+    const double inside = std::min({l0, l1, l2});
+    if (inside > best.inside) {
+      best.triangle = t;
+      best.weights[0] = l0, best.weights[1] = l1, best.weights[2] = l2;
+      best.inside = inside;
+    }
+  }
+  // Clamp the rounding of a point on an edge or a vertex into [0, 1].
+  double sum = 0;
+  for (double& w : best.weights) sum += (w = std::clamp(w, 0.0, 1.0));
+  for (double& w : best.weights) w /= sum;
+  return best;
+}
+
+// Where the barycentric point lies in pose `pose`.
+Eigen::Vector2d At(const Rig& rig, std::uint32_t pose, std::uint32_t triangle, const double* w) {
+  const double* x = rig.pose_positions(pose).data;
+  const std::uint32_t* v = rig.triangles().data + 3 * std::size_t(triangle);
+  Eigen::Vector2d p(0, 0);
+  for (int k = 0; k < 3; ++k) p += w[k] * Eigen::Vector2d(x[2 * v[k]], x[2 * v[k] + 1]);
+  return p;
+}
+
+template <typename T>
+void PutAt(std::vector<unsigned char>& out, std::size_t at, T value) {
+  std::memcpy(out.data() + at, &value, sizeof(T));
+}
+
+template <typename T>
+void Append(std::vector<unsigned char>& out, T value) {
+  out.resize(out.size() + sizeof(T));
+  PutAt(out, out.size() - sizeof(T), value);
+}
+
+void Align(std::vector<unsigned char>& out) {
+  while (out.size() % fmt::kSectionAlignment) out.push_back(0);
+}
+
+struct Attachment {
+  std::uint32_t channel = 0;
+  Located parent, joint;
+  std::vector<unsigned char> bytes;
+};
+
+// The body's file with a CHAN section added (runtime/FORMAT.md).
+std::vector<unsigned char> Compose(const std::vector<unsigned char>& body, const std::vector<std::string>& names,
+                                   const std::vector<Attachment>& attachments, const std::string& file) {
+  std::vector<unsigned char> chan;
+  Append<std::uint32_t>(chan, std::uint32_t(names.size()));
+  Append<std::uint32_t>(chan, std::uint32_t(attachments.size()));
+  Append<std::uint32_t>(chan, 0);
+  Append<std::uint32_t>(chan, 0);
+  const std::size_t entries = chan.size();
+  chan.resize(chan.size() + attachments.size() * fmt::kAttachmentEntrySize, 0);
+  for (const std::string& name : names) AppendString(chan, name);
+  for (std::size_t a = 0; a < attachments.size(); ++a) {
+    const Attachment& at = attachments[a];
+    Align(chan);
+    const std::size_t e = entries + a * fmt::kAttachmentEntrySize;
+    PutAt<std::uint32_t>(chan, e, at.channel);
+    PutAt<std::uint32_t>(chan, e + 4, at.parent.triangle);
+    PutAt<std::uint32_t>(chan, e + 8, at.joint.triangle);
+    for (int k = 0; k < 3; ++k) {
+      PutAt<double>(chan, e + 16 + 8 * k, at.parent.weights[k]);
+      PutAt<double>(chan, e + 40 + 8 * k, at.joint.weights[k]);
+    }
+    PutAt<std::uint64_t>(chan, e + 64, chan.size());
+    PutAt<std::uint64_t>(chan, e + 72, at.bytes.size());
+    chan.insert(chan.end(), at.bytes.begin(), at.bytes.end());
+  }
+  RigSection sections[fmt::kMaxSections];
+  std::uint32_t count = 0;
+  Error err;
+  if (!ReadRigSections(body.data(), body.size(), sections, fmt::kMaxSections, &count, &err))
+    throw BakeError(file, std::string("the body's rig cannot be read back: ") + err.message);
+  RigWriter writer;
+  for (std::uint32_t k = 0; k < count; ++k)
+    writer.Add(sections[k].tag, std::vector<unsigned char>(body.begin() + std::ptrdiff_t(sections[k].offset),
+                                                           body.begin() + std::ptrdiff_t(sections[k].offset +
+                                                                                         sections[k].size)));
+  writer.Add(fmt::kChannels, std::move(chan));
+  return writer.Finish();
+}
+
+// Each attachment in each pose of its channel, the body at pose 0 and the
+// other channels at theirs: the largest distance from its drawn shape moved
+// so that its joint lies on the body's.
+std::vector<double> PlacedErrors(const Rig& rig) {
+  std::vector<double> errors(rig.attachment_count(), 0.0);
+  const std::size_t N0 = rig.pose_count(), NW = rig.attached_weight_count();
+  std::vector<double> raw(N0), limited(N0), work(rig.morph_workspace_size()), body(2 * std::size_t(rig.vertex_count()));
+  std::vector<double> w(NW), wl(NW), attach_work(rig.attach_workspace_size()),
+      placed(2 * std::size_t(rig.attached_vertex_count()));
+  WeightsJob weights;
+  weights.rig = &rig;
+  weights.x = rig.pose_points()[0], weights.y = rig.pose_points()[1];
+  weights.raw = {raw.data(), N0};
+  weights.limited = {limited.data(), N0};
+  weights.Run();
+  MorphJob morph;
+  morph.rig = &rig;
+  morph.weights = {raw.data(), N0};
+  morph.limited_weights = {limited.data(), N0};
+  morph.workspace = {work.data(), work.size()};
+  morph.positions = {body.data(), body.size()};
+  morph.Run();
+  for (std::uint32_t c = 1; c < rig.channel_count(); ++c) {
+    const Rig& channel = *rig.channel_rig(c);
+    for (std::uint32_t i = 0; i < channel.pose_count(); ++i) {
+      for (std::uint32_t k = 1; k < rig.channel_count(); ++k) {
+        const Rig& other = *rig.channel_rig(k);
+        const std::uint32_t pose = k == c ? i : 0;
+        WeightsJob job;
+        job.rig = &other;
+        job.x = other.pose_points()[2 * pose], job.y = other.pose_points()[2 * pose + 1];
+        job.raw = {w.data() + rig.channel_weight_offset(k), other.pose_count()};
+        job.limited = {wl.data() + rig.channel_weight_offset(k), other.pose_count()};
+        job.Run();
+      }
+      AttachJob attach;
+      attach.rig = &rig;
+      attach.body_positions = {body.data(), body.size()};
+      attach.weights = {w.data(), NW};
+      attach.limited_weights = {wl.data(), NW};
+      attach.workspace = {attach_work.data(), attach_work.size()};
+      attach.positions = {placed.data(), placed.size()};
+      attach.Run();
+      std::size_t at = 0;
+      for (std::uint32_t a = 0; a < rig.attachment_count(); ++a) {
+        const AttachmentView view = rig.attachment(a);
+        const Rig& part = *view.rig;
+        if (view.channel == c) {
+          const Eigen::Vector2d shift =
+              At(rig, 0, view.parent_triangle, view.parent_weights) - At(part, i, view.joint_triangle, view.joint_weights);
+          const double* drawn = part.pose_positions(i).data;
+          for (std::uint32_t v = 0; v < part.vertex_count(); ++v) {
+            const Eigen::Vector2d expected = Eigen::Vector2d(drawn[2 * v], drawn[2 * v + 1]) + shift;
+            const Eigen::Vector2d got(placed[at + 2 * v], placed[at + 2 * v + 1]);
+            errors[a] = std::max(errors[a], (got - expected).norm());
+          }
+        }
+        at += 2 * std::size_t(part.vertex_count());
+      }
+    }
+  }
+  return errors;
+}
+
+}  // namespace
+
+RigDescription ChannelBodyDescription(const RigDescription& description) {
+  RigDescription body = description;
+  body.channels.clear();
+  body.parts.clear();
+  body.glue.clear();
+  std::vector<std::size_t> index(description.parts.size(), SIZE_MAX);
+  for (std::size_t p = 0; p < description.parts.size(); ++p)
+    if (description.parts[p].channel == 0) {
+      index[p] = body.parts.size();
+      body.parts.push_back(description.parts[p]);
+    }
+  for (const GlueDescription& g : description.glue)
+    if (index[g.part_index] != SIZE_MAX && index[g.to_index] != SIZE_MAX) {
+      GlueDescription e = g;
+      e.part_index = index[g.part_index];
+      e.to_index = index[g.to_index];
+      body.glue.push_back(std::move(e));
+    }
+  return body;
+}
+
+RigDescription AttachmentDescription(const RigDescription& description, std::size_t part) {
+  const PartDescription& p = description.parts.at(part);
+  const ChannelDescription& channel = description.channels.at(p.channel);
+  RigDescription sub = description;
+  sub.file = description.file + ": part '" + p.name + "'";
+  sub.channels.clear();
+  sub.glue.clear();
+  sub.warnings.clear();
+  sub.poses = channel.poses;
+  sub.paths = channel.paths;
+  sub.parts = {p};
+  sub.parts[0].channel = 0;
+  const bool drawn = !p.poses.empty() && p.poses[0].drawn;
+  for (const GlueDescription& g : description.glue) {
+    if (g.part_index != part || !drawn) continue;
+    if (g.at.size() != p.poses.size())
+      throw BakeError(description.file, "part '" + p.name + "' is drawn: give its joint to '" + g.to +
+                                            "' in each of its channel's poses (one [x, y] per pose)");
+    for (std::size_t i = 0; i < p.poses.size(); ++i) sub.parts[0].poses[i].features.push_back(g.at[i]);
+  }
+  return sub;
+}
+
+std::vector<unsigned char> BakeChannels(const RigDescription& d, BakeReport* report) {
+  const auto start = std::chrono::steady_clock::now();
+  BakeReport r;
+  const std::vector<unsigned char> body_bytes = BakeRig(ChannelBodyDescription(d), &r);
+  const Rig body = LoadBaked(body_bytes, d.file, "the body's rig");
+  std::vector<Attachment> attachments;
+  for (std::size_t p = 0; p < d.parts.size(); ++p) {
+    if (d.parts[p].channel == 0) continue;
+    const PartDescription& part = d.parts[p];
+    const GlueDescription* glue = nullptr;
+    for (const GlueDescription& g : d.glue)
+      if (g.part_index == p) glue = &g;
+    if (!glue) throw BakeError(d.file, "part '" + part.name + "' is glued to nothing");
+    BakeReport sub;
+    Attachment a;
+    a.channel = std::uint32_t(part.channel);
+    a.bytes = BakeRig(AttachmentDescription(d, p), &sub);
+    const Rig rig = LoadBaked(a.bytes, d.file, "part '" + part.name + "''s rig");
+    std::uint32_t parent = 0;
+    while (parent < body.part_count() &&
+           std::string(body.part(parent).name.data, body.part(parent).name.size) != glue->to)
+      ++parent;
+    const PartView pv = body.part(parent);
+    const std::string where = "glue of part '" + part.name + "' to '" + glue->to + "'";
+    // 1e-9 of the rig's size: on an edge or a vertex, not outside.
+    const double tolerance = -1e-9;
+    a.parent = Locate(body, pv.first_triangle, pv.triangle_count, ToRig(body, glue->at[0]));
+    if (!(a.parent.inside >= tolerance))
+      throw BakeError(d.file, where + ": the joint " + Point(glue->at[0]) + " lies off part '" + glue->to + "' in " +
+                                  PoseLabel(body.pose_name(0).data ? std::string(body.pose_name(0).data,
+                                                                                 body.pose_name(0).size)
+                                                                   : std::string(),
+                                            0) +
+                                  ": a joint lies on both parts");
+    a.joint = Locate(rig, 0, rig.triangle_count(), ToRig(rig, glue->at[0]));
+    if (!(a.joint.inside >= tolerance))
+      throw BakeError(d.file, where + ": the joint " + Point(glue->at[0]) + " lies off part '" + part.name +
+                                  "' in its channel's first pose: a joint lies on both parts");
+    AttachmentReport ar;
+    ar.part = part.name;
+    ar.channel = d.channels[part.channel].name;
+    ar.parent = glue->to;
+    ar.vertices = sub.vertices, ar.triangles = sub.triangles, ar.poses = sub.poses;
+    ar.parent_triangle = a.parent.triangle;
+    ar.bytes = a.bytes.size(), ar.exact_bytes = sub.exact_bytes;
+    ar.max_reproduction_error = sub.max_reproduction_error;
+    r.attachments.push_back(ar);
+    for (const std::string& w : sub.warnings) r.warnings.push_back(w);
+    attachments.push_back(std::move(a));
+  }
+  std::vector<std::string> names;
+  for (const ChannelDescription& c : d.channels) names.push_back(c.name);
+  std::vector<unsigned char> bytes = Compose(body_bytes, names, attachments, d.file);
+  const Rig whole = LoadBaked(bytes, d.file, "the rig written");
+  const std::vector<double> placed = PlacedErrors(whole);
+  std::uint64_t exact = r.exact_bytes;
+  for (std::size_t a = 0; a < r.attachments.size(); ++a) {
+    r.attachments[a].placed_error = placed[a];
+    exact += r.attachments[a].exact_bytes;
+  }
+  r.channels = names;
+  r.bytes = bytes.size();
+  r.exact_bytes = exact;
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (report) *report = std::move(r);
+  return bytes;
+}
+
+}  // namespace posemorph::bake
