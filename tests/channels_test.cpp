@@ -217,12 +217,14 @@ TEST_CASE("channels: moving one channel's point changes no bit of the other's ve
 
 TEST_CASE("channels: single, batched and threaded evaluation give the same bits") {
   const Rig rig = Load(BakeBytes(ArmChannels(), false));
-  const std::size_t count = 19, V2 = 2 * std::size_t(rig.vertex_count()), A2 = 2 * std::size_t(rig.attached_vertex_count());
+  const std::size_t count = 19, V2 = 2 * std::size_t(rig.vertex_count()),
+                    A2 = 2 * std::size_t(rig.attached_vertex_count());
   const std::size_t N = rig.pose_count(), NA = rig.channel_rig(1)->pose_count();
   std::mt19937 random(11);
   std::uniform_real_distribution<double> u(-0.5, 2.5);
   std::vector<std::array<double, 2>> body_points(count), arm_points(count);
-  for (std::size_t k = 0; k < count; ++k) body_points[k] = {u(random), u(random)}, arm_points[k] = {u(random), u(random)};
+  for (std::size_t k = 0; k < count; ++k)
+    body_points[k] = {u(random), u(random)}, arm_points[k] = {u(random), u(random)};
   // One by one.
   std::vector<Frame> single;
   for (std::size_t k = 0; k < count; ++k) single.push_back(Evaluate(rig, {body_points[k], arm_points[k]}));
@@ -398,14 +400,16 @@ TEST_CASE("channels: bad channels are refused naming the channel, the part and t
     json d = good;
     d["parts"][0]["channel"] = "arm";
     d["parts"][1]["channel"] = "arm";
-    CHECK(BakeError(d) == "arm.json: glue[0].to: part 'body' is driven by channel 'arm': a part is glued to a part "
-                          "of the first channel ('body'), which carries the others");
+    CHECK(BakeError(d) ==
+          "arm.json: glue[0].to: part 'body' is driven by channel 'arm': a part is glued to a part "
+          "of the first channel ('body'), which carries the others");
   }
   {
     json d = good;
     d["glue"][0]["at"] = json::array({{60, 0}, {60, 0}, {60, 0}});
-    CHECK(BakeError(d) == "arm.json: glue of part 'arm' to 'body': the joint (60, 0) lies off part 'body' in pose "
-                          "'rest' (index 0): a joint lies on both parts");
+    CHECK(BakeError(d) ==
+          "arm.json: glue of part 'arm' to 'body': the joint (60, 0) lies off part 'body' in pose "
+          "'rest' (index 0): a joint lies on both parts");
   }
   {
     json d = good;
@@ -498,8 +502,8 @@ TEST_CASE("channels: Pell's face reproduces every expression on the head, and it
     for (std::uint32_t a = 0; a < rig.attachment_count(); ++a) {
       const AttachmentView v = rig.attachment(a);
       const double* drawn = v.rig->pose_positions(i).data;
-      const auto parent = At(rig.pose_positions(0).data, rig.triangles().data + 3 * std::size_t(v.parent_triangle),
-                             v.parent_weights);
+      const auto parent =
+          At(rig.pose_positions(0).data, rig.triangles().data + 3 * std::size_t(v.parent_triangle), v.parent_weights);
       const auto joint = At(drawn, v.rig->triangles().data + 3 * std::size_t(v.joint_triangle), v.joint_weights);
       for (std::uint32_t k = 0; k < v.rig->vertex_count(); ++k)
         placed = std::max(placed, std::hypot(f.attached[at + 2 * k] - (drawn[2 * k] + parent[0] - joint[0]),

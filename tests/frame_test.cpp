@@ -38,7 +38,9 @@ struct DrawnSample {
   std::vector<unsigned char> bytes;
   Drawings drawings;
   std::string images;
-  explicit DrawnSample(const std::string& name) : images(std::string(POSEMORPH_DRAWN_SAMPLES) + "/" + name) {
+  // assets/FOLDER/NAME.json (FOLDER: NAME by default), baked exact.
+  explicit DrawnSample(const std::string& name, const std::string& folder = "")
+      : images(std::string(POSEMORPH_DRAWN_SAMPLES) + "/" + (folder.empty() ? name : folder)) {
     bake::RigDescription d = bake::ReadRigDescription(images + "/" + name + ".json");
     d.parameters.compact = false;
     bytes = bake::BakeRig(d);
@@ -582,6 +584,86 @@ TEST_CASE("frames: Pell along its path, the arm crossing in front of the body") 
   CompareWithGolden("pell-greet-cross", RenderRig(pell.rig, pell.drawings, s));
   s.time = 0.6;
   CompareWithGolden("pell-greet-wave", RenderRig(pell.rig, pell.drawings, s));
+}
+
+// Pell with a face channel (assets/pell/pell-face.json): the eyes and the
+// mouth are attachments driven by "face".
+DrawnSample& SharedPellFace() {
+  static std::unique_ptr<DrawnSample> p;
+  if (!p) p = std::make_unique<DrawnSample>("pell-face", "pell");
+  return *p;
+}
+
+TEST_CASE("frames: Pell's face channel shows each expression's drawings over the rest body's, in draw order") {
+  DrawnSample& pell = SharedPellFace();
+  const Rig& rig = pell.rig;
+  REQUIRE(rig.channel_count() == 2);
+  REQUIRE(rig.attachment_count() == 3);
+  REQUIRE(pell.drawings.attachments.size() == 3);
+  const Rig& face = *rig.channel_rig(1);
+  const std::uint32_t N = rig.pose_count();
+  Camera pixels;
+  pixels.centre = {kSize / 2.0, -(kSize / 2.0)};
+  pixels.zoom = 1;
+  for (std::uint32_t expression = 0; expression < face.pose_count(); ++expression) {
+    CAPTURE(expression);
+    Scene s;
+    s.sigma = 1;
+    s.channels = {ChannelInput{face.pose_points()[2 * expression], face.pose_points()[2 * expression + 1], ""}};
+    const auto frame = RenderRig(rig, pell.drawings, s, &pixels);
+    // Back to front: the body's parts in the rest pose's order, then the
+    // face's (draw order 3, above the head's 2), each its expression's drawing.
+    std::vector<const std::vector<unsigned char>*> layers;
+    const Span<const std::uint32_t> sequence = rig.draw_sequence(0);
+    for (std::size_t k = 0; k < sequence.size; ++k) layers.push_back(&pell.drawings.rgba[std::size_t(sequence[k]) * N]);
+    for (const Drawings& a : pell.drawings.attachments) layers.push_back(&a.rgba[expression]);
+    std::size_t compared = 0, off = 0, on_face = 0;
+    for (std::uint32_t y = 1; y + 1 < kSize; ++y)
+      for (std::uint32_t x = 1; x + 1 < kSize; ++x) {
+        const unsigned char* want = nullptr;
+        bool edge = false, face_pixel = false;
+        for (std::size_t k = 0; k < layers.size() && !edge; ++k) {
+          int opaque = 0;
+          for (std::uint32_t v = y - 1; v <= y + 1; ++v)
+            for (std::uint32_t u = x - 1; u <= x + 1; ++u)
+              opaque += (*layers[k])[4 * (std::size_t(v) * kSize + u) + 3] == 255;
+          edge = opaque != 0 && opaque != 9;
+          if (opaque == 9) want = &(*layers[k])[4 * (std::size_t(y) * kSize + x)], face_pixel = k >= sequence.size;
+        }
+        if (edge || !want) continue;
+        ++compared;
+        on_face += face_pixel;
+        const std::size_t at = 4 * (std::size_t(y) * kSize + x);
+        int worst = 0;
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(int(frame[at + c]) - int(want[c])));
+        off += worst > 2;
+      }
+    MESSAGE(compared << " interior pixels, " << on_face << " of them the face's; " << off << " off");
+    CHECK(compared > 10000);
+    CHECK(on_face > 50);  // the sleepy eyes are thin
+    CHECK(double(off) / double(compared) < 0.002);
+  }
+}
+
+TEST_CASE("frames: Pell with a face, both channels on their paths, alone and in a crowd") {
+  DrawnSample& pell = SharedPellFace();
+  Scene s;
+  s.path = "greet";
+  s.time = 0.6;
+  s.channels = {ChannelInput{0, 0, "chatter"}};
+  CompareWithGolden("pell-face-greet-chatter", RenderRig(pell.rig, pell.drawings, s));
+  s.crowd = 6;
+  s.time = 1.3;
+  CompareWithGolden("pell-face-crowd", RenderRig(pell.rig, pell.drawings, s));
+  // The face hidden: the head shows where the face was.
+  Scene hidden;
+  hidden.hidden_parts = std::uint64_t(7) << pell.rig.part_count();
+  Scene shown;
+  const auto with = RenderRig(pell.rig, pell.drawings, shown), without = RenderRig(pell.rig, pell.drawings, hidden);
+  std::size_t changed = 0;
+  for (std::size_t k = 0; k < with.size(); k += 4) changed += with[k] != without[k];
+  MESSAGE(changed << " pixels change when the face's three parts hide");
+  CHECK(changed > 200);
 }
 
 TEST_CASE("camera: fit, zoom about the cursor, pan, pixel-exact") {

@@ -138,9 +138,9 @@ std::vector<unsigned char> Compose(const std::vector<unsigned char>& body, const
     throw BakeError(file, std::string("the body's rig cannot be read back: ") + err.message);
   RigWriter writer;
   for (std::uint32_t k = 0; k < count; ++k)
-    writer.Add(sections[k].tag, std::vector<unsigned char>(body.begin() + std::ptrdiff_t(sections[k].offset),
-                                                           body.begin() + std::ptrdiff_t(sections[k].offset +
-                                                                                         sections[k].size)));
+    writer.Add(sections[k].tag,
+               std::vector<unsigned char>(body.begin() + std::ptrdiff_t(sections[k].offset),
+                                          body.begin() + std::ptrdiff_t(sections[k].offset + sections[k].size)));
   writer.Add(fmt::kChannels, std::move(chan));
   return writer.Finish();
 }
@@ -193,8 +193,8 @@ std::vector<double> PlacedErrors(const Rig& rig) {
         const AttachmentView view = rig.attachment(a);
         const Rig& part = *view.rig;
         if (view.channel == c) {
-          const Eigen::Vector2d shift =
-              At(rig, 0, view.parent_triangle, view.parent_weights) - At(part, i, view.joint_triangle, view.joint_weights);
+          const Eigen::Vector2d shift = At(rig, 0, view.parent_triangle, view.parent_weights) -
+                                        At(part, i, view.joint_triangle, view.joint_weights);
           const double* drawn = part.pose_positions(i).data;
           for (std::uint32_t v = 0; v < part.vertex_count(); ++v) {
             const Eigen::Vector2d expected = Eigen::Vector2d(drawn[2 * v], drawn[2 * v + 1]) + shift;
@@ -283,12 +283,12 @@ std::vector<unsigned char> BakeChannels(const RigDescription& d, BakeReport* rep
     const double tolerance = -1e-9;
     a.parent = Locate(body, pv.first_triangle, pv.triangle_count, ToRig(body, glue->at[0]));
     if (!(a.parent.inside >= tolerance))
-      throw BakeError(d.file, where + ": the joint " + Point(glue->at[0]) + " lies off part '" + glue->to + "' in " +
-                                  PoseLabel(body.pose_name(0).data ? std::string(body.pose_name(0).data,
-                                                                                 body.pose_name(0).size)
-                                                                   : std::string(),
-                                            0) +
-                                  ": a joint lies on both parts");
+      throw BakeError(d.file,
+                      where + ": the joint " + Point(glue->at[0]) + " lies off part '" + glue->to + "' in " +
+                          PoseLabel(body.pose_name(0).data ? std::string(body.pose_name(0).data, body.pose_name(0).size)
+                                                           : std::string(),
+                                    0) +
+                          ": a joint lies on both parts");
     a.joint = Locate(rig, 0, rig.triangle_count(), ToRig(rig, glue->at[0]));
     if (!(a.joint.inside >= tolerance))
       throw BakeError(d.file, where + ": the joint " + Point(glue->at[0]) + " lies off part '" + part.name +

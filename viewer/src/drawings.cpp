@@ -87,6 +87,13 @@ bool LoadDrawings(const Rig& rig, const std::string& dir, Drawings* out, std::st
         for (int c = 0; c < 3; ++c) d[c] = (unsigned char)((s[c] * s[3] + 127) / 255);  // premultiply
         d[3] = s[3];
       }
+  out->attachments.assign(rig.attachment_count(), Drawings{});
+  for (std::uint32_t a = 0; a < rig.attachment_count(); ++a)
+    if (!LoadDrawings(*rig.attachment(a).rig, dir, &out->attachments[a], error)) {
+      const StringView name = rig.attachment(a).rig->part(0).name;
+      *error = "attachment '" + Printable(std::string(name.data, name.size)) + "': " + *error;
+      return false;
+    }
   return true;
 }
 

@@ -18,10 +18,15 @@ struct Drawings {
   std::uint32_t width = 0, height = 0;
   std::vector<std::vector<unsigned char>> rgba;  // one per part and pose: layer part * N + pose
   std::uint32_t layers_per_part = 0;             // N
+  // A character with control channels (format 1.7): each attachment's own
+  // drawings (its part in each of its channel's poses), in attachment order.
+  std::vector<Drawings> attachments;
 };
 // Reads each part's image in each pose (rig.part_image; rig.pose_image for
 // a rig without parts) from `dir`. False with a message
 // naming the file when one is missing or unreadable, or the rig has no uvs.
+// A rig's attachments' drawings are read from `dir` too (the bake records
+// one drawing folder for them all).
 // Limits on the drawings the viewer loads (rig files are hostile input):
 // kMaxDrawingPixels (png_io.h) each and as the size they are resampled to,
 // and kMaxTexturePixels for all of them (the texture array they share).

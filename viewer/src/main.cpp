@@ -34,7 +34,7 @@ const char* kUsage =
     "         [--no-weight-limit] [--linear] [--compare] [--bases] [--wireframe] [--validation]\n"
     "         [--camera X,Y,ZOOM | --camera 1:1] [--transform T] [--seed S] [--drawings K] [--blend B]\n"
     "         [--filter linear|nearest] [--hide-part NAME]... [--joints] [--smoke-test SHOT.png [--frames K]]\n"
-    "         [--description RIG.json]\n"
+    "         [--description RIG.json] [--channel NAME=X,Y | --channel NAME=PATH]...\n"
     "  --images DIR  where the rig's drawings are (default: where the bake found them, recorded in the rig\n"
     "                relative to its file; else the rig's folder)\n"
     "  --frames K    with --path: K frames over the path's duration, OUT-000.png ...\n"
@@ -50,6 +50,8 @@ const char* kUsage =
     "  --blend B     exact (one pass, weighted sum; default) or over (sequential passes, approximate)\n"
     "  --hide-part NAME  a layered character: do not draw this part (repeatable)\n"
     "  --joints      window: mark a layered character's joints over the frame\n"
+    "  --channel     a rig with control channels: channel NAME (after the first, which --at and --path\n"
+    "                drive) at the point X,Y of its pose space, or along its path PATH (repeatable)\n"
     "  --compare     rigid (left) and linear (right) interpolation side by side\n"
     "  --bases       the N base poses in a row\n"
     "  --validation  enable the Vulkan validation layer; any message fails (exit 3)\n"
@@ -149,6 +151,7 @@ struct Options {
   Camera given_camera;
   Blend blend = Blend::kExact;
   std::vector<std::string> hidden_parts;  // --hide-part, resolved once the rig is loaded
+  std::vector<std::string> channels;      // --channel NAME=X,Y or NAME=PATH, resolved likewise
 };
 using CameraMode = Options::CameraMode;
 
@@ -220,6 +223,8 @@ int ParseOptions(int argc, char** argv, Options& o) {
       o.window.description = v;
     else if (a == "--hide-part" && (v = value()))
       o.hidden_parts.push_back(v);
+    else if (a == "--channel" && (v = value()))
+      o.channels.push_back(v);
     else if (a == "--images" && (v = value()))
       o.images = v;
     else if (a == "--path" && (v = value()))
@@ -361,10 +366,39 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
       if (part == name && rig.part_count() > 1) o.scene.hidden_parts |= std::uint64_t(1) << p, found = true;
       names += (names.empty() ? "'" : ", '") + part + "'";
     }
+    for (std::uint32_t a = 0; a < rig.attachment_count() && rig.part_count() + a < 64; ++a) {
+      const StringView n = rig.attachment(a).rig->part(0).name;
+      const std::string part(n.data, n.size);
+      if (part == name) o.scene.hidden_parts |= std::uint64_t(1) << (rig.part_count() + a), found = true;
+      names += (names.empty() ? "'" : ", '") + part + "'";
+    }
     if (!found)
       return Fail(o.rig_path + ": " +
                   (rig.part_count() > 1 ? "has no part '" + name + "' (" + names + ")"
                                         : std::string("has no parts, so --hide-part has nothing to hide")));
+  }
+  for (const std::string& entry : o.channels) {
+    const std::size_t eq = entry.find('=');
+    const std::string name = entry.substr(0, eq);
+    const int c = eq == std::string::npos ? -1 : rig.FindChannel(name.c_str());
+    if (eq == std::string::npos) return Usage("--channel wants NAME=X,Y or NAME=PATH");
+    if (c <= 0)
+      return Fail(o.rig_path + ": " +
+                  (rig.channel_count() < 2 ? std::string("has one control channel; --channel names a later one")
+                                           : "has no channel '" + name + "' after the first"));
+    o.scene.channels.resize(rig.channel_count() - 1);
+    const Rig& channel = *rig.channel_rig(std::uint32_t(c));
+    ChannelInput& in = o.scene.channels[std::size_t(c) - 1];
+    in.x = channel.pose_points()[0], in.y = channel.pose_points()[1];
+    const std::string value = entry.substr(eq + 1);
+    const auto point = bake::ParseNumbers(value, ',');
+    if (point && point->size() == 2) {
+      in.x = (*point)[0], in.y = (*point)[1];
+    } else if (channel.FindPath(value.c_str()) >= 0) {
+      in.path = value;
+    } else {
+      return Fail(o.rig_path + ": channel '" + name + "' has no path named \"" + value + "\" (give X,Y or a path)");
+    }
   }
   if (o.images.empty()) o.images = bake::DefaultDrawingFolder(o.rig_path, rig);
   Drawings drawings;

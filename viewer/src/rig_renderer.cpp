@@ -60,11 +60,25 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   for (std::uint32_t p = 0; p < rig.part_count(); ++p)
     parts_.push_back({3 * rig.part(p).first_triangle, 3 * rig.part(p).triangle_count});
   sequences_.assign(max_instances, rig.draw_sequence().data);
+  dominant_.assign(max_instances, 0);
+  rig_ = &rig;
   positions_ = gpu.CreateBuffer(8ull * V * max_instances, storage);
   instances_ = gpu.CreateBuffer(sizeof(Instance) * max_instances, storage);
   UploadDrawings(drawings, N);
   CreateDescriptors(filter);
-  return CreatePipelines(target_format, error);
+  if (!CreatePipelines(target_format, error)) return false;
+  attachments_.clear();
+  for (std::uint32_t a = 0; a < rig.attachment_count(); ++a) {
+    if (a >= drawings.attachments.size()) {
+      *error = "no drawings for attachment " + std::to_string(a);
+      return false;
+    }
+    attachments_.push_back(std::make_unique<RigRenderer>());
+    if (!attachments_.back()->Init(gpu, *rig.attachment(a).rig, drawings.attachments[a], target_format, max_instances,
+                                   filter, error))
+      return false;
+  }
+  return true;
 }
 
 // The drawings as one texture array: N layers per part.
@@ -216,6 +230,30 @@ RigRenderer::~RigRenderer() {
 void RigRenderer::SetCharacter(std::uint32_t k, const DrawList& list) {
   instances()[k] = ToInstance(list);
   if (k < sequences_.size() && list.parts.size == parts_.size()) sequences_[k] = list.parts.data;
+  if (k < dominant_.size()) dominant_[k] = list.drawing_count ? list.drawings[0].pose : 0;
+}
+
+std::int32_t RigRenderer::PartOrder(std::uint32_t k, std::uint32_t p) const {
+  return rig_ ? rig_->part_draw_order(p, k < dominant_.size() ? dominant_[k] : 0) : 0;
+}
+
+void RigRenderer::DrawPart(VkCommandBuffer cmd, std::uint32_t k, std::uint32_t p, gpu::PushData push,
+                           Blend blend) const {
+  push.positions = gpu::Address(positions_.address);
+  push.uvs = gpu::Address(uvs_.address);
+  push.instances = gpu::Address(instances_.address);
+  push.vertex_count = vertex_count_;
+  push.layer_offset = std::int32_t(p * pose_count_);
+  const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
+  vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, fill_);
+  for (std::int32_t slot = blend == Blend::kExact ? -1 : 0;
+       slot < (blend == Blend::kExact ? 0 : std::int32_t(kDrawingsPerCharacter)); ++slot) {
+    push.only_slot = slot;
+    vkCmdPushConstants(cmd, layout_, stages, 0, sizeof push, &push);
+    vkCmdDrawIndexed(cmd, parts_[p].index_count, 1, parts_[p].first_index, 0, k);
+  }
 }
 
 void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const Camera& camera, std::uint32_t width,
@@ -251,7 +289,32 @@ void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const Camera&
       vkCmdDrawIndexed(cmd, indices, instances, first_index, 0, first);
     }
   };
-  if (parts_.size() <= 1) {
+  if (!attachments_.empty()) {
+    // Character by character, back to front: the body's parts and the
+    // attachments merged by draw order (a stable sort keeps the body's
+    // sequence, then the attachments', within one order).
+    struct Item {
+      std::int32_t order;
+      const RigRenderer* renderer;
+      std::uint32_t part, rank;
+    };
+    std::vector<Item> items;
+    const std::size_t P = parts_.size();
+    for (std::uint32_t k = 0; k < count && k < sequences_.size(); ++k) {
+      items.clear();
+      for (std::size_t s = 0; s < P; ++s) {
+        const std::uint32_t p = sequences_[k][s];
+        if (p >= P || (p < 64 && (hidden_parts_ >> p) & 1)) continue;
+        items.push_back({PartOrder(k, p), this, p, std::uint32_t(items.size())});
+      }
+      for (std::size_t a = 0; a < attachments_.size(); ++a) {
+        if (P + a < 64 && (hidden_parts_ >> (P + a)) & 1) continue;
+        items.push_back({attachments_[a]->PartOrder(k, 0), attachments_[a].get(), 0, std::uint32_t(items.size())});
+      }
+      std::stable_sort(items.begin(), items.end(), [](const Item& l, const Item& r) { return l.order < r.order; });
+      for (const Item& item : items) item.renderer->DrawPart(cmd, k, item.part, push, blend);
+    }
+  } else if (parts_.size() <= 1) {
     if (!(hidden_parts_ & 1)) draw(0, index_count_, 0, count);
   } else {
     // Character by character, back to front, each one's parts in its order.
@@ -267,10 +330,28 @@ void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const Camera&
   push.only_slot = -1;
   if (wireframe && lines_) {
     push.flat_colour = 1;
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
+    vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lines_);
     vkCmdPushConstants(cmd, layout_, stages, 0, sizeof push, &push);
     vkCmdDrawIndexed(cmd, index_count_, count, 0, 0, 0);
+    for (const auto& a : attachments_) a->RecordLines(cmd, count, push);
   }
+}
+
+void RigRenderer::RecordLines(VkCommandBuffer cmd, std::uint32_t count, gpu::PushData push) const {
+  if (!lines_) return;
+  push.positions = gpu::Address(positions_.address);
+  push.uvs = gpu::Address(uvs_.address);
+  push.instances = gpu::Address(instances_.address);
+  push.vertex_count = vertex_count_;
+  push.layer_offset = 0;
+  const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
+  vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
+  vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
+  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, lines_);
+  vkCmdPushConstants(cmd, layout_, stages, 0, sizeof push, &push);
+  vkCmdDrawIndexed(cmd, index_count_, count, 0, 0, 0);
 }
 
 }  // namespace posemorph::viewer

@@ -5,6 +5,7 @@
 // character's drawings with its texture weights (premultiplied alpha).
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -48,7 +49,12 @@ class RigRenderer {
   // Character k's drawings and, for a layered character, the order its
   // parts are drawn in (list.parts, which points into the rig).
   void SetCharacter(std::uint32_t k, const DrawList& list);
-  // Parts not drawn: bit p hides part p (a layered character's toggles).
+  // A character with control channels: attachment a's renderer (its own
+  // positions, instances and drawings; PrepareScene fills them), or null.
+  RigRenderer* attachment(std::uint32_t a) { return a < attachments_.size() ? attachments_[a].get() : nullptr; }
+  std::uint32_t attachment_count() const { return std::uint32_t(attachments_.size()); }
+  // Parts not drawn: bit p hides part p (a layered character's toggles);
+  // an attachment a is "part" part_count + a.
   void SetHiddenParts(std::uint64_t mask) { hidden_parts_ = mask; }
   std::uint64_t hidden_parts() const { return hidden_parts_; }
   std::uint32_t max_instances() const { return max_instances_; }
@@ -57,7 +63,9 @@ class RigRenderer {
   // pixels at (x, y) of the target. A rig without parts is one instanced
   // draw for the whole crowd; a layered character is drawn one character
   // after the other (the crowd is sorted back to front), its parts in its
-  // draw list's order, each sampling its own drawings.
+  // draw list's order, each sampling its own drawings; a character with
+  // attachments draws them among its parts by their draw orders (ties: the
+  // body's parts first, then the attachments in order).
   void Record(VkCommandBuffer cmd, std::uint32_t instance_count, const Camera& camera, std::uint32_t width,
               std::uint32_t height, bool wireframe, std::int32_t x = 0, std::int32_t y = 0,
               Blend blend = Blend::kExact) const;
@@ -67,6 +75,13 @@ class RigRenderer {
   void UploadDrawings(const Drawings& drawings, std::uint32_t pose_count);
   void CreateDescriptors(TextureFilter filter);
   bool CreatePipelines(VkFormat target_format, std::string* error);
+  // Binds this renderer's pipeline, drawings and buffers and draws part p of
+  // character k (the viewport is set).
+  void DrawPart(VkCommandBuffer cmd, std::uint32_t k, std::uint32_t p, gpu::PushData push, Blend blend) const;
+  // The wireframe of `count` characters (the lines pipeline, flat colour in push).
+  void RecordLines(VkCommandBuffer cmd, std::uint32_t count, gpu::PushData push) const;
+  // The draw order of character k's part p in its frame's dominant pose.
+  std::int32_t PartOrder(std::uint32_t k, std::uint32_t p) const;
   Gpu* gpu_ = nullptr;
   std::uint32_t vertex_count_ = 0, index_count_ = 0, max_instances_ = 0, pose_count_ = 0;
   struct PartRange {
@@ -74,6 +89,9 @@ class RigRenderer {
   };
   std::vector<PartRange> parts_;                 // one per part (one for a rig without parts)
   std::vector<const std::uint32_t*> sequences_;  // per character: its parts back to front
+  std::vector<std::uint32_t> dominant_;          // per character: its dominant drawing's pose
+  const Rig* rig_ = nullptr;
+  std::vector<std::unique_ptr<RigRenderer>> attachments_;
   std::uint64_t hidden_parts_ = 0;
   Buffer indices_, uvs_, positions_, instances_;
   Image drawings_;

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "posemorph/draw_list.h"
+#include "posemorph/jobs.h"
 #include "posemorph/path.h"
 
 namespace posemorph::viewer {
@@ -59,6 +60,107 @@ struct Random {
     return double((z ^ (z >> 31)) >> 11) * (1.0 / 9007199254740992.0);
   }
 };
+
+// The attachments of a character with control channels: each channel's
+// weights at its point (or along its path, at the character's phase), the
+// body again in doubles (MorphJob: the bits DrawListJob gave in floats),
+// AttachJob, and a draw list per attachment with its channel's drawings.
+bool PrepareAttachments(const Rig& rig, const Scene& scene, int body_path, RigRenderer& renderer, SceneScratch& scratch,
+                        std::uint32_t K, std::string* error) {
+  const std::uint32_t C = rig.channel_count(), A = rig.attachment_count(), N = rig.pose_count();
+  const std::size_t v2 = 2 * std::size_t(rig.vertex_count()), a2 = 2 * std::size_t(rig.attached_vertex_count());
+  const std::size_t NW = rig.attached_weight_count();
+  std::vector<int> paths(C, -1);
+  for (std::uint32_t c = 1; c < C; ++c)
+    if (c - 1 < scene.channels.size() && !scene.channels[c - 1].path.empty()) {
+      paths[c] = rig.channel_rig(c)->FindPath(scene.channels[c - 1].path.c_str());
+      if (paths[c] < 0) {
+        const StringView name = rig.channel_name(c);
+        *error =
+            "channel '" + std::string(name.data, name.size) + "' has no path \"" + scene.channels[c - 1].path + "\"";
+        return false;
+      }
+    }
+  (void)body_path;
+  scratch.body.resize(v2);
+  scratch.raw.resize(std::max<std::size_t>(N, NW));
+  scratch.limited.resize(scratch.raw.size());
+  scratch.texture.resize(NW);
+  scratch.attach_workspace.resize(std::max(rig.attach_workspace_size(), rig.morph_workspace_size()));
+  scratch.attached.resize(a2);
+  scratch.attachment_lists.resize(std::size_t(K) * A);
+  std::vector<double> w(NW), wl(NW);
+  const double sigma_default = rig.default_sigma();
+  for (std::uint32_t k = 0; k < K; ++k) {
+    // The body, as DrawListJob evaluated it (the same jobs, in doubles).
+    WeightsJob body_weights;
+    body_weights.rig = &rig;
+    body_weights.x = scratch.points[2 * k], body_weights.y = scratch.points[2 * k + 1];
+    body_weights.limit_weights = scene.limit_weights;
+    body_weights.raw = {scratch.raw.data(), N}, body_weights.limited = {scratch.limited.data(), N};
+    MorphJob morph;
+    morph.rig = &rig;
+    morph.weights = {scratch.raw.data(), N}, morph.limited_weights = {scratch.limited.data(), N};
+    morph.interpolation =
+        (scene.compare_linear ? k == 1 : scene.linear) ? Interpolation::kLinear : Interpolation::kRigid;
+    morph.workspace = {scratch.attach_workspace.data(), rig.morph_workspace_size()};
+    morph.positions = {scratch.body.data(), v2};
+    if (!body_weights.Run() || !morph.Run()) {
+      *error = "the runtime refused the body's frame";
+      return false;
+    }
+    for (std::uint32_t c = 1; c < C; ++c) {
+      const Rig& channel = *rig.channel_rig(c);
+      double x = channel.pose_points()[0], y = channel.pose_points()[1];
+      if (c - 1 < scene.channels.size()) x = scene.channels[c - 1].x, y = scene.channels[c - 1].y;
+      if (paths[c] >= 0) {
+        const PathView p = channel.path(std::uint32_t(paths[c]));
+        SamplePath(p, scene.time + (p.end_time() - p.start_time()) * scratch.phases[k], &x, &y);
+      }
+      const std::size_t at = rig.channel_weight_offset(c), n = channel.pose_count();
+      WeightsJob job;
+      job.rig = &channel;
+      job.x = x, job.y = y;
+      job.sigma = scene.sigma >= 0 ? scene.sigma : sigma_default;
+      job.limit_weights = scene.limit_weights;
+      job.raw = {w.data() + at, n}, job.limited = {wl.data() + at, n}, job.texture = {scratch.texture.data() + at, n};
+      job.Run();
+    }
+    AttachJob attach;
+    attach.rig = &rig;
+    attach.body_positions = {scratch.body.data(), v2};
+    attach.weights = {w.data(), NW}, attach.limited_weights = {wl.data(), NW};
+    attach.interpolation = morph.interpolation;
+    attach.workspace = {scratch.attach_workspace.data(), scratch.attach_workspace.size()};
+    attach.positions = {scratch.attached.data(), a2};
+    if (!attach.Run()) {
+      *error = "the runtime refused the attachments' frame";
+      return false;
+    }
+    std::size_t offset = 0;
+    for (std::uint32_t a = 0; a < A; ++a) {
+      const AttachmentView view = rig.attachment(a);
+      const Rig& part = *view.rig;
+      const std::size_t p2 = 2 * std::size_t(part.vertex_count());
+      RigRenderer* r = renderer.attachment(a);
+      float* out = r->positions() + std::size_t(k) * p2;
+      for (std::size_t i = 0; i < p2; ++i) out[i] = float(scratch.attached[offset + i]);
+      DrawList& list = scratch.attachment_lists[std::size_t(k) * A + a];
+      list = DrawList{};
+      list.transform = scratch.lists[k].transform;
+      list.mirrored = scratch.lists[k].mirrored;
+      const std::size_t at = rig.channel_weight_offset(view.channel);
+      list.drawing_count = PickDrawings({scratch.texture.data() + at, part.pose_count()},
+                                        std::clamp<std::uint32_t>(scene.max_drawings, 1, kDrawingsPerCharacter),
+                                        {list.drawings, kMaxBlendDrawings});
+      list.parts = part.draw_sequence(list.drawings[0].pose);
+      r->SetCharacter(k, list);
+      r->SetHiddenParts(0);
+      offset += p2;
+    }
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -160,6 +262,7 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
     *error = "the draw-list job refused the scene";
     return false;
   }
+  if (rig.attachment_count() > 0 && !PrepareAttachments(rig, scene, path, renderer, scratch, K, error)) return false;
   View all{1e300, 1e300, -1e300, -1e300};
   for (std::uint32_t k = 0; k < K; ++k) {
     renderer.SetCharacter(k, scratch.lists[k]);

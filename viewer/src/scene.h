@@ -11,6 +11,13 @@
 
 namespace posemorph::viewer {
 
+// A control channel after the first (format 1.7): its point, or a path of
+// its own rig that its characters follow (at the scene's time and phases).
+struct ChannelInput {
+  double x = 0, y = 0;
+  std::string path;
+};
+
 struct Scene {
   double x = 0, y = 0;  // pose-space point (when path is empty)
   std::string path;     // a path of the rig: characters follow it
@@ -27,6 +34,9 @@ struct Scene {
   bool show_bases = false;         // the N base poses in a row, each exactly at its point
   int filter = -1;                 // drawings sampled: 0 linear, 1 nearest, -1 as the rig asks (its "filter")
   std::uint64_t hidden_parts = 0;  // a layered character's parts not drawn: bit p hides part p
+  // Channels 1 .. C-1 of a rig with control channels, in order; a missing
+  // entry puts its channel at its first pose's point.
+  std::vector<ChannelInput> channels;
 };
 
 // How many characters the scene draws.
@@ -40,6 +50,11 @@ struct SceneScratch {
   std::vector<Transform2D> transforms;
   std::vector<double> phases;  // crowd: each drawn character's share of the path
   std::vector<DrawList> lists;
+  // A character with channels: per character the body's positions
+  // (doubles), the channels' weights, the attachments' positions and lists.
+  std::vector<double> body, raw, limited, texture, attach_workspace, attached;
+  std::vector<DrawList> attachment_lists;
+  std::vector<std::uint32_t> attachment_sequences;
 };
 
 // Where a frame's characters are, in world units: a camera fits one of them.

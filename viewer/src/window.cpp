@@ -94,27 +94,48 @@ void Viewer::InitUi() {
   ImGui_ImplVulkan_DestroyFontUploadObjects();
 }
 
-void Viewer::BuildPadField() {
+Viewer::PadField Viewer::PadFieldOf(const Rig& rig) const {
   // The pad's domain: the baked grid, a square around it; its weight-field colours.
-  const PoseSpaceGrid& g = rig_.grid();
+  PadField f;
+  const PoseSpaceGrid& g = rig.grid();
   const double gw = g.cell * g.cells_x, gh = g.cell * g.cells_y;
-  pad_span_ = std::max(gw, gh) * 1.1;
-  pad_x0_ = g.origin_x + gw / 2 - pad_span_ / 2;
-  pad_y0_ = g.origin_y + gh / 2 - pad_span_ / 2;
-  const std::uint32_t N = rig_.pose_count();
+  f.span = std::max(gw, gh) * 1.1;
+  f.x0 = g.origin_x + gw / 2 - f.span / 2;
+  f.y0 = g.origin_y + gh / 2 - f.span / 2;
+  const std::uint32_t N = rig.pose_count();
   std::vector<double> w(N);
-  field_.resize(std::size_t(field_cells_) * field_cells_);
+  f.colours.resize(std::size_t(field_cells_) * field_cells_);
   for (int j = 0; j < field_cells_; ++j)
     for (int i = 0; i < field_cells_; ++i) {
       WeightsJob wj;
-      wj.rig = &rig_;
-      wj.x = pad_x0_ + (i + 0.5) / field_cells_ * pad_span_;
-      wj.y = pad_y0_ + (j + 0.5) / field_cells_ * pad_span_;
+      wj.rig = &rig;
+      wj.x = f.x0 + (i + 0.5) / field_cells_ * f.span;
+      wj.y = f.y0 + (j + 0.5) / field_cells_ * f.span;
       wj.raw = {w.data(), N};
       wj.Run();
       const std::uint32_t top = std::uint32_t(std::max_element(w.begin(), w.end()) - w.begin());
-      field_[std::size_t(j) * field_cells_ + i] = PoseColour(top, int(60 + 120 * std::clamp(w[top], 0.0, 1.0)));
+      f.colours[std::size_t(j) * field_cells_ + i] = PoseColour(top, int(60 + 120 * std::clamp(w[top], 0.0, 1.0)));
     }
+  return f;
+}
+
+void Viewer::BuildPadField() {
+  PadField body = PadFieldOf(rig_);
+  field_ = std::move(body.colours);
+  pad_x0_ = body.x0, pad_y0_ = body.y0, pad_span_ = body.span;
+  channel_fields_.clear();
+  for (std::uint32_t c = 1; c < rig_.channel_count(); ++c) channel_fields_.push_back(PadFieldOf(*rig_.channel_rig(c)));
+  if (rig_.channel_count() > 1 && scene_.channels.size() < rig_.channel_count() - 1) {
+    const std::size_t given = scene_.channels.size();
+    scene_.channels.resize(rig_.channel_count() - 1);
+    for (std::size_t c = given; c < scene_.channels.size(); ++c) {
+      const Rig& channel = *rig_.channel_rig(std::uint32_t(c + 1));
+      scene_.channels[c].x = channel.pose_points()[0], scene_.channels[c].y = channel.pose_points()[1];
+    }
+  }
+  play_channel_.assign(scene_.channels.size(), 0);
+  for (std::size_t c = 0; c < scene_.channels.size(); ++c)
+    if (!scene_.channels[c].path.empty()) play_channel_[c] = 1;
 }
 
 int Viewer::Run() {

@@ -10,6 +10,7 @@ void Viewer::BuildUi() {
   ImGui::Begin("posemorph", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   Pad();
   ImGui::Text("point (%.3f, %.3f)", scene_.x, scene_.y);
+  ChannelPads();
 
   ImGui::Separator();
   ImGui::TextUnformatted("Gesture");
@@ -65,6 +66,17 @@ void Viewer::BuildUi() {
         scene_.hidden_parts =
             shown ? scene_.hidden_parts & ~(std::uint64_t(1) << p) : scene_.hidden_parts | (std::uint64_t(1) << p);
       if (s + 1 < sequence.size && (s + 1) % 4 != 0) ImGui::SameLine();
+    }
+    // A later channel's parts (attachments) hide likewise: "part" M + a.
+    for (std::uint32_t a = 0; a < rig_.attachment_count() && rig_.part_count() + a < 64; ++a) {
+      const std::uint32_t bit = rig_.part_count() + a;
+      const StringView n = rig_.attachment(a).rig->part(0).name;
+      bool shown = !((scene_.hidden_parts >> bit) & 1);
+      if (a % 4 != 0) ImGui::SameLine();
+      if (ImGui::Checkbox((Printable(std::string(n.data, n.size), 40) + "##attachment" + std::to_string(a)).c_str(),
+                          &shown))
+        scene_.hidden_parts =
+            shown ? scene_.hidden_parts & ~(std::uint64_t(1) << bit) : scene_.hidden_parts | (std::uint64_t(1) << bit);
     }
     // The glue: each joint is one vertex of its two parts, so the parts
     // cannot come apart there in any frame.
@@ -160,6 +172,19 @@ Scene Viewer::ShownScene() {
     const double u = b[0] > a[0] ? std::clamp((t - a[0]) / (b[0] - a[0]), 0.0, 1.0) : 1.0;
     scene_.x = shown.x = a[1] + u * (b[1] - a[1]);
     scene_.y = shown.y = a[2] + u * (b[2] - a[2]);
+  }
+  // Later channels on their first path: each pad's point moves with it.
+  for (std::size_t c = 0; c < scene_.channels.size() && c < play_channel_.size(); ++c) {
+    shown.channels[c].path.clear();
+    if (!play_channel_[c]) continue;
+    const Rig& channel = *rig_.channel_rig(std::uint32_t(c + 1));
+    if (channel.path_count() == 0) continue;
+    const StringView name = channel.path(0).name;
+    shown.channels[c].path = std::string(name.data, name.size);
+    if (!play_path_) shown.time = clock_;
+    SamplePath(channel, 0, shown.time, &scene_.channels[c].x, &scene_.channels[c].y);
+    shown.channels[c].x = scene_.channels[c].x, shown.channels[c].y = scene_.channels[c].y;
+    if (shown.crowd <= 1) shown.channels[c].path.clear();
   }
   if (!shown.path.empty() && shown.crowd <= 1) shown.path.clear();  // one character sits at the sampled point
   return shown;

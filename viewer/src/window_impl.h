@@ -83,6 +83,16 @@ class Viewer {
   bool Open();
   void InitUi();
   void BuildPadField();
+  // One channel's pad: its weight field as colours over its domain.
+  struct PadField {
+    std::vector<ImU32> colours;
+    double x0 = 0, y0 = 0, span = 1;
+  };
+  PadField PadFieldOf(const Rig& rig) const;
+  // Draws a pad of `rig`'s pose space with the point (x, y); true while it
+  // is dragged (then (x, y) follows the mouse).
+  bool DrawPad(const Rig& rig, const PadField& field, const char* id, double* x, double* y);
+  void ChannelPads();  // a pad per control channel after the first
   int Close();
   void SmokeInput();
   void SmokeAfterFrame();
@@ -140,6 +150,8 @@ class Viewer {
   std::vector<ImU32> field_;  // dominant-pose colour per pad cell
   int field_cells_ = 48;
   double pad_x0_ = 0, pad_y0_ = 0, pad_span_ = 1;
+  std::vector<PadField> channel_fields_;  // channels 1 .. C-1 (index c - 1)
+  std::vector<char> play_channel_;        // channel c - 1 follows its first path
   Gesture gesture_;
   std::string status_;
   bool play_path_ = false;
