@@ -229,7 +229,123 @@ void BM_PartsCrowd1000(benchmark::State& state) {
   Label(state, c);
 }
 
+// Pell with a face channel (assets/pell/pell-face.json, exact): the body's
+// four parts glued in one solve, the eyes and the mouth attachments solved
+// on their own, turned and moved onto their joints (AttachJob).
+const Loaded* PellFace() {
+  static const Loaded* loaded = [] {
+    const std::string path = std::string(POSEMORPH_DRAWN_SAMPLES) + "/pell/pell-face.json";
+    if (!std::ifstream(path).good()) return static_cast<const Loaded*>(nullptr);
+    bake::RigDescription d = bake::ReadRigDescription(path);
+    d.parameters.compact = false;
+    return static_cast<const Loaded*>(new Loaded(d));
+  }();
+  return loaded;
+}
+
+// The largest distance between an attachment's joint and its parent's in one frame.
+double JointGap(const Rig& rig, const double* body, const double* attached) {
+  double gap = 0;
+  std::size_t at = 0;
+  for (std::uint32_t a = 0; a < rig.attachment_count(); ++a) {
+    const AttachmentView v = rig.attachment(a);
+    const std::uint32_t* pt = rig.triangles().data + 3 * std::size_t(v.parent_triangle);
+    const std::uint32_t* jt = v.rig->triangles().data + 3 * std::size_t(v.joint_triangle);
+    double p[2] = {0, 0}, j[2] = {0, 0};
+    for (int c = 0; c < 2; ++c)
+      for (int k = 0; k < 3; ++k)
+        p[c] += v.parent_weights[k] * body[2 * pt[k] + c], j[c] += v.joint_weights[k] * attached[at + 2 * jt[k] + c];
+    gap = std::max(gap, std::hypot(p[0] - j[0], p[1] - j[1]));
+    at += 2 * std::size_t(v.rig->vertex_count());
+  }
+  return gap;
+}
+
+// One frame of Pell with a face: the body's point on a loop through its
+// poses, the face's on a loop through its expressions at another speed.
+void BM_ChannelsFrame(benchmark::State& state) {
+  const Loaded* l = PellFace();
+  if (!l) return state.SkipWithError("Pell's drawings were not built (rsvg-convert)");
+  const Rig& rig = l->rig;
+  const Rig& face = *rig.channel_rig(1);
+  const std::size_t N = rig.pose_count(), NF = face.pose_count();
+  std::vector<double> raw(N), limited(N), fraw(NF), flimited(NF), body(2 * std::size_t(rig.vertex_count()));
+  std::vector<double> work(std::max(rig.morph_workspace_size(), rig.attach_workspace_size()));
+  std::vector<double> attached(2 * std::size_t(rig.attached_vertex_count()));
+  std::vector<float> body_f32(body.size()), attached_f32(attached.size());
+  double t = 0, gap = 0;
+  for (auto _ : state) {
+    const Eigen::Vector2d p = PointAt(2, t), q = PointAt(2, 1.7 * t);
+    t += 1.0 / 60;
+    WeightsJob wj;
+    wj.rig = &rig, wj.x = p.x(), wj.y = p.y();
+    wj.raw = MakeSpan(raw), wj.limited = MakeSpan(limited);
+    wj.Run();
+    WeightsJob fj;
+    fj.rig = &face, fj.x = q.x(), fj.y = q.y();
+    fj.raw = MakeSpan(fraw), fj.limited = MakeSpan(flimited);
+    fj.Run();
+    MorphJob mj;
+    mj.rig = &rig, mj.weights = MakeSpan(raw), mj.limited_weights = MakeSpan(limited);
+    mj.workspace = MakeSpan(work), mj.positions = MakeSpan(body), mj.positions_f32 = MakeSpan(body_f32);
+    mj.Run();
+    AttachJob aj;
+    aj.rig = &rig, aj.body_positions = MakeSpan(body);
+    aj.weights = MakeSpan(fraw), aj.limited_weights = MakeSpan(flimited);
+    aj.workspace = MakeSpan(work), aj.positions = MakeSpan(attached), aj.positions_f32 = MakeSpan(attached_f32);
+    aj.Run();
+    benchmark::DoNotOptimize(attached_f32.data());
+    gap = std::max(gap, JointGap(rig, body.data(), attached.data()));
+  }
+  state.counters["joint_gap"] = gap;
+  state.SetLabel("Pell with a face channel: " + std::to_string(rig.vertex_count() + rig.attached_vertex_count()) +
+                 " vertices, body glued + " + std::to_string(rig.attachment_count()) + " attachments");
+}
+
+// A crowd of 1000 Pells with faces, each at its own two points: the bodies
+// as one MorphBatchJob, the attachments as one AttachJob.
+void BM_ChannelsCrowd1000(benchmark::State& state) {
+  const Loaded* l = PellFace();
+  if (!l) return state.SkipWithError("Pell's drawings were not built (rsvg-convert)");
+  const Rig& rig = l->rig;
+  const Rig& face = *rig.channel_rig(1);
+  const std::size_t count = 1000, N = rig.pose_count(), NF = face.pose_count();
+  std::vector<double> w(count * N), ws(count * N), fw(count * NF), fws(count * NF);
+  for (std::size_t k = 0; k < count; ++k) {
+    const Eigen::Vector2d p = PointAt(2, 2 * M_PI * double(k) / double(count)), q = PointAt(2, 3.7 * double(k));
+    WeightsJob wj;
+    wj.rig = &rig, wj.x = p.x(), wj.y = p.y();
+    wj.raw = {w.data() + k * N, N}, wj.limited = {ws.data() + k * N, N};
+    wj.Run();
+    WeightsJob fj;
+    fj.rig = &face, fj.x = q.x(), fj.y = q.y();
+    fj.raw = {fw.data() + k * NF, NF}, fj.limited = {fws.data() + k * NF, NF};
+    fj.Run();
+  }
+  std::vector<double> work(std::max(rig.batch_workspace_size(), rig.attach_workspace_size()));
+  std::vector<double> body(count * 2 * std::size_t(rig.vertex_count()));
+  std::vector<double> attached(count * 2 * std::size_t(rig.attached_vertex_count()));
+  std::vector<float> body_f32(body.size()), attached_f32(attached.size());
+  for (auto _ : state) {
+    MorphBatchJob job;
+    job.rig = &rig, job.count = count;
+    job.weights = MakeSpan(w), job.limited_weights = MakeSpan(ws);
+    job.workspace = MakeSpan(work), job.positions = MakeSpan(body), job.positions_f32 = MakeSpan(body_f32);
+    job.Run();
+    AttachJob aj;
+    aj.rig = &rig, aj.count = count, aj.body_positions = MakeSpan(body);
+    aj.weights = MakeSpan(fw), aj.limited_weights = MakeSpan(fws);
+    aj.workspace = MakeSpan(work), aj.positions = MakeSpan(attached), aj.positions_f32 = MakeSpan(attached_f32);
+    aj.Run();
+    benchmark::DoNotOptimize(attached_f32.data());
+  }
+  state.SetLabel("Pell with a face channel, 1000 characters");
+}
+
 }  // namespace
+
+BENCHMARK(BM_ChannelsFrame)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ChannelsCrowd1000)->Unit(benchmark::kMillisecond);
 
 // Arguments: the character (0: the arm at the test rig's grids, 1: ten
 // times finer, 2: Pell), then 0 glued or 1 apart.

@@ -21,6 +21,10 @@ $bin/posemorph-bake eval out/pip.pmrig --path hello --frames 16 -o out/pip-hello
 # Pell: one SVG per pose, each part a layer; the sheet draws the parts back to front.
 $bin/posemorph-bake $drawn/pell/pell.json -o out/pell.pmrig
 $bin/posemorph-bake sheet out/pell.pmrig --textured --columns 5 --rows 3 -o out/pell-sheet-textured.png
+# Pell with two control channels: "body" drives the body, arms and head, "face" the eyes and the mouth.
+$bin/posemorph-bake $drawn/pell/pell-face.json -o out/pell-face.pmrig
+$bin/posemorph-bake sheet out/pell-face.pmrig --textured --columns 5 --rows 3 -o out/pell-face-sheet-body.png
+$bin/posemorph-bake sheet out/pell-face.pmrig --textured --channel face --columns 5 --rows 3 -o out/pell-face-sheet-face.png
 $bin/posemorph-bake $drawn/sprout/sprout.json -o out/sprout.pmrig
 $bin/posemorph-bake sheet out/sprout.pmrig -o out/sprout-sheet.svg
 # Procedural samples: a snake given as meshes, and a figure whose poses are made by dragging handles.
@@ -40,9 +44,10 @@ view=$bin/posemorph-view
 if [ ! -x $view ]; then
   echo "posemorph-view was not built (see the cmake warnings); skipping the viewer"
 elif [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
-  echo "opening the viewer on out/pip.pmrig, then on out/pell.pmrig (close each window to go on)"
+  echo "opening the viewer on out/pip.pmrig, then on out/pell.pmrig, then on out/pell-face.pmrig (close each window to go on)"
   $view out/pip.pmrig --description $drawn/pip/pip.json
   $view out/pell.pmrig
+  $view out/pell-face.pmrig --channel face=chatter
 else
   mkdir -p out/frames
   $view out/pip.pmrig --headless --size 480x480 --path hello --frames 24 -o out/frames/pip-hello.png
@@ -50,5 +55,7 @@ else
   $view out/pip.pmrig --headless --size 960x480 --at 1.4,0.4 --compare -o out/frames/pip-rigid-vs-linear.png
   $view out/pell.pmrig --headless --size 480x480 --path greet --frames 24 -o out/frames/pell-greet.png
   $view out/pell.pmrig --headless --size 1024x256 --bases -o out/frames/pell-bases.png
+  $view out/pell-face.pmrig --headless --size 1280x720 --crowd 12 --path greet --channel face=chatter --frames 24 \
+    -o out/frames/pell-face-crowd.png
   $view out/sprout.pmrig --headless --size 480x480 --path breeze --frames 24 -o out/frames/sprout-breeze.png
 fi

@@ -32,6 +32,17 @@ std::vector<unsigned char> BakedRigBytes(const std::string& name) {
   return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
 }
 
+// Of the 3 x 3 pixels around (dx, dy) of drawing d (outside: empty), how
+// many are opaque and how many empty.
+void CountAround(const bake::RgbaImage& d, long dx, long dy, int* opaque, int* empty) {
+  for (long ny = dy - 1; ny <= dy + 1; ++ny)
+    for (long nx = dx - 1; nx <= dx + 1; ++nx) {
+      const bool inside = nx >= 0 && ny >= 0 && nx < long(d.width) && ny < long(d.height);
+      const unsigned a = inside ? d.rgba[(std::size_t(ny) * d.width + std::size_t(nx)) * 4 + 3] : 0;
+      *opaque += a == 255, *empty += a == 0;
+    }
+}
+
 struct Pip {
   std::string images = std::string(POSEMORPH_DRAWN_SAMPLES) + "/pip";
   std::vector<unsigned char> bytes = BakedRigBytes("pip");
@@ -128,12 +139,7 @@ TEST_CASE("sheet --textured: a layered character's parts are drawn back to front
         for (std::uint32_t s = 0; s < order.size && clean; ++s) {
           const bake::RgbaImage& d = drawings[std::size_t(order[s]) * N + i];
           int opaque = 0, empty = 0;
-          for (long ny = dy - 1; ny <= dy + 1; ++ny)
-            for (long nx = dx - 1; nx <= dx + 1; ++nx) {
-              const bool inside = nx >= 0 && ny >= 0 && nx < long(d.width) && ny < long(d.height);
-              const unsigned a = inside ? d.rgba[(std::size_t(ny) * d.width + std::size_t(nx)) * 4 + 3] : 0;
-              opaque += a == 255, empty += a == 0;
-            }
+          CountAround(d, dx, dy, &opaque, &empty);
           clean = opaque == 9 || empty == 9;
           if (opaque == 9) front = &d.rgba[(std::size_t(dy) * d.width + std::size_t(dx)) * 4], ++opaque_parts;
         }
@@ -150,6 +156,61 @@ TEST_CASE("sheet --textured: a layered character's parts are drawn back to front
     CHECK(double(same) >= 0.99 * double(compared));
     CHECK(overlapping > 100);
     CHECK(double(overlapping_same) >= 0.99 * double(overlapping));
+  }
+}
+
+TEST_CASE("sheet --textured --channel: Pell's face channel, each expression laid over the rest body's parts") {
+  const std::string images = std::string(POSEMORPH_DRAWN_SAMPLES) + "/pell";
+  const std::vector<unsigned char> bytes = BakedRigBytes("pell-face");
+  Rig rig;
+  REQUIRE(LoadRig(bytes.data(), bytes.size(), &rig, nullptr));
+  REQUIRE(rig.attachment_count() == 3);
+  const std::uint32_t N = rig.pose_count();
+  const Rig& face = *rig.channel_rig(1);
+  const std::vector<bake::RgbaImage> drawings = bake::ReadPoseDrawings(rig, "pell-face.pmrig", images);
+  const auto attached = bake::ReadAttachmentDrawings(rig, "pell-face.pmrig", images);
+  REQUIRE(attached.size() == 3);
+  const std::uint32_t cell = 200;
+  bake::TexturedSheetLayout layout;
+  const bake::RgbaImage sheet = bake::TexturedSheet(rig, drawings, 4, 1, bake::EvalOptions{}, TextureFilter::kNearest,
+                                                    cell, &layout, 1, attached);
+  REQUIRE(layout.columns == face.pose_count());
+  // Cell i: the body at rest (its parts in the rest pose's order), then the
+  // face's three parts (draw order 3, above the head) in expression i.
+  for (std::uint32_t i = 0; i < face.pose_count(); ++i) {
+    CAPTURE(i);
+    const DrawingCanvas canvas = rig.pose_canvas(0);
+    std::vector<const bake::RgbaImage*> layers;
+    for (std::uint32_t p : rig.draw_sequence(0)) layers.push_back(&drawings[std::size_t(p) * N]);
+    for (const auto& a : attached) layers.push_back(&a[i]);
+    std::size_t compared = 0, same = 0, on_face = 0;
+    for (std::uint32_t py = 0; py < cell; ++py)
+      for (std::uint32_t px = i * cell; px < (i + 1) * cell; ++px) {
+        const double x = (px + 0.5 - (i + 0.5) * cell) / layout.scale + layout.centre_x;
+        const double y = -(py + 0.5 - 0.5 * cell) / layout.scale + layout.centre_y;
+        const long dx = long(std::floor(x + canvas.pivot_x)), dy = long(std::floor(-y + canvas.pivot_y));
+        const unsigned char* front = nullptr;
+        bool clean = true, face_pixel = false;
+        for (std::size_t s = 0; s < layers.size() && clean; ++s) {
+          const bake::RgbaImage& d = *layers[s];
+          int opaque = 0, empty = 0;
+          CountAround(d, dx, dy, &opaque, &empty);
+          clean = opaque == 9 || empty == 9;
+          if (opaque == 9)
+            front = &d.rgba[(std::size_t(dy) * d.width + std::size_t(dx)) * 4], face_pixel = s >= rig.part_count();
+        }
+        if (!clean || !front) continue;
+        const unsigned char* got = &sheet.rgba[(std::size_t(py) * sheet.width + px) * 4];
+        int off = 0;
+        for (int c = 0; c < 3; ++c) off = std::max(off, std::abs(int(got[c]) - int(front[c])));
+        ++compared, same += off <= 2;
+        on_face += face_pixel && off <= 2;
+      }
+    MESSAGE("expression " << i << ": " << same << " of " << compared << " interior pixels are the front layer's, "
+                          << on_face << " of them the face's");
+    CHECK(compared > 3000);
+    CHECK(double(same) >= 0.99 * double(compared));
+    CHECK(on_face > 20);
   }
 }
 

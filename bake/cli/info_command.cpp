@@ -78,9 +78,22 @@ std::string DescribeSection(std::uint32_t tag, const unsigned char* d, std::uint
     s << "u32 parts: first triangle, triangle count, draw order";
   else if (tag == f::kPartPoseOrders)
     s << "i32 draw order per pose per part";
+  else if (tag == f::kChannels)
+    s << "control channels: names, attachments (each a nested rig), their joints";
   else
     s << "f64";
   return s.str();
+}
+
+void PrintPaths(const Rig& rig, const char* indent, std::ostream& out) {
+  for (std::uint32_t p = 0; p < rig.path_count(); ++p) {
+    const PathView path = rig.path(p);
+    const double duration = path.end_time() - path.start_time();
+    out << indent << "  path '" << Printable(std::string(path.name.data, path.name.size)) << "': " << path.key_count()
+        << " keys, " << duration << " s, "
+        << (path.interpolation == PathInterpolation::kCatmullRom ? "catmull-rom" : "linear")
+        << (path.loop ? ", loops" : "") << "\n";
+  }
 }
 
 // Sizes, counts, the factor's fill, the grid, load time and kernel path.
@@ -204,12 +217,28 @@ void PrintPosesAndPaths(const Rig& rig, std::ostream& out) {
               << Printable(std::string(rig.part_image(p, i).data, rig.part_image(p, i).size));
       out << "\n";
     }
-  for (std::uint32_t p = 0; p < rig.path_count(); ++p) {
-    const PathView path = rig.path(p);
-    const double duration = path.end_time() - path.start_time();
-    out << "  path '" << std::string(path.name.data, path.name.size) << "': " << path.key_count() << " keys, "
-        << duration << " s, " << (path.interpolation == PathInterpolation::kCatmullRom ? "catmull-rom" : "linear")
-        << (path.loop ? ", loops" : "") << "\n";
+  PrintPaths(rig, "", out);
+  // Control channels: each later channel's poses and paths, and the
+  // attachments it drives.
+  for (std::uint32_t c = 1; c < rig.channel_count(); ++c) {
+    const Rig& channel = *rig.channel_rig(c);
+    out << "  channel " << c << " '" << Printable(std::string(rig.channel_name(c).data, rig.channel_name(c).size))
+        << "': " << channel.pose_count() << " poses";
+    for (std::uint32_t i = 0; i < channel.pose_count(); ++i)
+      out << (i ? ", '" : " ('") << Printable(std::string(channel.pose_name(i).data, channel.pose_name(i).size))
+          << "' at (" << channel.pose_points()[2 * i] << ", " << channel.pose_points()[2 * i + 1] << ")"
+          << (i + 1 == channel.pose_count() ? ")" : "");
+    out << "\n";
+    PrintPaths(channel, "  ", out);
+    for (std::uint32_t a = 0; a < rig.attachment_count(); ++a) {
+      const AttachmentView v = rig.attachment(a);
+      if (v.channel != c) continue;
+      const PartView part = v.rig->part(0);
+      out << "    attachment " << a << " '" << Printable(std::string(part.name.data, part.name.size))
+          << "': " << v.rig->vertex_count() << " vertices, " << v.rig->triangle_count() << " triangles, draw order "
+          << part.draw_order << ", pinned to triangle " << v.parent_triangle << " at (" << v.parent_weights[0] << ", "
+          << v.parent_weights[1] << ", " << v.parent_weights[2] << ")\n";
+    }
   }
 }
 

@@ -4,6 +4,7 @@
 
 #include "command_args.h"
 #include "posemorph/bake/bake.h"
+#include "posemorph/bake/error.h"
 #include "posemorph/bake/drawing_folder.h"
 #include "posemorph/rig.h"
 #include "preview.h"
@@ -12,15 +13,15 @@
 namespace posemorph::bake::cli {
 
 int SheetCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
-  const Args args = Args::Parse(a, from, {"-o", "--columns", "--rows", "--sigma", "--images", "--filter"},
+  const Args args = Args::Parse(a, from, {"-o", "--columns", "--rows", "--sigma", "--images", "--filter", "--channel"},
                                 {"--no-weight-limit", "--no-shear-limit", "--linear", "--textured"});
   if (args.positional.empty()) throw UsageError("no rig file given");
   const std::string* output = args.Get("-o");
   const bool textured = args.switches.count("--textured") > 0;
   if (!output || Extension(*output) != (textured ? "png" : "svg"))
     throw UsageError(textured ? "sheet --textured needs -o OUT.png" : "sheet needs -o OUT.svg");
-  if (!textured && (args.Get("--images") || args.Get("--filter")))
-    throw UsageError("--images and --filter go with --textured");
+  if (!textured && (args.Get("--images") || args.Get("--filter") || args.Get("--channel")))
+    throw UsageError("--images, --filter and --channel go with --textured");
   const int columns = args.Get("--columns") ? CountOption("--columns", *args.Get("--columns"), 2, 32) : 7;
   const int rows = args.Get("--rows") ? CountOption("--rows", *args.Get("--rows"), 1, 32) : 5;
   const Rig rig = LoadRigFile(args.positional);
@@ -32,12 +33,26 @@ int SheetCommand(const std::vector<std::string>& a, std::size_t from, std::ostre
     }
     std::string images = DefaultDrawingFolder(args.positional, rig);
     if (const std::string* i = args.Get("--images")) images = *i;
+    std::uint32_t channel = 0;
+    if (const std::string* c = args.Get("--channel")) {
+      const int found = rig.FindChannel(c->c_str());
+      if (found < 0)
+        throw BakeError(args.positional, rig.channel_count() < 2
+                                             ? "has one control channel; --channel names one of several"
+                                             : "has no channel '" + *c + "'");
+      channel = std::uint32_t(found);
+    }
     const std::vector<RgbaImage> drawings = ReadPoseDrawings(rig, args.positional, images);
+    const std::vector<std::vector<RgbaImage>> attached = ReadAttachmentDrawings(rig, args.positional, images);
     TexturedSheetLayout layout;
-    const RgbaImage sheet = TexturedSheet(rig, drawings, columns, rows, ReadEvalOptions(args), filter, 160, &layout);
+    const RgbaImage sheet =
+        TexturedSheet(rig, drawings, columns, rows, ReadEvalOptions(args), filter, 160, &layout, channel, attached);
     WriteFileAtomic(*output, EncodePng(sheet, *output));
-    out << "wrote " << *output << " (" << sheet.width << " x " << sheet.height << ": " << rig.pose_count()
-        << " poses, then " << columns << "x" << layout.rows << " samples, drawings sampled "
+    const std::string name(rig.channel_name(channel).data, rig.channel_name(channel).size);
+    out << "wrote " << *output << " (" << sheet.width << " x " << sheet.height << ": "
+        << rig.channel_rig(channel)->pose_count() << " poses"
+        << (rig.channel_count() > 1 ? " of channel '" + name + "', the others at their first pose" : "") << ", then "
+        << columns << "x" << layout.rows << " samples, drawings sampled "
         << (filter == TextureFilter::kNearest ? "nearest" : "linear") << ")\n";
     return 0;
   }

@@ -12,6 +12,7 @@
 #include "posemorph/bake/ghosting.h"
 #include "posemorph/bake/input_file.h"
 #include "posemorph/image_reference.h"
+#include "posemorph/jobs.h"
 
 namespace posemorph::bake {
 namespace {
@@ -154,37 +155,131 @@ void DrawPart(const Rig& rig, const std::vector<RgbaImage>& drawings, const Fram
   }
 }
 
-// One frame: its parts back to front, in the order of its dominant
-// drawing's pose (the largest texture weight, ties to the lower pose), as
-// the runtime's DrawList orders them.
-void DrawFrame(const Rig& rig, const std::vector<RgbaImage>& drawings, const Frame& f, std::uint32_t cx,
-               std::uint32_t cy, const TexturedSheetLayout& lay, TextureFilter filter, SheetCanvas& canvas) {
+// A cell of the sheet: the body's frame and, for a character with control
+// channels, each attachment's (positions placed by AttachJob, texture
+// weights its channel's).
+struct Cell {
+  Frame body;
+  std::vector<Frame> attached;
+};
+
+// The cell at point (x, y) of channel `channel`'s pose space, every other
+// channel at its first pose's point.
+Cell EvaluateCell(const Rig& rig, std::uint32_t channel, double x, double y, const EvalOptions& options) {
+  Cell cell;
+  const double bx = channel == 0 ? x : rig.pose_points()[0], by = channel == 0 ? y : rig.pose_points()[1];
+  cell.body = EvaluateFrame(rig, bx, by, options);
+  if (rig.attachment_count() == 0) return cell;
+  const std::size_t NW = rig.attached_weight_count();
+  std::vector<double> w(NW), wl(NW), texture(NW);
+  for (std::uint32_t c = 1; c < rig.channel_count(); ++c) {
+    const Rig& ch = *rig.channel_rig(c);
+    const std::size_t at = rig.channel_weight_offset(c), n = ch.pose_count();
+    WeightsJob job;
+    job.rig = &ch;
+    job.x = c == channel ? x : ch.pose_points()[0];
+    job.y = c == channel ? y : ch.pose_points()[1];
+    job.sigma = options.sigma < 0 ? ch.default_sigma() : options.sigma;
+    job.limit_weights = options.limit_weights;
+    job.raw = {w.data() + at, n}, job.limited = {wl.data() + at, n}, job.texture = {texture.data() + at, n};
+    job.Run();
+  }
+  std::vector<double> positions(2 * std::size_t(rig.attached_vertex_count())), work(rig.attach_workspace_size());
+  AttachJob attach;
+  attach.rig = &rig;
+  attach.body_positions = {cell.body.positions.data(), cell.body.positions.size()};
+  attach.weights = {w.data(), NW}, attach.limited_weights = {wl.data(), NW};
+  attach.interpolation = options.interpolation;
+  attach.workspace = {work.data(), work.size()}, attach.positions = {positions.data(), positions.size()};
+  attach.Run();
+  std::size_t offset = 0;
+  for (std::uint32_t a = 0; a < rig.attachment_count(); ++a) {
+    const AttachmentView v = rig.attachment(a);
+    const std::size_t p2 = 2 * std::size_t(v.rig->vertex_count()), at = rig.channel_weight_offset(v.channel);
+    Frame f;
+    f.positions.assign(positions.begin() + std::ptrdiff_t(offset), positions.begin() + std::ptrdiff_t(offset + p2));
+    f.texture.assign(texture.begin() + std::ptrdiff_t(at), texture.begin() + std::ptrdiff_t(at + v.rig->pose_count()));
+    cell.attached.push_back(std::move(f));
+    offset += p2;
+  }
+  return cell;
+}
+
+// The dominant drawing's pose of a frame (the largest texture weight, ties
+// to the lower pose).
+std::uint32_t Dominant(const Rig& rig, const Frame& f) {
   std::uint32_t dominant = 0;
   for (std::uint32_t i = 1; i < rig.pose_count(); ++i)
     if (f.texture[i] > f.texture[dominant]) dominant = i;
-  for (std::uint32_t part : rig.draw_sequence(dominant)) DrawPart(rig, drawings, f, part, cx, cy, lay, filter, canvas);
+  return dominant;
+}
+
+// One cell: its parts back to front, in the order of its dominant
+// drawing's pose, as the runtime's DrawList orders them; a character with
+// channels has its attachments merged in by draw order (ties: the body's
+// parts first), as posemorph-view draws them.
+void DrawCell(const Rig& rig, const std::vector<RgbaImage>& drawings,
+              const std::vector<std::vector<RgbaImage>>& attachment_drawings, const Cell& cell, std::uint32_t cx,
+              std::uint32_t cy, const TexturedSheetLayout& lay, TextureFilter filter, SheetCanvas& canvas) {
+  struct Item {
+    std::int32_t order;
+    const Rig* rig;
+    const std::vector<RgbaImage>* drawings;
+    const Frame* frame;
+    std::uint32_t part;
+  };
+  std::vector<Item> items;
+  const std::uint32_t dominant = Dominant(rig, cell.body);
+  for (std::uint32_t part : rig.draw_sequence(dominant))
+    items.push_back({rig.part_draw_order(part, dominant), &rig, &drawings, &cell.body, part});
+  for (std::uint32_t a = 0; a < cell.attached.size() && a < attachment_drawings.size(); ++a) {
+    const Rig& r = *rig.attachment(a).rig;
+    const std::uint32_t d = Dominant(r, cell.attached[a]);
+    for (std::uint32_t part : r.draw_sequence(d))
+      items.push_back({r.part_draw_order(part, d), &r, &attachment_drawings[a], &cell.attached[a], part});
+  }
+  std::stable_sort(items.begin(), items.end(), [](const Item& l, const Item& r) { return l.order < r.order; });
+  for (const Item& item : items)
+    DrawPart(*item.rig, *item.drawings, *item.frame, item.part, cx, cy, lay, filter, canvas);
 }
 
 }  // namespace
 
+std::vector<std::vector<RgbaImage>> ReadAttachmentDrawings(const Rig& rig, const std::string& rig_file,
+                                                           const std::string& images) {
+  std::vector<std::vector<RgbaImage>> out;
+  for (std::uint32_t a = 0; a < rig.attachment_count(); ++a)
+    out.push_back(ReadPoseDrawings(*rig.attachment(a).rig, rig_file, images));
+  return out;
+}
+
 RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, int columns, int rows,
                         const EvalOptions& options, TextureFilter filter, std::uint32_t cell,
-                        TexturedSheetLayout* layout) {
-  const std::uint32_t N = rig.pose_count(), V = rig.vertex_count();
-  const auto pts = rig.pose_points();
-  std::vector<Frame> frames;
-  for (std::uint32_t i = 0; i < N; ++i) frames.push_back(EvaluateFrame(rig, pts[2 * i], pts[2 * i + 1], options));
-  const std::vector<std::array<double, 2>> points = SheetPoints(rig, columns, rows);
-  for (const auto& p : points) frames.push_back(EvaluateFrame(rig, p[0], p[1], options));
+                        TexturedSheetLayout* layout, std::uint32_t channel,
+                        const std::vector<std::vector<RgbaImage>>& attachment_drawings) {
+  const Rig& space = channel < rig.channel_count() ? *rig.channel_rig(channel) : rig;
+  if (channel >= rig.channel_count()) channel = 0;
+  const std::uint32_t N = space.pose_count();
+  const auto pts = space.pose_points();
+  std::vector<Cell> frames;
+  for (std::uint32_t i = 0; i < N; ++i)
+    frames.push_back(EvaluateCell(rig, channel, pts[2 * i], pts[2 * i + 1], options));
+  const std::vector<std::array<double, 2>> points = SheetPoints(space, columns, rows);
+  for (const auto& p : points) frames.push_back(EvaluateCell(rig, channel, p[0], p[1], options));
   const std::uint32_t grid_rows = std::uint32_t(points.size()) / std::uint32_t(columns);
 
   // One scale and one centre for every cell, so that sizes and places compare.
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (const Frame& f : frames)
-    for (std::uint32_t v = 0; v < V; ++v) {
-      x0 = std::min(x0, f.positions[2 * v]), x1 = std::max(x1, f.positions[2 * v]);
-      y0 = std::min(y0, f.positions[2 * v + 1]), y1 = std::max(y1, f.positions[2 * v + 1]);
+  auto extend = [&](const Frame& f) {
+    for (std::size_t k = 0; k + 1 < f.positions.size(); k += 2) {
+      x0 = std::min(x0, f.positions[k]), x1 = std::max(x1, f.positions[k]);
+      y0 = std::min(y0, f.positions[k + 1]), y1 = std::max(y1, f.positions[k + 1]);
     }
+  };
+  for (const Cell& c : frames) {
+    extend(c.body);
+    for (const Frame& f : c.attached) extend(f);
+  }
   TexturedSheetLayout lay;
   lay.cell = cell;
   lay.columns = std::uint32_t(std::max<int>(columns, int(N)));
@@ -205,7 +300,7 @@ RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, 
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const std::uint32_t cx = k < N ? std::uint32_t(k) : std::uint32_t(k - N) % std::uint32_t(columns);
     const std::uint32_t cy = k < N ? 0 : 1 + std::uint32_t(k - N) / std::uint32_t(columns);
-    DrawFrame(rig, drawings, frames[k], cx, cy, lay, filter, canvas);
+    DrawCell(rig, drawings, attachment_drawings, frames[k], cx, cy, lay, filter, canvas);
   }
   // Over a light background, as the viewer's.
   const double background[3] = {0.93, 0.94, 0.95};

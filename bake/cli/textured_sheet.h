@@ -36,10 +36,20 @@ struct TexturedSheetLayout {
   double centre_x = 0, centre_y = 0;    // rig point at each cell's centre
 };
 
+// A character with control channels: each attachment's drawings
+// (ReadPoseDrawings of its rig), in attachment order; empty for other rigs.
+std::vector<std::vector<RgbaImage>> ReadAttachmentDrawings(const Rig& rig, const std::string& rig_file,
+                                                           const std::string& images);
+
 // Row 0: the base poses at their points; rows 1..: SheetPoints(columns, rows).
+// Over channel `channel`'s pose space (its rig's poses and grid), every
+// other channel at its first pose; the attachments drawn with
+// `attachment_drawings` (ReadAttachmentDrawings), merged among the body's
+// parts by draw order.
 RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, int columns, int rows,
                         const EvalOptions& options, TextureFilter filter, std::uint32_t cell,
-                        TexturedSheetLayout* layout = nullptr);
+                        TexturedSheetLayout* layout = nullptr, std::uint32_t channel = 0,
+                        const std::vector<std::vector<RgbaImage>>& attachment_drawings = {});
 
 // A PNG drawing as RGBA: a regular file of at most 64 MiB and 16,777,216
 // pixels. Throws BakeError naming the file.

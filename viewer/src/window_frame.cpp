@@ -82,7 +82,10 @@ void Viewer::BuildUi() {
     // cannot come apart there in any frame.
     ImGui::TextWrapped("glue: %zu joint(s), each one vertex shared by its parts: residual 0 px in every frame",
                        joints_.size());
-    if (!joints_.empty()) ImGui::Checkbox("mark the joints", &show_joints_);
+    if (rig_.attachment_count() > 0)
+      ImGui::TextWrapped("%u part(s) of later channels, each solved on its own and pinned at its joint on the body",
+                         rig_.attachment_count());
+    if (!joints_.empty() || rig_.attachment_count() > 0) ImGui::Checkbox("mark the joints", &show_joints_);
   }
   EditUi();
   int crowd = int(scene_.crowd);
@@ -125,7 +128,7 @@ void Viewer::EndFrame(std::uint32_t index, std::uint32_t count, const Scene& sho
 // edit mode, the edited pose where it stands unmoved).
 void Viewer::JointOverlay(std::uint32_t count) {
   joint_marks_.clear();
-  if (!show_joints_ || joints_.empty() || sc_.extent.width <= kPanelWidth + 8) return;
+  if (!show_joints_ || (joints_.empty() && rig_.attachment_count() == 0) || sc_.extent.width <= kPanelWidth + 8) return;
   const ViewMap map{camera_, std::int32_t(kPanelWidth), sc_.extent.width - std::uint32_t(kPanelWidth),
                     sc_.extent.height};
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
@@ -148,6 +151,18 @@ void Viewer::JointOverlay(std::uint32_t count) {
       if (2 * std::size_t(v) + 1 >= list.positions.size) continue;
       double x = 0, y = 0;
       list.transform.Apply(list.positions[2 * std::size_t(v)], list.positions[2 * std::size_t(v) + 1], &x, &y);
+      mark(x, y);
+    }
+    // A later channel's attachments: each pinned at a point of a body triangle.
+    for (std::uint32_t a = 0; a < rig_.attachment_count(); ++a) {
+      const AttachmentView view = rig_.attachment(a);
+      const std::uint32_t* t = rig_.triangles().data + 3 * std::size_t(view.parent_triangle);
+      double px = 0, py = 0, x = 0, y = 0;
+      for (int c = 0; c < 3; ++c)
+        if (2 * std::size_t(t[c]) + 1 < list.positions.size)
+          px += view.parent_weights[c] * list.positions[2 * std::size_t(t[c])],
+              py += view.parent_weights[c] * list.positions[2 * std::size_t(t[c]) + 1];
+      list.transform.Apply(px, py, &x, &y);
       mark(x, y);
     }
   }

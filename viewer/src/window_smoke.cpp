@@ -93,7 +93,7 @@ int Viewer::WriteSmokeShot() {
           seen += at + 2 < rgba.size() && rgba[at] > 200 && rgba[at + 1] < 80 && rgba[at + 2] > 200;
         }
         std::printf("joints: %zu marker(s) on screen for %zu joint(s), %zu seen in the shot\n", joint_marks_.size(),
-                    joints_.size(), seen);
+                    joints_.size() + rig_.attachment_count(), seen);
         if (seen != joint_marks_.size() || joint_marks_.empty()) {
           std::fprintf(stderr, "posemorph-view: error: %zu of %zu joint markers are missing from the shot\n",
                        joint_marks_.size() - seen, joint_marks_.size());
