@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 /* The C API from C99: load a baked rig from a file, evaluate at each pose
  * point and check the pose comes back, play a path, quantise, and reject a
- * truncated copy. Usage: c_api_test RIG.pmrig */
+ * truncated copy; with a second rig that has control channels, evaluate its
+ * attachments. Usage: c_api_test RIG.pmrig [CHANNELS.pmrig] */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -18,16 +19,129 @@ static int failures = 0;
     }                                                                    \
   } while (0)
 
-int main(int argc, char** argv) {
-  if (argc != 2) return 2;
-  FILE* f = fopen(argv[1], "rb");
-  if (!f) return 2;
+static unsigned char* ReadFile(const char* path, long* size) {
+  FILE* f = fopen(path, "rb");
+  if (!f) return NULL;
   fseek(f, 0, SEEK_END);
-  long size = ftell(f);
+  *size = ftell(f);
   fseek(f, 0, SEEK_SET);
-  unsigned char* bytes = malloc((size_t)size);
-  if (fread(bytes, 1, (size_t)size, f) != (size_t)size) return 2;
+  unsigned char* bytes = malloc((size_t)*size);
+  if (fread(bytes, 1, (size_t)*size, f) != (size_t)*size) bytes = NULL;
   fclose(f);
+  return bytes;
+}
+
+/* The distance between attachment a's joint (in its positions q) and its
+ * parent's point (in the body's positions x). */
+static double JointGap(const pm_rig* rig, uint32_t a, const double* x, const double* q) {
+  pm_attachment at;
+  if (pm_rig_attachment(rig, a, &at) != PM_OK) return 1e300;
+  const uint32_t* body = pm_rig_triangles(rig) + 3 * (size_t)at.parent_triangle;
+  const uint32_t* own = pm_rig_attachment_triangles(rig, a) + 3 * (size_t)at.joint_triangle;
+  double p[2] = {0, 0}, j[2] = {0, 0};
+  for (int c = 0; c < 2; ++c)
+    for (int k = 0; k < 3; ++k) {
+      p[c] += at.parent_weights[k] * x[2 * body[k] + c];
+      j[c] += at.joint_weights[k] * q[2 * own[k] + c];
+    }
+  return hypot(p[0] - j[0], p[1] - j[1]);
+}
+
+/* A rig with a face channel: names, weights per channel, the attachments
+ * placed with their joints on the body, one character and a batch agreeing
+ * bit for bit, and bad arguments refused. */
+static void Channels(const char* path) {
+  long size = 0;
+  unsigned char* bytes = ReadFile(path, &size);
+  EXPECT(bytes != NULL);
+  if (!bytes) return;
+  pm_rig* rig = NULL;
+  pm_error err;
+  EXPECT(pm_rig_load(bytes, (size_t)size, &rig, &err) == PM_OK);
+  if (!rig) return;
+  EXPECT(pm_rig_channel_count(rig) == 2);
+  EXPECT(pm_rig_attachment_count(rig) == 3);
+  EXPECT(pm_rig_find_channel(rig, "face") == 1 && pm_rig_find_channel(rig, "nose") == -1);
+  char name[16];
+  size_t length = 0;
+  EXPECT(pm_rig_channel_name(rig, 1, name, sizeof name, &length) == PM_OK && strcmp(name, "face") == 0);
+  EXPECT(pm_rig_channel_name(rig, 2, name, sizeof name, &length) == PM_ERROR_INVALID_ARGUMENT);
+  EXPECT(pm_rig_attachment_name(rig, 2, name, sizeof name, &length) == PM_OK && strcmp(name, "mouth") == 0);
+  uint32_t face_poses = 0;
+  double points[8];
+  EXPECT(pm_rig_channel_poses(rig, 1, &face_poses, points, 8) == PM_OK && face_poses == 4);
+  pm_grid_info grid;
+  EXPECT(pm_rig_channel_grid(rig, 1, &grid) == PM_OK && grid.cells_x > 0);
+  pm_rig_info info;
+  pm_rig_get_info(rig, &info);
+  const size_t N = info.pose_count, NW = pm_rig_attached_weight_count(rig);
+  const size_t v2 = 2 * (size_t)info.vertex_count, a2 = 2 * (size_t)pm_rig_attached_vertex_count(rig);
+  EXPECT(NW == 4 && pm_rig_channel_weight_offset(rig, 1) == 0);
+  for (uint32_t a = 0; a < 3; ++a) {
+    pm_attachment at;
+    EXPECT(pm_rig_attachment(rig, a, &at) == PM_OK && at.channel == 1 && at.pose_count == 4 && at.draw_order == 3);
+    EXPECT(pm_rig_attachment_uvs(rig, a, 3) != NULL && pm_rig_attachment_uvs(rig, a, 4) == NULL);
+  }
+  EXPECT(pm_rig_attachment_triangles(rig, 3) == NULL);
+  /* Five characters: the body along its path, the face along its own. */
+  enum { kCount = 5 };
+  double* raw = calloc(kCount * N, sizeof(double));
+  double* limited = calloc(kCount * N, sizeof(double));
+  double* w = calloc(kCount * NW, sizeof(double));
+  double* wl = calloc(kCount * NW, sizeof(double));
+  double* body = calloc(kCount * v2, sizeof(double));
+  double* attached = calloc(kCount * a2, sizeof(double));
+  double* one = calloc(a2, sizeof(double));
+  const size_t work_size = pm_batch_workspace_size(rig) > pm_attach_workspace_size(rig) ? pm_batch_workspace_size(rig)
+                                                                                        : pm_attach_workspace_size(rig);
+  double* work = calloc(work_size, sizeof(double));
+  const int chatter = pm_channel_path_find(rig, 1, "chatter");
+  EXPECT(chatter == 0);
+  for (size_t k = 0; k < kCount; ++k) {
+    double bx, by, fx, fy;
+    EXPECT(pm_path_sample(rig, 0, 0.7 * (double)k, &bx, &by) == PM_OK);
+    EXPECT(pm_channel_path_sample(rig, 1, (uint32_t)chatter, 0.45 * (double)k, &fx, &fy) == PM_OK);
+    EXPECT(pm_weights(rig, bx, by, 0, 1, raw + k * N, limited + k * N, NULL, N) == PM_OK);
+    EXPECT(pm_channel_weights(rig, 1, fx, fy, 0, 1, w + k * NW, wl + k * NW, NULL, NW) == PM_OK);
+  }
+  EXPECT(pm_morph_batch(rig, kCount, raw, limited, work, work_size, body, NULL, kCount * v2) == PM_OK);
+  EXPECT(pm_attach(rig, kCount, body, kCount * v2, w, wl, kCount * NW, 0, work, work_size, attached, NULL,
+                   kCount * a2) == PM_OK);
+  double gap = 0;
+  int same = 1;
+  for (size_t k = 0; k < kCount; ++k) {
+    EXPECT(pm_attach(rig, 1, body + k * v2, v2, w + k * NW, wl + k * NW, NW, 0, work, work_size, one, NULL, a2) ==
+           PM_OK);
+    /* The batch holds attachment after attachment, each character after character. */
+    size_t at = 0;
+    for (uint32_t a = 0; a < 3; ++a) {
+      pm_attachment info_a;
+      pm_rig_attachment(rig, a, &info_a);
+      const size_t p2 = 2 * (size_t)info_a.vertex_count;
+      same &= memcmp(attached + at * kCount + k * p2, one + at, p2 * sizeof(double)) == 0;
+      gap = fmax(gap, JointGap(rig, a, body + k * v2, one + at));
+      at += p2;
+    }
+  }
+  EXPECT(same);
+  EXPECT(gap <= 1e-9 * info.size);
+  EXPECT(pm_attach(rig, 1, body, v2 - 1, w, wl, NW, 0, work, work_size, one, NULL, a2) == PM_ERROR_BUFFER_TOO_SMALL);
+  EXPECT(pm_attach(rig, 1, body, v2, w, wl, NW, 0, work, work_size, one, NULL, a2 - 1) == PM_ERROR_BUFFER_TOO_SMALL);
+  EXPECT(pm_attach(NULL, 1, body, v2, w, wl, NW, 0, work, work_size, one, NULL, a2) == PM_ERROR_INVALID_ARGUMENT);
+  w[1] = NAN;
+  EXPECT(pm_attach(rig, 1, body, v2, w, wl, NW, 0, work, work_size, one, NULL, a2) == PM_ERROR_INVALID_ARGUMENT);
+  printf("c_api_test: %s: %u channels, %u attachments, joint gap %g over %d characters\n", path,
+         pm_rig_channel_count(rig), pm_rig_attachment_count(rig), gap, kCount);
+  free(raw), free(limited), free(w), free(wl), free(body), free(attached), free(one), free(work);
+  pm_rig_free(rig);
+  free(bytes);
+}
+
+int main(int argc, char** argv) {
+  if (argc != 2 && argc != 3) return 2;
+  long size = 0;
+  unsigned char* bytes = ReadFile(argv[1], &size);
+  if (!bytes) return 2;
 
   pm_rig* rig = NULL;
   pm_error err;
@@ -103,7 +217,7 @@ int main(int argc, char** argv) {
   {
     char name[64];
     size_t length = 0;
-    EXPECT(strcmp(pm_version(), "0.3.0") == 0);
+    EXPECT(strcmp(pm_version(), "0.4.0") == 0);
     EXPECT(pm_rig_pose_name(rig, 0, name, sizeof name, &length) == PM_OK && length == strlen(name) && length > 0);
     EXPECT(pm_rig_pose_name(rig, 0, name, length, &length) == PM_ERROR_BUFFER_TOO_SMALL && length == strlen(name));
     EXPECT(pm_rig_pose_name(rig, info.pose_count, name, sizeof name, &length) == PM_ERROR_INVALID_ARGUMENT);
@@ -155,8 +269,11 @@ int main(int argc, char** argv) {
     EXPECT(pm_rig_checksum(rig, &crc) == PM_OK && crc == crc_at);
     EXPECT(pm_rig_format_version(rig, &major, &minor) == PM_OK && major == 1 && minor == 7);
   }
+  EXPECT(pm_rig_channel_count(rig) == 1 && pm_rig_attachment_count(rig) == 0);
+  EXPECT(pm_rig_channel_count(NULL) == 0 && pm_rig_attached_vertex_count(rig) == 0);
   pm_rig_free(rig);
   free(bytes), free(raw), free(limited), free(tex), free(work), free(x), free(xf);
+  if (argc == 3) Channels(argv[2]);
   printf("c_api_test: %s\n", failures ? "FAILED" : "ok");
   return failures ? 1 : 0;
 }

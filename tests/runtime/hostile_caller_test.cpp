@@ -81,6 +81,21 @@ TEST_CASE("a moved-from rig is empty, not a view into its new owner's memory") {
   CHECK_FALSE(wj.Run());
   double px, py;
   CHECK_FALSE(SamplePath(a, 0, 0.5, &px, &py));
+  // A rig with channels: its attachments live in its arena and move with
+  // it; the moved-from rig has none.
+  Rig face = LoadTestRig("pell-face.compact");
+  REQUIRE(face.attachment_count() == 3);
+  const Rig* nested = face.attachment(0).rig;
+  Rig moved = std::move(face);
+  CHECK(face.attachment_count() == 0);
+  CHECK(face.channel_count() == 1);
+  CHECK(face.channel_rig(1) == nullptr);
+  CHECK(face.attached_vertex_count() == 0);
+  CHECK(moved.attachment(0).rig == nested);
+  CHECK(moved.channel_rig(1) == nested);
+  AttachJob attach;
+  attach.rig = &face;
+  CHECK_FALSE(attach.Run());
 }
 
 TEST_CASE("an empty batch does nothing, whatever its spans") {

@@ -43,7 +43,7 @@ enum {
 };
 
 #define PM_VERSION_MAJOR 0
-#define PM_VERSION_MINOR 3
+#define PM_VERSION_MINOR 4
 #define PM_VERSION_PATCH 0
 /* "MAJOR.MINOR.PATCH" of the library actually linked. */
 PM_API const char* pm_version(void);
@@ -127,6 +127,67 @@ typedef struct pm_grid_info {
   uint32_t cells_x, cells_y;
 } pm_grid_info;
 PM_API int pm_rig_grid(const pm_rig* rig, pm_grid_info* out);
+
+/* Control channels (format 1.7): a character whose parts move on several
+ * pose spaces (a face apart from the body). The rig itself is channel 0:
+ * every function above is about it. A part of a later channel is an
+ * attachment: a rig of its own over its channel's poses, solved with its
+ * joint pinned and placed on the body by pm_attach (posemorph/jobs.h,
+ * AttachJob). A rig with one channel has no attachments. */
+PM_API uint32_t pm_rig_channel_count(const pm_rig* rig); /* 1 for one channel; 0 for NULL */
+PM_API int pm_rig_channel_name(const pm_rig* rig, uint32_t channel, char* out, size_t capacity, size_t* length);
+PM_API int pm_rig_find_channel(const pm_rig* rig, const char* name); /* its index, or -1 */
+/* Channel `channel`'s pose count, its pose points (2 per pose, in `points`
+ * of `capacity` doubles; may be NULL to ask the count) and its grid. */
+PM_API int pm_rig_channel_poses(const pm_rig* rig, uint32_t channel, uint32_t* pose_count, double* points,
+                                size_t capacity);
+PM_API int pm_rig_channel_grid(const pm_rig* rig, uint32_t channel, pm_grid_info* out);
+/* pm_weights in channel `channel`'s pose space (channel 0: pm_weights). */
+PM_API int pm_channel_weights(const pm_rig* rig, uint32_t channel, double x, double y, double sigma, int limit_weights,
+                              double* raw, double* limited, double* texture, size_t capacity);
+/* A channel's path at a time (pm_path_sample in its own pose space), and its paths' names. */
+PM_API int pm_channel_path_find(const pm_rig* rig, uint32_t channel, const char* name);
+PM_API int pm_channel_path_sample(const pm_rig* rig, uint32_t channel, uint32_t path, double time, double* x,
+                                  double* y);
+typedef struct pm_attachment {
+  uint32_t channel; /* 1 .. channel_count - 1 */
+  uint32_t vertex_count, triangle_count, pose_count;
+  int32_t draw_order;       /* its part's, in its pose 0 (pm_rig_attachment_draw_order per pose) */
+  uint32_t parent_triangle; /* the body triangle its joint lies in */
+  double parent_weights[3]; /* the joint there (barycentric, pose 0) */
+  uint32_t joint_triangle;  /* the joint in the attachment's own triangles */
+  double joint_weights[3];
+} pm_attachment;
+PM_API uint32_t pm_rig_attachment_count(const pm_rig* rig); /* 0 for NULL or one channel */
+PM_API int pm_rig_attachment(const pm_rig* rig, uint32_t attachment, pm_attachment* out);
+PM_API int pm_rig_attachment_name(const pm_rig* rig, uint32_t attachment, char* out, size_t capacity, size_t* length);
+PM_API int pm_rig_attachment_draw_order(const pm_rig* rig, uint32_t attachment, uint32_t pose, int32_t* out);
+/* Its triangles (3 x triangle_count), its uvs in one of its poses (2 x
+ * vertex_count, or NULL) and its drawing in that pose. NULL beyond the counts. */
+PM_API const uint32_t* pm_rig_attachment_triangles(const pm_rig* rig, uint32_t attachment);
+PM_API const float* pm_rig_attachment_uvs(const pm_rig* rig, uint32_t attachment, uint32_t pose);
+PM_API int pm_rig_attachment_image(const pm_rig* rig, uint32_t attachment, uint32_t pose, char* out, size_t capacity,
+                                   size_t* length);
+/* The layouts pm_attach reads and writes: all attachments' vertices; all
+ * later channels' weights side by side, channel c's starting at
+ * pm_rig_channel_weight_offset (c >= 1). */
+PM_API uint32_t pm_rig_attached_vertex_count(const pm_rig* rig);
+PM_API uint32_t pm_rig_attached_weight_count(const pm_rig* rig);
+PM_API uint32_t pm_rig_channel_weight_offset(const pm_rig* rig, uint32_t channel);
+PM_API size_t pm_attach_workspace_size(const pm_rig* rig);
+/* The attachments of `count` characters (AttachJob): body_positions are
+ * pm_morph's (or pm_morph_batch's) doubles, count x 2 x vertex_count (in
+ * body_capacity doubles); weights and limited_weights, channel by channel
+ * (1 .. C-1), count x that channel's pose count each (in weights_capacity
+ * doubles each: for one character pm_rig_attached_weight_count); positions
+ * (required) and positions_f32 (may be NULL), attachment by attachment,
+ * count x 2 x its vertex count (in positions_capacity elements each: for one
+ * character 2 x pm_rig_attached_vertex_count). The same bits for a
+ * character whatever `count`. */
+PM_API int pm_attach(const pm_rig* rig, size_t count, const double* body_positions, size_t body_capacity,
+                     const double* weights, const double* limited_weights, size_t weights_capacity, int linear,
+                     double* workspace, size_t workspace_capacity, double* positions, float* positions_f32,
+                     size_t positions_capacity);
 
 /* Axis-aligned bounds in rig units. */
 typedef struct pm_bounds {
