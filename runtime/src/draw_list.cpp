@@ -8,6 +8,8 @@
 #include <new>
 
 #include "draw_list_internal.h"
+#include "posemorph/jobs.h"
+#include "posemorph/rig_format.h"
 
 namespace posemorph {
 
@@ -62,19 +64,69 @@ std::uint32_t PickDrawings(Span<const double> w, std::uint32_t max_drawings, Spa
   return count;
 }
 
-std::size_t MaxDrawListCount(const Rig& rig) {
-  if (!rig.loaded()) return 0;
-  // Every buffer's bytes, count x (2V floats + 2N doubles) and the batch
-  // workspace, stay far inside size_t (32-bit targets included).
-  return (std::size_t(-1) / 64) / (2 * std::size_t(rig.vertex_count()) + 2 * std::size_t(rig.pose_count()) + 1);
+namespace {
+
+// Doubles per character of a rig with attachments: the body's positions,
+// the later channels' raw, limited and texture weights, the attachments'
+// positions.
+std::size_t AttachedDoubles(const Rig& rig) {
+  if (rig.attachment_count() == 0) return 0;
+  return 2 * std::size_t(rig.vertex_count()) + 3 * std::size_t(rig.attached_weight_count()) +
+         2 * std::size_t(rig.attached_vertex_count());
 }
 
-std::size_t DrawListWorkspaceSize(const Rig& rig, std::size_t count) {
-  if (!rig.loaded() || count == 0 || count > MaxDrawListCount(rig)) return 0;
+// The workspace before the attachments' part.
+std::size_t BodyWorkspace(const Rig& rig, std::size_t count) {
   const std::size_t n = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
   const std::size_t single = rig.morph_workspace_size() + v2;  // MorphJob's workspace and double positions
   const std::size_t batch = count > 1 ? rig.batch_workspace_size() : 0;
   return 2 * count * n + n + (batch > single ? batch : single);
+}
+
+}  // namespace
+
+std::size_t MaxDrawListCount(const Rig& rig) {
+  if (!rig.loaded()) return 0;
+  // Every buffer's bytes, count x (2V floats + 2N doubles, and for
+  // attachments theirs) and the batch workspace, stay far inside size_t
+  // (32-bit targets included).
+  return (std::size_t(-1) / 64) /
+         (2 * std::size_t(rig.vertex_count()) + 2 * std::size_t(rig.pose_count()) + 1 + AttachedDoubles(rig) +
+          2 * std::size_t(rig.attached_vertex_count()) + rig.attachment_count() * sizeof(DrawList));
+}
+
+std::size_t DrawListWorkspaceSize(const Rig& rig, std::size_t count) {
+  if (!rig.loaded() || count == 0 || count > MaxDrawListCount(rig)) return 0;
+  const std::size_t extra = rig.attachment_count() ? count * AttachedDoubles(rig) + rig.attach_workspace_size() : 0;
+  return BodyWorkspace(rig, count) + extra;
+}
+
+std::uint32_t CharacterDrawSteps(const Rig& rig, const DrawList& body, const DrawList* attached, Span<DrawStep> out) {
+  // Each list's parts are back to front already (its rig's draw sequence in
+  // its dominant pose): merge them, taking at each step the list whose next
+  // part has the lowest order (ties: the lower list).
+  const std::uint32_t lists = 1 + (attached ? rig.attachment_count() : 0);
+  std::uint32_t cursor[1 + format::kMaxAttachments] = {};
+  auto list_of = [&](std::uint32_t i) -> const DrawList& { return i == 0 ? body : attached[i - 1]; };
+  auto rig_of = [&](std::uint32_t i) -> const Rig& { return i == 0 ? rig : *rig.attachment(i - 1).rig; };
+  auto order_of = [&](std::uint32_t i) {
+    const DrawList& l = list_of(i);
+    return rig_of(i).part_draw_order(l.parts[cursor[i]], l.drawing_count ? l.drawings[0].pose : 0);
+  };
+  std::uint32_t total = 0;
+  for (std::uint32_t i = 0; i < lists; ++i) total += std::uint32_t(list_of(i).parts.size);
+  for (std::uint32_t k = 0; k < total; ++k) {
+    std::uint32_t best = lists;
+    std::int32_t best_order = 0;
+    for (std::uint32_t i = 0; i < lists; ++i) {
+      if (cursor[i] >= list_of(i).parts.size) continue;
+      const std::int32_t order = order_of(i);
+      if (best == lists || order < best_order) best = i, best_order = order;
+    }
+    if (k < out.size) out[k] = DrawStep{best, list_of(best).parts[cursor[best]]};
+    ++cursor[best];
+  }
+  return total;
 }
 
 bool DrawListJob::Validate() const {
@@ -86,14 +138,95 @@ bool DrawListJob::Validate() const {
   if (interpolation != Interpolation::kRigid && interpolation != Interpolation::kLinear) return false;
   if (!workspace.data || workspace.size < DrawListWorkspaceSize(*rig, count)) return false;
   if (!positions.data || positions.size / (2 * std::size_t(rig->vertex_count())) < count) return false;
+  if (attached_output.size == 0) return attached_positions.size == 0;
+  const std::size_t A = rig->attachment_count(), a2 = 2 * std::size_t(rig->attached_vertex_count());
+  if (A == 0 || !attached_output.data || attached_output.size / A < count) return false;
+  if (!attached_positions.data || attached_positions.size / a2 < count) return false;
+  const std::size_t c2 = 2 * std::size_t(rig->channel_count() - 1);
+  if (channel_points.size != 0 && (!channel_points.data || channel_points.size / c2 < count)) return false;
   return true;
 }
 
+namespace {
+
+// The attachments of a job's characters (their bodies' positions in
+// `body`, doubles): each later channel's weights at the character's point,
+// one AttachJob for all, then each attachment's list.
+bool RunAttachedLists(const DrawListJob& job, double* body, double* extra_end) {
+  const Rig& rig = *job.rig;
+  const std::size_t count = job.count, NW = rig.attached_weight_count(), v2 = 2 * std::size_t(rig.vertex_count());
+  const std::size_t a2 = 2 * std::size_t(rig.attached_vertex_count()), A = rig.attachment_count();
+  const std::uint32_t C = rig.channel_count();
+  double* raw = body + count * v2;
+  double* limited = raw + count * NW;
+  double* texture = limited + count * NW;
+  double* attached = texture + count * NW;
+  double* work = attached + count * a2;
+  for (std::uint32_t c = 1; c < C; ++c) {
+    const Rig& channel = *rig.channel_rig(c);
+    const std::size_t n = channel.pose_count(), at = count * rig.channel_weight_offset(c);
+    const double sigma = job.sigma >= 0 ? job.sigma : channel.default_sigma();
+    for (std::size_t k = 0; k < count; ++k) {
+      WeightsJob wj;
+      wj.rig = &channel;
+      const std::size_t p = k * 2 * std::size_t(C - 1) + 2 * std::size_t(c - 1);
+      wj.x = job.channel_points.size ? job.channel_points[p] : channel.pose_points()[0];
+      wj.y = job.channel_points.size ? job.channel_points[p + 1] : channel.pose_points()[1];
+      wj.sigma = sigma;
+      wj.limit_weights = job.limit_weights;
+      wj.raw = {raw + at + k * n, n};
+      wj.limited = {limited + at + k * n, n};
+      wj.texture = {texture + at + k * n, n};
+      if (!wj.Run()) return false;
+    }
+  }
+  AttachJob aj;
+  aj.rig = &rig;
+  aj.count = count;
+  aj.body_positions = {body, count * v2};
+  aj.weights = {raw, count * NW};
+  aj.limited_weights = {limited, count * NW};
+  aj.interpolation = job.interpolation;
+  aj.workspace = {work, std::size_t(extra_end - work)};
+  aj.positions = {attached, count * a2};
+  aj.positions_f32 = {job.attached_positions.data, count * a2};
+  if (!aj.Run()) return false;
+  std::size_t offset = 0;  // floats of the attachments before this one, per character
+  for (std::uint32_t a = 0; a < A; ++a) {
+    const AttachmentView view = rig.attachment(a);
+    const Rig& part = *view.rig;
+    const std::size_t p2 = 2 * std::size_t(part.vertex_count()), n = part.pose_count();
+    const std::size_t at = count * rig.channel_weight_offset(view.channel);
+    for (std::size_t k = 0; k < count; ++k) {
+      DrawList list;
+      list.positions = {job.attached_positions.data + offset * count + k * p2, p2};
+      list.indices = part.triangles();
+      list.drawing_count =
+          PickDrawings({texture + at + k * n, n}, job.max_drawings, {list.drawings, kMaxBlendDrawings});
+      list.parts = part.draw_sequence(list.drawing_count ? list.drawings[0].pose : 0);
+      for (std::uint32_t d = 0; d < list.drawing_count; ++d) {
+        const Span<const float> uv = part.uvs(list.drawings[d].pose);
+        list.drawings[d].uvs = uv.size ? uv.data : nullptr;
+      }
+      list.transform = job.output[k].transform;
+      list.mirrored = job.output[k].mirrored;
+      job.attached_output[k * A + a] = list;
+    }
+    offset += p2;
+  }
+  return true;
+}
+
+}  // namespace
+
 bool DrawListJob::Run() const {
   if (!Validate() || !output.data || output.size < count) return false;
-  return detail::RunDrawLists(
-      *this, [this](std::size_t k) { return transforms.size ? transforms[k] : Transform2D(); },
-      [this](std::size_t k, const DrawList& list) { output[k] = list; });
+  double* body = attached_output.size ? workspace.data + BodyWorkspace(*rig, count) : nullptr;
+  if (!detail::RunDrawLists(
+          *this, [this](std::size_t k) { return transforms.size ? transforms[k] : Transform2D(); },
+          [this](std::size_t k, const DrawList& list) { output[k] = list; }, body))
+    return false;
+  return !body || RunAttachedLists(*this, body, workspace.data + DrawListWorkspaceSize(*rig, count));
 }
 
 CharacterBuffers CharacterBuffers::For(const Rig& rig, std::size_t count) {
@@ -103,9 +236,11 @@ CharacterBuffers CharacterBuffers::For(const Rig& rig, std::size_t count) {
   b.workspace = DrawListWorkspaceSize(rig, count);
   b.positions = count * 2 * std::size_t(rig.vertex_count());
   b.draw_lists = count;
-  std::size_t bytes = b.workspace * sizeof(double) + b.positions * sizeof(float);
+  b.attached_positions = count * 2 * std::size_t(rig.attached_vertex_count());
+  b.attached_lists = count * rig.attachment_count();
+  std::size_t bytes = b.workspace * sizeof(double) + (b.positions + b.attached_positions) * sizeof(float);
   bytes = (bytes + alignof(DrawList) - 1) / alignof(DrawList) * alignof(DrawList);
-  b.bytes = bytes + count * sizeof(DrawList);
+  b.bytes = bytes + (count + b.attached_lists) * sizeof(DrawList);
   return b;
 }
 
@@ -114,17 +249,23 @@ bool CharacterBuffers::Bind(const Rig& rig, void* block, std::size_t block_bytes
   if (reinterpret_cast<std::uintptr_t>(block) % kAlignment != 0) return false;
   // Sizes from another rig would not fit this one.
   const CharacterBuffers again = For(rig, count);
-  if (again.bytes != bytes || again.workspace != workspace || again.positions != positions) return false;
+  if (again.bytes != bytes || again.workspace != workspace || again.positions != positions ||
+      again.attached_positions != attached_positions || again.attached_lists != attached_lists)
+    return false;
   unsigned char* p = static_cast<unsigned char*>(block);
   job->rig = &rig;
   job->count = count;
   job->workspace = {reinterpret_cast<double*>(p), workspace};
   p += workspace * sizeof(double);
   job->positions = {reinterpret_cast<float*>(p), positions};
-  const std::size_t used = workspace * sizeof(double) + positions * sizeof(float);
+  p += positions * sizeof(float);
+  job->attached_positions = {attached_positions ? reinterpret_cast<float*>(p) : nullptr, attached_positions};
+  const std::size_t used = workspace * sizeof(double) + (positions + attached_positions) * sizeof(float);
   const std::size_t lists_at = (used + alignof(DrawList) - 1) / alignof(DrawList) * alignof(DrawList);
-  job->output = {reinterpret_cast<DrawList*>(static_cast<unsigned char*>(block) + lists_at), count};
-  for (std::size_t k = 0; k < count; ++k) new (&job->output.data[k]) DrawList();
+  DrawList* lists = reinterpret_cast<DrawList*>(static_cast<unsigned char*>(block) + lists_at);
+  job->output = {lists, count};
+  job->attached_output = {attached_lists ? lists + count : nullptr, attached_lists};
+  for (std::size_t k = 0; k < count + attached_lists; ++k) new (&lists[k]) DrawList();
   return true;
 }
 

@@ -13,16 +13,20 @@ namespace posemorph::detail {
 // Expects job.Validate(). Returns false only when a morph job refuses its
 // input, which Validate() and WeightsJob's bounds rule out.
 // transform_at(k) gives character k's transform (the job's own span is not
-// read: the C API passes its pm_transform array this way).
+// read: the C API passes its pm_transform array this way). With
+// body_doubles (count x 2V), the positions are kept there in doubles too
+// (for the attachments).
 template <typename TransformAt, typename Emit>
-bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emit) {
+bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emit, double* body_doubles = nullptr) {
   const Rig& rig = *job.rig;
   const std::size_t n = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count()), count = job.count;
   double* raw = job.workspace.data;
   double* limited = raw + count * n;
   double* texture = limited + count * n;
   double* rest = texture + n;
-  const std::size_t rest_size = job.workspace.size - (2 * count * n + n);
+  // The body's part of the workspace (the attachments' follows it, from body_doubles on).
+  const std::size_t rest_size =
+      body_doubles ? std::size_t(body_doubles - rest) : job.workspace.size - (2 * count * n + n);
   const double sigma = job.sigma >= 0 ? job.sigma : rig.default_sigma();  // NaN: the default too
 
   for (std::size_t k = 0; k < count; ++k) {
@@ -58,6 +62,7 @@ bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emi
     bj.limited_weights = {limited, count * n};
     bj.workspace = {rest, rest_size};
     bj.positions_f32 = {job.positions.data, count * v2};
+    if (body_doubles) bj.positions = {body_doubles, count * v2};
     return bj.Run();
   }
   for (std::size_t k = 0; k < count; ++k) {
@@ -67,7 +72,8 @@ bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emi
     mj.limited_weights = {limited + k * n, n};
     mj.interpolation = job.interpolation;
     mj.workspace = {rest, rig.morph_workspace_size()};
-    mj.positions = {rest + rig.morph_workspace_size(), v2};
+    mj.positions =
+        body_doubles ? Span<double>{body_doubles + k * v2, v2} : Span<double>{rest + rig.morph_workspace_size(), v2};
     mj.positions_f32 = job.positions.subspan(k * v2, v2);
     if (!mj.Run()) return false;
   }

@@ -147,6 +147,20 @@ TEST_CASE("a character with channels: weights per channel, the body and its atta
   g_counting = false;
   CHECK(ok);
   CHECK(g_allocations.load() == 0);
+  // Draw lists with the attachments' lists, in one block bound beforehand.
+  const CharacterBuffers sizes = CharacterBuffers::For(rig, count);
+  std::vector<double> block((sizes.bytes + sizeof(double) - 1) / sizeof(double));
+  DrawListJob lists;
+  REQUIRE(sizes.Bind(rig, block.data(), block.size() * sizeof(double), &lists));
+  std::vector<double> points(2 * count, 0.25), face_points(2 * count, 0.5);
+  lists.points = MakeSpan(points);
+  lists.channel_points = MakeSpan(face_points);
+  g_allocations = 0;
+  g_counting = true;
+  for (int frame = 0; frame < 10; ++frame) ok &= lists.Run();
+  g_counting = false;
+  CHECK(ok);
+  CHECK(g_allocations.load() == 0);
 }
 
 TEST_CASE("draw lists for a crowd allocate nothing, in C++ and through the C API") {

@@ -2,6 +2,7 @@
 // Draw lists: the drawings picked, the positions (bit for bit what the morph
 // jobs give), transforms, every failure case of DrawListJob::Validate, the
 // buffers bundle, and the C API's form of the same.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -294,4 +295,117 @@ TEST_CASE("C API: pm_draw_lists gives what DrawListJob gives") {
   CHECK(picked[0].pose == 1);
   CHECK(picked[1].pose == 2);
   pm_rig_free(rig);
+}
+
+// Pell with a face channel: the attachments' draw lists, as AttachJob gives
+// their positions and as the face channel's texture weights pick drawings.
+TEST_CASE("draw lists: a rig with channels lists each character's attachments, the same bits as AttachJob") {
+  const Rig rig = LoadTestRig("pell-face.compact");
+  REQUIRE(rig.attachment_count() == 3);
+  const Rig& face = *rig.channel_rig(1);
+  const std::size_t count = 7, N = rig.pose_count(), NF = face.pose_count(), A = rig.attachment_count();
+  const std::size_t v2 = 2 * std::size_t(rig.vertex_count()), a2 = 2 * std::size_t(rig.attached_vertex_count());
+  std::vector<double> points, face_points;
+  for (std::size_t k = 0; k < count; ++k) {
+    double bx, by, fx, fy;
+    REQUIRE(SamplePath(rig, 0, 0.6 * double(k), &bx, &by));
+    REQUIRE(SamplePath(face, 0, 0.35 * double(k), &fx, &fy));
+    points.push_back(bx), points.push_back(by), face_points.push_back(fx), face_points.push_back(fy);
+  }
+  const CharacterBuffers sizes = CharacterBuffers::For(rig, count);
+  CHECK(sizes.attached_positions == count * a2);
+  CHECK(sizes.attached_lists == count * A);
+  std::vector<double> block((sizes.bytes + sizeof(double) - 1) / sizeof(double));
+  DrawListJob job;
+  REQUIRE(sizes.Bind(rig, block.data(), block.size() * sizeof(double), &job));
+  job.points = MakeSpan(points);
+  job.channel_points = MakeSpan(face_points);
+  job.sigma = 0.4;
+  REQUIRE(job.Validate());
+  REQUIRE(job.Run());
+  // The same characters one by one: the body with MorphJob, the face's
+  // weights with WeightsJob, the attachments with AttachJob.
+  for (std::size_t k = 0; k < count; ++k) {
+    const Weights bw = WeightsAt(rig, points[2 * k], points[2 * k + 1], 0.4);
+    const Weights fw = WeightsAt(face, face_points[2 * k], face_points[2 * k + 1], 0.4);
+    std::vector<double> work(std::max(rig.morph_workspace_size(), rig.attach_workspace_size())), body(v2), att(a2);
+    std::vector<float> att_f32(a2);
+    MorphJob mj;
+    mj.rig = &rig, mj.weights = MakeSpan(bw.raw), mj.limited_weights = MakeSpan(bw.limited);
+    mj.workspace = MakeSpan(work), mj.positions = MakeSpan(body);
+    REQUIRE(mj.Run());
+    AttachJob aj;
+    aj.rig = &rig, aj.body_positions = MakeSpan(body);
+    aj.weights = MakeSpan(fw.raw), aj.limited_weights = MakeSpan(fw.limited);
+    aj.workspace = MakeSpan(work), aj.positions = MakeSpan(att), aj.positions_f32 = MakeSpan(att_f32);
+    REQUIRE(aj.Run());
+    std::size_t at = 0;
+    for (std::size_t a = 0; a < A; ++a) {
+      const DrawList& list = job.attached_output[k * A + a];
+      const Rig& part = *rig.attachment(std::uint32_t(a)).rig;
+      const std::size_t p2 = 2 * std::size_t(part.vertex_count());
+      REQUIRE(list.positions.size == p2);
+      CHECK(std::memcmp(list.positions.data, att_f32.data() + at, p2 * sizeof(float)) == 0);
+      CHECK(list.indices.data == part.triangles().data);
+      BlendedDrawing expected[kMaxBlendDrawings];
+      const std::uint32_t n = PickDrawings(MakeSpan(fw.texture), kMaxBlendDrawings, {expected, kMaxBlendDrawings});
+      REQUIRE(list.drawing_count == n);
+      for (std::uint32_t d = 0; d < n; ++d) {
+        CHECK(list.drawings[d].pose == expected[d].pose);
+        CHECK(list.drawings[d].weight == expected[d].weight);
+        CHECK(list.drawings[d].uvs == part.uvs(expected[d].pose).data);
+      }
+      CHECK(list.transform.tx == job.output[k].transform.tx);
+      at += p2;
+    }
+    // Drawn back to front: the body's four parts (the arms behind the body,
+    // the head in front), then the face's three (order 3).
+    DrawStep steps[16];
+    const std::uint32_t total = CharacterDrawSteps(rig, job.output[k], &job.attached_output[k * A], {steps, 16});
+    REQUIRE(total == 7);
+    for (std::uint32_t s = 0; s < 4; ++s) CHECK(steps[s].list == 0);
+    for (std::uint32_t s = 4; s < 7; ++s) CHECK(steps[s].list == s - 3);
+    CHECK(CharacterDrawSteps(rig, job.output[k], nullptr, {steps, 16}) == 4);
+    CHECK(CharacterDrawSteps(rig, job.output[k], &job.attached_output[k * A], {steps, 2}) == 7);  // counts all
+  }
+  // One character at a time gives the same bits as the batch.
+  for (std::size_t k = 0; k < count; ++k) {
+    const CharacterBuffers one = CharacterBuffers::For(rig, 1);
+    std::vector<double> b1((one.bytes + sizeof(double) - 1) / sizeof(double));
+    DrawListJob single;
+    REQUIRE(one.Bind(rig, b1.data(), b1.size() * sizeof(double), &single));
+    single.points = {points.data() + 2 * k, 2};
+    single.channel_points = {face_points.data() + 2 * k, 2};
+    single.sigma = 0.4;
+    REQUIRE(single.Run());
+    CHECK(std::memcmp(single.positions.data, job.positions.data + k * v2, v2 * sizeof(float)) == 0);
+    std::size_t at = 0;
+    for (std::size_t a = 0; a < A; ++a) {
+      const std::size_t p2 = single.attached_output[a].positions.size;
+      CHECK(std::memcmp(single.attached_output[a].positions.data, job.attached_output[k * A + a].positions.data,
+                        p2 * sizeof(float)) == 0);
+      at += p2;
+    }
+  }
+  // Failure cases: too few attached lists or floats, too few channel points,
+  // attached lists for a rig without attachments; the first channel alone
+  // (no attached spans) still runs.
+  auto refused = [&](auto change) {
+    DrawListJob j = job;
+    change(j);
+    return !j.Validate() && !j.Run();
+  };
+  CHECK(refused([&](DrawListJob& j) { j.attached_output.size -= 1; }));
+  CHECK(refused([&](DrawListJob& j) { j.attached_positions.size -= 1; }));
+  CHECK(refused([&](DrawListJob& j) { j.attached_positions = {}; }));
+  CHECK(refused([&](DrawListJob& j) { j.channel_points.size = 2 * count - 1; }));
+  const Rig snake = LoadTestRig("snake");
+  CHECK(refused([&](DrawListJob& j) {
+    j.rig = &snake;
+    j.attached_positions = {};
+  }));
+  DrawListJob body_only = job;
+  body_only.attached_output = {};
+  body_only.attached_positions = {};
+  CHECK(body_only.Run());
 }

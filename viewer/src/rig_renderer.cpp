@@ -60,7 +60,7 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   for (std::uint32_t p = 0; p < rig.part_count(); ++p)
     parts_.push_back({3 * rig.part(p).first_triangle, 3 * rig.part(p).triangle_count});
   sequences_.assign(max_instances, rig.draw_sequence().data);
-  dominant_.assign(max_instances, 0);
+  lists_.assign(max_instances, DrawList{});
   rig_ = &rig;
   positions_ = gpu.CreateBuffer(8ull * V * max_instances, storage);
   instances_ = gpu.CreateBuffer(sizeof(Instance) * max_instances, storage);
@@ -230,11 +230,7 @@ RigRenderer::~RigRenderer() {
 void RigRenderer::SetCharacter(std::uint32_t k, const DrawList& list) {
   instances()[k] = ToInstance(list);
   if (k < sequences_.size() && list.parts.size == parts_.size()) sequences_[k] = list.parts.data;
-  if (k < dominant_.size()) dominant_[k] = list.drawing_count ? list.drawings[0].pose : 0;
-}
-
-std::int32_t RigRenderer::PartOrder(std::uint32_t k, std::uint32_t p) const {
-  return rig_ ? rig_->part_draw_order(p, k < dominant_.size() ? dominant_[k] : 0) : 0;
+  if (k < lists_.size()) lists_[k] = list;
 }
 
 void RigRenderer::DrawPart(VkCommandBuffer cmd, std::uint32_t k, std::uint32_t p, gpu::PushData push,
@@ -291,28 +287,22 @@ void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const Camera&
   };
   if (!attachments_.empty()) {
     // Character by character, back to front: the body's parts and the
-    // attachments merged by draw order (a stable sort keeps the body's
-    // sequence, then the attachments', within one order).
-    struct Item {
-      std::int32_t order;
-      const RigRenderer* renderer;
-      std::uint32_t part, rank;
-    };
-    std::vector<Item> items;
+    // attachments' in the order the runtime gives (CharacterDrawSteps).
+    std::vector<DrawList> attached(attachments_.size());
+    std::vector<DrawStep> steps;
     const std::size_t P = parts_.size();
-    for (std::uint32_t k = 0; k < count && k < sequences_.size(); ++k) {
-      items.clear();
-      for (std::size_t s = 0; s < P; ++s) {
-        const std::uint32_t p = sequences_[k][s];
-        if (p >= P || (p < 64 && (hidden_parts_ >> p) & 1)) continue;
-        items.push_back({PartOrder(k, p), this, p, std::uint32_t(items.size())});
+    for (std::uint32_t k = 0; k < count && k < lists_.size(); ++k) {
+      for (std::size_t a = 0; a < attachments_.size(); ++a) attached[a] = attachments_[a]->lists_[k];
+      steps.resize(CharacterDrawSteps(*rig_, lists_[k], attached.data(), {}));
+      CharacterDrawSteps(*rig_, lists_[k], attached.data(), {steps.data(), steps.size()});
+      for (const DrawStep& step : steps) {
+        const std::size_t bit = step.list == 0 ? step.part : P + step.list - 1;
+        if (bit < 64 && (hidden_parts_ >> bit) & 1) continue;
+        if (step.list == 0)
+          DrawPart(cmd, k, step.part, push, blend);
+        else
+          attachments_[step.list - 1]->DrawPart(cmd, k, step.part, push, blend);
       }
-      for (std::size_t a = 0; a < attachments_.size(); ++a) {
-        if (P + a < 64 && (hidden_parts_ >> (P + a)) & 1) continue;
-        items.push_back({attachments_[a]->PartOrder(k, 0), attachments_[a].get(), 0, std::uint32_t(items.size())});
-      }
-      std::stable_sort(items.begin(), items.end(), [](const Item& l, const Item& r) { return l.order < r.order; });
-      for (const Item& item : items) item.renderer->DrawPart(cmd, k, item.part, push, blend);
     }
   } else if (parts_.size() <= 1) {
     if (!(hidden_parts_ & 1)) draw(0, index_count_, 0, count);

@@ -80,8 +80,6 @@ class RigRenderer {
   void DrawPart(VkCommandBuffer cmd, std::uint32_t k, std::uint32_t p, gpu::PushData push, Blend blend) const;
   // The wireframe of `count` characters (the lines pipeline, flat colour in push).
   void RecordLines(VkCommandBuffer cmd, std::uint32_t count, gpu::PushData push) const;
-  // The draw order of character k's part p in its frame's dominant pose.
-  std::int32_t PartOrder(std::uint32_t k, std::uint32_t p) const;
   Gpu* gpu_ = nullptr;
   std::uint32_t vertex_count_ = 0, index_count_ = 0, max_instances_ = 0, pose_count_ = 0;
   struct PartRange {
@@ -89,7 +87,7 @@ class RigRenderer {
   };
   std::vector<PartRange> parts_;                 // one per part (one for a rig without parts)
   std::vector<const std::uint32_t*> sequences_;  // per character: its parts back to front
-  std::vector<std::uint32_t> dominant_;          // per character: its dominant drawing's pose
+  std::vector<DrawList> lists_;                  // per character: its list (the draw order's inputs)
   const Rig* rig_ = nullptr;
   std::vector<std::unique_ptr<RigRenderer>> attachments_;
   std::uint64_t hidden_parts_ = 0;

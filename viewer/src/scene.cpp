@@ -61,102 +61,32 @@ struct Random {
   }
 };
 
-// The attachments of a character with control channels: each channel's
-// weights at its point (or along its path, at the character's phase), the
-// body again in doubles (MorphJob: the bits DrawListJob gave in floats),
-// AttachJob, and a draw list per attachment with its channel's drawings.
-bool PrepareAttachments(const Rig& rig, const Scene& scene, int body_path, RigRenderer& renderer, SceneScratch& scratch,
-                        std::uint32_t K, std::string* error) {
-  const std::uint32_t C = rig.channel_count(), A = rig.attachment_count(), N = rig.pose_count();
-  const std::size_t v2 = 2 * std::size_t(rig.vertex_count()), a2 = 2 * std::size_t(rig.attached_vertex_count());
-  const std::size_t NW = rig.attached_weight_count();
-  std::vector<int> paths(C, -1);
-  for (std::uint32_t c = 1; c < C; ++c)
-    if (c - 1 < scene.channels.size() && !scene.channels[c - 1].path.empty()) {
-      paths[c] = rig.channel_rig(c)->FindPath(scene.channels[c - 1].path.c_str());
-      if (paths[c] < 0) {
+// A character with control channels: each later channel's point per
+// character (its path at the character's phase, else the scene's point,
+// else its first pose's), for DrawListJob's channel_points.
+bool ChannelPoints(const Rig& rig, const Scene& scene, SceneScratch& scratch, std::uint32_t K, std::string* error) {
+  const std::uint32_t C = rig.channel_count();
+  scratch.channel_points.assign(std::size_t(K) * 2 * (C - 1), 0.0);
+  for (std::uint32_t c = 1; c < C; ++c) {
+    const Rig& channel = *rig.channel_rig(c);
+    const ChannelInput* in = c - 1 < scene.channels.size() ? &scene.channels[c - 1] : nullptr;
+    int path = -1;
+    if (in && !in->path.empty()) {
+      path = channel.FindPath(in->path.c_str());
+      if (path < 0) {
         const StringView name = rig.channel_name(c);
-        *error =
-            "channel '" + std::string(name.data, name.size) + "' has no path \"" + scene.channels[c - 1].path + "\"";
+        *error = "channel '" + std::string(name.data, name.size) + "' has no path \"" + in->path + "\"";
         return false;
       }
     }
-  (void)body_path;
-  scratch.body.resize(v2);
-  scratch.raw.resize(std::max<std::size_t>(N, NW));
-  scratch.limited.resize(scratch.raw.size());
-  scratch.texture.resize(NW);
-  scratch.attach_workspace.resize(std::max(rig.attach_workspace_size(), rig.morph_workspace_size()));
-  scratch.attached.resize(a2);
-  scratch.attachment_lists.resize(std::size_t(K) * A);
-  std::vector<double> w(NW), wl(NW);
-  const double sigma_default = rig.default_sigma();
-  for (std::uint32_t k = 0; k < K; ++k) {
-    // The body, as DrawListJob evaluated it (the same jobs, in doubles).
-    WeightsJob body_weights;
-    body_weights.rig = &rig;
-    body_weights.x = scratch.points[2 * k], body_weights.y = scratch.points[2 * k + 1];
-    body_weights.limit_weights = scene.limit_weights;
-    body_weights.raw = {scratch.raw.data(), N}, body_weights.limited = {scratch.limited.data(), N};
-    MorphJob morph;
-    morph.rig = &rig;
-    morph.weights = {scratch.raw.data(), N}, morph.limited_weights = {scratch.limited.data(), N};
-    morph.interpolation =
-        (scene.compare_linear ? k == 1 : scene.linear) ? Interpolation::kLinear : Interpolation::kRigid;
-    morph.workspace = {scratch.attach_workspace.data(), rig.morph_workspace_size()};
-    morph.positions = {scratch.body.data(), v2};
-    if (!body_weights.Run() || !morph.Run()) {
-      *error = "the runtime refused the body's frame";
-      return false;
-    }
-    for (std::uint32_t c = 1; c < C; ++c) {
-      const Rig& channel = *rig.channel_rig(c);
-      double x = channel.pose_points()[0], y = channel.pose_points()[1];
-      if (c - 1 < scene.channels.size()) x = scene.channels[c - 1].x, y = scene.channels[c - 1].y;
-      if (paths[c] >= 0) {
-        const PathView p = channel.path(std::uint32_t(paths[c]));
+    for (std::uint32_t k = 0; k < K; ++k) {
+      double x = in ? in->x : channel.pose_points()[0], y = in ? in->y : channel.pose_points()[1];
+      if (path >= 0) {
+        const PathView p = channel.path(std::uint32_t(path));
         SamplePath(p, scene.time + (p.end_time() - p.start_time()) * scratch.phases[k], &x, &y);
       }
-      const std::size_t at = rig.channel_weight_offset(c), n = channel.pose_count();
-      WeightsJob job;
-      job.rig = &channel;
-      job.x = x, job.y = y;
-      job.sigma = scene.sigma >= 0 ? scene.sigma : sigma_default;
-      job.limit_weights = scene.limit_weights;
-      job.raw = {w.data() + at, n}, job.limited = {wl.data() + at, n}, job.texture = {scratch.texture.data() + at, n};
-      job.Run();
-    }
-    AttachJob attach;
-    attach.rig = &rig;
-    attach.body_positions = {scratch.body.data(), v2};
-    attach.weights = {w.data(), NW}, attach.limited_weights = {wl.data(), NW};
-    attach.interpolation = morph.interpolation;
-    attach.workspace = {scratch.attach_workspace.data(), scratch.attach_workspace.size()};
-    attach.positions = {scratch.attached.data(), a2};
-    if (!attach.Run()) {
-      *error = "the runtime refused the attachments' frame";
-      return false;
-    }
-    std::size_t offset = 0;
-    for (std::uint32_t a = 0; a < A; ++a) {
-      const AttachmentView view = rig.attachment(a);
-      const Rig& part = *view.rig;
-      const std::size_t p2 = 2 * std::size_t(part.vertex_count());
-      RigRenderer* r = renderer.attachment(a);
-      float* out = r->positions() + std::size_t(k) * p2;
-      for (std::size_t i = 0; i < p2; ++i) out[i] = float(scratch.attached[offset + i]);
-      DrawList& list = scratch.attachment_lists[std::size_t(k) * A + a];
-      list = DrawList{};
-      list.transform = scratch.lists[k].transform;
-      list.mirrored = scratch.lists[k].mirrored;
-      const std::size_t at = rig.channel_weight_offset(view.channel);
-      list.drawing_count = PickDrawings({scratch.texture.data() + at, part.pose_count()},
-                                        std::clamp<std::uint32_t>(scene.max_drawings, 1, kDrawingsPerCharacter),
-                                        {list.drawings, kMaxBlendDrawings});
-      list.parts = part.draw_sequence(list.drawings[0].pose);
-      r->SetCharacter(k, list);
-      r->SetHiddenParts(0);
-      offset += p2;
+      scratch.channel_points[(std::size_t(k) * (C - 1) + (c - 1)) * 2] = x;
+      scratch.channel_points[(std::size_t(k) * (C - 1) + (c - 1)) * 2 + 1] = y;
     }
   }
   return true;
@@ -238,9 +168,14 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
   }
 
   // The runtime: one draw-list job (two for the rigid | linear comparison),
-  // positions straight into the renderer's buffer.
+  // positions straight into the renderer's buffer; a character with
+  // channels gets its attachments' lists too.
+  const std::uint32_t A = rig.attachment_count();
+  if (A > 0 && !ChannelPoints(rig, scene, scratch, K, error)) return false;
   scratch.workspace.resize(DrawListWorkspaceSize(rig, K));
   scratch.lists.resize(K);
+  scratch.attached_positions.resize(std::size_t(K) * 2 * rig.attached_vertex_count());
+  scratch.attachment_lists.resize(std::size_t(K) * A);
   const auto run = [&](std::uint32_t first, std::uint32_t n, Interpolation interpolation) {
     DrawListJob job;
     job.rig = &rig;
@@ -254,6 +189,13 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
     job.workspace = {scratch.workspace.data(), scratch.workspace.size()};
     job.positions = {renderer.positions() + std::size_t(first) * 2 * V, std::size_t(n) * 2 * V};
     job.output = {scratch.lists.data() + first, n};
+    if (A > 0) {
+      const std::size_t c2 = 2 * std::size_t(rig.channel_count() - 1),
+                        a2 = 2 * std::size_t(rig.attached_vertex_count());
+      job.channel_points = {scratch.channel_points.data() + first * c2, n * c2};
+      job.attached_positions = {scratch.attached_positions.data() + first * a2, n * a2};
+      job.attached_output = {scratch.attachment_lists.data() + std::size_t(first) * A, std::size_t(n) * A};
+    }
     return job.Run();
   };
   const bool ok = scene.compare_linear ? run(0, 1, Interpolation::kRigid) && run(1, 1, Interpolation::kLinear)
@@ -262,7 +204,26 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
     *error = "the draw-list job refused the scene";
     return false;
   }
-  if (rig.attachment_count() > 0 && !PrepareAttachments(rig, scene, path, renderer, scratch, K, error)) return false;
+  // The attachments' positions into their renderers' buffers: a job's
+  // floats are attachment after attachment, character after character.
+  const auto place_attachments = [&](std::uint32_t first, std::uint32_t n) {
+    std::size_t offset = 0;
+    for (std::uint32_t a = 0; a < A; ++a) {
+      const std::size_t p2 = 2 * std::size_t(rig.attachment(a).rig->vertex_count());
+      RigRenderer* r = renderer.attachment(a);
+      const float* from = scratch.attached_positions.data() + std::size_t(first) * 2 * rig.attached_vertex_count();
+      std::copy(from + offset * n, from + offset * n + std::size_t(n) * p2, r->positions() + std::size_t(first) * p2);
+      for (std::uint32_t k = first; k < first + n; ++k)
+        r->SetCharacter(k, scratch.attachment_lists[std::size_t(k) * A + a]);
+      offset += p2;
+    }
+  };
+  if (A > 0) {
+    if (scene.compare_linear)
+      place_attachments(0, 1), place_attachments(1, 1);
+    else
+      place_attachments(0, K);
+  }
   View all{1e300, 1e300, -1e300, -1e300};
   for (std::uint32_t k = 0; k < K; ++k) {
     renderer.SetCharacter(k, scratch.lists[k]);

@@ -50,11 +50,11 @@ struct SceneScratch {
   std::vector<Transform2D> transforms;
   std::vector<double> phases;  // crowd: each drawn character's share of the path
   std::vector<DrawList> lists;
-  // A character with channels: per character the body's positions
-  // (doubles), the channels' weights, the attachments' positions and lists.
-  std::vector<double> body, raw, limited, texture, attach_workspace, attached;
+  // A character with channels: the later channels' points, the
+  // attachments' positions and lists (DrawListJob's).
+  std::vector<double> channel_points;
+  std::vector<float> attached_positions;
   std::vector<DrawList> attachment_lists;
-  std::vector<std::uint32_t> attachment_sequences;
 };
 
 // Where a frame's characters are, in world units: a camera fits one of them.

@@ -81,13 +81,26 @@ struct DrawList {
 // pose-space point. Rigid characters are evaluated as MorphBatchJob does (one
 // character as MorphJob): the positions equal theirs bit for bit.
 //
+// A rig with control channels (format 1.7): give attached_output (and
+// attached_positions) to get each character's attachments too, each
+// evaluated as AttachJob does (the same bits) at the character's points of
+// the later channels (channel_points; empty: each channel at its first
+// pose's point), as a DrawList of the attachment's own rig (its positions,
+// triangles, parts, drawings picked from its channel's texture weights,
+// uvs) with the character's transform. CharacterDrawSteps merges a
+// character's lists into one back-to-front order.
+//
 // Validate() fails (and Run() does nothing) when: rig is null or not
 // loaded; count is 0 or above MaxDrawListCount; points holds fewer than 2 x count values;
 // transforms is neither empty nor count long; max_drawings is not in
 // 1..kMaxBlendDrawings; workspace is shorter than DrawListWorkspaceSize;
 // positions holds fewer than count x 2V floats; output holds fewer than
-// count lists. Points are treated as WeightsJob treats them (clamped to the
-// grid, NaN replaced), so any values give a finite frame.
+// count lists; attached_output is given for a rig without attachments, or
+// holds fewer than count x attachment_count lists, or attached_positions
+// fewer than count x 2 x attached_vertex_count floats, or channel_points is
+// neither empty nor at least count x 2 x (channel_count - 1) values. Points
+// are treated as WeightsJob treats them (clamped to the grid, NaN
+// replaced), so any values give a finite frame.
 struct PM_API DrawListJob {
   const Rig* rig = nullptr;
   std::size_t count = 1;               // characters
@@ -100,10 +113,33 @@ struct PM_API DrawListJob {
   Span<double> workspace;                          // DrawListWorkspaceSize(*rig, count) doubles
   Span<float> positions;                           // count x 2V floats
   Span<DrawList> output;                           // count
+  // Control channels (above); all three empty for the first channel alone.
+  // channel_points: per character, channels 1 .. C-1's (x, y) in turn.
+  Span<const double> channel_points;
+  // Attachment after attachment, character after character (AttachJob's
+  // layout): count x 2 x rig->attached_vertex_count() floats.
+  Span<float> attached_positions;
+  // Character after character, its attachments in order: count x rig->attachment_count().
+  Span<DrawList> attached_output;
 
   bool Validate() const;
   bool Run() const;
 };
+
+// One step of drawing a character: part `part` of list `list`, where list 0
+// is the character's own DrawList and list a + 1 its attachment a's.
+struct DrawStep {
+  std::uint32_t list = 0, part = 0;
+};
+// The order to draw one character with attachments: every part of its
+// body's list and of its attachments' lists (attached: rig.attachment_count()
+// lists, may be null when there are none), back to front by their draw
+// orders in each list's dominant drawing's pose (ties: the body's parts in
+// its order, then the attachments' in attachment order), as posemorph-view
+// draws them. Writes min(steps, out.size) entries and returns how many
+// steps there are (the body's part count plus one per attachment part).
+PM_API std::uint32_t CharacterDrawSteps(const Rig& rig, const DrawList& body, const DrawList* attached,
+                                        Span<DrawStep> out);
 
 // The most characters one DrawListJob takes (their buffers' sizes stay far
 // inside size_t, also on 32-bit targets); more than this fails Validate.
@@ -120,12 +156,16 @@ struct PM_API CharacterBuffers {
   std::size_t workspace = 0;   // doubles
   std::size_t positions = 0;   // floats (count x 2V): what a renderer uploads
   std::size_t draw_lists = 0;  // DrawList entries (count)
-  std::size_t bytes = 0;       // one block holding all three, in that order
+  // A rig with attachments: their floats (count x 2 x attached_vertex_count)
+  // and lists (count x attachment_count), after the three above; 0 otherwise.
+  std::size_t attached_positions = 0, attached_lists = 0;
+  std::size_t bytes = 0;  // one block holding them all, in that order
   static constexpr std::size_t kAlignment = alignof(double) > alignof(DrawList) ? alignof(double) : alignof(DrawList);
 
   static CharacterBuffers For(const Rig& rig, std::size_t count);
-  // Points job->workspace, positions and output into `block` (at least
-  // `bytes` long, aligned to kAlignment) and sets job->rig and job->count.
+  // Points job->workspace, positions and output (and, for a rig with
+  // attachments, attached_positions and attached_output) into `block` (at
+  // least `bytes` long, aligned to kAlignment) and sets job->rig and job->count.
   // False, changing nothing, when the block is too short or misaligned.
   bool Bind(const Rig& rig, void* block, std::size_t block_bytes, DrawListJob* job) const;
 };
