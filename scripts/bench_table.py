@@ -45,8 +45,10 @@ def print_parts(median, label, data):
     print("\nLayered characters, their parts glued in one solve against the same parts baked as rigs of their "
           "own and solved one after the other: the body and arm of tests/runtime/rigs/make_arm.py at two "
           "densities (rig units, 4 px per unit), and Pell, the drawn layered sample (seven parts; rig units are "
-          "drawing pixels). The joint gap is the largest distance between a joint's two copies over the frames "
-          "timed:\n")
+          "drawing pixels), and Pell with a face channel (its body glued; the eyes and the mouth driven by "
+          "their own channel, each solved on its own and placed on its joint; both channels moving). The joint "
+          "gap is the largest distance between a joint's two copies (for an attachment, its joint and the "
+          "body's point) over the frames timed:\n")
     print("| character | frame | crowd of 1000, 1 thread | joint gap |")
     print("|---|---|---|---|")
     for density in (0, 1, 2):
@@ -59,6 +61,15 @@ def print_parts(median, label, data):
             crowd_cell = f"{crowd / 1e3:.2f} ms" if crowd is not None else "-"
             gap_cell = f"{gap:.3g}" if gap is not None else "-"
             print(f"| {label['BM_PartsFrame' + key]} | {frame:.{1 if frame >= 1 else 3}f} us | {crowd_cell} | {gap_cell} |")
+    # Pell with a face channel: the body glued, the eyes and the mouth
+    # attachments of their own channel (AttachJob).
+    frame, crowd = median.get("BM_ChannelsFrame"), median.get("BM_ChannelsCrowd1000")
+    if frame is not None:
+        gap = next((b.get("joint_gap") for b in data["benchmarks"]
+                    if b.get("aggregate_name") == "median" and b["run_name"] == "BM_ChannelsFrame"), None)
+        crowd_cell = f"{crowd / 1e3:.2f} ms" if crowd is not None else "-"
+        gap_cell = f"{gap:.3g}" if gap is not None else "-"
+        print(f"| {label['BM_ChannelsFrame']} | {frame:.1f} us | {crowd_cell} | {gap_cell} |")
 
 
 def main(path, paths_only=False):
