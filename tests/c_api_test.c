@@ -72,6 +72,14 @@ static void Channels(const char* path) {
   EXPECT(pm_rig_channel_poses(rig, 1, &face_poses, points, 8) == PM_OK && face_poses == 4);
   pm_grid_info grid;
   EXPECT(pm_rig_channel_grid(rig, 1, &grid) == PM_OK && grid.cells_x > 0);
+  /* 4 bytes per channel: a point of the face's space comes back within a step of its grid. */
+  {
+    const double fx = 0.37, fy = 0.61;
+    double gx = 0, gy = 0;
+    pm_channel_dequantize_point(rig, 1, pm_channel_quantize_point(rig, 1, fx, fy), &gx, &gy);
+    EXPECT(fabs(gx - fx) <= (grid.max_x - grid.min_x) / 65535 && fabs(gy - fy) <= (grid.max_y - grid.min_y) / 65535);
+    EXPECT(pm_channel_quantize_point(rig, 2, fx, fy) == 0);
+  }
   pm_rig_info info;
   pm_rig_get_info(rig, &info);
   const size_t N = info.pose_count, NW = pm_rig_attached_weight_count(rig);

@@ -426,15 +426,10 @@ int pm_path_sample(const pm_rig* rig, uint32_t path, double time, double* x, dou
   return posemorph::SamplePath(rig->rig, path, time, x, y) ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
 }
 
-uint32_t pm_quantize_point(const pm_rig* rig, double x, double y) {
-  if (!rig) return 0;
-  const posemorph::QuantizedPoint q = posemorph::QuantizePoint(rig->rig.grid(), x, y);
-  return uint32_t(q.x) | uint32_t(q.y) << 16;
-}
+uint32_t pm_quantize_point(const pm_rig* rig, double x, double y) { return pm_channel_quantize_point(rig, 0, x, y); }
 
 void pm_dequantize_point(const pm_rig* rig, uint32_t packed, double* x, double* y) {
-  if (!rig || !x || !y) return;
-  posemorph::DequantizePoint(rig->rig.grid(), {uint16_t(packed & 0xFFFFu), uint16_t(packed >> 16)}, x, y);
+  pm_channel_dequantize_point(rig, 0, packed, x, y);
 }
 
 // Control channels (format 1.7).
@@ -448,6 +443,19 @@ const posemorph::Rig* AttachmentRig(const pm_rig* rig, uint32_t attachment) {
 }  // namespace
 
 uint32_t pm_rig_channel_count(const pm_rig* rig) { return rig ? rig->rig.channel_count() : 0; }
+
+uint32_t pm_channel_quantize_point(const pm_rig* rig, uint32_t channel, double x, double y) {
+  const posemorph::Rig* c = ChannelRig(rig, channel);
+  if (!c) return 0;
+  const posemorph::QuantizedPoint q = posemorph::QuantizePoint(c->grid(), x, y);
+  return uint32_t(q.x) | uint32_t(q.y) << 16;
+}
+
+void pm_channel_dequantize_point(const pm_rig* rig, uint32_t channel, uint32_t packed, double* x, double* y) {
+  const posemorph::Rig* c = ChannelRig(rig, channel);
+  if (!c || !x || !y) return;
+  posemorph::DequantizePoint(c->grid(), {uint16_t(packed & 0xFFFFu), uint16_t(packed >> 16)}, x, y);
+}
 
 int pm_rig_channel_name(const pm_rig* rig, uint32_t channel, char* out, size_t capacity, size_t* length) {
   return CopyString(rig ? rig->rig.channel_name(channel) : posemorph::StringView{},

@@ -328,6 +328,11 @@ PM_API int pm_path_sample(const pm_rig* rig, uint32_t path, double time, double*
 /* A pose-space point in 4 bytes (x in the low 16 bits, y in the high 16). */
 PM_API uint32_t pm_quantize_point(const pm_rig* rig, double x, double y);
 PM_API void pm_dequantize_point(const pm_rig* rig, uint32_t packed, double* x, double* y);
+/* The same in channel `channel`'s pose space (channel 0: the above): a
+ * frame of a character with channels is 4 bytes per channel. 0 (and x, y
+ * left alone) for a channel the rig does not have. */
+PM_API uint32_t pm_channel_quantize_point(const pm_rig* rig, uint32_t channel, double x, double y);
+PM_API void pm_channel_dequantize_point(const pm_rig* rig, uint32_t channel, uint32_t packed, double* x, double* y);
 
 #ifdef __cplusplus
 }
