@@ -4,6 +4,9 @@
 // rest of what it says. And the one command-line number parser.
 #include <doctest/doctest.h>
 
+#include <fstream>
+#include <iterator>
+
 #include "posemorph/bake/command_line.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/rig_description.h"
@@ -184,6 +187,29 @@ TEST_CASE("adding poses and paths keeps the rest of the description and gives ea
   CHECK(back.paths[0].keys == path.keys);
   CHECK(back.warnings == std::vector<std::string>{"rig.json: unknown key \"studio_note\" ignored "
                                                   "(bake/RIG_DESCRIPTION.md lists the keys)"});
+}
+
+TEST_CASE("a path added to a rig with channels goes to the first channel's paths, a pose is refused") {
+  std::ifstream in(std::string(POSEMORPH_SOURCE_DIR) + "/assets/pell/pell-face.json");
+  REQUIRE(in.good());
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  pb::PathDescription path;
+  path.name = "gesture";
+  path.keys = {{0, 0, 0}, {1, 1, 0}};
+  const pb::DescriptionAddition added = pb::AddToRigDescription(text, "pell-face.json", {}, {path});
+  CHECK(added.path_names == std::vector<std::string>{"gesture-1"});
+  const pb::RigDescription back = pb::ParseRigDescription(added.text, "pell-face.json", ".");
+  REQUIRE(back.channels.size() == 2);
+  REQUIRE(back.channels[0].paths.size() == 2);  // greet, then the gesture
+  CHECK(back.channels[0].paths[1].name == "gesture-1");
+  CHECK(back.channels[1].paths.size() == 1);
+  CHECK(back.paths.size() == 2);
+  try {
+    pb::AddToRigDescription(text, "pell-face.json", {DeformedPose("edit", {0.5, 0.5}, "rest", {})}, {});
+    FAIL("a pose was added to a rig with channels");
+  } catch (const pb::BakeError& e) {
+    CHECK(std::string(e.what()).find("pell-face.json: a rig with channels takes a new pose") == 0);
+  }
 }
 
 TEST_CASE("adding to text that is not a description object names the file and the problem") {

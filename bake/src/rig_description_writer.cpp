@@ -143,6 +143,20 @@ DescriptionAddition AddToRigDescription(const std::string& text, const std::stri
   json root = ParseDescriptionJson(text, file);
   if (!root.is_object()) throw BakeError(file, "expected a JSON object at the top level");
   DescriptionAddition added;
+  // A rig with control channels keeps its poses and paths in its channels:
+  // a path goes to the first channel's (the body's, which the pad and the
+  // gestures drive); a pose would need a drawing per part, which only the
+  // description's author can give.
+  json* paths_home = &root;
+  if (root.contains("channels")) {
+    if (!root["channels"].is_array() || root["channels"].empty() || !root["channels"][0].is_object())
+      throw BakeError(file, "channels: expected an array of channel objects");
+    if (!poses.empty())
+      throw BakeError(file,
+                      "a rig with channels takes a new pose as a pose of its channel and of each of its parts; "
+                      "add it to the description by hand");
+    paths_home = &root["channels"][0];
+  }
   for (PoseDescription pose : poses) {
     json& list = ListIn(root, "poses", file);
     pose.name = FreshName(list, pose.name);
@@ -150,7 +164,7 @@ DescriptionAddition AddToRigDescription(const std::string& text, const std::stri
     list.push_back(PoseJson(pose));
   }
   for (PathDescription path : paths) {
-    json& list = ListIn(root, "paths", file);
+    json& list = ListIn(*paths_home, "paths", file);
     path.name = FreshName(list, path.name);
     added.path_names.push_back(path.name);
     list.push_back(PathJson(path));
