@@ -303,7 +303,7 @@ TEST_CASE("draw lists: a rig with channels lists each character's attachments, t
   const Rig rig = LoadTestRig("pell-face.compact");
   REQUIRE(rig.attachment_count() == 3);
   const Rig& face = *rig.channel_rig(1);
-  const std::size_t count = 7, N = rig.pose_count(), NF = face.pose_count(), A = rig.attachment_count();
+  const std::size_t count = 7, A = rig.attachment_count();
   const std::size_t v2 = 2 * std::size_t(rig.vertex_count()), a2 = 2 * std::size_t(rig.attached_vertex_count());
   std::vector<double> points, face_points;
   for (std::size_t k = 0; k < count; ++k) {
