@@ -386,6 +386,7 @@ TEST_CASE("draw lists: a rig with channels lists each character's attachments, t
                         p2 * sizeof(float)) == 0);
       at += p2;
     }
+    CHECK(at == a2);
   }
   // Failure cases: too few attached lists or floats, too few channel points,
   // attached lists for a rig without attachments; the first channel alone
