@@ -542,9 +542,14 @@ bool RigLoader::FindSections(const unsigned char* bytes, const Header& h, Parser
 // Where the arena is: allocated, the caller's, or nowhere (pass 0 only sizes it).
 bool RigLoader::PlaceArena(const ArenaSource& source, int pass, Rig* rig, ArenaLayout* arena, Error* err) {
   if (pass == 1 && source.kind == ArenaSource::kAllocate) {
-    rig->arena_.reset(new (std::nothrow) unsigned char[rig->arena_size_]);
+    // new[] aligns to 16 bytes on x86-64 and aarch64 but to 8 on WebAssembly:
+    // take 15 bytes more and start at the first 16-byte boundary, as
+    // LoadRigInPlace asks of a caller's memory (an attachment's nested rig is
+    // loaded in place inside this arena).
+    rig->arena_.reset(new (std::nothrow) unsigned char[rig->arena_size_ + kRigMemoryAlignment - 1]);
     if (!rig->arena_) return Fail(err, ErrorCode::kOutOfMemory, "cannot allocate %zu bytes", rig->arena_size_);
-    arena->base = rig->arena_.get();
+    const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(rig->arena_.get());
+    arena->base = rig->arena_.get() + ((kRigMemoryAlignment - start % kRigMemoryAlignment) % kRigMemoryAlignment);
   } else if (pass == 1) {
     if (!source.memory)
       return Fail(err, ErrorCode::kInvalidArgument, "no memory given (the rig needs %zu bytes)", rig->arena_size_);

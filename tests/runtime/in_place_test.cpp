@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Loading into caller-owned memory: the size query, the same frames as an
 // allocating load, and every misuse refused (null, misaligned, short).
+#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -49,6 +50,29 @@ TEST_CASE("a rig loaded in caller-owned memory gives the same bits as an allocat
       const Weights a = WeightsAt(rig, px, py), b = WeightsAt(owned, px, py);
       const std::vector<double> xa = Morph(rig, a.raw, a.limited), xb = Morph(owned, b.raw, b.limited);
       CHECK(std::memcmp(xa.data(), xb.data(), xa.size() * sizeof(double)) == 0);
+    }
+  }
+}
+
+// LoadRig's own arena starts on a kRigMemoryAlignment boundary on every
+// target, as LoadRigInPlace asks of a caller's memory: WebAssembly's new[]
+// aligns to 8 bytes only, and an attachment's rig is loaded in place inside
+// its parent's arena (the cross build runs this under node).
+TEST_CASE("an allocating load aligns its arrays, and each attachment's, to kRigMemoryAlignment") {
+  const auto aligned = [](const void* p) { return reinterpret_cast<std::uintptr_t>(p) % kRigMemoryAlignment == 0; };
+  for (const char* name : {"snake", "pip.compact", "pell-face", "pell-face.compact"}) {
+    const std::string rig_name = name;
+    CAPTURE(rig_name);
+    std::vector<Rig> rigs;  // all alive at once: each arena at another heap address
+    for (int copy = 0; copy < 8; ++copy) rigs.push_back(LoadTestRig(name));
+    for (const Rig& rig : rigs) {
+      CHECK(aligned(rig.triangles().data));
+      CHECK(aligned(rig.pose_positions(0).data));
+      for (std::uint32_t a = 0; a < rig.attachment_count(); ++a) {
+        CAPTURE(a);
+        CHECK(aligned(rig.attachment(a).rig->triangles().data));
+        CHECK(aligned(rig.attachment(a).rig->pose_positions(0).data));
+      }
     }
   }
 }
