@@ -17,6 +17,7 @@
 #include "geometry.h"
 #include "posemorph/bake/mapping/enclosing_simplification.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/mapping/limits.h"
 
 namespace posemorph::bake::mapping {
 namespace {
@@ -211,8 +212,11 @@ class Simplifier {
     for (std::size_t k : boundary.landmarks) landmark[k] = true;
   }
 
-  // 1. The corresponding points of pose i, each edge pushed out just past its span.
-  void EncloseOutline(std::size_t i, const ErrorSource& source) {
+  // 1. The corresponding points of pose i, each edge pushed out just past
+  // its span. Returns the edges no push could make enclose their span (an
+  // outline tip between two points whose normals point past it, as a
+  // pixel-art hand one pixel wide makes): empty when every edge does.
+  std::vector<std::size_t> EncloseOutline(std::size_t i) {
     const std::vector<Polygon>& outlines = outlines_;
     const CorrespondedBoundary& boundary = boundary_;
     PoseState& s = st[i];
@@ -242,16 +246,16 @@ class Simplifier {
         const Point x = need * nb;
         s.pos[k] = Snap(q[k] + x);
       }
-      bool all_ok = true;
+      std::vector<std::size_t> failing;
       for (std::size_t e = 0; e < M; ++e) {
         const std::size_t f = (e + 1) % M;
         if (!SpanInside(s, e, f, s.pos[e], s.pos[f]) || s.edges->Crosses(s.pos[e], s.pos[f])) {
           offset[e] = offset[e] * 1.5 + 2.0;
-          all_ok = false;
+          failing.push_back(e);
         }
       }
-      if (all_ok && IsSimplePolygon(s.pos)) break;
-      if (attempt == 30) throw source.Error("cannot build a polygon enclosing the outline");
+      if (failing.empty() && IsSimplePolygon(s.pos)) return {};
+      if (attempt == 30) return failing;
     }
   }
 
@@ -421,12 +425,113 @@ class Simplifier {
 
 }  // namespace
 
+// Splits the span of every edge in `edges` (indices among the M points) of
+// pose i in two: a new corresponding N-tuple at the outline vertex farthest
+// outside the edge in pose i, and at the same share of the span's arc length
+// in every other pose (the correspondence between the two points is linear
+// in arc length, so it keeps its order and every pose its own outline).
+// Returns false when no span could be split.
+bool SplitSpans(const std::vector<Polygon>& outlines, std::size_t i, std::vector<std::size_t> edges,
+                CorrespondedBoundary& b) {
+  const std::size_t N = outlines.size(), M = b.points[0].size();
+  std::vector<double> perimeter(N);
+  std::vector<std::vector<double>> cumulative(N);
+  for (std::size_t j = 0; j < N; ++j)
+    cumulative[j] = CumulativeArcLength(outlines[j]), perimeter[j] = cumulative[j].back();
+  auto span_length = [&](std::size_t j, std::size_t e) {
+    double len = std::fmod(b.at[j][(e + 1) % M] - b.at[j][e], perimeter[j]);
+    return len <= 0 ? len + perimeter[j] : len;
+  };
+  std::sort(edges.begin(), edges.end(), std::greater<std::size_t>());  // insert from the back: indices stay valid
+  bool split = false;
+  for (std::size_t e : edges) {
+    if (b.points[0].size() >= kMaxMatchedSamples) break;  // the matching's own bound on points (limits.h)
+    const std::size_t f = (e + 1) % M;
+    const double len = span_length(i, e);
+    if (!(len > 0)) continue;
+    // The share t of the span where pose i's outline lies farthest outside its chord.
+    PoseState probe;
+    probe.outline = &outlines[i];
+    probe.cumulative = cumulative[i];
+    probe.perimeter = perimeter[i];
+    double t = 0.5, worst = -kInf;
+    const double s0 = b.at[i][e];
+    probe.ForSpan(s0, b.at[i][f], [&](std::size_t k) {
+      const double d = Outside(b.points[i][e], b.points[i][f], outlines[i][k]);
+      double along = std::fmod(cumulative[i][k] - s0, perimeter[i]);
+      if (along < 0) along += perimeter[i];
+      if (d > worst && along > 0 && along < len) worst = d, t = along / len;
+    });
+    t = std::clamp(t, 0.05, 0.95);  // never onto a neighbour
+    for (std::size_t j = 0; j < N; ++j) {
+      const double at = b.at[j][e] + t * span_length(j, e);
+      b.at[j].insert(b.at[j].begin() + std::ptrdiff_t(e + 1), at);
+      b.points[j].insert(b.points[j].begin() + std::ptrdiff_t(e + 1), PointAtArcLength(outlines[j], at));
+    }
+    for (std::size_t& k : b.landmarks)
+      if (k > e) ++k;
+    split = true;
+  }
+  return split;
+}
+
+// Splits, in every pose, each span whose outline stands farther than
+// `deviation` outside or inside its chord, until none does (or a few rounds
+// went by): with every span close to its chord the outward pushes stay
+// small, where a far push past one tip made the next edge cross the outline
+// on the other side of a narrow gap. Returns whether anything was split.
+bool SplitDeviating(const std::vector<Polygon>& outlines, double deviation, CorrespondedBoundary& b) {
+  bool any = false;
+  for (int pass = 0; pass < 4; ++pass) {
+    bool split = false;
+    for (std::size_t i = 0; i < outlines.size(); ++i) {
+      const std::size_t M = b.points[0].size();
+      PoseState probe;
+      probe.outline = &outlines[i];
+      probe.cumulative = CumulativeArcLength(outlines[i]);
+      probe.perimeter = probe.cumulative.back();
+      probe.at = b.at[i];
+      std::vector<std::size_t> far;
+      for (std::size_t e = 0; e < M; ++e) {
+        const std::size_t f = (e + 1) % M;
+        double worst = 0;
+        probe.ForSpan(probe.at[e], probe.at[f], [&](std::size_t k) {
+          worst = std::max(worst, std::abs(Outside(b.points[i][e], b.points[i][f], outlines[i][k])));
+        });
+        if (worst > deviation) far.push_back(e);
+      }
+      if (!far.empty() && SplitSpans(outlines, i, far, b)) split = true;
+    }
+    if (!split) break;
+    any = true;
+  }
+  return any;
+}
+
 SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const CorrespondedBoundary& boundary,
                                      double tolerance, const std::vector<ErrorSource>& poses) {
-  Simplifier simplifier(outlines, boundary, tolerance);
-  for (std::size_t i = 0; i < outlines.size(); ++i) simplifier.EncloseOutline(i, poses[i]);
-  simplifier.RemoveGreedily();
-  return simplifier.Result();
+  // A span that no outward push encloses is split where its outline sticks
+  // out, in every pose, and the enclosing starts again (a few rounds: each
+  // split halves the spans that failed).
+  constexpr int kSplitRounds = 6;
+  CorrespondedBoundary refined = boundary;
+  for (int round = 0;; ++round) {
+    Simplifier simplifier(outlines, refined, tolerance);
+    bool enclosed = true;
+    for (std::size_t i = 0; i < outlines.size() && enclosed; ++i) {
+      const std::vector<std::size_t> failing = simplifier.EncloseOutline(i);
+      if (failing.empty()) continue;
+      // The first failure also splits every span far from its chord, in
+      // every pose (a bake that encloses at once keeps its points).
+      const bool deviating = round == 0 && SplitDeviating(outlines, tolerance / 4, refined);
+      if (round == kSplitRounds || !(SplitSpans(outlines, i, failing, refined) || deviating))
+        throw poses[i].Error("cannot build a polygon enclosing the outline");
+      enclosed = false;
+    }
+    if (!enclosed) continue;
+    simplifier.RemoveGreedily();
+    return simplifier.Result();
+  }
 }
 
 }  // namespace posemorph::bake::mapping
