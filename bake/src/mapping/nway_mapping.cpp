@@ -334,7 +334,9 @@ void ReadDrawnOutline(const RigDescription& rig, const MappingParameters& prm, D
       raw = pose.outline;
       d.landmarks = pose.landmarks;
     } else if (png) {
-      mapping::ImageOutline io = mapping::OutlineFromPng(pose.drawing_path, prm.alpha_threshold, source);
+      mapping::ImageOutline io =
+          mapping::OutlineFromPng(pose.drawing_path, prm.alpha_threshold, source, prm.fill_notches);
+      report.filled_notch_corners += io.filled_notch_corners;
       if (io.dropped_components > 0)
         report.warnings.push_back(rig.file + ": " + PoseLabel(pose.name, d.index) + ": " + pose.drawing_path +
                                   ": dropped " + DroppedParts(io) +
@@ -530,9 +532,44 @@ std::vector<std::string> SpinningWarnings(const RigDescription& rig, const std::
   return warnings;
 }
 
+// Whether any drawn pose is traced from a PNG (whose notches can be filled).
+bool HasPngDrawing(const RigDescription& rig) {
+  for (const PoseDescription& pose : rig.poses)
+    if (pose.drawn && pose.vertices.empty() && EndsWith(pose.drawing, ".png")) return true;
+  return false;
+}
+
+MappedDrawings MapDrawingsAsTraced(const RigDescription& rig);
+
 }  // namespace
 
+// The drawings mapped as traced; when that fails (no enclosing polygon, a
+// triangulation that cannot be made), mapped again with the PNG outlines'
+// thin notches filled, which is said in a warning; when that fails too,
+// the first failure is the one reported.
 MappedDrawings MapDrawings(const RigDescription& rig) {
+  try {
+    return MapDrawingsAsTraced(rig);
+  } catch (const BakeError& first) {
+    if (rig.mapping.fill_notches || !HasPngDrawing(rig)) throw;
+    RigDescription filled = rig;
+    filled.mapping.fill_notches = true;
+    try {
+      MappedDrawings again = MapDrawingsAsTraced(filled);
+      again.report.warnings.insert(again.report.warnings.begin(),
+                                   std::string(first.what()) +
+                                       "; mapped again with the outlines' thin notches filled (" +
+                                       std::to_string(again.report.filled_notch_corners) + " corners)");
+      return again;
+    } catch (const BakeError&) {
+      throw first;
+    }
+  }
+}
+
+namespace {
+
+MappedDrawings MapDrawingsAsTraced(const RigDescription& rig) {
   MappedDrawings result;
   std::vector<DrawnPose> drawn = DrawnPoses(rig);
   if (drawn.empty()) return result;
@@ -542,6 +579,8 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
 
   // 1. Outlines, in rig coordinates (y up).
   const MappingInput in = ReadDrawnOutlines(rig, drawn, report);
+  if (prm.fill_notches && report.filled_notch_corners == 0)
+    throw BakeError(rig.file, "no thin notch to fill: the outlines are as traced");  // the same mapping again
   const mapping::MappingStages st =
       mapping::MapPolygons(in.outlines, in.landmarks, in.features, prm, in.labels, rig.file);
   for (const std::string& w : st.warnings) report.warnings.push_back(rig.file + ": " + w);
@@ -567,6 +606,8 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }
+
+}  // namespace
 
 DrawnOutlines TraceDrawings(const RigDescription& rig) {
   DrawnOutlines result;

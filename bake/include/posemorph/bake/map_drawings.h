@@ -21,6 +21,7 @@ struct MappingReport {
   std::size_t boundary_vertices = 0;          // after simplification
   std::size_t steiner_points = 0;             // interior points the compatible triangulation added
   std::size_t features = 0;                   // corresponding interior points given (shared vertices)
+  std::size_t filled_notch_corners = 0;       // corners of thin notches filled in the PNG outlines (fill_notches)
   std::size_t vertices = 0, triangles = 0;    // after refinement
   double min_angle_degrees = 0;               // over all triangles and drawn poses (after alignment)
   double min_angle_before_alignment = 0;      // the same, as refinement left it

@@ -79,6 +79,10 @@ struct MappingParameters {
   // Not in the description: the bake's own retries when the in-betweens fold
   // (bake.h) scale the spacing and the longest edge, automatic or given.
   double spacing_scale = 1, edge_scale = 1;
+  // Not in the description either: PNG outlines traced with their thin
+  // notches filled (mapping/outline_image.h), which the bake tries when the
+  // outlines as traced cannot be mapped or their in-betweens fold.
+  bool fill_notches = false;
 };
 
 struct PathDescription {
