@@ -229,7 +229,7 @@ TEST_CASE("bake: an in-between that folds fails the bake, naming the triangle, w
   CHECK(message.find(" triangles turn over (the worst: triangle ") != std::string::npos);
   CHECK(message.find(" of its smallest in a pose) at (") != std::string::npos);
   CHECK(message.find("between 'pose") != std::string::npos);
-  CHECK(message.find("a landmark near its centre would hold it: (") != std::string::npos);
+  CHECK(message.find("a landmark on the outline there would hold it: (") != std::string::npos);
   CHECK(message.find(") in 'pose0'") != std::string::npos);
   CHECK(message.find(") in 'pose1'") != std::string::npos);
   CHECK(message.find("or bake with --allow-folds (bake.allow_folds)") != std::string::npos);
@@ -535,6 +535,49 @@ TEST_CASE("mapping: outlines from alpha") {
   std::fill(alpha.begin(), alpha.end(), 10);
   CHECK_THROWS_WITH_AS(pm::OutlineFromAlpha(alpha, W, H, 0.5, "clear.png"),
                        doctest::Contains("clear.png: image is empty or fully transparent"), pb::BakeError);
+}
+
+TEST_CASE("mapping: a faint pixel's notch in a PNG outline is filled when asked, and the outline only grows") {
+  // A block whose top row has a pixel just below the threshold with opaque
+  // pixels on three sides (as pixel art has): the border dips to within
+  // 0.04 px of that pixel's centre, a notch a hundredth of a pixel wide.
+  const int W = 24, H = 24;
+  std::vector<unsigned char> alpha(W * H, 0);
+  for (int y = 4; y < 20; ++y)
+    for (int x = 4; x < 20; ++x) alpha[y * W + x] = 255;
+  alpha[4 * W + 11] = 122;  // just below 0.5
+  const Point centre(11.5, 4.5);
+  const pm::ImageOutline as_traced = pm::OutlineFromAlpha(alpha, W, H, 0.5, "notch.png");
+  const pm::ImageOutline filled = pm::OutlineFromAlpha(alpha, W, H, 0.5, "notch.png", true);
+  // The thinnest concave corner: twice its triangle's area over its longest side.
+  auto thinnest = [](const Polygon& outline) {
+    const double orientation = pm::SignedArea(outline) > 0 ? 1 : -1;
+    double least = 1e9;
+    for (std::size_t i = 0, n = outline.size(); i < n; ++i) {
+      const Point &a = outline[(i + n - 1) % n], &v = outline[i], &b = outline[(i + 1) % n];
+      const double twice = orientation * ((v - a).x() * (b - v).y() - (v - a).y() * (b - v).x());
+      if (twice < 0) least = std::min(least, -twice / std::max({(v - a).norm(), (b - v).norm(), (b - a).norm()}));
+    }
+    return least;
+  };
+  double dip = 1e9;
+  for (const Point& p : as_traced.outline) dip = std::min(dip, (p - centre).norm());
+  CHECK(dip < 0.05);  // the border dips to the faint pixel's centre
+  CHECK(as_traced.filled_notch_corners == 0);
+  CHECK(thinnest(as_traced.outline) < 1.0 / 16);  // a sliver of a notch
+  CHECK(filled.filled_notch_corners > 0);
+  CHECK(thinnest(filled.outline) >= 1.0 / 16);  // filled: what is left of the notch is a plain V
+  CHECK(filled.outline.size() + filled.filled_notch_corners == as_traced.outline.size());
+  CHECK(pm::IsSimplePolygon(OnGrid(filled.outline)));
+  // Filling only adds: every traced point is inside or on the filled outline.
+  Polygon outer = filled.outline;
+  if (pm::SignedArea(outer) < 0) std::reverse(outer.begin(), outer.end());
+  for (const Point& p : as_traced.outline) CHECK(pm::PointInPolygon(OnGrid(outer), OnGrid({p})[0]) >= 0);
+  CHECK(std::abs(pm::SignedArea(filled.outline)) >= std::abs(pm::SignedArea(as_traced.outline)));
+  // A shape without thin notches is traced the same either way.
+  alpha[4 * W + 11] = 255;
+  CHECK(pm::OutlineFromAlpha(alpha, W, H, 0.5, "block.png", true).outline ==
+        pm::OutlineFromAlpha(alpha, W, H, 0.5, "block.png").outline);
 }
 
 TEST_CASE("mapping: SVG outlines") {

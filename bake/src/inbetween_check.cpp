@@ -111,16 +111,61 @@ std::string DescribeFold(const Rig& rig, const InbetweenFold& fold) {
     s << (shown ? ", " : "") << "'" << Name(rig.pose_name(i)) << "' (" << Number(raw[i]) << ")";
     ++shown;
   }
-  s << "; a landmark near its centre would hold it: ";
+  // Where a landmark would hold it: the mesh's boundary vertex nearest the
+  // triangle in the dominant pose (boundary vertices lie on the outline, to
+  // the simplification's tolerance, and correspond in every pose), given in
+  // each pose's drawing pixels (y down, from the canvas's corner: the rig's
+  // origin sits at the canvas's pivot).
   const std::uint32_t* t = rig.triangles().data + 3 * fold.triangle;
+  const std::uint32_t T = rig.triangle_count();
+  std::vector<std::uint32_t> uses(rig.vertex_count(), 0);
+  {
+    // An edge used by one triangle is a boundary edge: count each undirected edge.
+    std::vector<std::uint64_t> edges;
+    edges.reserve(3 * std::size_t(T));
+    const std::uint32_t* all = rig.triangles().data;
+    for (std::uint32_t k = 0; k < 3 * T; k += 3)
+      for (int e = 0; e < 3; ++e) {
+        const std::uint32_t a = all[k + std::uint32_t(e)], b = all[k + std::uint32_t((e + 1) % 3)];
+        edges.push_back((std::uint64_t(std::min(a, b)) << 32) | std::max(a, b));
+      }
+    std::sort(edges.begin(), edges.end());
+    for (std::size_t k = 0; k < edges.size();) {
+      std::size_t j = k;
+      while (j < edges.size() && edges[j] == edges[k]) ++j;
+      if (j - k == 1) ++uses[edges[k] >> 32], ++uses[edges[k] & 0xffffffffu];
+      k = j;
+    }
+  }
+  const double* dominant = rig.pose_positions(order[0]).data;
+  const double cx = (dominant[2 * t[0]] + dominant[2 * t[1]] + dominant[2 * t[2]]) / 3,
+               cy = (dominant[2 * t[0] + 1] + dominant[2 * t[1] + 1] + dominant[2 * t[2] + 1]) / 3;
+  std::uint32_t nearest = t[0];
+  double best = std::numeric_limits<double>::infinity();
+  for (std::uint32_t v = 0; v < rig.vertex_count(); ++v) {
+    if (uses[v] == 0) continue;
+    const double d = std::hypot(dominant[2 * v] - cx, dominant[2 * v + 1] - cy);
+    if (d < best) best = d, nearest = v;
+  }
+  // The part the triangle belongs to, on a layered character.
+  std::uint32_t part = 0;
+  for (std::uint32_t k = 0; k < rig.part_count(); ++k) {
+    const PartView pv = rig.part(k);
+    if (fold.triangle >= pv.first_triangle && fold.triangle < pv.first_triangle + pv.triangle_count) part = k;
+  }
+  const bool layered = rig.part_count() > 1;
+  if (layered) s << "; it is in part '" << Name(rig.part(part).name) << "'";
+  s << "; a landmark on the outline there would hold it: ";
   for (std::size_t k = 0; k < shown; ++k) {
     const std::uint32_t i = order[k];
     const double* p = rig.pose_positions(i).data;
-    const double cx = (p[2 * t[0]] + p[2 * t[1]] + p[2 * t[2]]) / 3,
-                 cy = (p[2 * t[0] + 1] + p[2 * t[1] + 1] + p[2 * t[2] + 1]) / 3;
-    const bool drawn = rig.pose_canvas(i).width > 0;  // drawing units, y down, as landmarks are given
-    s << (k ? ", " : "") << "(" << Number(cx) << ", " << Number(drawn ? -cy : cy) << ") in "
-      << (drawn && rig.pose_image(i).size ? Name(rig.pose_image(i)) : "'" + Name(rig.pose_name(i)) + "'");
+    const DrawingCanvas canvas = rig.pose_canvas(i);
+    const bool drawn = canvas.width > 0;  // drawing pixels, y down, as landmarks are given
+    const double x = p[2 * nearest] + (drawn ? canvas.pivot_x : 0.0),
+                 y = drawn ? canvas.pivot_y - p[2 * nearest + 1] : p[2 * nearest + 1];
+    const StringView image = layered ? rig.part_image(part, i) : rig.pose_image(i);
+    s << (k ? ", " : "") << "(" << Number(x) << ", " << Number(y) << ") in "
+      << (drawn && image.size ? Name(image) : "'" + Name(rig.pose_name(i)) + "'");
   }
   return s.str();
 }
