@@ -1,0 +1,181 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+# The game-art corpus (tests/game-art/): characters from Debian game-data
+# packages, fetched here at test time with `apt-get download` (their
+# licences are their own, so nothing of them is committed), each baked with
+# default settings from the description an animator would write.
+#
+#   scripts/game-art.py --bake BUILD/bin/posemorph-bake [--cache DIR] [--table FILE.md] [--check]
+#
+# Prints one row per character: baked with defaults or not (and the bake's
+# first error line), folded in-between triangles, the smallest angle of the
+# mesh over all poses, vertices, rig bytes against the drawings' PNG bytes,
+# ghosting (mean over the pose hull, of 255) and the bake's time. --table
+# writes the same table as Markdown (docs/game-art.md is made by it).
+# --check fails when a character listed as baking in
+# tests/game-art/expected.json no longer bakes, or a baked rig breaks one of
+# its bounds (min angle, vertices per outline pixel, rig/PNG ratio, a
+# failure's time). A registry that cannot be reached skips the run with a
+# line saying so (exit 77, ctest's skip).
+import argparse
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+CORPUS = os.path.join(ROOT, "tests", "game-art")
+SKIP = 77
+
+
+def fetch(package, cache):
+    """The package's files under cache/package, downloaded and unpacked once."""
+    target = os.path.join(cache, package)
+    done = os.path.join(target, ".unpacked")
+    if os.path.exists(done):
+        return target
+    debs = os.path.join(cache, "debs")
+    os.makedirs(debs, exist_ok=True)
+    for name in os.listdir(debs):
+        if name.startswith(package + "_") and name.endswith(".deb"):
+            break
+    else:
+        r = subprocess.run(["apt-get", "download", package], cwd=debs, capture_output=True, text=True)
+        if r.returncode != 0:
+            last = (r.stderr.strip().splitlines() or ["no message"])[-1]
+            print(f"game-art: skipped: cannot fetch {package} from the Debian registry ({last})")
+            sys.exit(SKIP)
+        name = next(n for n in os.listdir(debs) if n.startswith(package + "_") and n.endswith(".deb"))
+    shutil.rmtree(target, ignore_errors=True)
+    subprocess.run(["dpkg-deb", "-x", os.path.join(debs, name), target], check=True)
+    open(done, "w").close()
+    return target
+
+
+def number(pattern, text, default=None):
+    m = re.search(pattern, text)
+    return float(m.group(1)) if m else default
+
+
+def bake(binary, character, cache, out_dir):
+    """Bakes one character with default settings; returns its row."""
+    name = character["name"]
+    folder = os.path.join(fetch(character["package"], cache), character["folder"])
+    with open(os.path.join(CORPUS, name + ".json")) as f:
+        description = json.load(f)
+    # The description sits beside the drawings it names (a hidden name, so
+    # nothing of the package's is overwritten).
+    json_path = os.path.join(folder, f".game-art-{name}.json")
+    with open(json_path, "w") as f:
+        json.dump(description, f)
+    drawings = set()
+    for pose in description.get("poses", []):
+        drawings.add(pose["drawing"])
+    for part in description.get("parts", []):
+        for pose in part["poses"]:
+            drawings.add(pose["drawing"])
+    png_bytes = sum(os.path.getsize(os.path.join(folder, d)) for d in drawings)
+    rig = os.path.join(out_dir, name + ".pmrig")
+    start = time.monotonic()
+    r = subprocess.run([binary, json_path, "-o", rig], capture_output=True, text=True)
+    seconds = time.monotonic() - start
+    row = {"name": name, "package": character["package"], "traits": character["traits"], "seconds": seconds,
+           "png_bytes": png_bytes, "baked": r.returncode == 0, "poses": len(description.get("poses", []))}
+    out = r.stdout + r.stderr
+    if r.returncode != 0:
+        # The first line, with the unpacked package's folder left out.
+        error = (r.stderr.strip().splitlines() or ["(no message)"])[0]
+        row["error"] = error.replace("posemorph-bake: error: ", "").replace(folder + "/", "")
+        row["folds"] = number(r"(\d+) triangles? turns? over", r.stderr)
+        return row
+    row["vertices"] = int(number(r"(\d+) vertices", out))
+    row["triangles"] = int(number(r"(\d+) triangles", out))
+    row["rig_bytes"] = os.path.getsize(rig)
+    row["folds"] = int(number(r"(\d+) folded triangles", out, 0))
+    row["min_angle"] = number(r"min angle ([0-9.]+) degrees over all poses", out)
+    row["ghosting"] = number(r"ghosting over the pose hull[^\n]*mean ([0-9.]+)", out)
+    row["outline_pixels"] = number(r"outlines (\d+)", out)
+    row["warnings"] = [line for line in r.stderr.splitlines() if line.strip()]
+    return row
+
+
+def table(rows):
+    lines = ["| character | package | exercises | baked with defaults | folds | min angle | vertices | "
+             "rig / PNG bytes | ghosting | bake |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        traits = ", ".join(r["traits"])
+        if r["baked"]:
+            ghost = f"{r['ghosting']:.2f}" if r.get("ghosting") is not None else "-"
+            lines.append(f"| {r['name']} | {r['package']} | {traits} | yes | {r['folds']} | "
+                         f"{r['min_angle']:.1f} deg | {r['vertices']} | {r['rig_bytes']:,} / {r['png_bytes']:,} "
+                         f"({r['rig_bytes'] / r['png_bytes']:.2f}x) | {ghost} | {r['seconds']:.1f} s |")
+        else:
+            error = r["error"].replace("|", "\\|")
+            lines.append(f"| {r['name']} | {r['package']} | {traits} | no: {error} | - | - | - | - / "
+                         f"{r['png_bytes']:,} | - | {r['seconds']:.1f} s |")
+    baked = sum(1 for r in rows if r["baked"])
+    lines.append("")
+    lines.append(f"{baked} of {len(rows)} characters baked with default settings.")
+    return "\n".join(lines)
+
+
+def check(rows, expected):
+    problems = []
+    for r in rows:
+        name = r["name"]
+        if name in expected["bakes"] and not r["baked"]:
+            problems.append(f"{name}: no longer bakes with default settings: {r['error']}")
+        if not r["baked"]:
+            if r["seconds"] > expected["max_failure_seconds"]:
+                problems.append(f"{name}: the failing bake took {r['seconds']:.1f} s (the bound is "
+                                f"{expected['max_failure_seconds']} s)")
+            continue
+        if r["min_angle"] < expected["min_angle_degrees"]:
+            problems.append(f"{name}: min angle {r['min_angle']:.2f} degrees, below "
+                            f"{expected['min_angle_degrees']}")
+        if r["folds"] != 0:
+            problems.append(f"{name}: {r['folds']} folded triangles in the in-betweens")
+    return problems
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__)
+    ap.add_argument("--bake", required=True)
+    ap.add_argument("--cache", default=os.path.join(ROOT, "build", "game-art"))
+    ap.add_argument("--table")
+    ap.add_argument("--check", action="store_true")
+    ap.add_argument("names", nargs="*")
+    args = ap.parse_args()
+    with open(os.path.join(CORPUS, "characters.json")) as f:
+        characters = json.load(f)["characters"]
+    if args.names:
+        characters = [c for c in characters if c["name"] in args.names]
+    out_dir = os.path.join(args.cache, "rigs")
+    os.makedirs(out_dir, exist_ok=True)
+    rows = [bake(os.path.abspath(args.bake), c, args.cache, out_dir) for c in characters]
+    text = table(rows)
+    print(text)
+    for r in rows:
+        for w in r.get("warnings", []):
+            print(f"{r['name']}: {w}")
+    if args.table:
+        with open(args.table, "w") as f:
+            f.write(text + "\n")
+    if args.check:
+        with open(os.path.join(CORPUS, "expected.json")) as f:
+            expected = json.load(f)
+        problems = check(rows, expected)
+        for p in problems:
+            print("game-art: " + p)
+        if problems:
+            return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
