@@ -183,3 +183,80 @@ TEST_CASE("posemorph-bake outline: one picture per drawn pose, drawn from what t
   CHECK(err.find("is not a folder") != std::string::npos);
   fs::remove_all(out_dir);
 }
+
+TEST_CASE("sprites: a drop shadow is left out of the mesh with a warning in drawing pixels, the fringe still covered") {
+  // slime-shadow: the slime over a dark ellipse of 40% alpha, larger than
+  // the slime and offset to the right, touching its base.
+  const std::string dir = SpriteDir("slime-shadow");
+  REQUIRE_MESSAGE(std::filesystem::exists(dir + "/slime-shadow.json"), "the build rasterises the sprites");
+  const pb::RigDescription rig = pb::ReadRigDescription(dir + "/slime-shadow.json");
+  CHECK(rig.mapping.drop_shadows);  // the default
+  {
+    const std::string base = R"({"posemorph": 1, "poses": [
+        {"name": "a", "point": [0, 0], "outline": [[0, 0], [1, 0], [0, 1]], "landmarks": [[0, 0]]},
+        {"name": "b", "point": [1, 0], "outline": [[0, 0], [2, 0], [0, 1]], "landmarks": [[0, 0]]}], "mapping": )";
+    CHECK(!pb::ParseRigDescription(base + R"({"drop_shadows": false}})", "r.json", ".").mapping.drop_shadows);
+    CHECK_THROWS_WITH_AS(pb::ParseRigDescription(base + R"({"drop_shadows": "yes"}})", "r.json", "."),
+                         "r.json: mapping.drop_shadows: expected true or false", pb::BakeError);
+  }
+  pb::BakeReport report;
+  REQUIRE_NOTHROW(pb::BakeRig(rig, &report));
+  std::size_t said = 0;
+  for (const std::string& w : report.mapping.warnings)
+    said += w.find("is taken as its drop shadow and left out of the mesh") != std::string::npos;
+  CHECK(said == 4);  // one line per drawing
+  REQUIRE(!report.mapping.warnings.empty());
+  CHECK(report.mapping.warnings[0].find("rest.png: a dark, semi-transparent region of ") != std::string::npos);
+  CHECK(report.mapping.warnings[0].find(") in the drawing (mean alpha 0.3") != std::string::npos);
+  CHECK(report.inbetweens.FoldsInHull() == 0);
+
+  for (const std::string pose : {"rest", "squash", "stretch", "lean"}) {
+    CAPTURE(pose);
+    const std::string png = dir + "/" + pose + ".png";
+    const pb::ErrorSource source(png);
+    const pb::mapping::ImageOutline without = pb::mapping::OutlineFromPng(png, 0.05, source, false, true);
+    const pb::mapping::ImageOutline with = pb::mapping::OutlineFromPng(png, 0.05, source, false, false);
+    double bottom_without = 0, bottom_with = 0, right_without = 0, right_with = 0;
+    for (const Point& p : without.outline)
+      bottom_without = std::max(bottom_without, p.y()), right_without = std::max(right_without, p.x());
+    for (const Point& p : with.outline)
+      bottom_with = std::max(bottom_with, p.y()), right_with = std::max(right_with, p.x());
+    // The slime's base is at y = 31 (its stroke to 31.5); the shadow reaches 35.5 and x 39.
+    CHECK(bottom_without < 32.5);
+    CHECK(bottom_with > 34.5);
+    CHECK(right_without < right_with - 3);
+    CHECK(without.shadow_pixels > 80);
+    CHECK(with.shadow_pixels == 0);
+    // Every pixel of alpha >= 0.05 that is not the shadow's has its centre
+    // inside the traced outline (or on it): the fringe is still meshed.
+    int W = 0, H = 0;
+    const std::vector<unsigned char> rgba = pb::mapping::ReadPngRgba(png, &W, &H, source);
+    std::vector<unsigned char> shadow;
+    pb::mapping::ImageOutline found;
+    pb::mapping::FindDropShadow(rgba.data(), W, H, 0.05, shadow, found);
+    CHECK(found.shadow_pixels == without.shadow_pixels);
+    const std::vector<Point>& o = without.outline;
+    auto inside = [&](const Point& q) {
+      bool in = false;
+      for (std::size_t i = 0, j = o.size() - 1; i < o.size(); j = i++) {
+        const Point &a = o[j], &b = o[i];
+        const Point d = b - a;
+        const double t = std::clamp((q - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+        if ((a + t * d - q).norm() < 0.01) return true;  // on the outline
+        if ((a.y() > q.y()) != (b.y() > q.y()) && q.x() < a.x() + (q.y() - a.y()) * d.x() / d.y()) in = !in;
+      }
+      return in;
+    };
+    std::size_t uncovered = 0, shape = 0;
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        const std::size_t i = std::size_t(y) * W + x;
+        if (rgba[4 * i + 3] < 13 || shadow[i]) continue;
+        ++shape;
+        uncovered += !inside(Point(x + 0.5, y + 0.5));
+      }
+    MESSAGE(pose << ": " << without.shadow_pixels << " shadow pixels left out, " << shape << " pixels of the slime, "
+                 << uncovered << " of them outside the outline");
+    CHECK(uncovered == 0);
+  }
+}

@@ -134,11 +134,11 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
     for (std::size_t g = 0; g < root["glue"].size(); ++g)
       WarnUnknownKeys(root["glue"][g], "glue[" + std::to_string(g) + "]", {"part", "to", "at"}, file, warnings);
   if (root.contains("mapping"))
-    WarnUnknownKeys(
-        root["mapping"], "mapping",
-        {"simplify_tolerance", "max_edge_length", "min_angle", "alpha_threshold", "curve_tolerance", "spacing",
-         "landmark_distance", "max_steiner_points", "max_vertices", "align_interiors", "align_rigidity"},
-        file, warnings);
+    WarnUnknownKeys(root["mapping"], "mapping",
+                    {"simplify_tolerance", "max_edge_length", "min_angle", "alpha_threshold", "curve_tolerance",
+                     "spacing", "landmark_distance", "max_steiner_points", "max_vertices", "align_interiors",
+                     "align_rigidity", "drop_shadows"},
+                    file, warnings);
   if (root.contains("bake"))
     WarnUnknownKeys(
         root["bake"], "bake",
@@ -334,6 +334,10 @@ void ParseMapping(const Reader& r, const json& m, MappingParameters* parameters)
   if (p.spacing > 0 && p.spacing < 1e-6) r.Fail("mapping.spacing", "must be 0 (automatic) or in [1e-6, 1e9]");
   number("landmark_distance", p.landmark_distance, 0, 1, "[0, 1]");
   number("align_rigidity", p.align_rigidity, 1e-6, 1e6, "[1e-6, 1e6]");
+  if (m.contains("drop_shadows")) {
+    if (!m["drop_shadows"].is_boolean()) r.Fail("mapping.drop_shadows", "expected true or false");
+    p.drop_shadows = m["drop_shadows"].get<bool>();
+  }
   if (m.contains("align_interiors")) {
     if (!m["align_interiors"].is_boolean()) r.Fail("mapping.align_interiors", "expected true or false");
     p.align_interiors = m["align_interiors"].get<bool>();
@@ -361,6 +365,7 @@ void ParseBakeParameters(const Reader& r, const json& b, BakeParameters* paramet
     // 256 bakes within 1 GB (the snake: 690 MB, 6 s; 384 took 1.75 GB, 18 s).
     if (v < 2 || v > 256) r.Fail("bake.grid_resolution", "must be in 2..256 (finer grids need more than 1 GB to bake)");
     p.grid_resolution = int(v);
+    p.grid_resolution_given = true;
   }
   if (b.contains("margin")) p.margin = r.Number(b["margin"], "bake.margin");
   if (b.contains("epsilon")) p.epsilon = r.Number(b["epsilon"], "bake.epsilon");

@@ -64,9 +64,13 @@ json PathJson(const PathDescription& path) {
           {"keys", path.keys}};
 }
 
-json BakeJson(const BakeParameters& p) {
+json BakeJson(const BakeParameters& p, std::size_t poses) {
   const BakeParameters d;
-  json j = {{"grid_resolution", p.grid_resolution}, {"margin", p.margin}, {"epsilon", p.epsilon}, {"sigma", p.sigma}};
+  json j = {{"margin", p.margin}, {"epsilon", p.epsilon}, {"sigma", p.sigma}};
+  // Written as it applies, except for two poses left at the default: the
+  // bake chooses that one by the pose count (GridResolution).
+  if (p.grid_resolution_given || GridResolution(p, poses) == p.grid_resolution)
+    j["grid_resolution"] = p.grid_resolution;
   if (p.compact != d.compact) j["precision"] = p.compact ? "compact" : "exact";
   if (p.max_error_px != d.max_error_px) j["max_error"] = p.max_error_px;
   if (p.pixels_per_unit != d.pixels_per_unit) j["pixels_per_unit"] = p.pixels_per_unit;
@@ -91,6 +95,7 @@ json MappingJson(const MappingParameters& p) {
   put("max_steiner_points", p.max_steiner_points, d.max_steiner_points);
   put("max_vertices", p.max_vertices, d.max_vertices);
   put("align_interiors", p.align_interiors, d.align_interiors);
+  put("drop_shadows", p.drop_shadows, d.drop_shadows);
   put("align_rigidity", p.align_rigidity, d.align_rigidity);
   return j.empty() ? json() : j;
 }
@@ -125,7 +130,7 @@ std::string RigDescriptionText(const RigDescription& rig) {
   for (const PoseDescription& pose : rig.poses) poses.push_back(PoseJson(pose));
   root["poses"] = std::move(poses);
   if (json mapping = MappingJson(rig.mapping); !mapping.is_null()) root["mapping"] = std::move(mapping);
-  root["bake"] = BakeJson(rig.parameters);
+  root["bake"] = BakeJson(rig.parameters, rig.poses.size());
   json paths = json::array();
   for (const PathDescription& path : rig.paths) paths.push_back(PathJson(path));
   root["paths"] = std::move(paths);

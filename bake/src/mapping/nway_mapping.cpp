@@ -335,7 +335,16 @@ void ReadDrawnOutline(const RigDescription& rig, const MappingParameters& prm, D
       d.landmarks = pose.landmarks;
     } else if (png) {
       mapping::ImageOutline io =
-          mapping::OutlineFromPng(pose.drawing_path, prm.alpha_threshold, source, prm.fill_notches);
+          mapping::OutlineFromPng(pose.drawing_path, prm.alpha_threshold, source, prm.fill_notches, prm.drop_shadows);
+      if (io.shadow_pixels > 0)
+        report.warnings.push_back(rig.file + ": " + PoseLabel(pose.name, d.index) + ": " + pose.drawing_path +
+                                  ": a dark, semi-transparent region of " + std::to_string(io.shadow_pixels) +
+                                  " pixels from (" + std::to_string(io.shadow_x0) + ", " +
+                                  std::to_string(io.shadow_y0) + ") to (" + std::to_string(io.shadow_x1) + ", " +
+                                  std::to_string(io.shadow_y1) + ") in the drawing (mean alpha " +
+                                  Format(io.shadow_alpha) +
+                                  ") is taken as its drop shadow and left out of the mesh, so it is not drawn "
+                                  "(mapping.drop_shadows: false keeps it)");
       report.filled_notch_corners += io.filled_notch_corners;
       if (io.dropped_components > 0)
         report.warnings.push_back(rig.file + ": " + PoseLabel(pose.name, d.index) + ": " + pose.drawing_path +

@@ -67,6 +67,11 @@ struct MappingParameters {
   // PNG: alpha at or above this is the shape. Low, so the mesh encloses the
   // anti-aliased fringe: the drawing's own alpha draws the silhouette.
   double alpha_threshold = 0.05;
+  // PNG: a large dark, semi-transparent region beside or under the shape
+  // (mapping/outline_image.h, FindDropShadow) is its drop shadow, left out
+  // of the mesh with a warning (so it is not drawn); false traces it as part
+  // of the shape, as before.
+  bool drop_shadows = true;
   double curve_tolerance = 0.25;    // SVG: curve flattening, drawing units
   double spacing = 0;               // between matched boundary samples
   double landmark_distance = 0.05;  // a landmark may lie this far off its outline, times the outline's size
@@ -93,8 +98,15 @@ struct PathDescription {
 };
 
 struct BakeParameters {
-  int grid_resolution = 64;  // cells along the longer side of the pose-space domain
-  double margin = 1.0;       // domain = points' bounding box grown by margin x its larger side
+  // Cells along the longer side of the pose-space domain. Unless the
+  // description gives it (grid_resolution_given) or code changed it, a rig of two poses takes
+  // kTwoPoseGridResolution: its weights are linear along the poses'
+  // segment on any grid (the thin-plate spline of two points is), so a finer
+  // grid only costs bytes (a 64-cell grid was a third of a 60-pixel sprite's
+  // rig). GridResolution() says which applies.
+  int grid_resolution = 64;
+  bool grid_resolution_given = false;
+  double margin = 1.0;  // domain = points' bounding box grown by margin x its larger side
   // Weight of the gradient term relative to the biharmonic one; the field
   // levels out beyond about spread * sqrt(3 / epsilon) from the points.
   double epsilon = 3.0;
@@ -112,6 +124,12 @@ struct BakeParameters {
   // folds are allowed (then they are warnings).
   bool allow_folds = false;
 };
+constexpr int kTwoPoseGridResolution = 16;
+// The grid resolution a bake of `poses` poses uses with these parameters.
+inline int GridResolution(const BakeParameters& p, std::size_t poses) {
+  const bool as_default = !p.grid_resolution_given && p.grid_resolution == BakeParameters{}.grid_resolution;
+  return as_default && poses == 2 ? kTwoPoseGridResolution : p.grid_resolution;
+}
 
 // A part of a layered character (bake/RIG_DESCRIPTION.md, "parts"): its own
 // mesh or drawings in every pose, drawn in order.

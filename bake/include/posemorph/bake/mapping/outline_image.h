@@ -18,7 +18,24 @@ struct ImageOutline {
   std::size_t shape_pixels = 0;            // every pixel at or above the threshold, before anything is dropped
   std::size_t filled_hole_pixels = 0;
   std::size_t filled_notch_corners = 0;  // with fill_notches: corners of thin notches filled
+  // A drop shadow found and left out (OutlineFromPng with drop_shadows):
+  // pixels, their box in the drawing's pixels and their mean alpha (0-1).
+  std::size_t shadow_pixels = 0;
+  int shadow_x0 = 0, shadow_y0 = 0, shadow_x1 = 0, shadow_y1 = 0;
+  double shadow_alpha = 0;
 };
+
+// A drop shadow in straight-alpha RGBA: the pixels of every 4-connected
+// region of dark (luminance <= 0.3), semi-transparent pixels (alpha under
+// 0.7, at or above `threshold`) that lies more than 2 pixels from the
+// drawing's solid pixels (alpha >= 0.7) and covers at least 3% of their
+// count (and 12 pixels), grown into that 2-pixel band through the dark
+// pixels there no more opaque than its mean alpha + 0.25; only when the drawing has 16 solid
+// pixels or more (a drawing that is all soft has no shadow to tell apart).
+// Marks them in `shadow` (one byte per pixel) and returns their count; the
+// report's shadow fields describe them.
+std::size_t FindDropShadow(const unsigned char* rgba, int width, int height, double threshold,
+                           std::vector<unsigned char>& shadow, ImageOutline& report);
 // PNG with alpha: pixels with alpha >= threshold form the shape; the largest
 // 4-connected component is kept, holes filled, diagonal pinches closed, and
 // the outline traced where alpha crosses the threshold (marching squares,
@@ -30,6 +47,10 @@ struct ImageOutline {
 ImageOutline OutlineFromPng(const std::string& path, double alpha_threshold);
 ImageOutline OutlineFromPng(const std::string& path, double alpha_threshold, const ErrorSource& source,
                             bool fill_notches = false);
+// The same with a drop shadow (FindDropShadow) left out of the shape when
+// drop_shadows is set: its pixels count as transparent for the tracing.
+ImageOutline OutlineFromPng(const std::string& path, double alpha_threshold, const ErrorSource& source,
+                            bool fill_notches, bool drop_shadows);
 // The same from a PNG already in memory (`source` names it in messages).
 ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double alpha_threshold,
                                  const ErrorSource& source);
