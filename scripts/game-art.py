@@ -14,7 +14,7 @@
 # writes the same table as Markdown (docs/game-art.md is made by it).
 # --check fails when a character listed as baking in
 # tests/game-art/expected.json no longer bakes, or a baked rig breaks one of
-# its bounds (min angle, vertices per outline pixel, rig/PNG ratio, a
+# its bounds (min angle, no fold, rig/PNG ratio for sprites under 128 px, a
 # failure's time). A registry that cannot be reached skips the run with a
 # line saying so (exit 77, ctest's skip).
 import argparse
@@ -79,12 +79,17 @@ def bake(binary, character, cache, out_dir):
         for pose in part["poses"]:
             drawings.add(pose["drawing"])
     png_bytes = sum(os.path.getsize(os.path.join(folder, d)) for d in drawings)
+    side = 0  # the longest side of any drawing (the PNG header's width and height)
+    for d in drawings:
+        with open(os.path.join(folder, d), "rb") as f:
+            header = f.read(24)
+        side = max(side, int.from_bytes(header[16:20], "big"), int.from_bytes(header[20:24], "big"))
     rig = os.path.join(out_dir, name + ".pmrig")
     start = time.monotonic()
     r = subprocess.run([binary, json_path, "-o", rig], capture_output=True, text=True)
     seconds = time.monotonic() - start
     row = {"name": name, "package": character["package"], "traits": character["traits"], "seconds": seconds,
-           "png_bytes": png_bytes, "baked": r.returncode == 0, "poses": len(description.get("poses", []))}
+           "png_bytes": png_bytes, "side": side, "baked": r.returncode == 0, "poses": len(description.get("poses", []))}
     out = r.stdout + r.stderr
     if r.returncode != 0:
         # The first line, with the unpacked package's folder left out.
@@ -138,6 +143,10 @@ def check(rows, expected):
         if r["min_angle"] < expected["min_angle_degrees"]:
             problems.append(f"{name}: min angle {r['min_angle']:.2f} degrees, below "
                             f"{expected['min_angle_degrees']}")
+        small = expected["small_sprite_pixels"]
+        if r["side"] < small and r["rig_bytes"] > expected["max_rig_to_png"] * r["png_bytes"]:
+            problems.append(f"{name}: the rig is {r['rig_bytes']} bytes, over {expected['max_rig_to_png']}x its "
+                            f"drawings' {r['png_bytes']} PNG bytes (a sprite under {small} px)")
         if r["folds"] != 0:
             problems.append(f"{name}: {r['folds']} folded triangles in the in-betweens")
     return problems
