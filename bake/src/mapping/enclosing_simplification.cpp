@@ -216,7 +216,11 @@ class Simplifier {
   // its span. Returns the edges no push could make enclose their span (an
   // outline tip between two points whose normals point past it, as a
   // pixel-art hand one pixel wide makes): empty when every edge does.
-  std::vector<std::size_t> EncloseOutline(std::size_t i) {
+  // Careful (after a first failure): an edge that encloses its span but
+  // crosses the outline elsewhere is not pushed farther (that only made it
+  // cross more, across a narrow gap); its ends move back to their share of
+  // the push instead.
+  std::vector<std::size_t> EncloseOutline(std::size_t i, bool careful = false) {
     const std::vector<Polygon>& outlines = outlines_;
     const CorrespondedBoundary& boundary = boundary_;
     PoseState& s = st[i];
@@ -249,8 +253,12 @@ class Simplifier {
       std::vector<std::size_t> failing;
       for (std::size_t e = 0; e < M; ++e) {
         const std::size_t f = (e + 1) % M;
-        if (!SpanInside(s, e, f, s.pos[e], s.pos[f]) || s.edges->Crosses(s.pos[e], s.pos[f])) {
-          offset[e] = offset[e] * 1.5 + 2.0;
+        const bool inside = SpanInside(s, e, f, s.pos[e], s.pos[f]);
+        if (!inside || s.edges->Crosses(s.pos[e], s.pos[f])) {
+          if (careful && inside)
+            offset[e] = std::max(2.0, offset[e] * 0.5);
+          else
+            offset[e] = offset[e] * 1.5 + 2.0;
           failing.push_back(e);
         }
       }
@@ -519,7 +527,7 @@ SimplifiedBoundary SimplifyEnclosing(const std::vector<Polygon>& outlines, const
     Simplifier simplifier(outlines, refined, tolerance);
     bool enclosed = true;
     for (std::size_t i = 0; i < outlines.size() && enclosed; ++i) {
-      const std::vector<std::size_t> failing = simplifier.EncloseOutline(i);
+      const std::vector<std::size_t> failing = simplifier.EncloseOutline(i, round > 0);
       if (failing.empty()) continue;
       // The first failure also splits every span far from its chord, in
       // every pose (a bake that encloses at once keeps its points).
