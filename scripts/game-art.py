@@ -133,6 +133,11 @@ def check(rows, expected):
     problems = []
     for r in rows:
         name = r["name"]
+        # A known gap holds the character to what it reaches today instead.
+        gap = expected.get("known_gaps", {}).get(name, {})
+        bound = dict(expected, **gap)
+        for key, value in gap.items():
+            print(f"game-art: known gap: {name}: {key} {value} (the bound is {expected[key]})")
         if name in expected["bakes"] and not r["baked"]:
             problems.append(f"{name}: no longer bakes with default settings: {r['error']}")
         if not r["baked"]:
@@ -140,12 +145,12 @@ def check(rows, expected):
                 problems.append(f"{name}: the failing bake took {r['seconds']:.1f} s (the bound is "
                                 f"{expected['max_failure_seconds']} s)")
             continue
-        if r["min_angle"] < expected["min_angle_degrees"]:
+        if r["min_angle"] < bound["min_angle_degrees"]:
             problems.append(f"{name}: min angle {r['min_angle']:.2f} degrees, below "
-                            f"{expected['min_angle_degrees']}")
+                            f"{bound['min_angle_degrees']}")
         small = expected["small_sprite_pixels"]
-        if r["side"] < small and r["rig_bytes"] > expected["max_rig_to_png"] * r["png_bytes"]:
-            problems.append(f"{name}: the rig is {r['rig_bytes']} bytes, over {expected['max_rig_to_png']}x its "
+        if r["side"] < small and r["rig_bytes"] > bound["max_rig_to_png"] * r["png_bytes"]:
+            problems.append(f"{name}: the rig is {r['rig_bytes']} bytes, over {bound['max_rig_to_png']}x its "
                             f"drawings' {r['png_bytes']} PNG bytes (a sprite under {small} px)")
         if r["folds"] != 0:
             problems.append(f"{name}: {r['folds']} folded triangles in the in-betweens")
