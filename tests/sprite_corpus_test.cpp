@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <unistd.h>
 
@@ -259,4 +260,22 @@ TEST_CASE("sprites: a drop shadow is left out of the mesh with a warning in draw
                  << uncovered << " of them outside the outline");
     CHECK(uncovered == 0);
   }
+}
+
+TEST_CASE("sprites: a band pixel two drop shadows reach is counted once") {
+  // The fuzzer's finding (tests/fuzz/corpus/png_outline/): random RGBA of
+  // 64 x 64 in which two shadow regions grow into one band pixel; it was
+  // counted in both, so the count disagreed with the pixels marked.
+  std::ifstream f(std::string(POSEMORPH_SOURCE_DIR) + "/tests/fuzz/corpus/png_outline/shadow-band-pixel-of-two-regions",
+                  std::ios::binary);
+  const std::vector<unsigned char> data((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  REQUIRE(data.size() > 3);
+  const int w = data[1] % 64 + 1, h = data[2] % 64 + 1;  // as the harness reads it
+  std::vector<unsigned char> rgba(std::size_t(w) * h * 4, 0), shadow;
+  for (std::size_t i = 0; i < rgba.size() && 3 + i < data.size(); ++i) rgba[i] = data[3 + i];
+  pb::mapping::ImageOutline found;
+  const std::size_t marked = pb::mapping::FindDropShadow(rgba.data(), w, h, 0.05, shadow, found);
+  CHECK(marked > 0);
+  CHECK(std::size_t(std::count(shadow.begin(), shadow.end(), 1)) == marked);
+  CHECK(found.shadow_pixels == marked);
 }

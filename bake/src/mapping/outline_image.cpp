@@ -391,7 +391,8 @@ std::size_t FindDropShadow(const unsigned char* rgba, int width, int height, dou
       for (int k = 0; k < 4; ++k) {
         if (nx[k] < 0 || ny[k] < 0 || nx[k] >= width || ny[k] >= height) continue;
         const std::size_t j = std::size_t(ny[k]) * width + nx[k];
-        if (region[j] == regions || !near[j] || !soft_dark(j) || rgba[4 * j + 3] > mean + 0.25 * 255) continue;
+        // Unclaimed only: a band pixel two shadows reach belongs to the first.
+        if (region[j] != 0 || !near[j] || !soft_dark(j) || rgba[4 * j + 3] > mean + 0.25 * 255) continue;
         region[j] = regions;
         members.push_back(j);
         sum += rgba[4 * j + 3];
