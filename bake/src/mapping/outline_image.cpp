@@ -274,7 +274,10 @@ constexpr double kNotchWidth = 1.0 / 16;
 Polygon FillNotches(const Polygon& loop) {
   std::vector<Point> p = loop;
   const double orientation = SignedArea(p) > 0 ? 1.0 : -1.0;
-  for (bool removed = true; removed && p.size() > 4;) {
+  // Each pass fills what the last uncovered; 64 bound the work on any
+  // input (a notch a pixel wide is gone in two or three).
+  bool removed = true;
+  for (int pass = 0; pass < 64 && removed && p.size() > 4; ++pass) {
     removed = false;
     std::vector<Point> kept;
     kept.reserve(p.size());
