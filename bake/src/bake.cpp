@@ -185,16 +185,6 @@ constexpr FoldRetry kFoldRetries[] = {{2, 1, false, "matched-sample spacing x2"}
                                       {1, 1.5, true, "thin notches filled, longest edge x1.5"},
                                       {2, 1.5, true, "thin notches filled, spacing x2, longest edge x1.5"}};
 
-// Whether some pose's outline is traced from a PNG drawing (or a part's may be).
-bool TracesPng(const RigDescription& description) {
-  if (!description.parts.empty()) return true;
-  for (const PoseDescription& pose : description.poses) {
-    const std::string& d = pose.drawing;
-    if (d.size() > 4 && d.compare(d.size() - 4, 4, ".png") == 0) return true;
-  }
-  return false;
-}
-
 // The first variant's bake whose in-betweens do not fold in the hull, with
 // *tried set to its place in kFoldRetries + 1; nothing when none does (a
 // variant that cannot be baked at all is passed over).
@@ -204,7 +194,7 @@ std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, i
     variant.mapping.spacing_scale = kFoldRetries[k].spacing_scale;
     variant.mapping.edge_scale = kFoldRetries[k].edge_scale;
     if (kFoldRetries[k].fill_notches) {
-      if (!TracesPng(description)) continue;  // nothing is traced from a PNG: the same mapping again
+      if (!TracesPngOutline(description)) continue;  // nothing is traced from a PNG: the same mapping again
       variant.mapping.fill_notches = true;
     }
     std::optional<Attempt> again;

@@ -541,13 +541,6 @@ std::vector<std::string> SpinningWarnings(const RigDescription& rig, const std::
   return warnings;
 }
 
-// Whether any drawn pose is traced from a PNG (whose notches can be filled).
-bool HasPngDrawing(const RigDescription& rig) {
-  for (const PoseDescription& pose : rig.poses)
-    if (pose.drawn && pose.vertices.empty() && EndsWith(pose.drawing, ".png")) return true;
-  return false;
-}
-
 MappedDrawings MapDrawingsAsTraced(const RigDescription& rig);
 
 }  // namespace
@@ -560,7 +553,7 @@ MappedDrawings MapDrawings(const RigDescription& rig) {
   try {
     return MapDrawingsAsTraced(rig);
   } catch (const BakeError& first) {
-    if (rig.mapping.fill_notches || !HasPngDrawing(rig)) throw;
+    if (rig.mapping.fill_notches || !TracesPngOutline(rig)) throw;
     RigDescription filled = rig;
     filled.mapping.fill_notches = true;
     try {
@@ -617,6 +610,13 @@ MappedDrawings MapDrawingsAsTraced(const RigDescription& rig) {
 }
 
 }  // namespace
+
+bool TracesPngOutline(const RigDescription& rig) {
+  if (!rig.parts.empty()) return true;  // a part's poses may be
+  for (const PoseDescription& pose : rig.poses)
+    if (pose.drawn && pose.vertices.empty() && EndsWith(pose.drawing, ".png")) return true;
+  return false;
+}
 
 DrawnOutlines TraceDrawings(const RigDescription& rig) {
   DrawnOutlines result;

@@ -56,6 +56,9 @@ struct MappedDrawings {
 // no vertices. Returns nothing mapped when no pose is drawn. Throws BakeError
 // naming the file, the pose and the problem.
 MappedDrawings MapDrawings(const RigDescription& description);
+// Whether some outline is traced from a PNG drawing (or, with parts, may
+// be): what filling thin notches (mapping.fill_notches) can change.
+bool TracesPngOutline(const RigDescription& description);
 
 // What the mapping sees in one drawn pose, in that drawing's coordinates
 // (drawing units, y down, before the pose's origin is applied): for
