@@ -3,6 +3,8 @@
 #include "commands.h"
 
 #include <algorithm>
+#include <iomanip>
+#include <sstream>
 
 #include "command_args.h"
 #include "posemorph/bake/bake.h"
@@ -39,14 +41,22 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   if (args.switches.count("--no-align")) rig.mapping.align_interiors = false;
   BakeReport report;
   rig.rig_file = output;
+  // A coarser grid chosen for a small sprite says so, with its bound.
+  auto GridNote = [](const BakeReport& r) {
+    std::ostringstream s;
+    if (r.grid_coarsened)
+      s << " (coarser for a small sprite: vertices within " << std::setprecision(2) << r.grid_move_px
+        << " px of the default grid's)";
+    return s.str();
+  };
   const std::vector<unsigned char> bytes = BakeRig(rig, &report);
   BakeStage writing("writing the output");
   WriteFileAtomic(output, bytes);
   out << "baked " << args.positional << " -> " << output << ": " << report.vertices << " vertices, " << report.triangles
       << " triangles, " << report.poses << " poses, " << report.paths << " paths, " << report.bytes << " bytes, "
-      << "nnz(L) " << report.factor_nonzeros << ", grid " << report.grid_cells_x << "x" << report.grid_cells_y << ", "
-      << report.seconds * 1e3 << " ms; max pose reproduction error " << report.max_reproduction_error
-      << " of the rig size\n";
+      << "nnz(L) " << report.factor_nonzeros << ", grid " << report.grid_cells_x << "x" << report.grid_cells_y
+      << GridNote(report) << ", " << report.seconds * 1e3 << " ms; max pose reproduction error "
+      << report.max_reproduction_error << " of the rig size\n";
   if (!report.parts.empty()) {
     bool changes = false;
     for (const MeshPart& part : report.parts)

@@ -16,6 +16,7 @@
 #include "posemorph/bake/bake_channels.h"
 #include "posemorph/bake/deform_poses.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/grid_resolution.h"
 #include "posemorph/bake/join_parts.h"
 #include "posemorph/bake/map_drawings.h"
 #include "posemorph/bake/mapping/outline_image.h"
@@ -113,6 +114,8 @@ struct Attempt {
   PoseMeshes meshes;
   std::uint64_t factor_nonzeros = 0, matrix_nonzeros = 0;
   int grid_cells_x = 0, grid_cells_y = 0;
+  bool grid_coarsened = false;  // a coarser grid than the default (grid_resolution.h)
+  double grid_move_px = 0;      // and its estimate
   std::vector<unsigned char> exact, bytes;
   CompactSettings compact_settings;
   CompactReport compact;
@@ -149,10 +152,15 @@ Attempt BakeOnce(const RigDescription& description) {
   std::vector<Eigen::Vector2d> points;
   std::vector<std::string> names;
   for (const PoseMesh& p : meshes.poses) points.push_back(p.point), names.push_back(p.name);
-  const WeightGrid grid = SolvePoseSpaceWeights(points, names, description.parameters, file, &a.weight_warnings);
+  a.compact_settings = CompactSettingsFor(description.parameters, meshes);
+  BakeParameters weight_parameters = description.parameters;
+  weight_parameters.grid_resolution =
+      ChooseGridResolution(points, names, description.parameters, file, meshes, a.compact_settings.pixels_per_unit,
+                           &a.grid_coarsened, &a.grid_move_px);
+  weight_parameters.grid_resolution_given = true;
+  const WeightGrid grid = SolvePoseSpaceWeights(points, names, weight_parameters, file, &a.weight_warnings);
   BakeStage write_stage("writing and encoding the rig");
   a.exact = SerialiseRig(description, meshes, analysis, system, grid);
-  a.compact_settings = CompactSettingsFor(description.parameters, meshes);
   a.bytes = description.parameters.compact ? CompactRig(a.exact, a.compact_settings, file, &a.compact) : a.exact;
   a.is_compact = description.parameters.compact && !a.compact.fell_back;
   BakeStage check_stage("checking the baked rig");
@@ -247,6 +255,8 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
     r.matrix_nonzeros = a.matrix_nonzeros;
     r.grid_cells_x = std::uint32_t(a.grid_cells_x);
     r.grid_cells_y = std::uint32_t(a.grid_cells_y);
+    r.grid_coarsened = a.grid_coarsened;
+    r.grid_move_px = a.grid_move_px;
     r.bytes = a.bytes.size();
     r.max_reproduction_error = a.written.max_error;
     r.compact = a.is_compact;

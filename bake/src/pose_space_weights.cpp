@@ -32,7 +32,7 @@ WeightGrid CoveringGrid(const std::vector<Eigen::Vector2d>& points, const BakePa
   const Eigen::Vector2d hi = box.max().array() + params.margin * spread;
   const Eigen::Vector2d size = (hi - lo).cwiseMax(1e-9 * spread);
   WeightGrid g;
-  g.cell = size.maxCoeff() / GridResolution(params, points.size());
+  g.cell = size.maxCoeff() / params.grid_resolution;
   g.cells_x = std::max<std::uint32_t>(1, std::uint32_t(std::ceil(size.x() / g.cell - 1e-9)));
   g.cells_y = std::max<std::uint32_t>(1, std::uint32_t(std::ceil(size.y() / g.cell - 1e-9)));
   const Eigen::Vector2d center = 0.5 * (lo + hi);
@@ -170,19 +170,19 @@ WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, con
     if (cell_owner[loc.cell] != std::uint32_t(-1))
       throw BakeError(file, "pose points '" + names[cell_owner[loc.cell]] + "' and '" + names[i] +
                                 "' fall in one pose-space grid cell; raise bake.grid_resolution (now " +
-                                std::to_string(GridResolution(params, points.size())) + ") or move them apart");
+                                std::to_string(params.grid_resolution) + ") or move them apart");
     cell_owner[loc.cell] = std::uint32_t(i);
   }
   for (std::size_t i = 0; warnings && i < N; ++i)
     for (std::size_t j = i + 1; j < N; ++j) {
       const double apart = (points[i] - points[j]).norm() / g.cell;
       if (apart >= 2) continue;
-      const int needed = std::min(256, int(std::ceil(GridResolution(params, points.size()) * 2 / apart)));
+      const int needed = std::min(256, int(std::ceil(params.grid_resolution * 2 / apart)));
       std::ostringstream s;
       s.precision(2);
       s << file << ": pose points '" << names[i] << "' and '" << names[j] << "' are " << std::fixed << apart
         << " pose-space grid cells apart: the weights between them are interpolated coarsely; bake.grid_resolution "
-        << needed << " (now " << GridResolution(params, points.size()) << ") puts them two cells apart";
+        << needed << " (now " << params.grid_resolution << ") puts them two cells apart";
       warnings->push_back(s.str());
     }
 
@@ -238,8 +238,8 @@ WeightGrid SolvePoseSpaceWeights(const std::vector<Eigen::Vector2d>& points, con
       std::ostringstream s;
       s << "the pose-space weights cannot be solved for these pose points (" << symptom << "): " << N << " points on a "
         << g.cells_x << " x " << g.cells_y << " grid of cell size " << g.cell
-        << "; move points that nearly coincide apart, or change bake.grid_resolution (now "
-        << GridResolution(params, points.size()) << ")";
+        << "; move points that nearly coincide apart, or change bake.grid_resolution (now " << params.grid_resolution
+        << ")";
       return BakeError(file, s.str());
     };
     if (ldlt.info() != Eigen::Success) throw layout_problem("the factorisation failed");

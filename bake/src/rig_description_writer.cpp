@@ -64,13 +64,12 @@ json PathJson(const PathDescription& path) {
           {"keys", path.keys}};
 }
 
-json BakeJson(const BakeParameters& p, std::size_t poses) {
+json BakeJson(const BakeParameters& p) {
   const BakeParameters d;
   json j = {{"margin", p.margin}, {"epsilon", p.epsilon}, {"sigma", p.sigma}};
-  // Written as it applies, except for two poses left at the default: the
-  // bake chooses that one by the pose count (GridResolution).
-  if (p.grid_resolution_given || GridResolution(p, poses) == p.grid_resolution)
-    j["grid_resolution"] = p.grid_resolution;
+  // Written when given (or changed): left out, the bake chooses it for the
+  // sprite (grid_resolution.h), as it did for the description read.
+  if (p.grid_resolution_given || p.grid_resolution != d.grid_resolution) j["grid_resolution"] = p.grid_resolution;
   if (p.compact != d.compact) j["precision"] = p.compact ? "compact" : "exact";
   if (p.max_error_px != d.max_error_px) j["max_error"] = p.max_error_px;
   if (p.pixels_per_unit != d.pixels_per_unit) j["pixels_per_unit"] = p.pixels_per_unit;
@@ -130,7 +129,7 @@ std::string RigDescriptionText(const RigDescription& rig) {
   for (const PoseDescription& pose : rig.poses) poses.push_back(PoseJson(pose));
   root["poses"] = std::move(poses);
   if (json mapping = MappingJson(rig.mapping); !mapping.is_null()) root["mapping"] = std::move(mapping);
-  root["bake"] = BakeJson(rig.parameters, rig.poses.size());
+  root["bake"] = BakeJson(rig.parameters);
   json paths = json::array();
   for (const PathDescription& path : rig.paths) paths.push_back(PathJson(path));
   root["paths"] = std::move(paths);

@@ -35,6 +35,11 @@ struct BakeReport {
   std::uint64_t factor_nonzeros = 0;  // strict lower part of L
   std::uint64_t matrix_nonzeros = 0;  // lower part of K, diagonal included
   std::uint32_t grid_cells_x = 0, grid_cells_y = 0;
+  // A grid coarser than the default, chosen for a small sprite
+  // (grid_resolution.h), and the estimate of how far its weights move a
+  // vertex from the default grid's, at most (pixels; 0 when not coarsened).
+  bool grid_coarsened = false;
+  double grid_move_px = 0;
   std::uint64_t bytes = 0;
   double max_reproduction_error = 0;  // at the pose points, relative to the rig size (checked by the runtime)
   double seconds = 0;

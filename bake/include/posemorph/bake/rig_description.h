@@ -99,11 +99,10 @@ struct PathDescription {
 
 struct BakeParameters {
   // Cells along the longer side of the pose-space domain. Unless the
-  // description gives it (grid_resolution_given) or code changed it, a rig of two poses takes
-  // kTwoPoseGridResolution: its weights are linear along the poses'
-  // segment on any grid (the thin-plate spline of two points is), so a finer
-  // grid only costs bytes (a 64-cell grid was a third of a 60-pixel sprite's
-  // rig). GridResolution() says which applies.
+  // description gives it (grid_resolution_given) or code changed it, the
+  // bake may take a coarser grid for a small sprite (grid_resolution.h,
+  // ChooseGridResolution): a 64-cell grid was a third of a 60-pixel
+  // sprite's rig.
   int grid_resolution = 64;
   bool grid_resolution_given = false;
   double margin = 1.0;  // domain = points' bounding box grown by margin x its larger side
@@ -124,12 +123,6 @@ struct BakeParameters {
   // folds are allowed (then they are warnings).
   bool allow_folds = false;
 };
-constexpr int kTwoPoseGridResolution = 16;
-// The grid resolution a bake of `poses` poses uses with these parameters.
-inline int GridResolution(const BakeParameters& p, std::size_t poses) {
-  const bool as_default = !p.grid_resolution_given && p.grid_resolution == BakeParameters{}.grid_resolution;
-  return as_default && poses == 2 ? kTwoPoseGridResolution : p.grid_resolution;
-}
 
 // A part of a layered character (bake/RIG_DESCRIPTION.md, "parts"): its own
 // mesh or drawings in every pose, drawn in order.
