@@ -127,7 +127,10 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
         << " after simplification (max error " << m.simplification_error << "); " << m.steiner_points
         << " Steiner points; " << (m.features ? std::to_string(m.features) + " features; " : "") << m.vertices
         << " vertices, " << m.triangles << " triangles after refinement; "
-        << "min angle " << m.min_angle_degrees << " degrees over all poses; " << m.seconds * 1e3 << " ms\n";
+        << "min angle " << m.min_angle_degrees << " degrees over all poses";
+    if (m.refined_further_from > 0)
+      out << " (refined further: " << m.refined_further_from << " degrees after the usual rounds)";
+    out << "; " << m.seconds * 1e3 << " ms\n";
     out << "interior alignment: ";
     if (m.aligned) {
       out << "regions";

@@ -20,6 +20,7 @@
 #include "posemorph/bake/join_parts.h"
 #include "posemorph/bake/map_drawings.h"
 #include "posemorph/bake/mapping/outline_image.h"
+#include "posemorph/bake/mesh_quality.h"
 #include "posemorph/bake/orient_triangles.h"
 #include "posemorph/bake/pose_analysis.h"
 #include "posemorph/bake/pose_space_weights.h"
@@ -193,31 +194,72 @@ constexpr FoldRetry kFoldRetries[] = {{2, 1, false, "matched-sample spacing x2"}
                                       {1, 1.5, true, "thin notches filled, longest edge x1.5"},
                                       {2, 1.5, true, "thin notches filled, spacing x2, longest edge x1.5"}};
 
+// Fold retry k's description: `description` with kFoldRetries[k]'s
+// settings; nothing when it would map the same as the description.
+std::optional<RigDescription> FoldRetryVariant(const RigDescription& description, int k) {
+  RigDescription variant = description;
+  variant.mapping.spacing_scale = kFoldRetries[k].spacing_scale;
+  variant.mapping.edge_scale = kFoldRetries[k].edge_scale;
+  if (kFoldRetries[k].fill_notches) {
+    if (!TracesPngOutline(description)) return std::nullopt;  // nothing is traced from a PNG: the same mapping
+    variant.mapping.fill_notches = true;
+  }
+  return variant;
+}
+
 // The first variant's bake whose in-betweens do not fold in the hull, with
-// *tried set to its place in kFoldRetries + 1; nothing when none does (a
-// variant that cannot be baked at all is passed over).
-std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, int* tried, std::string* name) {
+// *tried set to its place in kFoldRetries + 1 and *chosen to its description;
+// nothing when none does (a variant that cannot be baked at all is passed
+// over).
+std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, int* tried, std::string* name,
+                                            RigDescription* chosen) {
   for (int k = 0; k < int(std::size(kFoldRetries)); ++k) {
-    RigDescription variant = description;
-    variant.mapping.spacing_scale = kFoldRetries[k].spacing_scale;
-    variant.mapping.edge_scale = kFoldRetries[k].edge_scale;
-    if (kFoldRetries[k].fill_notches) {
-      if (!TracesPngOutline(description)) continue;  // nothing is traced from a PNG: the same mapping again
-      variant.mapping.fill_notches = true;
-    }
+    std::optional<RigDescription> variant = FoldRetryVariant(description, k);
+    if (!variant) continue;
     std::optional<Attempt> again;
     try {
-      again = BakeOnce(variant);
+      again = BakeOnce(*variant);
     } catch (const BakeError&) {
       continue;
     }
     if (again->inbetweens.FoldsInHull() == 0) {
       *tried = k + 1;
       *name = kFoldRetries[k].name;
+      *chosen = std::move(*variant);
       return again;
     }
   }
   return std::nullopt;
+}
+
+// The quality floor: a mapped mesh whose smallest angle over all poses is
+// below half of mapping.min_angle (10 degrees by default) is mapped again
+// with kFurtherRefinementRounds rounds of splitting instead of the usual
+// ones (refinement stops early once every angle reaches min_angle). The
+// finer mesh is kept when its in-betweens do not fold either and its
+// smallest angle is larger; otherwise the first one stays. (Splitting more
+// where one pose squeezes the outline, as an arm against the body does, can
+// fold the in-betweens; trying the fold retries' variants too cost up to
+// eight more mappings and gained nothing on the game-art corpus.)
+constexpr int kFurtherRefinementRounds = 16;
+
+std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt& a) {
+  const MappingReport& m = a.drawings.report;
+  if (!m.mapped || m.min_angle_degrees >= chosen.mapping.min_angle / 2 ||
+      chosen.mapping.refinement_rounds >= kFurtherRefinementRounds)
+    return std::nullopt;
+  RigDescription finer = chosen;
+  finer.mapping.refinement_rounds = kFurtherRefinementRounds;
+  std::optional<Attempt> b;
+  try {
+    b = BakeOnce(finer);
+  } catch (const BakeError&) {
+    return std::nullopt;
+  }
+  if (b->inbetweens.FoldsInHull() > 0 || b->drawings.report.min_angle_degrees <= m.min_angle_degrees)
+    return std::nullopt;
+  b->drawings.report.refined_further_from = m.min_angle_degrees;
+  return b;
 }
 
 }  // namespace
@@ -231,15 +273,17 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
   int tried = 0;
   std::string variant;
   std::optional<Attempt> again;
+  RigDescription chosen = description;
   if (first.inbetweens.FoldsInHull() > 0 && first.drawings.report.mapped)
-    again = MapAgainWithoutFolds(description, &tried, &variant);
+    again = MapAgainWithoutFolds(description, &tried, &variant, &chosen);
   if (again)
     retry_warnings.push_back(file + ": the in-betweens folded (" + std::to_string(first.inbetweens.FoldsInHull()) +
                              " triangles; the worst: " + DescribeFold(first.written.rig, first.inbetweens.folds[0]) +
                              "); mapped again with " + variant + ": fold-free");
   else
     RefuseFolds(description, first.written, first.inbetweens);
-  const Attempt& a = again ? *again : first;
+  std::optional<Attempt> finer = RefineFurther(chosen, again ? *again : first);
+  const Attempt& a = finer ? *finer : again ? *again : first;
   const PoseMeshes& meshes = a.meshes;
 
   if (report) {
@@ -267,6 +311,9 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
     r.warnings = retry_warnings;
     for (const std::string& w : a.weight_warnings) r.warnings.push_back(w);
     for (std::string& w : FoldWarnings(file, a.written.rig, a.inbetweens)) r.warnings.push_back(std::move(w));
+    const double floor = chosen.mapping.min_angle / 2;
+    if (a.drawings.report.mapped && a.drawings.report.min_angle_degrees < floor)
+      r.warnings.push_back(file + ": " + DescribeSmallestAngle(a.written.rig, FindSmallestAngle(a.written.rig), floor));
     r.inbetweens = a.inbetweens;
     r.mapping = a.drawings.report;
     r.mapping.fold_retries = tried;

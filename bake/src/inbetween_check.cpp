@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "message_number.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/pose_space_samples.h"
 #include "posemorph/jobs.h"
@@ -19,14 +20,8 @@ double SignedArea(const double* x, const std::uint32_t* t) {
   return 0.5 * ((x[2 * t[1]] - ax) * (x[2 * t[2] + 1] - ay) - (x[2 * t[1] + 1] - ay) * (x[2 * t[2]] - ax));
 }
 
-std::string Name(StringView s) { return std::string(s.data, s.size); }
-
-std::string Number(double v) {
-  std::ostringstream s;
-  s.precision(3);
-  s << (std::abs(v) < 5e-4 ? 0.0 : v);
-  return s.str();
-}
+std::string Name(StringView s) { return RigString(s); }
+std::string Number(double v) { return MessageNumber(v); }
 
 }  // namespace
 

@@ -260,6 +260,7 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   RefinementParameters rp;
   rp.max_edge_length = st.sizes.max_edge_length * grid.scale;
   rp.min_angle_goal = prm.min_angle;
+  rp.rounds = prm.refinement_rounds;
   rp.max_vertices = std::size_t(prm.max_vertices);
   auto refine = [&] {
     if (!RefineCompatibly(st.mesh, rp))

@@ -40,6 +40,10 @@ struct MappingReport {
   // The bake maps again, coarser, when the in-betweens fold (bake.h): the
   // mappings tried before the one written (0: the first was kept).
   int fold_retries = 0;
+  // The bake refines further when the smallest angle stays below its quality
+  // floor (bake.h): the smallest angle before, when the finer mesh was kept
+  // (0: it was not).
+  double refined_further_from = 0;
   std::vector<std::string> warnings;  // "FILE: ...", e.g. specks dropped from a drawing
 };
 

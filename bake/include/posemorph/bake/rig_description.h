@@ -88,6 +88,10 @@ struct MappingParameters {
   // notches filled (mapping/outline_image.h), which the bake tries when the
   // outlines as traced cannot be mapped or their in-betweens fold.
   bool fill_notches = false;
+  // Not in the description: rounds of splitting triangles below min_angle
+  // (mapping/compatible_refinement.h). The bake refines further when the
+  // mesh it made stays below its quality floor (bake.h).
+  int refinement_rounds = 4;
 };
 
 struct PathDescription {
