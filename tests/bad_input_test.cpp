@@ -359,6 +359,31 @@ TEST_CASE("a drawn rig bakes") {
   CHECK(r.out.find("mapped drawings") != std::string::npos);
 }
 
+TEST_CASE("drawn poses: a small shape's landmarks may lie 3 units off the outline, not only 5% of its size") {
+  // 20 x 20 squares (the second sheared, 32.02 across): 5% of its diagonal is
+  // 1.6 units, the floor 3 units.
+  json d = json::parse(R"({
+    "posemorph": 1,
+    "poses": [
+      {"name": "a", "point": [0, 0], "outline": [[0, 0], [20, 0], [20, 20], [0, 20]], "landmarks": [[0, 0], [20, 20]]},
+      {"name": "b", "point": [1, 0], "outline": [[0, 0], [20, 0], [25, 20], [5, 20]], "landmarks": [[0, 0], [25, 20]]}
+    ],
+    "bake": {"grid_resolution": 8}
+  })");
+  d["poses"][1]["landmarks"][1] = {25, 22.5};  // 2.5 above the corner
+  {
+    TempDir dir;
+    Write(dir.path / "rig.json", d.dump());
+    const Result r = Run({(dir.path / "rig.json").string(), "-o", (dir.path / "out.pmrig").string()});
+    CAPTURE(r.err);
+    CHECK(r.status == 0);
+  }
+  d["poses"][1]["landmarks"][1] = {25, 23.5};  // 3.5 above it
+  ExpectFailure(d.dump(),
+                "pose 'b' (index 1): landmark 1 is 3.5 from the outline (more than 5% of the outline's size, 32.02, "
+                "and more than 3, the least allowed)");
+}
+
 TEST_CASE("drawn poses: bad drawings and correspondences") {
   json d = DrawnDescription();
   d["poses"][1]["outline"] = Outline({{0, 0}, {40, 40}, {40, 0}, {0, 40}});

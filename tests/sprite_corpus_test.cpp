@@ -17,6 +17,7 @@
 
 #include "cli.h"
 #include "posemorph/bake/bake.h"
+#include "posemorph/bake/error.h"
 #include "posemorph/bake/mapping/outline_image.h"
 #include "posemorph/bake/rig_description.h"
 #include "textured_sheet.h"
@@ -104,6 +105,31 @@ TEST_CASE("mapping: a start landmark on another part of the outline than in pose
   REQUIRE(std::sscanf(w.c_str() + open, "near (%lf, %lf)", &x, &y) == 2);
   CHECK(std::abs(y - 29) < 2);
   CHECK(std::abs(x - 16) < 4);
+
+  // When the mapping then fails (here: a vertex budget too small for any
+  // mesh), the error names the start landmark too, as a likely cause.
+  rig.mapping.max_vertices = 10;
+  try {
+    pb::MapDrawings(rig);
+    FAIL("the mapping should fail");
+  } catch (const pb::BakeError& e) {
+    const std::string what = e.what();
+    CAPTURE(what);
+    CHECK(what.find("needs more than mapping.max_vertices 10") != std::string::npos);
+    CHECK(what.find("; pose 'squash' (index 1): its start landmark (landmark 0) may sit on another part of the "
+                    "outline than in pose 'rest' (index 0) (a start that switches feet between poses, say)") !=
+          std::string::npos);
+    CHECK(what.find("move landmark 0 there") != std::string::npos);
+  }
+  // Without the misplaced start the same failure says nothing of it.
+  rig.poses[1].landmarks = pb::ReadRigDescription(SpriteDir("slime") + "/slime.json").poses[1].landmarks;
+  rig.poses[1].landmarks.resize(1);
+  try {
+    pb::MapDrawings(rig);
+    FAIL("the mapping should fail");
+  } catch (const pb::BakeError& e) {
+    CHECK(std::string(e.what()).find("start landmark") == std::string::npos);
+  }
 }
 
 TEST_CASE("posemorph-bake outline: one picture per drawn pose, drawn from what the bake traces") {

@@ -17,4 +17,8 @@ MappingSizes ResolveMappingSizes(const MappingParameters& parameters, double out
   return sizes;
 }
 
+double LandmarkTolerance(const MappingParameters& parameters, double outline_size) {
+  return std::max(parameters.landmark_distance * outline_size, kLandmarkToleranceFloor);
+}
+
 }  // namespace posemorph::bake::mapping

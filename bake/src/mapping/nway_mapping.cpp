@@ -135,9 +135,10 @@ std::vector<Point> PlaceLandmarks(const Polygon& outline, const Polygon& rig_out
     double dist = 0;
     const double s = NearestArcLength(outline, grid.ToGrid(given[l]), &dist);
     dist /= grid.scale;
-    if (dist > prm.landmark_distance * size)
+    if (dist > LandmarkTolerance(prm, size))
       fail("landmark " + std::to_string(l) + " is " + Format(dist) + " from the outline (more than " +
-           Format(prm.landmark_distance * 100) + "% of the outline's size, " + Format(size) + ")");
+           Format(prm.landmark_distance * 100) + "% of the outline's size, " + Format(size) + ", and more than " +
+           Format(kLandmarkToleranceFloor) + ", the least allowed)");
     on.push_back(PointAtArcLength(outline, s));
     at.push_back(s);
   }
@@ -544,6 +545,36 @@ std::vector<std::string> SpinningWarnings(const RigDescription& rig, const std::
 
 MappedDrawings MapDrawingsAsTraced(const RigDescription& rig);
 
+// MapPolygons; when it fails and some pose's start landmark seems to sit on
+// another part of the outline than pose 0's (a start on the left foot in one
+// drawing and on the right foot in the next), the error says so too, with
+// where the outlines' bends put the start in that pose's drawing: the
+// failure it led to (a feature or a joint that cannot be placed, no
+// enclosing polygon) names a symptom, not the cause.
+mapping::MappingStages MapPolygonsOrSayStart(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
+                                             const MappingInput& in, const MappingParameters& prm) {
+  try {
+    return mapping::MapPolygons(in.outlines, in.landmarks, in.features, prm, in.labels, rig.file);
+  } catch (const BakeError& e) {
+    std::string hint;
+    for (std::size_t k = 1; k < in.outlines.size(); ++k) {
+      if (in.landmarks[k].empty() || in.landmarks[0].empty()) continue;
+      const mapping::StartAlignment a =
+          mapping::AlignStart(in.outlines[0], in.landmarks[0][0], in.outlines[k], in.landmarks[k][0]);
+      if (std::min(a.best_shift, 1 - a.best_shift) <= 0.125 || a.best_cost >= 0.8 * a.cost_at_start) continue;
+      const Point at = InDrawing(mapping::PointAtArcLength(in.outlines[k], a.best_start), rig.poses[drawn[k].index]);
+      hint += "; " + in.labels[k] + ": its start landmark (landmark 0) may sit on another part of the outline than " +
+              "in " + in.labels[0] + " (a start that switches feet between poses, say), which is what can make " +
+              "this fail: the outlines' bends agree best with the start near (" + Format(at.x()) + ", " +
+              Format(at.y()) + ") in its drawing; move landmark 0 there";
+    }
+    if (hint.empty()) throw;
+    const std::string what = e.what();
+    const std::string prefix = rig.file + ": ";
+    throw BakeError(rig.file, (what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what) + hint);
+  }
+}
+
 }  // namespace
 
 // The drawings mapped as traced; when that fails (no enclosing polygon, a
@@ -584,8 +615,7 @@ MappedDrawings MapDrawingsAsTraced(const RigDescription& rig) {
   const MappingInput in = ReadDrawnOutlines(rig, drawn, report);
   if (prm.fill_notches && report.filled_notch_corners == 0)
     throw BakeError(rig.file, "no thin notch to fill: the outlines are as traced");  // the same mapping again
-  const mapping::MappingStages st =
-      mapping::MapPolygons(in.outlines, in.landmarks, in.features, prm, in.labels, rig.file);
+  const mapping::MappingStages st = MapPolygonsOrSayStart(rig, drawn, in, prm);
   for (const std::string& w : st.warnings) report.warnings.push_back(rig.file + ": " + w);
   for (const std::string& w : SpinningWarnings(rig, drawn, in.labels, st)) report.warnings.push_back(w);
   const mapping::CompatibleMesh& mesh = st.mesh;
@@ -636,7 +666,7 @@ DrawnOutlines TraceDrawings(const RigDescription& rig) {
     if (mapping::SignedArea(d.outline) < 0) std::reverse(o.traced.begin(), o.traced.end());
     for (const Point& p : d.landmarks) o.landmarks.push_back(InDrawing(p, pose));
     for (const Point& p : d.features) o.features.push_back(InDrawing(p, pose));
-    o.landmark_distance = rig.mapping.landmark_distance * box.diagonal().norm();
+    o.landmark_distance = mapping::LandmarkTolerance(rig.mapping, box.diagonal().norm());
     result.poses.push_back(std::move(o));
   }
   if (drawn.empty()) return result;

@@ -24,4 +24,12 @@ struct MappingSizes {
 // max_edge_length are multiplied by parameters.spacing_scale and edge_scale.
 MappingSizes ResolveMappingSizes(const MappingParameters& parameters, double outline_size);
 
+// How far (drawing units) a landmark may lie off its outline:
+// parameters.landmark_distance times the outline's size (its bounding-box
+// diagonal), but never less than kLandmarkToleranceFloor, so that a small
+// part's landmarks are not held to a pixel and a half (5% of 30 pixels) when
+// the traced outline itself stands up to a pixel off the drawn edge.
+constexpr double kLandmarkToleranceFloor = 3;
+double LandmarkTolerance(const MappingParameters& parameters, double outline_size);
+
 }  // namespace posemorph::bake::mapping
