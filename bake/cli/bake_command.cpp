@@ -41,11 +41,11 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   if (args.switches.count("--no-align")) rig.mapping.align_interiors = false;
   BakeReport report;
   rig.rig_file = output;
-  // A coarser grid chosen for a small sprite says so, with its bound.
+  // A grid coarser than the default says so, with its estimate.
   auto GridNote = [](const BakeReport& r) {
     std::ostringstream s;
     if (r.grid_coarsened)
-      s << " (coarser for a small sprite: vertices within " << std::setprecision(2) << r.grid_move_px
+      s << " (coarser than 64: vertices within " << std::setprecision(2) << r.grid_move_px
         << " px of the default grid's)";
     return s.str();
   };

@@ -67,17 +67,16 @@ std::string DescribeSmallestAngle(const Rig& rig, const SmallestAngle& s, double
   const StringView image = layered ? rig.part_image(part, s.pose) : rig.pose_image(s.pose);
   std::ostringstream o;
   o << "the mesh's smallest angle is " << Number(s.degrees) << " degrees, below " << Number(floor)
-    << " (half of mapping.min_angle), after refining further: triangle " << s.triangle << " in pose '"
-    << Name(rig.pose_name(s.pose)) << "'";
+    << " (half of mapping.min_angle): triangle " << s.triangle << " in pose '" << Name(rig.pose_name(s.pose)) << "'";
   if (layered) o << ", part '" << Name(rig.part(part).name) << "'";
   o << ", at (" << Number(px) << ", " << Number(py) << ") in "
     << (drawn && image.size ? Name(image) : "'" + Name(rig.pose_name(s.pose)) + "'");
   const double squeeze = s.short_edge > 0 ? s.long_edge / s.short_edge : 0;
   const char* unit = drawn ? " px" : " units";
   if (s.long_pose != s.pose && squeeze >= 2) {
-    o << ", where pose '" << Name(rig.pose_name(s.pose)) << "' squeezes it " << Number(squeeze)
-      << "x against pose '" << Name(rig.pose_name(s.long_pose)) << "' (an edge of " << Number(s.short_edge)
-      << unit << " there, " << Number(s.long_edge) << unit
+    o << ", where pose '" << Name(rig.pose_name(s.pose)) << "' squeezes it " << Number(squeeze) << "x against pose '"
+      << Name(rig.pose_name(s.long_pose)) << "' (an edge of " << Number(s.short_edge) << unit << " there, "
+      << Number(s.long_edge) << unit
       << " in the other); where one drawing squeezes the outline this much (a limb against the body in one "
          "pose and away from it in another) no single-layer mesh keeps its shape in both: draw that limb as its "
          "own part (\"parts\"), or a landmark at each end of the squeezed stretch if the outlines are matched "

@@ -15,7 +15,7 @@
 namespace posemorph::bake {
 
 struct SmallestAngle {
-  double degrees = 180;       // the smallest angle of any triangle in any pose
+  double degrees = 180;        // the smallest angle of any triangle in any pose
   std::uint32_t triangle = 0;  // the triangle that has it
   std::uint32_t pose = 0;      // the pose it has it in
   // The triangle's shortest edge in that pose, and the same edge where it is
