@@ -879,8 +879,9 @@ void RigLoader::BuildBlendBlocks(const Counts& c, const Scratch& scratch, Rig* r
 // Every number finite and within the format's limits.
 bool RigLoader::CheckNumbers(const Rig& rig, Error* err) {
   for (std::size_t j = 0; j < rig.factor_.inv_diagonal.size; ++j)
-    if (!(rig.factor_.inv_diagonal[j] > 0) || !std::isfinite(rig.factor_.inv_diagonal[j]))
-      return Fail(err, ErrorCode::kBadValue, "factor diagonal %llu is not positive and finite", (unsigned long long)j);
+    if (!(rig.factor_.inv_diagonal[j] > 0) || !(rig.factor_.inv_diagonal[j] <= fmt::kMaxMagnitude))
+      return Fail(err, ErrorCode::kBadValue, "factor diagonal %llu is not positive and at most %g",
+                  (unsigned long long)j, fmt::kMaxMagnitude);
   if (!CheckFinite(rig.pose_positions_, "pose positions", err) || !CheckFinite(rig.pose_points_, "pose points", err) ||
       !CheckFinite(rig.pose_centroids_, "pose centroids", err) ||
       !CheckFinite(rig.vertex_masses_, "vertex masses", err) || !CheckFinite(rig.gradients_, "gradients", err) ||

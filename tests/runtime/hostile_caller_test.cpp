@@ -143,6 +143,22 @@ TEST_CASE("finite but huge stored numbers are refused at load, naming the sectio
   }
 }
 
+TEST_CASE("the factor's inverse diagonal is held to the limit on stored values") {
+  // Issue 38, F1: DINV was checked for > 0 and finite only, not against the
+  // 1e15 FORMAT.md states for every other stored value.
+  const std::vector<unsigned char> bytes = TestRigBytes("snake");
+  const std::size_t dinv = SectionOffset(bytes, format::kFactorInvDiagonal);
+  REQUIRE(dinv != 0);
+  Rig rig;
+  Error err;
+  const std::vector<unsigned char> big = WithValue(bytes, dinv, 1e20);
+  CHECK_FALSE(LoadRig(big.data(), big.size(), &rig, &err));
+  CHECK(err.code == ErrorCode::kBadValue);
+  CHECK(std::string(err.message).find("factor diagonal 0 is not positive and at most 1e+15") != std::string::npos);
+  const std::vector<unsigned char> edge = WithValue(bytes, dinv, format::kMaxMagnitude);
+  CHECK_MESSAGE(LoadRig(edge.data(), edge.size(), &rig, &err), err.message);
+}
+
 TEST_CASE("jobs take weights up to kMaxJobWeight and give finite positions, larger ones are refused") {
   const Rig rig = LoadTestRig("snake");
   const std::size_t N = rig.pose_count();
