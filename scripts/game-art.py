@@ -14,8 +14,8 @@
 # writes the same table as Markdown (docs/game-art.md is made by it).
 # --check fails when a character listed as baking in
 # tests/game-art/expected.json no longer bakes, or a baked rig breaks one of
-# its bounds (min angle, no fold, rig/PNG ratio for sprites under 128 px, a
-# failure's time). A registry that cannot be reached skips the run with a
+# its bounds (min angle, no fold, rig/PNG ratio for sprites under 128 px,
+# vertices per point of the traced outline, a failure's time). A registry that cannot be reached skips the run with a
 # line saying so (exit 77, ctest's skip).
 import argparse
 import json
@@ -154,6 +154,10 @@ def check(rows, expected):
                             f"drawings' {r['png_bytes']} PNG bytes (a sprite under {small} px)")
         if r["folds"] != 0:
             problems.append(f"{name}: {r['folds']} folded triangles in the in-betweens")
+        if r.get("outline_pixels") and r["vertices"] > bound["max_vertices_per_outline_point"] * r["outline_pixels"]:
+            problems.append(f"{name}: {r['vertices']} mesh vertices, more than "
+                            f"{bound['max_vertices_per_outline_point']} per point of the first drawing's traced "
+                            f"outline ({int(r['outline_pixels'])})")
     return problems
 
 
