@@ -18,7 +18,8 @@ struct OutlineArc {
   double perimeter = 0;
 
   OutlineArc() = default;
-  explicit OutlineArc(const Polygon& o) : outline(&o), cumulative(CumulativeArcLength(o)), perimeter(cumulative.back()) {}
+  explicit OutlineArc(const Polygon& o)
+      : outline(&o), cumulative(CumulativeArcLength(o)), perimeter(cumulative.back()) {}
 
   // Outline vertex indices strictly between arc lengths s0 < s1 (s1 may wrap past the perimeter).
   template <typename F>
