@@ -79,6 +79,7 @@ bool AttachJob::Run() const {
   const double* rest = body.pose_positions(0).data;
   const std::uint32_t* body_tris = body.triangles().data;
   std::size_t out = 0;  // doubles of positions written before this attachment's block
+  bool within = true;   // every attachment's solve within kMaxPosition (jobs.h; zeros where not)
   for (std::uint32_t a = 0; a < body.attachment_count(); ++a) {
     const AttachmentView at = body.attachment(a);
     const Rig& part = *at.rig;
@@ -93,7 +94,7 @@ bool AttachJob::Run() const {
       job.limited_weights = limited_weights.subspan(w0, count * n);
       job.workspace = workspace;
       job.positions = {y, count * p2};
-      job.Run();
+      within &= job.Run();
     } else {
       for (std::size_t k = 0; k < count; ++k) {
         MorphJob job;
@@ -103,7 +104,7 @@ bool AttachJob::Run() const {
         job.interpolation = interpolation;
         job.workspace = {workspace.data, part.morph_workspace_size()};
         job.positions = {y + k * p2, p2};
-        job.Run();
+        within &= job.Run();
       }
     }
     const std::uint32_t* parent = body_tris + 3 * std::size_t(at.parent_triangle);
@@ -125,7 +126,7 @@ bool AttachJob::Run() const {
       for (std::size_t k = 0; k < count * p2; ++k) positions_f32[out + k] = float(y[k]);
     out += count * p2;
   }
-  return true;
+  return within;
 }
 
 }  // namespace posemorph

@@ -307,7 +307,8 @@ int pm_morph(const pm_rig* rig, const double* weights, const double* limited_wei
   job.workspace = {workspace, r.morph_workspace_size()};
   job.positions = {positions, v2};
   job.positions_f32 = {positions_f32, positions_f32 ? v2 : 0};
-  return job.Run() ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
+  if (!job.Validate()) return PM_ERROR_INVALID_ARGUMENT;
+  return job.Run() ? PM_OK : PM_ERROR_BAD_VALUE;  // a solve beyond kMaxPosition: zeros written
 }
 
 size_t pm_batch_workspace_size(const pm_rig* rig) { return rig ? rig->rig.batch_workspace_size() : 0; }
@@ -330,7 +331,8 @@ int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const
   job.workspace = {workspace, workspace ? r.batch_workspace_size() : 0};
   job.positions = {positions, positions ? count * v2 : 0};
   job.positions_f32 = {positions_f32, positions_f32 ? count * v2 : 0};
-  return job.Run() ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
+  if (!job.Validate()) return PM_ERROR_INVALID_ARGUMENT;
+  return job.Run() ? PM_OK : PM_ERROR_BAD_VALUE;  // a solve beyond kMaxPosition: zeros written
 }
 
 void pm_transform_make(double x, double y, double radians, double scale_x, double scale_y, int flip_x,

@@ -50,6 +50,7 @@ bool MorphBatchJob::Run() const {
   double* x = reinterpret_cast<double*>(aligned);            // 2V x width
   double* y = x + v2 * width;                                // 2(V-1) x width
   alignas(64) double W[64 * kMaxLanes], WS[64 * kMaxLanes];  // N <= 64, the format's limit
+  bool within = true;                                        // every character's solve within kMaxPosition
   for (std::size_t g = 0; g < count; g += width) {
     const std::size_t lanes = count - g < width ? count - g : width;
     if (lanes < min_lanes) {
@@ -63,7 +64,7 @@ bool MorphBatchJob::Run() const {
         one.positions =
             positions.size ? positions.subspan(k * v2, v2) : workspace.subspan(r.morph_workspace_size(), v2);
         if (positions_f32.size) one.positions_f32 = positions_f32.subspan(k * v2, v2);
-        one.Run();
+        within &= one.Run();
       }
       break;
     }
@@ -75,6 +76,16 @@ bool MorphBatchJob::Run() const {
         WS[i * width + l] = limited_weights[ch * N + i];
       }
     kernels.group(r, W, WS, x, y);
+    // A lane whose solve goes beyond kMaxPosition (jobs.h) gets zeros.
+    bool lane_within[kMaxLanes];
+    for (std::size_t l = 0; l < width; ++l) lane_within[l] = true;
+    for (std::size_t k = 0; k < v2; ++k)
+      for (std::size_t l = 0; l < lanes; ++l) lane_within[l] &= std::fabs(x[k * width + l]) <= kMaxPosition;
+    for (std::size_t l = 0; l < lanes; ++l)
+      if (!lane_within[l]) {
+        within = false;
+        for (std::size_t k = 0; k < v2; ++k) x[k * width + l] = 0;
+      }
     // One pass over the lanes, writing each character's array in order.
     if (positions.size) {
       double* out = positions.data + g * v2;
@@ -87,7 +98,7 @@ bool MorphBatchJob::Run() const {
         for (std::size_t l = 0; l < lanes; ++l) out32[l * v2 + k] = float(x[k * width + l]);
     }
   }
-  return true;
+  return within;
 }
 
 }  // namespace posemorph

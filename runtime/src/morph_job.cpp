@@ -47,9 +47,14 @@ bool MorphJob::Run() const {
   } else {
     r.kernels()->rigid(r, weights.data, limited_weights.data, workspace.data, x);
   }
+  // A solve beyond kMaxPosition (a factor that amplifies, jobs.h) gives zeros and fails.
+  bool within = true;
+  for (std::size_t k = 0; k < 2 * std::size_t(V); ++k) within &= std::fabs(x[k]) <= kMaxPosition;
+  if (!within)
+    for (std::size_t k = 0; k < 2 * std::size_t(V); ++k) x[k] = 0;
   if (positions_f32.size)
     for (std::size_t k = 0; k < 2 * std::size_t(V); ++k) positions_f32[k] = float(x[k]);
-  return true;
+  return within;
 }
 
 }  // namespace posemorph

@@ -4,6 +4,7 @@
 // gets an error, never undefined behaviour (the debug preset runs this under
 // ASan + UBSan), and a rig that loads gives finite positions for every
 // input a job accepts.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -157,6 +158,60 @@ TEST_CASE("the factor's inverse diagonal is held to the limit on stored values")
   CHECK(std::string(err.message).find("factor diagonal 0 is not positive and at most 1e+15") != std::string::npos);
   const std::vector<unsigned char> edge = WithValue(bytes, dinv, format::kMaxMagnitude);
   CHECK_MESSAGE(LoadRig(edge.data(), edge.size(), &rig, &err), err.message);
+}
+
+TEST_CASE("a factor that amplifies the solve: the jobs write zeros and fail instead of giving infinite positions") {
+  // Issue 38, F1: every stored value within its limit, the factor's values
+  // all 1e3, and MorphJob returned success with positions near 7.9e303
+  // (infinite in float). Now every job fails for it, writing zeros.
+  const std::vector<unsigned char> bytes = TestRigBytes("snake");
+  Rig honest;
+  Error err;
+  REQUIRE(LoadRig(bytes.data(), bytes.size(), &honest, &err));
+  const std::size_t nnz = honest.factor().value.size;
+  const std::size_t at = SectionOffset(bytes, format::kFactorValues);
+  REQUIRE(at != 0);
+  std::vector<unsigned char> bad = bytes;
+  const double thousand = 1e3;
+  for (std::size_t q = 1; q < nnz; ++q) std::memcpy(bad.data() + at + 8 * q, &thousand, 8);
+  bad = WithValue(bad, at, thousand);  // the first value, and the checksum
+  Rig rig;
+  REQUIRE_MESSAGE(LoadRig(bad.data(), bad.size(), &rig, &err), err.message);  // every value within its limit
+  const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
+  std::vector<double> w(N, 0.0), work(rig.morph_workspace_size()), x(v2, 1.0);
+  std::vector<float> x32(v2, 1.0f);
+  w[0] = 1;
+  MorphJob job;
+  job.rig = &rig, job.weights = MakeSpan(w), job.limited_weights = MakeSpan(w);
+  job.workspace = MakeSpan(work), job.positions = MakeSpan(x), job.positions_f32 = MakeSpan(x32);
+  CHECK(job.Validate());
+  CHECK_FALSE(job.Run());
+  CHECK(std::all_of(x.begin(), x.end(), [](double v) { return v == 0; }));
+  CHECK(std::all_of(x32.begin(), x32.end(), [](float v) { return v == 0; }));
+  // The honest rig at the same weights is within the bound and succeeds.
+  job.rig = &honest;
+  CHECK(job.Run());
+  CHECK(AllFinite(x));
+
+  // A batch: every character of the tampered rig fails, zeros written.
+  const std::size_t count = 11;
+  std::vector<double> bw(count * N, 0.0), bwork(rig.batch_workspace_size()), bx(count * v2, 1.0);
+  for (std::size_t k = 0; k < count; ++k) bw[k * N + k % N] = 1;
+  MorphBatchJob batch;
+  batch.rig = &rig, batch.count = count, batch.weights = MakeSpan(bw), batch.limited_weights = MakeSpan(bw);
+  batch.workspace = MakeSpan(bwork), batch.positions = MakeSpan(bx);
+  CHECK_FALSE(batch.Run());
+  CHECK(std::all_of(bx.begin(), bx.end(), [](double v) { return v == 0; }));
+
+  // The C API says PM_ERROR_BAD_VALUE (not a bad argument).
+  pm_rig* handle = nullptr;
+  pm_error perr;
+  REQUIRE(pm_rig_load(bad.data(), bad.size(), &handle, &perr) == PM_OK);
+  CHECK(pm_morph(handle, w.data(), w.data(), 0, work.data(), work.size(), x.data(), nullptr, x.size()) ==
+        PM_ERROR_BAD_VALUE);
+  CHECK(pm_morph_batch(handle, count, bw.data(), bw.data(), bwork.data(), bwork.size(), bx.data(), nullptr,
+                       bx.size()) == PM_ERROR_BAD_VALUE);
+  pm_rig_free(handle);
 }
 
 TEST_CASE("jobs take weights up to kMaxJobWeight and give finite positions, larger ones are refused") {

@@ -41,8 +41,18 @@ struct PM_API WeightsJob {
 // MorphJob and MorphBatchJob refuse weights that are not finite or larger
 // than this in magnitude (WeightsJob gives at most the rig's largest grid
 // weight, kMaxGridWeight): with the loader's limits on stored values, every
-// accepted input gives finite positions.
+// blend and right-hand side stays finite (the solve itself is checked
+// against kMaxPosition).
 constexpr double kMaxJobWeight = 1e6;
+
+// The most a solved position may be in magnitude. Every value a rig stores is
+// within its limit (rig_format.h), but a factor can still amplify the solve
+// (values of 1e3 gave positions near 7.9e303, infinite in float): a job
+// whose solve gives a position beyond this, or not finite, writes zeros for
+// that character and returns false (its other characters are still
+// evaluated). Rigs the bake writes stay far inside it (their solves are
+// bounded at 1e7 to 1e12 for weights of kMaxJobWeight).
+constexpr double kMaxPosition = 1e30;
 
 enum class Interpolation : std::uint8_t {
   kRigid = 0,   // as-rigid-as-possible (the method)
@@ -56,7 +66,8 @@ enum class Interpolation : std::uint8_t {
 // or above kMaxJobWeight in magnitude; workspace is null or shorter than
 // rig->morph_workspace_size(); positions is null or shorter than 2V;
 // positions_f32 is given but null or shorter than 2V; interpolation is not
-// one of the enum's values.
+// one of the enum's values. Run() also fails, writing zeros, when the solve
+// gives a position beyond kMaxPosition or not finite.
 struct PM_API MorphJob {
   const Rig* rig = nullptr;
   Span<const double> weights;          // N raw weights (rotation angles, centroid)
@@ -82,7 +93,9 @@ struct PM_API MorphJob {
 // or above kMaxJobWeight in magnitude; workspace is null or shorter than
 // rig->batch_workspace_size(); neither positions nor positions_f32 is given;
 // one that is given is null or shorter than count x 2V. A count of 0 is valid
-// and does nothing, whatever the spans.
+// and does nothing, whatever the spans. Run() also fails when some
+// character's solve gives a position beyond kMaxPosition or not finite: that
+// character's positions are zeros, the others are evaluated.
 struct PM_API MorphBatchJob {
   const Rig* rig = nullptr;
   std::size_t count = 0;               // characters
@@ -125,7 +138,9 @@ struct PM_API MorphBatchJob {
 // rig->attach_workspace_size(); positions is null or shorter than count x 2 x
 // attached_vertex_count(); positions_f32 is given but null or that short;
 // interpolation is not one of the enum's values. A count of 0 is valid and
-// does nothing.
+// does nothing. Run() also fails when an attachment's solve gives a position
+// beyond kMaxPosition or not finite (that attachment's character is placed
+// from zeros; the rest are evaluated).
 struct PM_API AttachJob {
   const Rig* rig = nullptr;
   std::size_t count = 1;               // characters

@@ -238,7 +238,10 @@ PM_API size_t pm_morph_workspace_size(const pm_rig* rig);
  * (pose_count each). workspace: workspace_capacity doubles, at least
  * pm_morph_workspace_size. positions (required) and positions_f32 (may be
  * NULL) hold positions_capacity elements each, at least 2 x vertex_count.
- * linear != 0 blends vertex positions linearly. */
+ * linear != 0 blends vertex positions linearly. PM_ERROR_BAD_VALUE (zeros
+ * written) when the solve gives a position beyond 1e30 or not finite, which
+ * only a rig whose factor amplifies its solve can (posemorph/jobs.h,
+ * kMaxPosition). */
 PM_API int pm_morph(const pm_rig* rig, const double* weights, const double* limited_weights, int linear,
                     double* workspace, size_t workspace_capacity, double* positions, float* positions_f32,
                     size_t positions_capacity);
@@ -249,7 +252,8 @@ PM_API int pm_morph(const pm_rig* rig, const double* weights, const double* limi
  * threads, call it per thread on disjoint ranges, each with its own
  * workspace (workspace_capacity doubles, at least pm_batch_workspace_size).
  * Each given position array holds positions_capacity elements, at least
- * count x 2 x vertex_count. */
+ * count x 2 x vertex_count. PM_ERROR_BAD_VALUE as pm_morph: zeros for the
+ * characters whose solve goes beyond 1e30, the others evaluated. */
 PM_API size_t pm_batch_workspace_size(const pm_rig* rig);
 PM_API int pm_morph_batch(const pm_rig* rig, size_t count, const double* weights, const double* limited_weights,
                           double* workspace, size_t workspace_capacity, double* positions, float* positions_f32,
