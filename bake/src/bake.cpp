@@ -247,9 +247,11 @@ std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, i
 // 3.3 s more, nothing kept).
 constexpr int kFurtherRefinementRounds = 16;
 
+double QualityFloor(const MappingParameters& m) { return m.min_angle / 2; }
+
 std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt& a) {
   const MappingReport& m = a.drawings.report;
-  const double floor = chosen.mapping.min_angle / 2;
+  const double floor = QualityFloor(chosen.mapping);
   if (!m.mapped || m.min_angle_degrees >= floor || m.min_angle_degrees < floor / 4 ||
       chosen.mapping.refinement_rounds >= kFurtherRefinementRounds)
     return std::nullopt;
@@ -316,7 +318,7 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
     r.warnings = retry_warnings;
     for (const std::string& w : a.weight_warnings) r.warnings.push_back(w);
     for (std::string& w : FoldWarnings(file, a.written.rig, a.inbetweens)) r.warnings.push_back(std::move(w));
-    const double floor = chosen.mapping.min_angle / 2;
+    const double floor = QualityFloor(chosen.mapping);
     if (a.drawings.report.mapped && a.drawings.report.min_angle_degrees < floor)
       r.warnings.push_back(file + ": " + DescribeSmallestAngle(a.written.rig, FindSmallestAngle(a.written.rig), floor));
     r.inbetweens = a.inbetweens;

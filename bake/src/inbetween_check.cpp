@@ -7,7 +7,7 @@
 #include <limits>
 #include <sstream>
 
-#include "message_number.h"
+#include "rig_message.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/pose_space_samples.h"
 #include "posemorph/jobs.h"
@@ -143,21 +143,16 @@ std::string DescribeFold(const Rig& rig, const InbetweenFold& fold) {
     if (d < best) best = d, nearest = v;
   }
   // The part the triangle belongs to, on a layered character.
-  std::uint32_t part = 0;
-  for (std::uint32_t k = 0; k < rig.part_count(); ++k) {
-    const PartView pv = rig.part(k);
-    if (fold.triangle >= pv.first_triangle && fold.triangle < pv.first_triangle + pv.triangle_count) part = k;
-  }
+  const std::uint32_t part = PartOfTriangle(rig, fold.triangle);
   const bool layered = rig.part_count() > 1;
   if (layered) s << "; it is in part '" << Name(rig.part(part).name) << "'";
   s << "; a landmark on the outline there would hold it: ";
   for (std::size_t k = 0; k < shown; ++k) {
     const std::uint32_t i = order[k];
     const double* p = rig.pose_positions(i).data;
-    const DrawingCanvas canvas = rig.pose_canvas(i);
-    const bool drawn = canvas.width > 0;  // drawing pixels, y down, as landmarks are given
-    const double x = p[2 * nearest] + (drawn ? canvas.pivot_x : 0.0),
-                 y = drawn ? canvas.pivot_y - p[2 * nearest + 1] : p[2 * nearest + 1];
+    const bool drawn = rig.pose_canvas(i).width > 0;
+    double x = 0, y = 0;
+    InDrawingPixels(rig, i, p[2 * nearest], p[2 * nearest + 1], &x, &y);
     const StringView image = layered ? rig.part_image(part, i) : rig.pose_image(i);
     s << (k ? ", " : "") << "(" << Number(x) << ", " << Number(y) << ") in "
       << (drawn && image.size ? Name(image) : "'" + Name(rig.pose_name(i)) + "'");

@@ -5,13 +5,10 @@
 #include <cmath>
 #include <sstream>
 
-#include "message_number.h"
+#include "rig_message.h"
 
 namespace posemorph::bake {
 namespace {
-
-std::string Name(StringView s) { return RigString(s); }
-std::string Number(double v) { return MessageNumber(v); }
 
 double EdgeLength(const double* x, std::uint32_t a, std::uint32_t b) {
   return std::hypot(x[2 * b] - x[2 * a], x[2 * b + 1] - x[2 * a + 1]);
@@ -53,30 +50,26 @@ SmallestAngle FindSmallestAngle(const Rig& rig) {
 std::string DescribeSmallestAngle(const Rig& rig, const SmallestAngle& s, double floor) {
   const std::uint32_t* v = rig.triangles().data + 3 * s.triangle;
   const double* x = rig.pose_positions(s.pose).data;
-  const DrawingCanvas canvas = rig.pose_canvas(s.pose);
-  const bool drawn = canvas.width > 0;  // drawing pixels, y down, as landmarks are given
-  const double cx = (x[2 * v[0]] + x[2 * v[1]] + x[2 * v[2]]) / 3,
-               cy = (x[2 * v[0] + 1] + x[2 * v[1] + 1] + x[2 * v[2] + 1]) / 3;
-  const double px = cx + (drawn ? canvas.pivot_x : 0.0), py = drawn ? canvas.pivot_y - cy : cy;
-  std::uint32_t part = 0;
-  for (std::uint32_t k = 0; k < rig.part_count(); ++k) {
-    const PartView pv = rig.part(k);
-    if (s.triangle >= pv.first_triangle && s.triangle < pv.first_triangle + pv.triangle_count) part = k;
-  }
+  const bool drawn = rig.pose_canvas(s.pose).width > 0;
+  double px = 0, py = 0;
+  InDrawingPixels(rig, s.pose, (x[2 * v[0]] + x[2 * v[1]] + x[2 * v[2]]) / 3,
+                  (x[2 * v[0] + 1] + x[2 * v[1] + 1] + x[2 * v[2] + 1]) / 3, &px, &py);
+  const std::uint32_t part = PartOfTriangle(rig, s.triangle);
   const bool layered = rig.part_count() > 1;
   const StringView image = layered ? rig.part_image(part, s.pose) : rig.pose_image(s.pose);
   std::ostringstream o;
-  o << "the mesh's smallest angle is " << Number(s.degrees) << " degrees, below " << Number(floor)
-    << " (half of mapping.min_angle): triangle " << s.triangle << " in pose '" << Name(rig.pose_name(s.pose)) << "'";
-  if (layered) o << ", part '" << Name(rig.part(part).name) << "'";
-  o << ", at (" << Number(px) << ", " << Number(py) << ") in "
-    << (drawn && image.size ? Name(image) : "'" + Name(rig.pose_name(s.pose)) + "'");
+  o << "the mesh's smallest angle is " << MessageNumber(s.degrees) << " degrees, below " << MessageNumber(floor)
+    << " (half of mapping.min_angle): triangle " << s.triangle << " in pose '" << RigString(rig.pose_name(s.pose))
+    << "'";
+  if (layered) o << ", part '" << RigString(rig.part(part).name) << "'";
+  o << ", at (" << MessageNumber(px) << ", " << MessageNumber(py) << ") in "
+    << (drawn && image.size ? RigString(image) : "'" + RigString(rig.pose_name(s.pose)) + "'");
   const double squeeze = s.short_edge > 0 ? s.long_edge / s.short_edge : 0;
   const char* unit = drawn ? " px" : " units";
   if (s.long_pose != s.pose && squeeze >= 2) {
-    o << ", where pose '" << Name(rig.pose_name(s.pose)) << "' squeezes it " << Number(squeeze) << "x against pose '"
-      << Name(rig.pose_name(s.long_pose)) << "' (an edge of " << Number(s.short_edge) << unit << " there, "
-      << Number(s.long_edge) << unit
+    o << ", where pose '" << RigString(rig.pose_name(s.pose)) << "' squeezes it " << MessageNumber(squeeze)
+      << "x against pose '" << RigString(rig.pose_name(s.long_pose)) << "' (an edge of " << MessageNumber(s.short_edge)
+      << unit << " there, " << MessageNumber(s.long_edge) << unit
       << " in the other); where one drawing squeezes the outline this much (a limb against the body in one "
          "pose and away from it in another) no single-layer mesh keeps its shape in both: draw that limb as its "
          "own part (\"parts\"), or a landmark at each end of the squeezed stretch if the outlines are matched "

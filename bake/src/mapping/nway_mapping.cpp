@@ -224,7 +224,7 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
 
   for (std::size_t k = 1; k < N; ++k) {
     const StartAlignment a = AlignStart(st.outlines[0], st.landmarks[0][0], st.outlines[k], st.landmarks[k][0]);
-    if (std::min(a.best_shift, 1 - a.best_shift) > 0.125 && a.best_cost < 0.8 * a.cost_at_start) {
+    if (a.Misplaced()) {
       st.spinning.push_back({k, a.best_shift, grid.FromGrid(PointAtArcLength(st.outlines[k], a.best_start)), a});
     }
   }
@@ -561,7 +561,7 @@ mapping::MappingStages MapPolygonsOrSayStart(const RigDescription& rig, const st
       if (in.landmarks[k].empty() || in.landmarks[0].empty()) continue;
       const mapping::StartAlignment a =
           mapping::AlignStart(in.outlines[0], in.landmarks[0][0], in.outlines[k], in.landmarks[k][0]);
-      if (std::min(a.best_shift, 1 - a.best_shift) <= 0.125 || a.best_cost >= 0.8 * a.cost_at_start) continue;
+      if (!a.Misplaced()) continue;
       const Point at = InDrawing(mapping::PointAtArcLength(in.outlines[k], a.best_start), rig.poses[drawn[k].index]);
       hint += "; " + in.labels[k] + ": its start landmark (landmark 0) may sit on another part of the outline than " +
               "in " + in.labels[0] + " (a start that switches feet between poses, say), which is what can make " +

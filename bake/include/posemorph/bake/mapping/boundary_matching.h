@@ -2,6 +2,7 @@
 // Stage 2 of N-way mapping: dense corresponding points on every pose's outline, by dynamic programming between
 // landmarks (paper section 3.1).
 #pragma once
+#include <algorithm>
 #include <vector>
 
 #include "posemorph/bake/mapping/polygon.h"
@@ -33,6 +34,9 @@ CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
 // a different feature than pose 0's makes the in-betweens spin.
 struct StartAlignment {
   double best_shift = 0, best_start = 0, best_cost = 0, cost_at_start = 0;
+  // The start seems to sit on another part of the outline than pose 0's:
+  // the bends agree clearly better more than an eighth of the way round.
+  bool Misplaced() const { return std::min(best_shift, 1 - best_shift) > 0.125 && best_cost < 0.8 * cost_at_start; }
 };
 StartAlignment AlignStart(const Polygon& outline0, const Point& start0, const Polygon& outline, const Point& start);
 // Arc length from vertex 0 at each vertex, closing edge included (size n + 1; the last is the perimeter).
