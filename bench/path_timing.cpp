@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Per-path timing with the runtime alone (no Google Benchmark, no bake), so
 // it builds for every target: aarch64 under qemu, Windows, WebAssembly under
-// node. Emulated figures are reported, never tuned for (README "Targets").
+// node. Emulated figures are reported, never tuned for (docs/runtime.md "Targets").
 // Usage: posemorph-path-timing RIG.pmrig [characters]
 #include <chrono>
 #include <cmath>

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 # The kernel paths against each other on this CPU: every path this build and
 # CPU run, forced in turn, in one process with repetitions interleaved (the
-# README's "Kernel paths" table). Usage: scripts/bench-paths.sh [REPETITIONS]
+# docs/runtime.md's "Kernel paths" table). Usage: scripts/bench-paths.sh [REPETITIONS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh

@@ -1,5 +1,5 @@
 # SPDX-License-Identifier: MIT
-"""Prints posemorph-bench's JSON output (medians) as the README's tables."""
+"""Prints posemorph-bench's JSON output (medians) as docs/performance.md's tables."""
 import json
 import re
 import sys

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# The README's table of compact rigs, generated from this build's test rigs
+# docs/bake.md's table of compact rigs, generated from this build's test rigs
 # (build/<preset>/rigs: NAME.pmrig exact, NAME.compact.pmrig compact), their
 # drawings, what the bake measured (QINF) and load times measured now by
 # `posemorph-bake info`. Usage: scripts/compact-table.sh [build folder]

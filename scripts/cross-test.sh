@@ -31,7 +31,7 @@ for target in "${targets[@]}"; do
       ;;
     wasm)
       # Debian's Emscripten needs acorn from Debian's node modules, and Node 20's
-      # global fetch breaks its loader (../shared notes, README "Targets").
+      # global fetch breaks its loader (../shared notes, docs/runtime.md "Targets").
       export NODE_PATH=/usr/share/nodejs
       emcmake cmake -S . -B "$dir" "${common[@]}" \
         "-DCMAKE_CROSSCOMPILING_EMULATOR=$(command -v node);--no-experimental-fetch" >/dev/null

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# The README's table of examples: lines of code per example (not blank, not
+# docs/runtime.md's table of examples: lines of code per example (not blank, not
 # only a comment) and, of those, lines of posemorph glue (lines that name a
 # posemorph function, type or field: pm_*, posemorph::, the draw-list and
 # rig accessors).

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
-# The README's table of test builds, with each build's test count as ctest
+# docs/testing.md's table of test builds, with each build's test count as ctest
 # lists it (`ctest -N`) in build/<preset>. Usage: scripts/test-counts.sh
 # (after scripts/test.sh, or after configuring and building the presets).
 set -euo pipefail
@@ -26,3 +26,4 @@ echo "| aarch64 (g++-aarch64-linux-gnu) under qemu-aarch64 | \`scripts/cross-tes
 echo "| Windows x64 (mingw-w64) under wine64 | \`scripts/cross-test.sh\` | runtime suite | every x86-64 path the CPU runs |"
 echo "| WebAssembly (Emscripten 3.1.6) under node | \`scripts/cross-test.sh\` | runtime suite | SIMD128 and scalar paths |"
 echo "| consumers | \`scripts/consumer-test.sh\` | 6 programs | install + find_package, C99 + pkg-config, add_subdirectory without Eigen, FetchContent, shared library (its runtime suite, SONAME, exports) with both consumers: all compute the same frame |"
+echo "| pictures | \`scripts/docs-figures.sh\` | $(git ls-files 'docs/*.png' | wc -l) pictures | every picture under docs/ made again from the samples into a scratch folder; fails on a picture without a recipe or one a document shows that is not there |"

@@ -11,8 +11,10 @@
 # the hostile-input corpus (a ctest test, tests/hostile/), the ways a game
 # consumes the library (install + find_package, pkg-config from C,
 # add_subdirectory without the bake's dependencies, a shared library:
-# scripts/consumer-test.sh), and the runtime's own tests built for aarch64
-# (qemu), Windows (wine) and WebAssembly (node): scripts/cross-test.sh.
+# scripts/consumer-test.sh), every picture of docs/ made again by its
+# recipe (scripts/docs-figures.sh, into a scratch folder), and the
+# runtime's own tests built for aarch64 (qemu), Windows (wine) and
+# WebAssembly (node): scripts/cross-test.sh.
 # First the guard rails: the layout (scripts/check-format.sh), warnings as
 # errors in every build, and clang-tidy (scripts/check-tidy.sh).
 set -euo pipefail
@@ -22,7 +24,7 @@ jobs=$(nproc)
 # Each step's banner says when it began (seconds since the start): where CI's time goes.
 say() { echo "== [${SECONDS}s] $*"; }
 scripts/check-format.sh  # the layout (.clang-format)
-python3 scripts/readme-figures.py --check examples  # README tables that depend only on the sources
+python3 scripts/docs-tables.py --check examples  # the documents' tables that depend only on the sources
 
 # The x86-64 paths to force besides the default one. A path the CPU lacks
 # would fail every load with a clear error; it is left out here instead.
@@ -59,6 +61,10 @@ for preset in release clang-runtime; do
     POSEMORPH_ISA=$isa ctest --preset "$preset" -j"$jobs" -L runtime
   done
 done
+say "pictures: scripts/docs-figures.sh into a scratch folder (every docs/ picture has a recipe)"
+figures=$(mktemp -d)
+scripts/docs-figures.sh "$figures" > /dev/null
+rm -rf "$figures"
 say "consumers (scripts/consumer-test.sh)"
 scripts/consumer-test.sh
 # Under AddressSanitizer the debug preset leaves out the three tests that re-measure

@@ -642,7 +642,7 @@ namespace {
 
 struct SampleFigures {
   std::string name;
-  std::size_t max_boundary;  // reached: see README
+  std::size_t max_boundary;  // reached: see docs/DESIGN.md
   double min_angle;          // reached by refinement
   double aligned_min_angle;  // reached after the interior alignment
   std::size_t max_steiner;

@@ -27,7 +27,7 @@ using gpu::Instance;
 // (unused slots repeat the first drawing at weight 0).
 Instance ToInstance(const DrawList& list);
 
-// How the drawings of a character are combined (README "Drawing a character").
+// How the drawings of a character are combined (docs/runtime.md "Drawing a character").
 enum class Blend {
   kExact,           // one pass, the weighted sum of every drawing shown (blend.frag)
   kSequentialOver,  // one pass per drawing, each "over" the last at w_k / (w_0 + ... + w_k)

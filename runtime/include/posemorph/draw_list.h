@@ -186,6 +186,6 @@ struct PM_API CharacterBuffers {
 //     w_k / (w_0 + ... + w_k): exact where every drawing is opaque; along
 //     silhouettes that move between drawings the first shows at full
 //     strength.
-//  README "Drawing a character: draw lists" gives their measured cost on Pip.
+//  docs/runtime.md "Drawing a character: draw lists" gives their measured cost on Pip.
 
 }  // namespace posemorph
