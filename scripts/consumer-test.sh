@@ -72,7 +72,7 @@ ctest --test-dir "$work/shared" --output-on-failure | grep "tests passed" | sed 
 quiet cmake --install "$work/shared" --prefix "$work/shared-prefix"
 so=$(readlink -f "$work/shared-prefix/lib/libposemorph.so")
 soname=$(readelf -d "$so" | sed -n 's/.*SONAME.*\[\(.*\)\]/\1/p')
-[ "$soname" = libposemorph.so.0.4 ] || { echo "consumer-test: SONAME is '$soname'" >&2; exit 1; }
+[ "$soname" = libposemorph.so.0.5 ] || { echo "consumer-test: SONAME is '$soname'" >&2; exit 1; }
 exported=$(nm -D --defined-only "$so" | awk '$2 ~ /[TW]/' | wc -l)
 internal=$(nm -D --defined-only -C "$so" | grep -c "posemorph::detail" || true)
 echo "  $so: SONAME $soname, $exported functions exported, $internal of them internal (detail)"

@@ -225,7 +225,7 @@ int main(int argc, char** argv) {
   {
     char name[64];
     size_t length = 0;
-    EXPECT(strcmp(pm_version(), "0.4.0") == 0);
+    EXPECT(strcmp(pm_version(), "0.5.0") == 0);
     EXPECT(pm_rig_pose_name(rig, 0, name, sizeof name, &length) == PM_OK && length == strlen(name) && length > 0);
     EXPECT(pm_rig_pose_name(rig, 0, name, length, &length) == PM_ERROR_BUFFER_TOO_SMALL && length == strlen(name));
     EXPECT(pm_rig_pose_name(rig, info.pose_count, name, sizeof name, &length) == PM_ERROR_INVALID_ARGUMENT);

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "ldlt_solve.h"
+#include "rig_internals.h"
 #include "test_support.h"
 
 using namespace posemorph;
@@ -72,10 +73,10 @@ TEST_CASE("16-bit and 32-bit solve indices give the same bits, single and batche
   LoadOptions options;
   options.wide_solve_indices = true;
   REQUIRE(LoadRig(bytes.data(), bytes.size(), &wide, &err, options));
-  REQUIRE(narrow.factor().row_col2_16.size > 0);
-  REQUIRE(narrow.factor().row_col2.size == 0);
-  REQUIRE(wide.factor().row_col2_16.size == 0);
-  REQUIRE(wide.factor().row_col2.size > 0);
+  REQUIRE(detail::RigInternals::Solve(narrow).row_col2_16.size > 0);
+  REQUIRE(detail::RigInternals::Solve(narrow).row_col2.size == 0);
+  REQUIRE(detail::RigInternals::Solve(wide).row_col2_16.size == 0);
+  REQUIRE(detail::RigInternals::Solve(wide).row_col2.size > 0);
   // The narrow rig's arena is smaller by the index bytes saved.
   CHECK(narrow.arena_bytes() < wide.arena_bytes());
 

@@ -38,50 +38,50 @@ double MedianLoadMicroseconds(const std::vector<unsigned char>& bytes) {
 
 // What a section holds and at what precision, from its tag and header.
 std::string DescribeSection(std::uint32_t tag, const unsigned char* d, std::uint64_t size) {
-  auto u32 = [&](std::size_t at) {
-    std::uint32_t v = 0;
-    if (at + 4 <= size) std::memcpy(&v, d + at, 4);
-    return v;
-  };
-  auto f64 = [&](std::size_t at) {
-    double v = 0;
-    if (at + 8 <= size) std::memcpy(&v, d + at, 8);
-    return v;
+  namespace f = format;
+  // The section's header record, or zeros when the section is shorter.
+  auto header = [&](auto record) {
+    f::ReadRecord(d, size, 0, &record);
+    return record;
   };
   std::ostringstream s;
-  namespace f = format;
-  if (tag == f::kQuantPositions)
-    s << "positions: step " << f64(0) << " rig units, differences Exp-Golomb coded (order " << u32(8) << ")";
-  else if (tag == f::kQuantTriangles)
-    s << "vertex indices: differences Exp-Golomb coded (order " << u32(0) << ")";
-  else if (tag == f::kQuantPermutation)
-    s << u32(0) << "-bit fill-reducing order (factor computed at load)";
-  else if (tag == f::kQuantTurns)
-    s << u32(4) << "-bit whole turns of the rotation angles (angles, stretches computed at load)";
-  else if (tag == f::kQuantGrid)
-    s << "weight grid: step " << f64(0) << ", predicted, Exp-Golomb coded, " << u32(8) << " poses stored";
-  else if (tag == f::kAffineUVs)
+  if (tag == f::kQuantPositions) {
+    const auto h = header(f::QuantPositionsHeader{});
+    s << "positions: step " << h.step << " rig units, differences Exp-Golomb coded (order " << h.code_order << ")";
+  } else if (tag == f::kQuantTriangles) {
+    s << "vertex indices: differences Exp-Golomb coded (order " << header(f::CodedTrianglesHeader{}).code_order << ")";
+  } else if (tag == f::kQuantPermutation) {
+    s << header(f::PackedArrayHeader{}).width << "-bit fill-reducing order (factor computed at load)";
+  } else if (tag == f::kQuantTurns) {
+    s << header(f::TurnsHeader{}).width
+      << "-bit whole turns of the rotation angles (angles, stretches computed at load)";
+  } else if (tag == f::kQuantGrid) {
+    const auto h = header(f::GridHeader{});
+    s << "weight grid: step " << h.step << ", predicted, Exp-Golomb coded, " << h.coded_poses << " poses stored";
+  } else if (tag == f::kAffineUVs) {
     s << "uvs as affine maps of a pose's positions";
-  else if (tag == f::kCompactInfo)
-    s << "error budget " << f64(0) << " px; measured max " << f64(8) << " px, at the pose points " << f64(16) << " px ("
-      << f64(24) << " px per rig unit)";
-  else if (tag == f::kMeta)
+  } else if (tag == f::kCompactInfo) {
+    const auto h = header(f::CompactInfo{});
+    s << "error budget " << h.error_budget_px << " px; measured max " << h.max_error_px << " px, at the pose points "
+      << h.pose_point_error_px << " px (" << h.pixels_per_unit << " px per rig unit)";
+  } else if (tag == f::kMeta) {
     s << "counts, grid geometry";
-  else if (tag == f::kTriangles || tag == f::kPermutation || tag == f::kFactorColumns || tag == f::kFactorRows ||
-           tag == f::kPaths)
+  } else if (tag == f::kTriangles || tag == f::kPermutation || tag == f::kFactorColumns || tag == f::kFactorRows ||
+             tag == f::kPaths) {
     s << "u32";
-  else if (tag == f::kUVs)
+  } else if (tag == f::kUVs) {
     s << "f32 uvs";
-  else if (tag == f::kStrings)
+  } else if (tag == f::kStrings) {
     s << "names and image references";
-  else if (tag == f::kParts)
+  } else if (tag == f::kParts) {
     s << "u32 parts: first triangle, triangle count, draw order";
-  else if (tag == f::kPartPoseOrders)
+  } else if (tag == f::kPartPoseOrders) {
     s << "i32 draw order per pose per part";
-  else if (tag == f::kChannels)
+  } else if (tag == f::kChannels) {
     s << "control channels: names, attachments (each a nested rig), their joints";
-  else
+  } else {
     s << "f64";
+  }
   return s.str();
 }
 

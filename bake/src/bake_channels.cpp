@@ -84,17 +84,6 @@ Eigen::Vector2d At(const Rig& rig, std::uint32_t pose, std::uint32_t triangle, c
   return p;
 }
 
-template <typename T>
-void PutAt(std::vector<unsigned char>& out, std::size_t at, T value) {
-  std::memcpy(out.data() + at, &value, sizeof(T));
-}
-
-template <typename T>
-void Append(std::vector<unsigned char>& out, T value) {
-  out.resize(out.size() + sizeof(T));
-  PutAt(out, out.size() - sizeof(T), value);
-}
-
 void Align(std::vector<unsigned char>& out) {
   while (out.size() % fmt::kSectionAlignment) out.push_back(0);
 }
@@ -109,26 +98,25 @@ struct Attachment {
 std::vector<unsigned char> Compose(const std::vector<unsigned char>& body, const std::vector<std::string>& names,
                                    const std::vector<Attachment>& attachments, const std::string& file) {
   std::vector<unsigned char> chan;
-  Append<std::uint32_t>(chan, std::uint32_t(names.size()));
-  Append<std::uint32_t>(chan, std::uint32_t(attachments.size()));
-  Append<std::uint32_t>(chan, 0);
-  Append<std::uint32_t>(chan, 0);
+  fmt::ChannelsHeader header{};
+  header.channel_count = std::uint32_t(names.size());
+  header.attachment_count = std::uint32_t(attachments.size());
+  AppendRecord(chan, header);
   const std::size_t entries = chan.size();
-  chan.resize(chan.size() + attachments.size() * fmt::kAttachmentEntrySize, 0);
+  chan.resize(chan.size() + attachments.size() * fmt::kAttachmentEntrySize, 0);  // filled below
   for (const std::string& name : names) AppendString(chan, name);
   for (std::size_t a = 0; a < attachments.size(); ++a) {
     const Attachment& at = attachments[a];
     Align(chan);
-    const std::size_t e = entries + a * fmt::kAttachmentEntrySize;
-    PutAt<std::uint32_t>(chan, e, at.channel);
-    PutAt<std::uint32_t>(chan, e + 4, at.parent.triangle);
-    PutAt<std::uint32_t>(chan, e + 8, at.joint.triangle);
-    for (int k = 0; k < 3; ++k) {
-      PutAt<double>(chan, e + 16 + 8 * k, at.parent.weights[k]);
-      PutAt<double>(chan, e + 40 + 8 * k, at.joint.weights[k]);
-    }
-    PutAt<std::uint64_t>(chan, e + 64, chan.size());
-    PutAt<std::uint64_t>(chan, e + 72, at.bytes.size());
+    fmt::AttachmentEntry entry{};
+    entry.channel = at.channel;
+    entry.parent_triangle = at.parent.triangle;
+    entry.joint_triangle = at.joint.triangle;
+    for (int k = 0; k < 3; ++k)
+      entry.parent_weights[k] = at.parent.weights[k], entry.joint_weights[k] = at.joint.weights[k];
+    entry.offset = chan.size();
+    entry.size = at.bytes.size();
+    fmt::EncodeRecord(entry, chan.data() + entries + a * fmt::kAttachmentEntrySize);
     chan.insert(chan.end(), at.bytes.begin(), at.bytes.end());
   }
   RigSection sections[fmt::kMaxSections];

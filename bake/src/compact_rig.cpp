@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <stdexcept>
 
 #include <Eigen/Dense>
 
@@ -80,16 +81,10 @@ unsigned BitsFor(std::uint64_t max_value) {
   return b;
 }
 
-template <typename T>
-void Append(std::vector<unsigned char>& out, const T& v) {
-  const auto* p = reinterpret_cast<const unsigned char*>(&v);
-  out.insert(out.end(), p, p + sizeof(T));
-}
-
 std::vector<unsigned char> Packed(const std::vector<std::uint32_t>& values, unsigned width) {
-  std::vector<unsigned char> out;
-  Append(out, std::uint32_t(width));
-  Append(out, std::uint32_t(0));
+  fmt::PackedArrayHeader header{};
+  header.width = width;
+  std::vector<unsigned char> out = RecordBytes(header);
   BitWriter w;
   for (std::uint32_t v : values) w.Put(v, width);
   out.insert(out.end(), w.bytes().begin(), w.bytes().end());
@@ -98,17 +93,14 @@ std::vector<unsigned char> Packed(const std::vector<std::uint32_t>& values, unsi
 
 std::map<std::uint32_t, std::vector<unsigned char>> RawSections(const std::vector<unsigned char>& bytes) {
   std::map<std::uint32_t, std::vector<unsigned char>> out;
-  std::uint32_t count;
-  std::memcpy(&count, bytes.data() + fmt::kOffSectionCount, 4);
-  for (std::uint32_t i = 0; i < count; ++i) {
-    const unsigned char* e = bytes.data() + fmt::kHeaderSize + i * fmt::kSectionEntrySize;
-    std::uint32_t tag;
-    std::uint64_t offset, size;
-    std::memcpy(&tag, e, 4);
-    std::memcpy(&offset, e + 8, 8);
-    std::memcpy(&size, e + 16, 8);
-    out[tag].assign(bytes.begin() + std::ptrdiff_t(offset), bytes.begin() + std::ptrdiff_t(offset + size));
-  }
+  RigSection table[fmt::kMaxSections];
+  std::uint32_t count = 0;
+  Error err;
+  if (!ReadRigSections(bytes.data(), bytes.size(), table, fmt::kMaxSections, &count, &err))
+    throw std::logic_error(std::string("compact encoding: the exact rig's sections: ") + err.message);
+  for (std::uint32_t i = 0; i < count; ++i)
+    out[table[i].tag].assign(bytes.begin() + std::ptrdiff_t(table[i].offset),
+                             bytes.begin() + std::ptrdiff_t(table[i].offset + table[i].size));
   return out;
 }
 
@@ -135,17 +127,15 @@ struct Encoder {
   bool derive_last_pose = false;
 
   std::vector<unsigned char> Encode(double position_step, double weight_step, CompactReport* report,
-                                    const std::vector<double>& info = {}) const {
+                                    const fmt::CompactInfo* info = nullptr) const {
     const std::uint64_t V = exact.vertex_count(), T = exact.triangle_count(), N = exact.pose_count(), n = V - 1;
     std::vector<CompactSection> sections;
     auto note = [&](std::uint32_t tag, std::size_t bytes, std::string what) {
       sections.push_back({TagText(tag), bytes, std::move(what)});
     };
-    fmt::Meta meta;
-    std::memcpy(&meta, raw.at(fmt::kMeta).data(), sizeof(meta));
+    fmt::Meta meta = fmt::DecodeRecord<fmt::Meta>(raw.at(fmt::kMeta).data());
     meta.flags |= fmt::kMetaFlagCompact;
-    std::vector<unsigned char> meta_bytes(sizeof(meta));
-    std::memcpy(meta_bytes.data(), &meta, sizeof(meta));
+    const std::vector<unsigned char> meta_bytes = RecordBytes(meta);
 
     RigWriter w;
     w.Add(fmt::kMeta, meta_bytes);
@@ -179,10 +169,11 @@ struct Encoder {
           pos_codes.push_back(fmt::ZigZag(std::int64_t(q[k]) - previous));
         }
     const unsigned pos_k = BestOrder(pos_codes);
-    Append(qpos, position_step);
-    Append(qpos, std::uint32_t(pos_k));
-    Append(qpos, std::uint32_t(0));
-    for (double o : origins) Append(qpos, o);
+    fmt::QuantPositionsHeader qpos_header{};
+    qpos_header.step = position_step;
+    qpos_header.code_order = pos_k;
+    AppendRecord(qpos, qpos_header);
+    for (std::uint64_t i = 0; i < N; ++i) AppendRecord(qpos, fmt::Point{origins[2 * i], origins[2 * i + 1]});
     {
       BitWriter bw;
       for (std::uint64_t u : pos_codes) bw.Golomb(u, pos_k);
@@ -197,8 +188,9 @@ struct Encoder {
           fmt::ZigZag(std::int64_t(exact.triangles()[k]) - (k >= 3 ? std::int64_t(exact.triangles()[k - 3]) : 0)));
     const unsigned tri_k = BestOrder(tri_codes);
     std::vector<unsigned char> qtri;
-    Append(qtri, std::uint32_t(tri_k));
-    Append(qtri, std::uint32_t(0));
+    fmt::CodedTrianglesHeader qtri_header{};
+    qtri_header.code_order = tri_k;
+    AppendRecord(qtri, qtri_header);
     {
       BitWriter bw;
       for (std::uint64_t u : tri_codes) bw.Golomb(u, tri_k);
@@ -218,8 +210,7 @@ struct Encoder {
       if (!turns.empty())
         lo = *std::min_element(turns.begin(), turns.end()), hi = *std::max_element(turns.begin(), turns.end());
       const unsigned bits = hi == lo ? 0 : BitsFor(std::uint64_t(std::int64_t(hi) - lo));
-      Append(qtrn, lo);
-      Append(qtrn, std::uint32_t(bits));
+      AppendRecord(qtrn, fmt::TurnsHeader{lo, bits});
       BitWriter bw;
       for (std::uint64_t k = 0; k < T * N && bits; ++k) bw.Put(std::uint64_t(std::int64_t(turns[k]) - lo), bits);
       qtrn.insert(qtrn.end(), bw.bytes().begin(), bw.bytes().end());
@@ -234,11 +225,12 @@ struct Encoder {
       const std::uint64_t row = g.cells_x + 1, corners = row * (g.cells_y + 1);
       const std::uint32_t coded = std::uint32_t(derive_last_pose ? N - 1 : N);
       std::vector<unsigned char> qgrd;
-      Append(qgrd, weight_step);
-      Append(qgrd, coded);
-      Append(qgrd, std::uint32_t(0));
+      fmt::GridHeader qgrd_header{};
+      qgrd_header.step = weight_step;
+      qgrd_header.coded_poses = coded;
+      AppendRecord(qgrd, qgrd_header);
       BitWriter bw;
-      std::vector<std::uint32_t> params;
+      std::vector<fmt::GridPoseCode> params;
       for (std::uint32_t i = 0; i < coded; ++i) {
         std::vector<std::int64_t> qc(corners);
         for (std::uint64_t k = 0; k < corners; ++k) qc[k] = std::llround(g.weights[k * N + i] / weight_step);
@@ -263,11 +255,11 @@ struct Encoder {
             centre_codes.push_back(fmt::ZigZag(value - pred));
           }
         const unsigned kc = BestOrder(corner_codes), kz = centre_codes.empty() ? 0 : BestOrder(centre_codes);
-        params.push_back(kc | kz << 8 | corner_order << 16);
+        params.push_back(fmt::GridPoseCode{std::uint8_t(kc), std::uint8_t(kz), std::uint16_t(corner_order)});
         for (std::uint64_t u : corner_codes) bw.Golomb(u, kc);
         for (std::uint64_t u : centre_codes) bw.Golomb(u, kz);
       }
-      for (std::uint32_t p : params) Append(qgrd, p);
+      for (const fmt::GridPoseCode& p : params) AppendRecord(qgrd, p);
       qgrd.insert(qgrd.end(), bw.bytes().begin(), bw.bytes().end());
       char what[160];
       std::snprintf(what, sizeof(what), "weights step %.3g, predicted, Exp-Golomb; %u of %llu poses stored%s",
@@ -314,9 +306,10 @@ struct Encoder {
           }
           if (worst <= uv_tolerance_px && std::isfinite(worst)) {
             found = true;
-            Append(quva, std::uint32_t(src));
-            Append(quva, std::uint32_t(0));
-            for (double c6 : m) Append(quva, c6);
+            fmt::AffineUvEntry entry{};
+            entry.source_pose = std::uint32_t(src);
+            std::copy(m, m + 6, entry.map);
+            AppendRecord(quva, entry);
           }
         }
         affine = found;
@@ -337,9 +330,8 @@ struct Encoder {
       w.Add(tag, it->second);
       note(tag, it->second.size(), "as in the exact rig");
     }
-    if (!info.empty()) {
-      std::vector<unsigned char> qinf;
-      for (double v : info) Append(qinf, v);
+    if (info) {
+      const std::vector<unsigned char> qinf = RecordBytes(*info);
       note(fmt::kCompactInfo, qinf.size(), "error budget and the error reached");
       w.Add(fmt::kCompactInfo, qinf);
     }
@@ -492,8 +484,8 @@ std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_by
   // The measured encoding again, now with its record of budget and error
   // (QINF, which the loader does not read).
   enc.turns = t.turns;
-  t.bytes =
-      enc.Encode(ps, ws, &rep, {settings.max_error_px, rep.max_error_px, rep.pose_error_px, settings.pixels_per_unit});
+  const fmt::CompactInfo info{settings.max_error_px, rep.max_error_px, rep.pose_error_px, settings.pixels_per_unit};
+  t.bytes = enc.Encode(ps, ws, &rep, &info);
   rep.samples = std::uint32_t(samples.size());
   rep.position_step_px = ps * settings.pixels_per_unit;
   rep.weight_step = ws;

@@ -6,7 +6,25 @@
 #include <string>
 #include <vector>
 
+#include "posemorph/format/records.h"
+
 namespace posemorph::bake {
+
+// A record's bytes in the file's layout (posemorph/format/records.h).
+template <typename R>
+std::vector<unsigned char> RecordBytes(const R& record) {
+  std::vector<unsigned char> out(R::kSize);
+  format::EncodeRecord(record, out.data());
+  return out;
+}
+
+// Appends a record's bytes.
+template <typename R>
+void AppendRecord(std::vector<unsigned char>& out, const R& record) {
+  const std::size_t at = out.size();
+  out.resize(at + R::kSize);
+  format::EncodeRecord(record, out.data() + at);
+}
 
 class RigWriter {
  public:

@@ -16,13 +16,6 @@ namespace {
 
 namespace fmt = format;
 
-template <typename T>
-std::vector<unsigned char> Bytes(const T& value) {
-  std::vector<unsigned char> out(sizeof(T));
-  std::memcpy(out.data(), &value, sizeof(T));
-  return out;
-}
-
 }  // namespace
 
 double RigBoundingBoxDiagonal(const PoseMeshes& meshes) {
@@ -140,13 +133,12 @@ NamesAndPaths FlattenNamesAndPaths(const RigDescription& description, const Pose
   for (const PoseMesh& p : meshes.poses) AppendString(strings, p.image);
   for (const auto& path : description.paths) {
     AppendString(strings, path.name);
-    const std::uint32_t entry[2] = {
-        std::uint32_t(path.keys.size()),
-        (path.loop ? fmt::kPathFlagLoop : 0u) |
-            (std::uint32_t(path.catmull_rom ? PathInterpolation::kCatmullRom : PathInterpolation::kLinear)
-             << fmt::kPathInterpolationShift)};
-    const auto* e = reinterpret_cast<const unsigned char*>(entry);
-    path_table.insert(path_table.end(), e, e + sizeof(entry));
+    fmt::PathEntry entry{};
+    entry.key_count = std::uint32_t(path.keys.size());
+    entry.flags = (path.loop ? fmt::kPathFlagLoop : 0u) |
+                  (std::uint32_t(path.catmull_rom ? PathInterpolation::kCatmullRom : PathInterpolation::kLinear)
+                   << fmt::kPathInterpolationShift);
+    AppendRecord(path_table, entry);
     for (const auto& k : path.keys) keys.insert(keys.end(), k.begin(), k.end());
   }
   if (drawing_folder) AppendString(strings, *drawing_folder);
@@ -170,7 +162,7 @@ std::vector<unsigned char> SerialiseRig(const RigDescription& description, const
   const PoseArrays poses = FlattenPoses(meshes, system.vertex_masses);
   const NamesAndPaths names = FlattenNamesAndPaths(description, meshes, drawing_folder);
   RigWriter w;
-  w.Add(fmt::kMeta, Bytes(meta));
+  w.Add(fmt::kMeta, RecordBytes(meta));
   w.AddArray(fmt::kTriangles, tris);
   w.AddArray(fmt::kPosePositions, poses.positions);
   w.AddArray(fmt::kPosePoints, poses.pose_points);
@@ -198,11 +190,15 @@ std::vector<unsigned char> SerialiseRig(const RigDescription& description, const
     w.AddArray(fmt::kCanvases, canvases);
   }
   if (!meshes.parts.empty()) {
-    std::vector<std::uint32_t> parts;
-    for (const MeshPart& part : meshes.parts)
-      parts.insert(parts.end(),
-                   {part.first_triangle, part.triangle_count, std::uint32_t(std::int32_t(part.order)), 0u});
-    w.AddArray(fmt::kParts, parts);
+    std::vector<unsigned char> parts;
+    for (const MeshPart& part : meshes.parts) {
+      fmt::PartEntry entry{};
+      entry.first_triangle = part.first_triangle;
+      entry.triangle_count = part.triangle_count;
+      entry.draw_order = std::int32_t(part.order);
+      AppendRecord(parts, entry);
+    }
+    w.Add(fmt::kParts, std::move(parts));
   }
   if (DrawOrderChanges(meshes)) {
     std::vector<std::uint32_t> orders;  // pose-major

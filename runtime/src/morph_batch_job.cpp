@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "kernels/kernel_table.h"
+#include "rig_internals.h"
 #include "posemorph/jobs.h"
 
 namespace posemorph {
@@ -39,7 +40,7 @@ bool MorphBatchJob::Run() const {
   const Rig& r = *rig;
   const std::uint32_t N = r.pose_count();
   const std::size_t v2 = 2 * std::size_t(r.vertex_count());
-  const detail::KernelTable& kernels = *r.kernels();
+  const detail::KernelTable& kernels = *detail::RigInternals::Kernels(r);
   const std::size_t width = std::size_t(kernels.lanes);
   // A group costs about (3 + width) / 4 single evaluations on AVX-512 and
   // less on narrower paths; a last group below 3/8 of the width (3 of 8,

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "kernels/kernel_table.h"
+#include "rig_internals.h"
 #include "posemorph/jobs.h"
 
 namespace posemorph {
@@ -45,7 +46,7 @@ bool MorphJob::Run() const {
   if (interpolation == Interpolation::kLinear) {
     Linear(r, weights.data, x);
   } else {
-    r.kernels()->rigid(r, weights.data, limited_weights.data, workspace.data, x);
+    detail::RigInternals::Kernels(r)->rigid(r, weights.data, limited_weights.data, workspace.data, x);
   }
   // A solve beyond kMaxPosition (a factor that amplifies, jobs.h) gives zeros and fails.
   bool within = true;

@@ -158,7 +158,6 @@ struct PM_API AttachJob {
 
 // The scalar maps behind WeightsJob, exposed for tests and renderers.
 PM_API double LimitWeight(double w);  // smoothstep clamped to [0, 1]
-[[deprecated("use LimitWeight")]] inline double ShearLimit(double w) { return LimitWeight(w); }
 PM_API void TextureWeights(Span<const double> limited_weights, double sigma, Span<double> out);
 
 }  // namespace posemorph

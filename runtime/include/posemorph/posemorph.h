@@ -43,7 +43,7 @@ enum {
 };
 
 #define PM_VERSION_MAJOR 0
-#define PM_VERSION_MINOR 4
+#define PM_VERSION_MINOR 5
 #define PM_VERSION_PATCH 0
 /* "MAJOR.MINOR.PATCH" of the library actually linked. */
 PM_API const char* pm_version(void);

@@ -16,7 +16,8 @@ namespace posemorph {
 
 namespace detail {
 struct KernelTable;
-}
+struct RigInternals;
+}  // namespace detail
 
 enum class PathInterpolation : std::uint8_t { kLinear = 0, kCatmullRom = 1 };
 
@@ -56,9 +57,14 @@ struct Factor {
   Span<const std::uint32_t> row;        // nnz
   Span<const double> value;             // nnz
   Span<const double> inv_diagonal;      // n, 1 / D
-  // Built at load for the two gather loops of the solve: the strict lower
-  // triangle by rows (forward), and indices pre-doubled to address the
-  // interleaved x, y pairs directly.
+};
+
+namespace detail {
+// Internal: the factor as the solve kernels read it, built at load (the
+// loader fills it, the kernels reach it through RigInternals; no public
+// accessor). The strict lower triangle both by columns (Factor's) and by
+// rows, with indices pre-doubled to address the interleaved x, y pairs.
+struct SolveLayout : Factor {
   Span<const std::uint32_t> row_start;  // n + 1
   Span<const std::uint32_t> row_col2;   // nnz: 2 x column, row by row (when the 16-bit copy is empty)
   Span<const double> row_value;         // nnz
@@ -67,6 +73,7 @@ struct Factor {
   // place of the 32-bit ones: the solve streams fewer bytes. Empty otherwise.
   Span<const std::uint16_t> row_col2_16, col_row2_16;
 };
+}  // namespace detail
 
 // A pose's drawing: its canvas size and where the rig origin (0, 0) sits on
 // the canvas (x right, y down), in drawing units (pixels for a PNG). A rig
@@ -145,10 +152,6 @@ class PM_API Rig {
   Span<const double> angles() const { return angles_; }                // N x T (triangle-major)
   // The symmetric stretch S of each triangle in each pose, 3N x T: S11, S12, S22.
   Span<const double> stretches() const { return stretches_; }
-  [[deprecated("use stretches()")]] Span<const double> shears() const { return stretches_; }
-  // The same angles and stretches regrouped at load for SIMD: per block of 8
-  // triangles, per pose, the 8 values of alpha, S11, S12, S22 (4N x 8 per block).
-  Span<const double> blend_blocks() const { return blend_blocks_; }
   Span<const float> uvs(std::uint32_t pose) const;  // 2 x V, or empty
   StringView pose_name(std::uint32_t pose) const;
   StringView pose_image(std::uint32_t pose) const;  // reference as written by the bake; may be empty
@@ -198,7 +201,7 @@ class PM_API Rig {
   int FindPath(const char* name) const;
 
   const PoseSpaceGrid& grid() const { return grid_; }
-  const Factor& factor() const { return factor_; }
+  const Factor& factor() const { return solve_; }
   double default_sigma() const { return default_sigma_; }
   // How the drawings want to be sampled (the description's "filter"; pixel
   // art: nearest). A hint for renderers; linear for rigs before format 1.4.
@@ -213,7 +216,6 @@ class PM_API Rig {
   // The diagonal of pose 0's bounding box: the rig's scale, which relative
   // tolerances multiply.
   double bounding_box_diagonal() const { return rig_size_; }
-  [[deprecated("use bounding_box_diagonal()")]] double size() const { return rig_size_; }
 
   // Doubles a MorphJob needs as workspace.
   std::size_t morph_workspace_size() const { return 4 * std::size_t(vertex_count_); }
@@ -230,19 +232,20 @@ class PM_API Rig {
   bool compact_encoding() const { return compact_encoding_; }
   // The kernel path chosen at load (never kAuto once loaded).
   Isa isa() const;
-  // Internal: the chosen path's kernels, for the jobs.
-  const detail::KernelTable* kernels() const { return kernels_; }
 
  private:
   friend struct RigLoader;
-  friend struct RigBuilderAccess;
+  friend struct detail::RigInternals;  // the kernels' layout (runtime/src/rig_internals.h)
 
   std::unique_ptr<unsigned char[]> arena_;
   std::size_t arena_size_ = 0;
   std::uint32_t vertex_count_ = 0, triangle_count_ = 0, pose_count_ = 0, path_count_ = 0;
   Span<const std::uint32_t> triangles_;
   Span<const double> pose_positions_, pose_points_, pose_centroids_, vertex_masses_;
-  Span<const double> gradients_, angles_, stretches_, blend_blocks_;
+  Span<const double> gradients_, angles_, stretches_;
+  // The angles and stretches regrouped at load for SIMD: per block of 8
+  // triangles, per pose, the 8 values of alpha, S11, S12, S22 (4N x 8 per block).
+  Span<const double> blend_blocks_;
   Span<const float> uvs_;
   Span<const double> canvases_;                 // 4N, or empty
   Span<const StringView> strings_;              // N names, N images, P path names (, drawing folder) (, part strings)
@@ -259,7 +262,7 @@ class PM_API Rig {
   std::uint32_t channel_count_ = 1, attached_vertex_count_ = 0, attached_weight_count_ = 0;
   std::size_t attach_workspace_ = 0;
   PoseSpaceGrid grid_;
-  Factor factor_;
+  detail::SolveLayout solve_;
   double default_sigma_ = 0, rig_size_ = 0;
   TextureFilter texture_filter_ = TextureFilter::kLinear;
   StringView drawing_folder_;

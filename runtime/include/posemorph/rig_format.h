@@ -1,9 +1,15 @@
 // SPDX-License-Identifier: MIT
 // The baked rig's binary layout, shared by the loader and by the bake's
-// writer. The authoritative description is runtime/FORMAT.md.
+// writer: tags, flags and limits here, the fixed-size records (header,
+// section table entry, META, table entries, section headers) in
+// posemorph/format/records.h. The authoritative description is
+// runtime/FORMAT.md.
 #pragma once
-#include "posemorph/export.h"
+#include <cstddef>
 #include <cstdint>
+
+#include "posemorph/export.h"
+#include "posemorph/format/records.h"
 
 namespace posemorph::format {
 
@@ -17,19 +23,19 @@ constexpr std::uint16_t kVersionMajor = 1;
 // channels (CHAN: attachments, each a nested rig driven by its own channel).
 // Older files load unchanged.
 constexpr std::uint16_t kVersionMinor = 7;
-constexpr std::uint32_t kHeaderSize = 64;
-constexpr std::uint32_t kSectionEntrySize = 24;
+constexpr std::uint32_t kHeaderSize = FileHeader::kSize;
+constexpr std::uint32_t kSectionEntrySize = SectionEntry::kSize;
 constexpr std::uint32_t kSectionAlignment = 16;
 constexpr std::uint32_t kMaxSections = 64;
 
-// Header field offsets.
-constexpr std::uint32_t kOffVersionMajor = 8;
-constexpr std::uint32_t kOffVersionMinor = 10;
-constexpr std::uint32_t kOffHeaderSize = 12;
-constexpr std::uint32_t kOffFileSize = 16;
-constexpr std::uint32_t kOffSectionCount = 24;
-constexpr std::uint32_t kOffFlags = 28;
-constexpr std::uint32_t kOffChecksum = 32;
+// Header field offsets (FileHeader), for tools that patch a file in place.
+constexpr std::uint32_t kOffVersionMajor = offsetof(FileHeader, version_major);
+constexpr std::uint32_t kOffVersionMinor = offsetof(FileHeader, version_minor);
+constexpr std::uint32_t kOffHeaderSize = offsetof(FileHeader, header_size);
+constexpr std::uint32_t kOffFileSize = offsetof(FileHeader, file_size);
+constexpr std::uint32_t kOffSectionCount = offsetof(FileHeader, section_count);
+constexpr std::uint32_t kOffFlags = offsetof(FileHeader, flags);
+constexpr std::uint32_t kOffChecksum = offsetof(FileHeader, checksum);
 
 constexpr std::uint32_t Tag(char a, char b, char c, char d) {
   return std::uint32_t(std::uint8_t(a)) | std::uint32_t(std::uint8_t(b)) << 8 | std::uint32_t(std::uint8_t(c)) << 16 |
@@ -46,7 +52,6 @@ constexpr std::uint32_t kVertexMasses = Tag('M', 'A', 'S', 'S');
 constexpr std::uint32_t kGradients = Tag('G', 'R', 'A', 'D');
 constexpr std::uint32_t kAngles = Tag('A', 'N', 'G', 'L');
 constexpr std::uint32_t kStretches = Tag('S', 'H', 'E', 'R');  // the stretch matrices S (the tag keeps its old name)
-[[deprecated("use kStretches")]] constexpr std::uint32_t kShears = kStretches;
 constexpr std::uint32_t kPermutation = Tag('P', 'E', 'R', 'M');
 constexpr std::uint32_t kFactorColumns = Tag('L', 'C', 'O', 'L');
 constexpr std::uint32_t kFactorRows = Tag('L', 'R', 'O', 'W');
@@ -62,23 +67,8 @@ constexpr std::uint32_t kUVs = Tag('U', 'V', 'S', ' ');
 // pose has no drawing. N x 4 doubles.
 constexpr std::uint32_t kCanvases = Tag('C', 'A', 'N', 'V');
 
-// META section: 8 x u32 then 5 x f64, 72 bytes.
-struct Meta {
-  std::uint32_t vertex_count;
-  std::uint32_t triangle_count;
-  std::uint32_t pose_count;
-  std::uint32_t path_count;
-  std::uint32_t grid_cells_x;
-  std::uint32_t grid_cells_y;
-  std::uint32_t factor_nonzeros;
-  std::uint32_t flags;  // bit 0: UVS section present; bit 1: the weight grid has cell centres (1.2)
-  double grid_origin_x;
-  double grid_origin_y;
-  double grid_cell_size;
-  double default_sigma;
-  double rig_size;  // bounding-box diagonal of pose 0, the scale tolerances refer to
-};
-constexpr std::uint32_t kMetaSize = 72;
+// META section: one Meta record (records.h).
+constexpr std::uint32_t kMetaSize = Meta::kSize;
 constexpr std::uint32_t kMetaFlagHasUVs = 1u;
 // WGRD holds (cells_x+1)(cells_y+1) corner rows, then cells_x * cells_y
 // centre rows (row-major in y then x), N weights each; each cell is split
@@ -104,12 +94,11 @@ constexpr std::uint32_t kMetaFlagDrawingFolder = 16u;
 // folder, when there is one) with each part's name, then each part's image
 // reference for each pose (part by part, N each).
 constexpr std::uint32_t kMetaFlagParts = 32u;
-// PART section (1.6): per part u32 first triangle, u32 triangle count, i32
-// draw order (lower draws first, ties by part index), u32 reserved (zero).
-// The parts cover the triangles in order: part 0 starts at triangle 0, each
-// starts where the one before ends, the last ends at T; none is empty.
+// PART section (1.6): a PartEntry per part (records.h). The parts cover the
+// triangles in order: part 0 starts at triangle 0, each starts where the one
+// before ends, the last ends at T; none is empty.
 constexpr std::uint32_t kParts = Tag('P', 'A', 'R', 'T');
-constexpr std::uint32_t kPartEntrySize = 16;
+constexpr std::uint32_t kPartEntrySize = PartEntry::kSize;
 constexpr std::uint32_t kMaxParts = 64;
 // 1.6, with kMetaFlagParts: the draw order changes with the pose (PORD):
 // per pose, per part an i32 draw order (N x M, pose-major). A frame draws in
@@ -121,19 +110,13 @@ constexpr std::uint32_t kPartPoseOrders = Tag('P', 'O', 'R', 'D');
 // itself is channel 0; each attachment is a complete rig file (the nested
 // rig, its own header, sections and checksum; never with a CHAN of its own)
 // driven by another channel and pinned to a triangle of this rig:
-//   u32 channel count C (2..kMaxChannels), u32 attachment count A
-//   (1..kMaxAttachments), u32 zero, u32 zero;
-//   A entries of kAttachmentEntrySize bytes: u32 channel (1..C-1), u32 parent
-//   triangle (this rig's), u32 joint triangle (the nested rig's), u32 zero,
-//   f64 x 3 the joint's barycentric weights in the parent triangle (pose 0),
-//   f64 x 3 its weights in the joint triangle (the nested rig's pose 0),
-//   u64 offset of the nested rig from the section's start (a multiple of 16),
-//   u64 its size;
+//   a ChannelsHeader (records.h: C in 2..kMaxChannels, A in 1..kMaxAttachments);
+//   A AttachmentEntry records;
 //   then C names, each u32 length (1..kMaxChannelName) + bytes;
 //   then the nested rigs, in attachment order, apart and inside the section.
 constexpr std::uint32_t kChannels = Tag('C', 'H', 'A', 'N');
-constexpr std::uint32_t kChannelsHeaderSize = 16;
-constexpr std::uint32_t kAttachmentEntrySize = 80;
+constexpr std::uint32_t kChannelsHeaderSize = ChannelsHeader::kSize;
+constexpr std::uint32_t kAttachmentEntrySize = AttachmentEntry::kSize;
 constexpr std::uint32_t kMaxChannels = 8;
 constexpr std::uint32_t kMaxAttachments = 32;
 constexpr std::uint32_t kMaxChannelName = 64;
@@ -151,8 +134,8 @@ constexpr std::uint32_t kAffineUVs = Tag('Q', 'U', 'V', 'A');
 // drawing pixels per rig unit. For `posemorph-bake info`.
 constexpr std::uint32_t kCompactInfo = Tag('Q', 'I', 'N', 'F');
 
-// PATH section entry: key count, then flags (bit 0 loop; bits 8..15 interpolation).
-constexpr std::uint32_t kPathEntrySize = 8;
+// PATH section: a PathEntry per path (records.h).
+constexpr std::uint32_t kPathEntrySize = PathEntry::kSize;
 constexpr std::uint32_t kPathFlagLoop = 1u;
 constexpr std::uint32_t kPathInterpolationShift = 8;
 

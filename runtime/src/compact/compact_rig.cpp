@@ -18,27 +18,17 @@ namespace fmt = format;
 
 constexpr auto Fail = LoadFail;
 
-std::uint32_t U32(const unsigned char* p) {
-  std::uint32_t v;
-  std::memcpy(&v, p, 4);
-  return v;
-}
-double F64(const unsigned char* p) {
-  double v;
-  std::memcpy(&v, p, 8);
-  return v;
-}
-
-// A packed array header: u32 width, u32 zero (QTRI, QPRM).
+// A packed array's header (QPRM: PackedArrayHeader).
 bool PackedHeader(const char* tag, const SectionBytes& s, std::uint64_t count, unsigned* width, Error* err) {
   if (!s.data) return Fail(err, ErrorCode::kBadLayout, "missing section %s", tag);
-  if (s.size < 8)
+  fmt::PackedArrayHeader header{};
+  if (!fmt::ReadRecord(s.data, s.size, 0, &header))
     return Fail(err, ErrorCode::kBadLayout, "section %s is %llu bytes, shorter than its header", tag,
                 (unsigned long long)s.size);
-  *width = U32(s.data);
-  if (*width < 1 || *width > 32 || U32(s.data + 4) != 0)
+  *width = header.width;
+  if (*width < 1 || *width > 32 || header.reserved != 0)
     return Fail(err, ErrorCode::kBadValue, "section %s: bit width %u outside 1..32 or reserved field set", tag, *width);
-  const std::uint64_t expected = 8 + PackedBytes(count, *width);
+  const std::uint64_t expected = fmt::PackedArrayHeader::kSize + PackedBytes(count, *width);
   if (s.size != expected)
     return Fail(err, ErrorCode::kBadLayout, "section %s is %llu bytes, the counts imply %llu", tag,
                 (unsigned long long)s.size, (unsigned long long)expected);
@@ -49,40 +39,48 @@ bool FiniteWithin(double v, double limit) { return std::isfinite(v) && std::fabs
 
 constexpr std::int64_t kMaxPositionCode = std::int64_t(1) << 40;
 
-// QPOS: f64 step, u32 Exp-Golomb order k (0..20), u32 zero, N x (f64 x0,
-// y0), then per pose and vertex the x and y integers as codes of their
-// differences from the previous vertex's (zigzag, order k).
+// The bytes of QPOS before its stream: the header and the N pose origins.
+std::uint64_t PositionsPreamble(std::uint64_t N) { return fmt::QuantPositionsHeader::kSize + fmt::Point::kSize * N; }
+
+// QPOS: a QuantPositionsHeader, N Points (each pose's origin), then per pose
+// and vertex the x and y integers as codes of their differences from the
+// previous vertex's (zigzag, order k).
 bool ReadPositionsHeader(const SectionBytes& qpos, const CompactCounts& c, CompactLayout& L, Error* err) {
   if (!qpos.data) return Fail(err, ErrorCode::kBadLayout, "missing section QPOS");
-  if (qpos.size < 16 + 16 * c.N) return Fail(err, ErrorCode::kBadLayout, "section QPOS is shorter than its header");
-  L.position_step = F64(qpos.data);
-  L.position_k = U32(qpos.data + 8);
+  if (qpos.size < PositionsPreamble(c.N))
+    return Fail(err, ErrorCode::kBadLayout, "section QPOS is shorter than its header");
+  const auto header = fmt::DecodeRecord<fmt::QuantPositionsHeader>(qpos.data);
+  L.position_step = header.step;
+  L.position_k = header.code_order;
   if (!(L.position_step > 0) || !FiniteWithin(L.position_step, fmt::kMaxMagnitude))
     return Fail(err, ErrorCode::kBadValue, "section QPOS: step %g is not finite and positive", L.position_step);
-  if (L.position_k > 20 || U32(qpos.data + 12) != 0)
+  if (L.position_k > 20 || header.reserved != 0)
     return Fail(err, ErrorCode::kBadValue, "section QPOS: code order %u above 20 or reserved field set", L.position_k);
-  for (std::uint64_t i = 0; i < 2 * c.N; ++i)
-    if (!FiniteWithin(F64(qpos.data + 16 + 8 * i), fmt::kMaxMagnitude))
+  for (std::uint64_t i = 0; i < c.N; ++i) {
+    const auto origin = fmt::DecodeEntry<fmt::Point>(qpos.data + fmt::QuantPositionsHeader::kSize, i);
+    if (!FiniteWithin(origin.x, fmt::kMaxMagnitude) || !FiniteWithin(origin.y, fmt::kMaxMagnitude))
       return Fail(err, ErrorCode::kBadValue, "section QPOS: origin of pose %llu is not finite or beyond %g",
-                  (unsigned long long)(i / 2), fmt::kMaxMagnitude);
-  if ((qpos.size - 16 - 16 * c.N) * 8 < 2 * c.N * c.V)
+                  (unsigned long long)i, fmt::kMaxMagnitude);
+  }
+  if ((qpos.size - PositionsPreamble(c.N)) * 8 < 2 * c.N * c.V)
     return Fail(err, ErrorCode::kBadLayout, "section QPOS is too short for %llu vertices in %llu poses",
                 (unsigned long long)c.V, (unsigned long long)c.N);
   L.positions = qpos;
   return true;
 }
 
-// QTRI: u32 Exp-Golomb order k (0..20), u32 zero, then each vertex index
-// as the code of its difference from the same corner of the previous
-// triangle (zigzag, order k).
+// QTRI: a CodedTrianglesHeader, then each vertex index as the code of its
+// difference from the same corner of the previous triangle (zigzag, order k).
 bool ReadTrianglesHeader(const SectionBytes& qtri, const SectionBytes& qprm, const CompactCounts& c, CompactLayout& L,
                          Error* err) {
   if (!qtri.data) return Fail(err, ErrorCode::kBadLayout, "missing section QTRI");
-  if (qtri.size < 8) return Fail(err, ErrorCode::kBadLayout, "section QTRI is shorter than its header");
-  L.triangle_k = U32(qtri.data);
-  if (L.triangle_k > 20 || U32(qtri.data + 4) != 0)
+  fmt::CodedTrianglesHeader header{};
+  if (!fmt::ReadRecord(qtri.data, qtri.size, 0, &header))
+    return Fail(err, ErrorCode::kBadLayout, "section QTRI is shorter than its header");
+  L.triangle_k = header.code_order;
+  if (L.triangle_k > 20 || header.reserved != 0)
     return Fail(err, ErrorCode::kBadValue, "section QTRI: code order %u above 20 or reserved field set", L.triangle_k);
-  if ((qtri.size - 8) * 8 < 3 * c.T)
+  if ((qtri.size - fmt::CodedTrianglesHeader::kSize) * 8 < 3 * c.T)
     return Fail(err, ErrorCode::kBadLayout, "section QTRI is too short for %llu triangles", (unsigned long long)c.T);
   if (!PackedHeader("QPRM", qprm, c.n, &L.permutation_bits, err)) return false;
   L.triangles = qtri;
@@ -90,14 +88,16 @@ bool ReadTrianglesHeader(const SectionBytes& qtri, const SectionBytes& qprm, con
   return true;
 }
 
-// QTRN: i32 base, u32 width (0..32), TN packed values: turn = base + value.
+// QTRN: a TurnsHeader, then TN packed values: turn = base + value.
 bool ReadTurnsHeader(const SectionBytes& qtrn, const CompactCounts& c, CompactLayout& L, Error* err) {
   if (!qtrn.data) return Fail(err, ErrorCode::kBadLayout, "missing section QTRN");
-  if (qtrn.size < 8) return Fail(err, ErrorCode::kBadLayout, "section QTRN is shorter than its header");
-  std::memcpy(&L.turn_base, qtrn.data, 4);
-  L.turn_bits = U32(qtrn.data + 4);
+  fmt::TurnsHeader header{};
+  if (!fmt::ReadRecord(qtrn.data, qtrn.size, 0, &header))
+    return Fail(err, ErrorCode::kBadLayout, "section QTRN is shorter than its header");
+  L.turn_base = header.base;
+  L.turn_bits = header.width;
   if (L.turn_bits > 32) return Fail(err, ErrorCode::kBadValue, "section QTRN: bit width %u above 32", L.turn_bits);
-  const std::uint64_t turn_expected = 8 + PackedBytes(c.T * c.N, L.turn_bits);
+  const std::uint64_t turn_expected = fmt::TurnsHeader::kSize + PackedBytes(c.T * c.N, L.turn_bits);
   if (qtrn.size != turn_expected)
     return Fail(err, ErrorCode::kBadLayout, "section QTRN is %llu bytes, the counts imply %llu",
                 (unsigned long long)qtrn.size, (unsigned long long)turn_expected);
@@ -105,24 +105,30 @@ bool ReadTurnsHeader(const SectionBytes& qtrn, const CompactCounts& c, CompactLa
   return true;
 }
 
-// QGRD: f64 step, u32 coded poses (N, or N - 1 with the last pose 1 minus
-// the others), u32 zero, per coded pose u32 (k corners | k centres << 8),
-// then the Exp-Golomb stream.
+// The bytes of QGRD before its stream: the header and a GridPoseCode per coded pose.
+std::uint64_t GridPreamble(std::uint32_t coded) {
+  return fmt::GridHeader::kSize + fmt::GridPoseCode::kSize * std::uint64_t(coded);
+}
+
+// QGRD: a GridHeader (coded poses: N, or N - 1 with the last pose 1 minus
+// the others), a GridPoseCode per coded pose, then the Exp-Golomb stream.
 bool ReadGridHeader(const SectionBytes& qgrd, const CompactCounts& c, CompactLayout& L, Error* err) {
   if (!qgrd.data) return Fail(err, ErrorCode::kBadLayout, "missing section QGRD");
-  if (qgrd.size < 16) return Fail(err, ErrorCode::kBadLayout, "section QGRD is shorter than its header");
-  L.grid_step = F64(qgrd.data);
-  L.grid_coded_poses = U32(qgrd.data + 8);
+  fmt::GridHeader grid{};
+  if (!fmt::ReadRecord(qgrd.data, qgrd.size, 0, &grid))
+    return Fail(err, ErrorCode::kBadLayout, "section QGRD is shorter than its header");
+  L.grid_step = grid.step;
+  L.grid_coded_poses = grid.coded_poses;
   if (!(L.grid_step > 0) || !FiniteWithin(L.grid_step, fmt::kMaxGridWeight))
     return Fail(err, ErrorCode::kBadValue, "section QGRD: step %g is not finite and positive", L.grid_step);
-  if ((L.grid_coded_poses != c.N && L.grid_coded_poses + 1 != c.N) || U32(qgrd.data + 12) != 0)
+  if ((L.grid_coded_poses != c.N && L.grid_coded_poses + 1 != c.N) || grid.reserved != 0)
     return Fail(err, ErrorCode::kBadValue, "section QGRD: %u coded poses for %llu poses, or reserved field set",
                 L.grid_coded_poses, (unsigned long long)c.N);
-  const std::uint64_t header = 16 + 4 * std::uint64_t(L.grid_coded_poses);
+  const std::uint64_t header = GridPreamble(L.grid_coded_poses);
   if (qgrd.size < header) return Fail(err, ErrorCode::kBadLayout, "section QGRD is shorter than its header");
   for (std::uint32_t i = 0; i < L.grid_coded_poses; ++i) {
-    const std::uint32_t k = U32(qgrd.data + 16 + 4 * i);
-    if ((k & 0xFFu) > 20 || ((k >> 8) & 0xFFu) > 20 || ((k >> 16) != 1 && (k >> 16) != 2))
+    const auto k = fmt::DecodeEntry<fmt::GridPoseCode>(qgrd.data + fmt::GridHeader::kSize, i);
+    if (k.corner_order > 20 || k.centre_order > 20 || (k.prediction_order != 1 && k.prediction_order != 2))
       return Fail(err, ErrorCode::kBadValue, "section QGRD: code parameters of pose %u out of range", i);
   }
   const std::uint64_t nodes = (c.cells_x + 1) * (c.cells_y + 1) + (c.grid_centres ? c.cells_x * c.cells_y : 0);
@@ -134,18 +140,19 @@ bool ReadGridHeader(const SectionBytes& qgrd, const CompactCounts& c, CompactLay
   return true;
 }
 
-// QUVA (optional): per pose u32 source pose, u32 zero, 6 f64: uv = M (x, y, 1).
+// QUVA (optional): per pose an AffineUvEntry: uv = M (x, y, 1).
 bool ReadAffineUvs(const SectionBytes& quva, const CompactCounts& c, CompactLayout& L, Error* err) {
-  if (quva.size != 56 * c.N)
+  const unsigned long long expected = fmt::AffineUvEntry::kSize * static_cast<unsigned long long>(c.N);
+  if (quva.size != expected)
     return Fail(err, ErrorCode::kBadLayout, "section QUVA is %llu bytes, the counts imply %llu",
-                (unsigned long long)quva.size, 56ull * c.N);
+                (unsigned long long)quva.size, expected);
   for (std::uint64_t i = 0; i < c.N; ++i) {
-    const unsigned char* e = quva.data + 56 * i;
-    if (U32(e) >= c.N || U32(e + 4) != 0)
+    const auto e = fmt::DecodeEntry<fmt::AffineUvEntry>(quva.data, i);
+    if (e.source_pose >= c.N || e.reserved != 0)
       return Fail(err, ErrorCode::kBadValue, "section QUVA: pose %llu names source pose %u of %llu",
-                  (unsigned long long)i, U32(e), (unsigned long long)c.N);
+                  (unsigned long long)i, e.source_pose, (unsigned long long)c.N);
     for (int k = 0; k < 6; ++k)
-      if (!FiniteWithin(F64(e + 8 + 8 * k), fmt::kMaxMagnitude))
+      if (!FiniteWithin(e.map[k], fmt::kMaxMagnitude))
         return Fail(err, ErrorCode::kBadValue, "section QUVA: coefficient %d of pose %llu is not finite", k,
                     (unsigned long long)i);
   }
@@ -177,7 +184,7 @@ namespace {
 // Triangles: differences from the previous triangle, each index checked.
 bool DecodeTriangles(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
   const std::uint64_t V = c.V, T = c.T;
-  BitReader r(L.triangles.data + 8, L.triangles.size - 8);
+  BitReader r(L.triangles.data + fmt::CodedTrianglesHeader::kSize, L.triangles.size - fmt::CodedTrianglesHeader::kSize);
   for (std::uint64_t k = 0; k < 3 * T; ++k) {
     const std::int64_t previous = k >= 3 ? std::int64_t(o.triangles[k - 3]) : 0;
     const std::int64_t value = previous + fmt::UnZigZag(r.ReadGolomb(L.triangle_k, fmt::kMaxGolombZeros));
@@ -203,7 +210,8 @@ bool DecodeTriangles(const CompactLayout& L, const CompactCounts& c, const Compa
 // The fill-reducing order: bit-packed, checked to be a permutation.
 bool DecodePermutation(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
   const std::uint64_t n = c.n;
-  const BitReader r(L.permutation.data + 8, L.permutation.size - 8);
+  const BitReader r(L.permutation.data + fmt::PackedArrayHeader::kSize,
+                    L.permutation.size - fmt::PackedArrayHeader::kSize);
   std::memset(o.seen, 0, n);
   for (std::uint64_t k = 0; k < n; ++k) {
     const std::uint32_t v = r.At(k * L.permutation_bits, L.permutation_bits);
@@ -218,10 +226,11 @@ bool DecodePermutation(const CompactLayout& L, const CompactCounts& c, const Com
 // Positions: origin + step * q, pose by pose.
 bool DecodePositions(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
   const std::uint64_t V = c.V, N = c.N;
-  const unsigned char* origins = L.positions.data + 16;
-  BitReader r(origins + 16 * N, L.positions.size - 16 - 16 * N);
+  const unsigned char* origins = L.positions.data + fmt::QuantPositionsHeader::kSize;
+  BitReader r(L.positions.data + PositionsPreamble(N), L.positions.size - PositionsPreamble(N));
   for (std::uint64_t i = 0; i < N; ++i) {
-    const double ox = F64(origins + 16 * i), oy = F64(origins + 16 * i + 8);
+    const auto origin = fmt::DecodeEntry<fmt::Point>(origins, i);
+    const double ox = origin.x, oy = origin.y;
     std::int64_t qx = 0, qy = 0;
     for (std::uint64_t v = 0; v < V; ++v) {
       const std::uint64_t k = 2 * (i * V + v);
@@ -261,7 +270,7 @@ void ComputeCentroids(const CompactCounts& c, const CompactOutputs& o) {
 bool ComputeAnglesAndStretches(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
   const std::uint64_t V = c.V, T = c.T, N = c.N;
   const double kTwoPi = 6.283185307179586232;
-  const BitReader turns(L.turns.data + 8, L.turns.size - 8);
+  const BitReader turns(L.turns.data + fmt::TurnsHeader::kSize, L.turns.size - fmt::TurnsHeader::kSize);
   for (std::uint64_t t = 0; t < T; ++t) {
     const std::uint32_t* tri = o.triangles + 3 * t;
     const double* p0 = o.positions;
@@ -297,7 +306,7 @@ bool DecodeWeightGrid(const CompactLayout& L, const CompactCounts& c, const Comp
   const std::uint64_t N = c.N;
   const std::uint64_t cx = c.cells_x, cy = c.cells_y, row = cx + 1;
   const std::uint32_t coded = L.grid_coded_poses;
-  const std::uint64_t header = 16 + 4 * std::uint64_t(coded);
+  const std::uint64_t header = GridPreamble(coded);
   BitReader r(L.grid.data + header, L.grid.size - header);
   const std::int64_t kLimit = std::int64_t(1) << 40;
   auto next = [&](unsigned k, std::int64_t pred, std::int64_t* q) {
@@ -306,8 +315,8 @@ bool DecodeWeightGrid(const CompactLayout& L, const CompactCounts& c, const Comp
     return !r.overrun && *q <= kLimit && *q >= -kLimit;
   };
   for (std::uint32_t i = 0; i < coded; ++i) {
-    const std::uint32_t ks = std::uint32_t(L.grid.data[16 + 4 * i]) | std::uint32_t(L.grid.data[17 + 4 * i]) << 8;
-    const unsigned k_corner = ks & 0xFFu, k_centre = (ks >> 8) & 0xFFu, order = L.grid.data[18 + 4 * i];
+    const auto code = fmt::DecodeEntry<fmt::GridPoseCode>(L.grid.data + fmt::GridHeader::kSize, i);
+    const unsigned k_corner = code.corner_order, k_centre = code.centre_order, order = code.prediction_order;
     std::int64_t* q = o.grid_scratch;
     for (std::uint64_t y = 0; y <= cy; ++y)
       for (std::uint64_t x = 0; x <= cx; ++x) {
@@ -362,10 +371,9 @@ bool DecodeUvs(const CompactLayout& L, const CompactCounts& c, const CompactOutp
   const std::uint64_t V = c.V, N = c.N;
   if (o.uvs) {
     for (std::uint64_t i = 0; i < N; ++i) {
-      const unsigned char* e = L.affine_uvs.data + 56 * i;
-      const double* p = o.positions + 2 * std::uint64_t(U32(e)) * V;
-      double m[6];
-      for (int k = 0; k < 6; ++k) m[k] = F64(e + 8 + 8 * k);
+      const auto e = fmt::DecodeEntry<fmt::AffineUvEntry>(L.affine_uvs.data, i);
+      const double* p = o.positions + 2 * std::uint64_t(e.source_pose) * V;
+      const double* m = e.map;
       for (std::uint64_t v = 0; v < V; ++v) {
         const double u = m[0] * p[2 * v] + m[1] * p[2 * v + 1] + m[2];
         const double w = m[3] * p[2 * v] + m[4] * p[2 * v + 1] + m[5];

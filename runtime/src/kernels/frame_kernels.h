@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "kernel_table.h"
+#include "../rig_internals.h"
 #include "posemorph/rig.h"
 
 namespace posemorph::detail::POSEMORPH_KERNEL_NAMESPACE {
@@ -19,7 +20,7 @@ namespace {
 #include "morph_math.h"
 
 // The loader groups angles and stretches in blocks of 8 triangles
-// (Rig::blend_blocks); a path with narrower vectors takes a block in parts.
+// (RigInternals::BlendBlocks); a path with narrower vectors takes a block in parts.
 constexpr int kBlock = 8;
 static_assert(kBlock % kWidth == 0, "a blend block is a whole number of vectors");
 
@@ -34,7 +35,7 @@ void Rigid(const Rig& rig, const double* w, const double* ws, double* work, doub
 
   const std::uint32_t* tri = rig.triangles().data;
   const double* grad = rig.gradients().data;
-  const double* blocks = rig.blend_blocks().data;
+  const double* blocks = RigInternals::BlendBlocks(rig).data;
   for (std::uint32_t t0 = 0; t0 < T; t0 += kBlock) {
     const std::uint32_t count = T - t0 < std::uint32_t(kBlock) ? T - t0 : std::uint32_t(kBlock);
     const double* in = blocks + std::size_t(t0 / kBlock) * 4 * N * kBlock;
@@ -63,7 +64,7 @@ void Rigid(const Rig& rig, const double* w, const double* ws, double* work, doub
     }
   }
   // Vertex 0 is pinned at the origin; the centroid shift places the mesh.
-  SolvePinnedKernel<double>(rig.factor(), b + 2, work + 2 * std::size_t(V), x + 2);
+  SolvePinnedKernel<double>(RigInternals::Solve(rig), b + 2, work + 2 * std::size_t(V), x + 2);
   x[0] = x[1] = 0;
   PlaceCentroid<double>(rig, w, x);
 }
@@ -87,12 +88,12 @@ void Group(const Rig& rig, const double* w_in, const double* ws_in, double* x_ou
     TargetMatrix(c, s, s11, s12, s22, &a11, &a12, &a21, &a22);
     AddToRhs<Vec>(tri + 3 * t, grad + 6 * t, a11, a12, a21, a22, x);
   }
-  SolvePinnedKernel<Vec>(rig.factor(), x + 2, y, x + 2);
+  SolvePinnedKernel<Vec>(RigInternals::Solve(rig), x + 2, y, x + 2);
   x[0] = x[1] = Vec{};
   PlaceCentroid<Vec>(rig, W, x);
 }
 
-void Solve(const Factor& factor, const double* b, double* scratch, double* x) {
+void Solve(const SolveLayout& factor, const double* b, double* scratch, double* x) {
   SolvePinnedKernel<double>(factor, b, scratch, x);
 }
 

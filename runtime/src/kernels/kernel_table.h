@@ -9,10 +9,11 @@
 
 namespace posemorph {
 class Rig;
-struct Factor;
 }  // namespace posemorph
 
 namespace posemorph::detail {
+
+struct SolveLayout;
 
 // Characters evaluated together by a batch group, on any path: the workspace
 // of MorphBatchJob is sized for this many lanes.
@@ -29,7 +30,7 @@ struct KernelTable {
   void (*group)(const Rig& rig, const double* W, const double* WS, double* x, double* y);
   // K x = b for the free unknowns, both coordinates interleaved (2n doubles);
   // scratch 2n doubles; b and x may be the same array.
-  void (*solve)(const Factor& factor, const double* b, double* scratch, double* x);
+  void (*solve)(const SolveLayout& factor, const double* b, double* scratch, double* x);
 };
 
 // The table of a path compiled into this build, or null.

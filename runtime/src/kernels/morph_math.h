@@ -84,8 +84,8 @@ POSEMORPH_KERNEL_INLINE void GatherSubtract(const double* l, const I* idx2, std:
 // Forward: z_i = b'_i - sum_j L_ij z_j over row i (gather, from the CSR copy).
 // Backward: x_j = z_j / d_j - sum_i L_ij x_i over column j (gather, CSC).
 template <typename T, typename I>
-POSEMORPH_KERNEL_INLINE void SolvePinnedWith(const Factor& f, const I* row_col2, const I* col_row2, const T* bf, T* y,
-                                             T* xf) {
+POSEMORPH_KERNEL_INLINE void SolvePinnedWith(const SolveLayout& f, const I* row_col2, const I* col_row2, const T* bf,
+                                             T* y, T* xf) {
   const std::uint32_t n = f.n;
   const std::uint32_t* order = f.order.data;
   for (std::uint32_t i = 0; i < n; ++i) {
@@ -102,7 +102,7 @@ POSEMORPH_KERNEL_INLINE void SolvePinnedWith(const Factor& f, const I* row_col2,
 }
 
 template <typename T>
-POSEMORPH_KERNEL_INLINE void SolvePinnedKernel(const Factor& f, const T* bf, T* y, T* xf) {
+POSEMORPH_KERNEL_INLINE void SolvePinnedKernel(const SolveLayout& f, const T* bf, T* y, T* xf) {
   if (f.row_col2_16.size)
     SolvePinnedWith(f, f.row_col2_16.data, f.col_row2_16.data, bf, y, xf);
   else

@@ -1,0 +1,107 @@
+// SPDX-License-Identifier: MIT
+// LoadRig, RigMemorySize, LoadRigInPlace and ReadRigSections: the loader's
+// entry points, and Load, which runs its steps in order (loader.h).
+#include "loader.h"
+
+#include <cstdint>
+#include <utility>
+
+#include "../isa_select.h"
+
+#if defined(_MSC_VER) && !defined(__clang__)
+// MSVC targets (x86, x64, ARM64) are little-endian.
+#elif !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "posemorph's loader copies the little-endian array sections directly; port CopyInto (loader.h) first"
+#endif
+
+namespace posemorph {
+
+using namespace detail::load;  // NOLINT(google-build-using-namespace): the loader's own types
+
+bool LoadRig(const void* data, std::size_t size, Rig* out, Error* err, const LoadOptions& options) {
+  return RigLoader::Load(data, size, out, err, options, ArenaSource{});
+}
+
+bool RigMemorySize(const void* data, std::size_t size, std::size_t* needed, Error* err, const LoadOptions& options) {
+  if (err) *err = Error{};
+  if (!needed) return Fail(err, ErrorCode::kInvalidArgument, "no output size given");
+  *needed = 0;
+  Rig scratch;
+  ArenaSource source;
+  source.kind = ArenaSource::kSizeOnly;
+  source.needed = needed;
+  return RigLoader::Load(data, size, &scratch, err, options, source);
+}
+
+bool LoadRigInPlace(const void* data, std::size_t size, void* memory, std::size_t memory_size, Rig* out, Error* err,
+                    const LoadOptions& options) {
+  ArenaSource source;
+  source.kind = ArenaSource::kCaller;
+  source.memory = memory;
+  source.memory_size = memory_size;
+  return RigLoader::Load(data, size, out, err, options, source);
+}
+
+bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, const LoadOptions& options,
+                     const ArenaSource& source) {
+  if (err) *err = Error{};
+  if (!out) return Fail(err, ErrorCode::kInvalidArgument, "no output rig given");
+  *out = Rig();
+  if (!data && size) return Fail(err, ErrorCode::kInvalidArgument, "null data");
+  const detail::KernelTable* kernels = nullptr;
+  if (!detail::SelectKernels(options.isa, &kernels, err)) return false;
+  const auto* bytes = static_cast<const unsigned char*>(data);
+
+  Header h;
+  if (!ReadHeader(bytes, size, options, &h, err)) return false;
+  Parser parser{bytes, size, {}, err};
+  if (!ReadSectionTable(bytes, size, h, &parser, err)) return false;
+  Counts c;
+  if (!ReadCounts(parser, &c, err)) return false;
+  Sources s;
+  if (!FindSections(bytes, h, parser, c, &s, err)) return false;
+  Channels channels;
+  if (!ReadChannels(bytes, parser, c, options, source.nested, &channels, err)) return false;
+
+  // Two passes over one layout: size the arena, then fill it.
+  Rig rig;
+  Rig* nested = nullptr;
+  unsigned char* nested_memory[fmt::kMaxAttachments] = {};
+  Scratch scratch;
+  for (int pass = 0; pass < 2; ++pass) {
+    ArenaLayout arena;
+    if (!PlaceArena(source, pass, &rig, &arena, err)) return false;
+    scratch = Scratch{};
+    LayoutArena(arena, c, s, options, &rig, &scratch);
+    if (pass == 0 && !CheckArenaSize(arena, c, h.file_size, err)) return false;
+    LayoutChannels(arena, channels, &rig, &nested, nested_memory);
+    if (pass == 0) {
+      if (arena.used > std::uint64_t(SIZE_MAX / 2))
+        return Fail(err, ErrorCode::kTooLarge, "the rig needs %llu bytes in memory, more than this target addresses",
+                    (unsigned long long)arena.used);
+      rig.arena_size_ = std::size_t(arena.used);
+      if (source.kind == ArenaSource::kSizeOnly) {
+        *source.needed = rig.arena_size_;
+        return true;
+      }
+    }
+  }
+  if (c.compact && !detail::DecodeCompact(s.packed, s.packed_counts, scratch.decoded, err)) return false;
+  if (!ReadStrings(c, scratch, &rig, err) || !ReadPaths(c, s, scratch, &rig, err) ||
+      !CheckIndices(c, scratch, rig, err) || !CheckFactor(c, rig, err) || !ReadParts(c, scratch, &rig, err))
+    return false;
+  BuildSolveRows(c, scratch, &rig);
+  BuildBlendBlocks(c, scratch, &rig);
+  if (!CheckNumbers(rig, err)) return false;
+  Finish(h, c, kernels, &rig);
+  if (channels.A && !LoadAttachments(channels, options, nested, nested_memory, &rig, err)) return false;
+  *out = std::move(rig);
+  return true;
+}
+
+bool ReadRigSections(const void* data, std::size_t size, RigSection* out, std::uint32_t capacity, std::uint32_t* count,
+                     Error* err) {
+  return RigLoader::ReadSections(data, size, out, capacity, count, err);
+}
+
+}  // namespace posemorph
