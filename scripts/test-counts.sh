@@ -26,4 +26,5 @@ echo "| aarch64 (g++-aarch64-linux-gnu) under qemu-aarch64 | \`scripts/cross-tes
 echo "| Windows x64 (mingw-w64) under wine64 | \`scripts/cross-test.sh\` | runtime suite | every x86-64 path the CPU runs |"
 echo "| WebAssembly (Emscripten 3.1.6) under node | \`scripts/cross-test.sh\` | runtime suite | SIMD128 and scalar paths |"
 echo "| consumers | \`scripts/consumer-test.sh\` | 6 programs | install + find_package, C99 + pkg-config, add_subdirectory without Eigen, FetchContent, shared library (its runtime suite, SONAME, exports) with both consumers: all compute the same frame |"
+echo "| viewer without edit mode | \`scripts/viewer-without-bake.sh\` | 1 program | \`-DPOSEMORPH_VIEWER_EDIT=OFF\`: no viewer source compiled with Eigen, nlohmann-json or tinyxml2, no bake in its link, its headless frame byte-identical to the release viewer's |"
 echo "| pictures | \`scripts/docs-figures.sh\` | $(git ls-files 'docs/*.png' | wc -l) pictures | every picture under docs/ made again from the samples into a scratch folder; fails on a picture without a recipe or one a document shows that is not there |"

@@ -11,9 +11,10 @@
 # the hostile-input corpus (a ctest test, tests/hostile/), the ways a game
 # consumes the library (install + find_package, pkg-config from C,
 # add_subdirectory without the bake's dependencies, a shared library:
-# scripts/consumer-test.sh), every picture of docs/ made again by its
-# recipe (scripts/docs-figures.sh, into a scratch folder), and the
-# runtime's own tests built for aarch64 (qemu), Windows (wine) and
+# scripts/consumer-test.sh), posemorph-view without edit mode, which must
+# link no bake (scripts/viewer-without-bake.sh), every picture of docs/
+# made again by its recipe (scripts/docs-figures.sh, into a scratch
+# folder), and the runtime's own tests built for aarch64 (qemu), Windows (wine) and
 # WebAssembly (node): scripts/cross-test.sh.
 # First the guard rails: the layout (scripts/check-format.sh), warnings as
 # errors in every build, and clang-tidy (scripts/check-tidy.sh).
@@ -67,6 +68,8 @@ scripts/docs-figures.sh "$figures" > /dev/null
 rm -rf "$figures"
 say "consumers (scripts/consumer-test.sh)"
 scripts/consumer-test.sh
+say "the viewer without edit mode links no bake (scripts/viewer-without-bake.sh)"
+scripts/viewer-without-bake.sh
 # Under AddressSanitizer the debug preset leaves out the three tests that re-measure
 # the ghosting figures of the drawn characters (CMakePresets.json): the
 # release run checks those figures, and the sanitized run still

@@ -1,29 +1,44 @@
 // SPDX-License-Identifier: MIT
 // Saving into the rig description: gestures as paths, edited poses as deformations, written back atomically.
+// Part of the edit component (with window_edit.cpp): it links the bake.
+#include "posemorph/bake/bake.h"
 #include "posemorph/bake/input_file.h"
+#include "posemorph/bake/rig_description.h"
 #include "window_impl.h"
 
 namespace posemorph::viewer::window_impl {
+namespace {
 
-void Viewer::SaveIntoDescription(const char* what, const std::vector<bake::PoseDescription>& poses,
-                                 const std::vector<bake::PathDescription>& paths) {
-  if (options_.description.empty()) {
-    status_ = std::string("start with --description RIG.json to save ") + what;
-    return;
-  }
+// Adds them to the rig description and writes it back; the status line says what.
+std::string SaveIntoDescription(const std::string& description, const char* what,
+                                const std::vector<bake::PoseDescription>& poses,
+                                const std::vector<bake::PathDescription>& paths) {
+  if (description.empty()) return std::string("start with --description RIG.json to save ") + what;
   try {
     const std::vector<unsigned char> bytes =
-        bake::ReadInputFile(options_.description, bake::kMaxTextFileBytes, "a rig description");
+        bake::ReadInputFile(description, bake::kMaxTextFileBytes, "a rig description");
     const bake::DescriptionAddition added =
-        bake::AddToRigDescription(std::string(bytes.begin(), bytes.end()), options_.description, poses, paths);
-    bake::WriteFileAtomic(options_.description, std::vector<unsigned char>(added.text.begin(), added.text.end()));
+        bake::AddToRigDescription(std::string(bytes.begin(), bytes.end()), description, poses, paths);
+    bake::WriteFileAtomic(description, std::vector<unsigned char>(added.text.begin(), added.text.end()));
     std::string names;
     for (const std::string& n : added.pose_names) names += (names.empty() ? "" : ", ") + ("pose \"" + n + "\"");
     for (const std::string& n : added.path_names) names += (names.empty() ? "" : ", ") + ("path \"" + n + "\"");
-    status_ = "saved " + names + " into " + options_.description + " (bake again to use it)";
+    return "saved " + names + " into " + description + " (bake again to use it)";
   } catch (const std::exception& e) {
-    status_ = std::string("cannot save: ") + e.what();
+    return std::string("cannot save: ") + e.what();
   }
+}
+
+}  // namespace
+
+void Viewer::SaveGesture() {
+  bake::PathDescription path;
+  path.name = "gesture";
+  path.loop = true;
+  double last = -1;  // key times must increase strictly
+  for (const auto& k : gesture_.keys)
+    if (k[0] > last + 1e-3) path.keys.push_back({k[0], k[1], k[2]}), last = k[0];
+  status_ = SaveIntoDescription(options_.description, "gestures", {}, {path});
 }
 
 // The edited pose as a deformation of the pose it started from, at the pad's point.
@@ -38,10 +53,10 @@ void Viewer::SavePose() {
     bake::HandleDescription h;
     h.by_vertex = true;
     h.vertex = edit_.handles[k];
-    h.to = edit_.targets[k];
+    h.to = Eigen::Vector2d(edit_.targets[k].x, edit_.targets[k].y);
     pose.deform.handles.push_back(h);
   }
-  SaveIntoDescription("poses", {pose}, {});
+  status_ = SaveIntoDescription(options_.description, "poses", {pose}, {});
 }
 
 }  // namespace posemorph::viewer::window_impl

@@ -1,8 +1,12 @@
 // SPDX-License-Identifier: MIT
 // Edit mode: handles dragged on a base pose's mesh (as-rigid-as-possible, the bake's ArapDeformer) make a new pose.
+// Part of the edit component (with window_description.cpp): it links the bake.
+#include "posemorph/bake/arap_deformer.h"
+#include "posemorph/bake/error.h"
 #include "window_impl.h"
 
 namespace posemorph::viewer::window_impl {
+namespace {
 
 bake::Triangles RigTriangles(const Rig& rig) {
   bake::Triangles tris;
@@ -10,6 +14,35 @@ bake::Triangles RigTriangles(const Rig& rig) {
     tris.push_back({rig.triangles().data[3 * t], rig.triangles().data[3 * t + 1], rig.triangles().data[3 * t + 2]});
   return tris;
 }
+
+bake::Points ToPoints(const std::vector<glm::dvec2>& points) {
+  bake::Points out;
+  out.reserve(points.size());
+  for (const glm::dvec2& p : points) out.emplace_back(p.x, p.y);
+  return out;
+}
+
+}  // namespace
+
+class EditDeformer {
+ public:
+  EditDeformer(const std::vector<glm::dvec2>& rest, const Rig& rig, const std::vector<std::uint32_t>& handles)
+      : deformer_(ToPoints(rest), RigTriangles(rig), handles) {}
+  // The mesh with its handles at `targets`.
+  void Deform(const std::vector<glm::dvec2>& targets, std::vector<glm::dvec2>* current) {
+    deformer_.Deform(ToPoints(targets), &points_);
+    current->resize(points_.size());
+    for (std::size_t v = 0; v < points_.size(); ++v) (*current)[v] = glm::dvec2(points_[v].x(), points_[v].y());
+  }
+
+ private:
+  bake::ArapDeformer deformer_;
+  bake::Points points_;
+};
+
+void EditDeformerDelete::operator()(EditDeformer* d) const { delete d; }
+
+bool EditModeBuilt() { return true; }
 
 void Viewer::EditUi() {
   ImGui::Separator();
@@ -52,7 +85,9 @@ void Viewer::EditInput(std::int32_t x0, std::uint32_t w, std::uint32_t h) {
     if (edit_.dragging < 0) {
       // A new handle on the vertex under the click (as the description's "at" handles pick it).
       std::uint32_t vertex = 0;
-      if (bake::HandleVertex(edit_.current, RigTriangles(rig_), map.ToRig(io.MousePos), 6 / map.s(), &vertex) &&
+      const glm::dvec2 at = map.ToRig(io.MousePos);
+      if (bake::HandleVertex(ToPoints(edit_.current), RigTriangles(rig_), Eigen::Vector2d(at.x, at.y), 6 / map.s(),
+                             &vertex) &&
           std::find(edit_.handles.begin(), edit_.handles.end(), vertex) == edit_.handles.end()) {
         edit_.handles.push_back(vertex);
         edit_.targets.push_back(edit_.current[vertex]);
@@ -69,12 +104,11 @@ bool Viewer::EditScene(SceneBounds* bounds, std::uint32_t* count) {
   const std::uint32_t V = rig_.vertex_count();
   const Span<const double> p = rig_.pose_positions(std::uint32_t(edit_.pose));
   edit_.rest.resize(V);
-  for (std::uint32_t v = 0; v < V; ++v) edit_.rest[v] = Eigen::Vector2d(p.data[2 * v], p.data[2 * v + 1]);
+  for (std::uint32_t v = 0; v < V; ++v) edit_.rest[v] = glm::dvec2(p.data[2 * v], p.data[2 * v + 1]);
   edit_.current = edit_.rest;
   if (edit_.handles.size() >= 2) {
     try {
-      if (!edit_.deformer)
-        edit_.deformer = std::make_unique<bake::ArapDeformer>(edit_.rest, RigTriangles(rig_), edit_.handles);
+      if (!edit_.deformer) edit_.deformer.reset(new EditDeformer(edit_.rest, rig_, edit_.handles));
       edit_.deformer->Deform(edit_.targets, &edit_.current);
     } catch (const bake::BakeError& e) {
       status_ = e.what();
@@ -83,7 +117,7 @@ bool Viewer::EditScene(SceneBounds* bounds, std::uint32_t* count) {
   }
   float* out = renderer_->positions();
   for (std::uint32_t v = 0; v < V; ++v)
-    out[2 * v] = float(edit_.current[v].x()), out[2 * v + 1] = float(edit_.current[v].y());
+    out[2 * v] = float(edit_.current[v].x), out[2 * v + 1] = float(edit_.current[v].y);
   DrawList list;  // the edited pose's own drawing, where the character stands unmoved
   list.drawing_count = 1;
   list.drawings[0].pose = std::uint32_t(edit_.pose);

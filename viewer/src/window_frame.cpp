@@ -134,7 +134,7 @@ void Viewer::JointOverlay(std::uint32_t count) {
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   const float right = float(sc_.extent.width), bottom = float(sc_.extent.height);
   auto mark = [&](double x, double y) {
-    const ImVec2 p = map.ToScreen(Eigen::Vector2d(x, y));
+    const ImVec2 p = map.ToScreen(glm::dvec2(x, y));
     if (!(p.x >= kPanelWidth + 8 && p.y >= 8 && p.x < right - 8 && p.y < bottom - 8)) return;  // off the view
     draw->AddCircleFilled(p, 5, kJointColour);
     draw->AddCircle(p, 6, IM_COL32(20, 20, 20, 255), 0, 1.5f);
@@ -142,7 +142,7 @@ void Viewer::JointOverlay(std::uint32_t count) {
   };
   if (edit_.on) {
     for (std::uint32_t v : joints_)
-      if (v < edit_.current.size()) mark(edit_.current[v].x(), edit_.current[v].y());
+      if (v < edit_.current.size()) mark(edit_.current[v].x, edit_.current[v].y);
     return;
   }
   for (std::uint32_t k = 0; k < count && k < scratch_.lists.size(); ++k) {

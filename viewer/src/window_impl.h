@@ -2,6 +2,10 @@
 // The interactive viewer's window class, shared by its files (window*.cpp,
 // one job each): the swapchain, the pad, edit mode, the camera controls,
 // saving into the description, the frame, and the main loop (window.cpp).
+// Nothing here needs the bake: edit mode and saving into the description
+// (window_edit.cpp, window_description.cpp) are the one component that
+// links it, and a build with POSEMORPH_VIEWER_EDIT=OFF takes
+// window_edit_off.cpp in their place.
 #pragma once
 #define GLFW_INCLUDE_VULKAN
 #include <GLFW/glfw3.h>
@@ -16,11 +20,8 @@
 #include <cstring>
 #include <memory>
 
-#include "posemorph/bake/arap_deformer.h"
-#include "posemorph/bake/bake.h"
-#include "posemorph/bake/pose_colours.h"
-#include "posemorph/bake/error.h"
-#include "posemorph/bake/rig_description.h"
+#include <glm/vec2.hpp>
+
 #include "posemorph/jobs.h"
 #include "posemorph/path.h"
 #include "window.h"
@@ -41,17 +42,26 @@ struct Swapchain {
   std::vector<VkSemaphore> rendered;  // one per image: presentation waits on it
 };
 
+// The deformer behind edit mode (the bake's ArapDeformer, window_edit.cpp).
+class EditDeformer;
+struct EditDeformerDelete {
+  void operator()(EditDeformer* d) const;
+};
+
 // Edit mode: handles dragged on one base pose's mesh make a new pose
 // (as-rigid-as-possible shape manipulation, the bake's ArapDeformer).
 struct Edit {
   bool on = false;
   int pose = 0;
   std::vector<std::uint32_t> handles;
-  std::vector<Eigen::Vector2d> targets;
-  std::unique_ptr<bake::ArapDeformer> deformer;  // for this handle set
-  bake::Points rest, current;
+  std::vector<glm::dvec2> targets;
+  std::unique_ptr<EditDeformer, EditDeformerDelete> deformer;  // for this handle set
+  std::vector<glm::dvec2> rest, current;
   int dragging = -1;
 };
+
+// True when this build has edit mode and saving into the description.
+bool EditModeBuilt();
 
 struct Gesture {
   std::vector<std::array<double, 3>> keys;  // t, x, y
@@ -123,11 +133,10 @@ class Viewer {
   bool EditScene(SceneBounds* bounds, std::uint32_t* count);
   void CameraUi();
   void CameraInput(std::int32_t x0, std::uint32_t w, std::uint32_t h);
+  // The gesture as a path and the edited pose as a deformation, added to the
+  // rig description (bake::AddToRigDescription; the names are stems) and
+  // written back atomically; the status line says what.
   void SavePose();
-  // Adds them to the rig description (bake::AddToRigDescription; the names
-  // are stems) and writes it back atomically; the status line says what.
-  void SaveIntoDescription(const char* what, const std::vector<bake::PoseDescription>& poses,
-                           const std::vector<bake::PathDescription>& paths);
 
   const Rig& rig_;
   const Drawings& drawings_;
@@ -173,8 +182,6 @@ class Viewer {
   std::vector<ImVec2> joint_marks_;
 };
 
-bake::Triangles RigTriangles(const Rig& rig);
-
 // The same mapping as RigRenderer::Record: world <-> window pixels, for a
 // viewport at x0 (the edited character stands at the identity transform).
 struct ViewMap {
@@ -182,14 +189,11 @@ struct ViewMap {
   std::int32_t x0;
   std::uint32_t w, h;
   double s() const { return camera.zoom; }
-  ImVec2 ToScreen(const Eigen::Vector2d& p) const {
-    const glm::dvec2 q = viewer::ToScreen(camera, {p.x(), p.y()}, w, h);
+  ImVec2 ToScreen(const glm::dvec2& p) const {
+    const glm::dvec2 q = viewer::ToScreen(camera, p, w, h);
     return ImVec2(float(q.x + x0), float(q.y));
   }
-  Eigen::Vector2d ToRig(const ImVec2& q) const {
-    const glm::dvec2 p = ToWorld(camera, {q.x - x0, q.y}, w, h);
-    return {p.x, p.y};
-  }
+  glm::dvec2 ToRig(const ImVec2& q) const { return ToWorld(camera, {q.x - x0, q.y}, w, h); }
 };
 
 }  // namespace posemorph::viewer::window_impl

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The pose-space pad: the weight field coloured by the dominant pose, the pose points, dragging the point, recording a
 // gesture.
+#include "posemorph/bake/pose_colours.h"
 #include "window_impl.h"
 
 namespace posemorph::viewer::window_impl {
@@ -89,16 +90,6 @@ void Viewer::ChannelPads() {
         play_channel_[c - 1] = play ? 1 : 0;
     }
   }
-}
-
-void Viewer::SaveGesture() {
-  bake::PathDescription path;
-  path.name = "gesture";
-  path.loop = true;
-  double last = -1;  // key times must increase strictly
-  for (const auto& k : gesture_.keys)
-    if (k[0] > last + 1e-3) path.keys.push_back({k[0], k[1], k[2]}), last = k[0];
-  SaveIntoDescription("gestures", {}, {path});
 }
 
 }  // namespace posemorph::viewer::window_impl

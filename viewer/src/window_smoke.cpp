@@ -27,7 +27,7 @@ void Viewer::SmokeInput() {
   // The drag is recorded as a gesture for the first half.
   if (smoke_frame_ == 1) gesture_ = Gesture{}, gesture_.recording = true, gesture_.start = clock_;
   if (smoke_frame_ == options_.smoke_frames / 2) gesture_.recording = false;
-  if (smoke_frame_ == options_.smoke_frames * 3 / 4 && rig_.vertex_count() > 2) {
+  if (smoke_frame_ == options_.smoke_frames * 3 / 4 && rig_.vertex_count() > 2 && EditModeBuilt()) {
     // Then edit mode: pin vertex 0, drag the vertex farthest from it.
     edit_.on = true;
     const Span<const double> p = rig_.pose_positions(0);
@@ -38,10 +38,10 @@ void Viewer::SmokeInput() {
       if (d > best) best = d, far = v;
     }
     edit_.handles = {0, far};
-    edit_.targets = {Eigen::Vector2d(p.data[0], p.data[1]), Eigen::Vector2d(p.data[2 * far], p.data[2 * far + 1])};
+    edit_.targets = {glm::dvec2(p.data[0], p.data[1]), glm::dvec2(p.data[2 * far], p.data[2 * far + 1])};
   }
   if (edit_.on && edit_.targets.size() == 2)
-    edit_.targets[1].x() += 0.2 * rig_.bounding_box_diagonal() / options_.smoke_frames;
+    edit_.targets[1].x += 0.2 * rig_.bounding_box_diagonal() / options_.smoke_frames;
   // With --joints, the last frame leaves edit mode and fits the camera to the
   // character again (the "fit character" button): every joint is on screen
   // for the shot to be checked against.

@@ -9,6 +9,7 @@
 #include "posemorph/bake/ghosting.h"
 #include "posemorph/bake/inbetween_check.h"
 #include "posemorph/bake/map_drawings.h"
+#include "posemorph/bake/output_file.h"
 #include "posemorph/bake/rig_description.h"
 
 namespace posemorph::bake {
@@ -79,9 +80,5 @@ struct BakeReport {
 // description.parameters.allow_folds (then the first mapping is written).
 // Returns the rig's bytes. Throws BakeError naming the file and the problem.
 std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport* report = nullptr);
-
-// Writes bytes to path via a temporary file in the same folder and a rename,
-// so readers never see a partial rig. Throws BakeError.
-void WriteFileAtomic(const std::string& path, const std::vector<unsigned char>& bytes);
 
 }  // namespace posemorph::bake
