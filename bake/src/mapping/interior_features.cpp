@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "format_number.h"
 #include "geometry.h"
 #include "posemorph/bake/mapping/compatible_refinement.h"
 
@@ -20,13 +21,6 @@ namespace {
 
 using Tri = std::array<std::size_t, 3>;
 constexpr std::size_t kNone = ~std::size_t(0);
-
-std::string Format(double v) {
-  std::ostringstream s;
-  s.precision(4);
-  s << v;
-  return s.str();
-}
 
 // The triangle holding q in these positions (inside or on an edge), or kNone.
 std::size_t Holding(const Polygon& pos, const std::vector<Tri>& tris, const Point& q) {

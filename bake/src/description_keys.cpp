@@ -1,0 +1,94 @@
+// SPDX-License-Identifier: MIT
+// Keys the rig description may use, object by object: any other key is most
+// likely a misspelt option, which would otherwise be ignored in silence.
+#include "description_reader.h"
+
+namespace posemorph::bake::description {
+
+namespace {
+
+// Keys the description may use, object by object; any other key is most
+// likely a misspelt option, which would otherwise be ignored in silence.
+void WarnUnknownKeys(const json& object, const std::string& where, std::initializer_list<const char*> known,
+                     const std::string& file, std::vector<std::string>* warnings) {
+  if (!object.is_object()) return;
+  for (const auto& item : object.items()) {
+    bool found = false;
+    for (const char* k : known) found = found || item.key() == k;
+    if (!found)
+      warnings->push_back(file + ": " + (where.empty() ? "" : where + ": ") + "unknown key \"" + item.key() +
+                          "\" ignored (bake/RIG_DESCRIPTION.md lists the keys)");
+  }
+}
+
+}  // namespace
+
+void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std::string>* warnings) {
+  WarnUnknownKeys(
+      root, "",
+      {"posemorph", "name", "filter", "poses", "triangles", "parts", "glue", "mapping", "bake", "paths", "channels"},
+      file, warnings);
+  if (root.contains("parts") && root["parts"].is_array())
+    for (std::size_t p = 0; p < root["parts"].size(); ++p) {
+      const json& part = root["parts"][p];
+      const std::string w = "parts[" + std::to_string(p) + "]";
+      WarnUnknownKeys(part, w, {"name", "order", "triangles", "poses", "channel"}, file, warnings);
+      if (part.is_object() && part.contains("poses") && part["poses"].is_array())
+        for (std::size_t i = 0; i < part["poses"].size(); ++i)
+          WarnUnknownKeys(part["poses"][i], w + ".poses[" + std::to_string(i) + "]",
+                          {"name", "drawing", "layer", "origin", "outline", "landmarks", "features", "vertices", "mesh",
+                           "uvs", "image"},
+                          file, warnings);
+    }
+  if (root.contains("glue") && root["glue"].is_array())
+    for (std::size_t g = 0; g < root["glue"].size(); ++g)
+      WarnUnknownKeys(root["glue"][g], "glue[" + std::to_string(g) + "]", {"part", "to", "at"}, file, warnings);
+  if (root.contains("mapping"))
+    WarnUnknownKeys(root["mapping"], "mapping",
+                    {"simplify_tolerance", "max_edge_length", "min_angle", "alpha_threshold", "curve_tolerance",
+                     "spacing", "landmark_distance", "max_steiner_points", "max_vertices", "align_interiors",
+                     "align_rigidity", "drop_shadows"},
+                    file, warnings);
+  if (root.contains("bake"))
+    WarnUnknownKeys(
+        root["bake"], "bake",
+        {"grid_resolution", "margin", "epsilon", "sigma", "precision", "max_error", "pixels_per_unit", "allow_folds"},
+        file, warnings);
+  if (root.contains("channels") && root["channels"].is_array())
+    for (std::size_t c = 0; c < root["channels"].size(); ++c) {
+      const json& channel = root["channels"][c];
+      const std::string w = "channels[" + std::to_string(c) + "]";
+      WarnUnknownKeys(channel, w, {"name", "poses", "paths"}, file, warnings);
+      if (channel.is_object() && channel.contains("poses") && channel["poses"].is_array())
+        for (std::size_t i = 0; i < channel["poses"].size(); ++i)
+          WarnUnknownKeys(channel["poses"][i], w + ".poses[" + std::to_string(i) + "]", {"name", "point"}, file,
+                          warnings);
+      if (channel.is_object() && channel.contains("paths") && channel["paths"].is_array())
+        for (std::size_t i = 0; i < channel["paths"].size(); ++i)
+          WarnUnknownKeys(channel["paths"][i], w + ".paths[" + std::to_string(i) + "]",
+                          {"name", "loop", "interpolation", "keys"}, file, warnings);
+    }
+  const json no_poses = json::array();
+  const json& poses = root.contains("poses") && root["poses"].is_array() ? root["poses"] : no_poses;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    const std::string w = "poses[" + std::to_string(i) + "]";
+    WarnUnknownKeys(poses[i], w,
+                    {"name", "point", "drawing", "layer", "origin", "outline", "landmarks", "features", "vertices",
+                     "mesh", "deform", "uvs", "image"},
+                    file, warnings);
+    if (poses[i].contains("deform")) {
+      const json& d = poses[i]["deform"];
+      WarnUnknownKeys(d, w + ".deform", {"from", "handles"}, file, warnings);
+      if (d.contains("handles") && d["handles"].is_array())
+        for (std::size_t h = 0; h < d["handles"].size(); ++h)
+          WarnUnknownKeys(d["handles"][h], w + ".deform.handles[" + std::to_string(h) + "]", {"at", "vertex", "to"},
+                          file, warnings);
+    }
+  }
+  if (root.contains("paths") && root["paths"].is_array())
+    for (std::size_t i = 0; i < root["paths"].size(); ++i)
+      WarnUnknownKeys(root["paths"][i], "paths[" + std::to_string(i) + "]", {"name", "loop", "interpolation", "keys"},
+                      file, warnings);
+}
+
+}  // namespace posemorph::bake::description

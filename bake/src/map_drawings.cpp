@@ -1,0 +1,444 @@
+// SPDX-License-Identifier: MIT
+// The N-way mapping driver (map_drawings.h): drawn poses of a rig
+// description -> traced outlines -> MapPolygons -> one shared triangle list
+// and per-pose vertices and uvs, the interiors aligned (DESIGN.md section 4).
+#include "posemorph/bake/map_drawings.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "mapping/format_number.h"
+#include "mapping/geometry.h"
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/mapping/interior_alignment.h"
+#include "posemorph/bake/mapping/interior_features.h"
+#include "posemorph/bake/mapping/outline_image.h"
+
+namespace posemorph::bake {
+namespace {
+
+using mapping::Format;
+using mapping::Point;
+using mapping::Polygon;
+
+bool EndsWith(std::string s, const std::string& suffix) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+struct DrawnPose {
+  std::size_t index = 0;  // in rig.poses
+  Polygon outline;        // rig coordinates (y up), counter-clockwise
+  std::vector<Point> landmarks;
+  std::vector<Point> features;
+  // uv = ((x - origin.x) / size.x, (-y - origin.y) / size.y) for drawings (rows go down)
+  bool from_drawing = false;
+  Point origin{0, 0}, size{1, 1};
+};
+
+// What a PNG's tracing left out: only the largest part is mapped, so a
+// separate eye or a loose hand is left out of the mesh (and drawn only
+// where the mesh covers it).
+std::string DroppedParts(const mapping::ImageOutline& io) {
+  auto share = [&](std::size_t pixels) { return Format(100.0 * double(pixels) / double(io.shape_pixels)) + "%"; };
+  const std::size_t n = io.dropped_parts.size();
+  if (n == 1)
+    return "a separate part of " + std::to_string(io.dropped_parts[0]) + " pixels (" + share(io.dropped_parts[0]) +
+           " of the drawing)";
+  return std::to_string(n) + " separate parts of " + std::to_string(io.dropped_pixels) + " pixels (" +
+         share(io.dropped_pixels) + " of the drawing; the largest " + std::to_string(io.dropped_parts[0]) +
+         " pixels, " + share(io.dropped_parts[0]) + ")";
+}
+
+// A point of a pose's drawing (y down) -> rig coordinates (y up, the pose's
+// origin at 0), and back.
+Point InRig(const Point& p, const PoseDescription& pose) {
+  return {p.x() - pose.origin.x(), -(p.y() - pose.origin.y())};
+}
+Point InDrawing(const Point& p, const PoseDescription& pose) {
+  return {p.x() + pose.origin.x(), -p.y() + pose.origin.y()};
+}
+
+// The mesh's triangles as the rig stores them.
+Triangles SharedTriangles(const mapping::CompatibleMesh& mesh) {
+  Triangles triangles;
+  for (const auto& t : mesh.triangles)
+    triangles.push_back({std::uint32_t(t[0]), std::uint32_t(t[1]), std::uint32_t(t[2])});
+  return triangles;
+}
+
+// Step 1 for one drawn pose: its outline and landmarks in rig coordinates
+// (y up), and where its drawing's canvas lies. Dropped parts of a PNG become
+// warnings in `report`.
+void ReadDrawnOutline(const RigDescription& rig, const MappingParameters& prm, DrawnPose& d, MappingReport& report) {
+  auto fail = [&](const std::string& problem) -> void {
+    throw BakeError(rig.file, PoseLabel(rig.poses[d.index].name, d.index) + ": " + problem);
+  };
+  const PoseDescription& pose = rig.poses[d.index];
+  Polygon raw;
+  const bool png = EndsWith(pose.drawing, ".png"), svg = EndsWith(pose.drawing, ".svg");
+  if (!pose.drawing.empty() && !png && !svg) fail("drawing \"" + pose.drawing + "\" is neither .png nor .svg");
+  {
+    // A drawing's errors name the description, the pose and the drawing.
+    const ErrorSource source(rig.file, PoseLabel(pose.name, d.index) + ": " + pose.drawing_path);
+    if (pose.drawing.empty()) {
+      raw = pose.outline;
+      d.landmarks = pose.landmarks;
+    } else if (png) {
+      mapping::ImageOutline io =
+          mapping::OutlineFromPng(pose.drawing_path, prm.alpha_threshold, source, prm.fill_notches, prm.drop_shadows);
+      if (io.shadow_pixels > 0)
+        report.warnings.push_back(rig.file + ": " + PoseLabel(pose.name, d.index) + ": " + pose.drawing_path +
+                                  ": a dark, semi-transparent region of " + std::to_string(io.shadow_pixels) +
+                                  " pixels from (" + std::to_string(io.shadow_x0) + ", " +
+                                  std::to_string(io.shadow_y0) + ") to (" + std::to_string(io.shadow_x1) + ", " +
+                                  std::to_string(io.shadow_y1) + ") in the drawing (mean alpha " +
+                                  Format(io.shadow_alpha) +
+                                  ") is taken as its drop shadow and left out of the mesh, so it is not drawn "
+                                  "(mapping.drop_shadows: false keeps it)");
+      report.filled_notch_corners += io.filled_notch_corners;
+      if (io.dropped_components > 0)
+        report.warnings.push_back(rig.file + ": " + PoseLabel(pose.name, d.index) + ": " + pose.drawing_path +
+                                  ": dropped " + DroppedParts(io) +
+                                  ": only the largest part is meshed; join the parts in the drawing to keep them");
+      for (const Point& p : io.outline) raw.push_back(InRig(p, pose));
+      d.from_drawing = true;
+      d.origin = Point(0.0 - pose.origin.x(), 0.0 - pose.origin.y());  // the canvas's corner from the pose's origin
+      d.size = Point(io.width, io.height);
+    } else {
+      mapping::SvgOutline so =
+          mapping::OutlineFromSvg(pose.drawing_path, prm.curve_tolerance, source, {pose.layer, pose.layer_required});
+      for (const Point& p : so.outline) raw.push_back(InRig(p, pose));
+      d.from_drawing = true;
+      d.origin = so.canvas_origin - pose.origin;
+      d.size = so.canvas_size;
+    }
+  }
+  if (d.from_drawing) {
+    for (const Point& p : pose.landmarks) d.landmarks.push_back(InRig(p, pose));
+    for (const Point& p : pose.features) d.features.push_back(InRig(p, pose));
+  } else {
+    d.features = pose.features;
+  }
+  if (raw.size() > mapping::kMaxOutlinePoints)
+    fail((d.from_drawing ? pose.drawing_path + ": " : std::string()) + "the outline has " + std::to_string(raw.size()) +
+         " points, more than the limit of " + std::to_string(mapping::kMaxOutlinePoints));
+  d.outline = std::move(raw);
+  report.outline_vertices.push_back(d.outline.size());
+}
+
+// The mapped meshes back in rig coordinates, with uvs into each pose's own
+// drawing (or its outline's box) and the canvas a drawing was on.
+void MeshesFromMapping(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
+                       const mapping::CompatibleMesh& mesh, const mapping::Grid& grid, MappedDrawings& result) {
+  result.triangles = SharedTriangles(mesh);
+  for (std::size_t k = 0; k < drawn.size(); ++k) {
+    const DrawnPose& d = drawn[k];
+    const PoseDescription& description = rig.poses[d.index];
+    result.poses.push_back(d.index);
+    result.meshes.emplace_back();
+    PoseMesh& pose = result.meshes.back();
+    pose.name = description.name;
+    pose.point = description.point;
+    pose.image = description.image.empty() ? description.drawing : description.image;
+    Eigen::AlignedBox2d box;
+    for (const Point& p : d.outline) box.extend(p);
+    for (const Point& g : mesh.vertices[k]) {
+      const Point p = grid.FromGrid(g);
+      pose.vertices.push_back(p);
+      Point uv;
+      if (d.from_drawing)
+        uv = Point((p.x() - d.origin.x()) / d.size.x(), (-p.y() - d.origin.y()) / d.size.y());
+      else
+        uv = Point((p.x() - box.min().x()) / box.sizes().x(), (box.max().y() - p.y()) / box.sizes().y());
+      pose.uvs.push_back(uv.cast<float>());
+    }
+    if (d.from_drawing) {
+      // Rig coordinates are drawing units with y flipped: the rig origin is
+      // the drawing's (0, 0), at -origin on the canvas.
+      pose.canvas_size = d.size;
+      pose.canvas_pivot = Eigen::Vector2d(0.0 - d.origin.x(), 0.0 - d.origin.y());  // no -0
+    }
+  }
+}
+
+// The smallest angle of any triangle in any pose, degrees.
+double MinAngleDegrees(const Triangles& triangles, const std::vector<PoseMesh>& meshes) {
+  double least = 180;
+  for (const PoseMesh& m : meshes)
+    for (const auto& t : triangles)
+      for (int k = 0; k < 3; ++k) {
+        const Point &p = m.vertices[t[std::size_t(k)]], &q = m.vertices[t[std::size_t((k + 1) % 3)]],
+                    &r = m.vertices[t[std::size_t((k + 2) % 3)]];
+        const Point u = q - p, v = r - p;
+        least = std::min(least, std::atan2(std::abs(u.x() * v.y() - u.y() * v.x()), u.dot(v)) * 180 / M_PI);
+      }
+  return least;
+}
+
+// Why the drawings cannot align the interiors, or empty when they can: it
+// needs two drawn poses or more, every one a PNG drawing that is also the
+// texture drawn.
+std::string AlignmentSkipped(const RigDescription& rig, const std::vector<DrawnPose>& drawn) {
+  if (!rig.mapping.align_interiors) return "turned off (mapping.align_interiors)";
+  if (drawn.size() < 2) return "one drawn pose";
+  for (const DrawnPose& d : drawn) {
+    const PoseDescription& pose = rig.poses[d.index];
+    if (!EndsWith(pose.drawing, ".png")) return PoseLabel(pose.name, d.index) + " is not a PNG drawing";
+    if (!pose.image.empty() && pose.image != pose.drawing)
+      return PoseLabel(pose.name, d.index) + " draws another image than its drawing";
+  }
+  return "";
+}
+
+// Stage 7: every drawn pose's interior vertices (all but the boundary's and
+// the features') move so that the drawings agree through the meshes
+// (interior_alignment.h), in each drawing's pixels; uvs follow.
+void AlignDrawnInteriors(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
+                         const mapping::CompatibleMesh& mesh, MappedDrawings& result) {
+  MappingReport& report = result.report;
+  report.alignment_skipped = AlignmentSkipped(rig, drawn);
+  if (!report.alignment_skipped.empty()) return;
+  // One scale for every drawing: the largest brought to kAlignmentMaxSide.
+  int halvings = 0;
+  for (const DrawnPose& d : drawn)
+    halvings = std::max(halvings, mapping::AlignmentHalvings(int(d.size.x()), int(d.size.y())));
+  const double scale = std::ldexp(1.0, -halvings);
+  std::vector<mapping::AlignmentImage> images;
+  std::vector<Points> pixels;
+  for (std::size_t k = 0; k < drawn.size(); ++k) {
+    const DrawnPose& d = drawn[k];
+    const PoseDescription& pose = rig.poses[d.index];
+    int width = 0, height = 0;
+    const std::vector<unsigned char> rgba =
+        mapping::ReadPngRgba(pose.drawing_path, &width, &height,
+                             ErrorSource(rig.file, PoseLabel(pose.name, d.index) + ": " + pose.drawing_path));
+    images.push_back(mapping::AlignmentImageFromRgba(rgba.data(), width, height, halvings));
+    pixels.emplace_back();
+    for (const Point& p : result.meshes[k].vertices)
+      pixels.back().push_back(scale * Point(p.x() - d.origin.x(), -p.y() - d.origin.y()));
+  }
+  const std::vector<char> boundary = mapping::BoundaryVertices(mesh);
+  std::vector<bool> fixed(boundary.begin(), boundary.end());
+  for (std::uint32_t v : result.feature_vertices) fixed[v] = true;
+  mapping::AlignmentParameters parameters;
+  parameters.rigidity = rig.mapping.align_rigidity;
+  // The quality the description asks of the mesh holds through the
+  // alignment (or what refinement reached, when that is less).
+  parameters.min_angle_floor_degrees = rig.mapping.min_angle;
+  mapping::AlignmentReport aligned;
+  mapping::AlignInteriors(images, result.triangles, fixed, pixels, parameters, &aligned);
+  for (std::size_t k = 0; k < drawn.size(); ++k) {
+    const DrawnPose& d = drawn[k];
+    PoseMesh& pose = result.meshes[k];
+    for (std::size_t v = 0; v < pose.vertices.size(); ++v) {
+      if (fixed[v]) continue;  // exactly where the mapping put it
+      const Point q = pixels[k][v] / scale;
+      const Point p(q.x() + d.origin.x(), 0.0 - (q.y() + d.origin.y()));
+      pose.vertices[v] = p;
+      pose.uvs[v] = Point((p.x() - d.origin.x()) / d.size.x(), (-p.y() - d.origin.y()) / d.size.y()).cast<float>();
+    }
+  }
+  report.aligned = true;
+  report.alignment_before = aligned.difference_before;
+  report.alignment_after = aligned.difference_after;
+  for (double m : aligned.max_move) report.alignment_max_move = std::max(report.alignment_max_move, m / scale);
+  report.alignment_seconds = aligned.seconds;
+  report.regions_found = aligned.regions_found;
+  report.regions_matched = aligned.regions_matched;
+}
+
+std::vector<DrawnPose> DrawnPoses(const RigDescription& rig) {
+  std::vector<DrawnPose> drawn;
+  for (std::size_t i = 0; i < rig.poses.size(); ++i)
+    if (rig.poses[i].drawn && rig.poses[i].vertices.empty()) {
+      drawn.emplace_back();
+      drawn.back().index = i;
+    }
+  return drawn;
+}
+
+// Step 1 for every drawn pose: what MapPolygons takes.
+struct MappingInput {
+  std::vector<Polygon> outlines;
+  std::vector<std::vector<Point>> landmarks, features;
+  std::vector<std::string> labels;
+};
+MappingInput ReadDrawnOutlines(const RigDescription& rig, std::vector<DrawnPose>& drawn, MappingReport& report) {
+  MappingInput in;
+  for (DrawnPose& d : drawn) {
+    ReadDrawnOutline(rig, rig.mapping, d, report);
+    in.outlines.push_back(d.outline);
+    in.landmarks.push_back(d.landmarks);
+    in.features.push_back(d.features);
+    in.labels.push_back(PoseLabel(rig.poses[d.index].name, d.index));
+  }
+  return in;
+}
+
+// "FILE: POSE: ..." for each pose whose start landmark seems misplaced.
+std::vector<std::string> SpinningWarnings(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
+                                          const std::vector<std::string>& labels, const mapping::MappingStages& st) {
+  std::vector<std::string> warnings;
+  for (const auto& s : st.spinning) {
+    const Point at = InDrawing(s.suggested, rig.poses[drawn[s.pose].index]);
+    warnings.push_back(rig.file + ": " + labels[s.pose] + ": its start landmark (landmark 0) may sit on another part " +
+                       "of the outline than in " + labels[0] + ": the outlines' bends agree best with the start " +
+                       Format(100 * s.shift) + "% of the way round, counter-clockwise as seen (mean difference " +
+                       Format(s.alignment.best_cost) + " rad there, " + Format(s.alignment.cost_at_start) +
+                       " at landmark 0), near (" + Format(at.x()) + ", " + Format(at.y()) +
+                       ") in its drawing; if the in-betweens spin, move landmark 0 there");
+  }
+  return warnings;
+}
+
+MappedDrawings MapDrawingsAsTraced(const RigDescription& rig);
+
+// MapPolygons; when it fails and some pose's start landmark seems to sit on
+// another part of the outline than pose 0's (a start on the left foot in one
+// drawing and on the right foot in the next), the error says so too, with
+// where the outlines' bends put the start in that pose's drawing: the
+// failure it led to (a feature or a joint that cannot be placed, no
+// enclosing polygon) names a symptom, not the cause.
+mapping::MappingStages MapPolygonsOrSayStart(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
+                                             const MappingInput& in, const MappingParameters& prm) {
+  try {
+    return mapping::MapPolygons(in.outlines, in.landmarks, in.features, prm, in.labels, rig.file);
+  } catch (const BakeError& e) {
+    std::string hint;
+    for (std::size_t k = 1; k < in.outlines.size(); ++k) {
+      if (in.landmarks[k].empty() || in.landmarks[0].empty()) continue;
+      const mapping::StartAlignment a =
+          mapping::AlignStart(in.outlines[0], in.landmarks[0][0], in.outlines[k], in.landmarks[k][0]);
+      if (!a.Misplaced()) continue;
+      const Point at = InDrawing(mapping::PointAtArcLength(in.outlines[k], a.best_start), rig.poses[drawn[k].index]);
+      hint += "; " + in.labels[k] + ": its start landmark (landmark 0) may sit on another part of the outline than " +
+              "in " + in.labels[0] + " (a start that switches feet between poses, say), which is what can make " +
+              "this fail: the outlines' bends agree best with the start near (" + Format(at.x()) + ", " +
+              Format(at.y()) + ") in its drawing; move landmark 0 there";
+    }
+    if (hint.empty()) throw;
+    const std::string what = e.what();
+    const std::string prefix = rig.file + ": ";
+    throw BakeError(rig.file, (what.rfind(prefix, 0) == 0 ? what.substr(prefix.size()) : what) + hint);
+  }
+}
+
+}  // namespace
+
+// The drawings mapped as traced; when that fails (no enclosing polygon, a
+// triangulation that cannot be made), mapped again with the PNG outlines'
+// thin notches filled, which is said in a warning; when that fails too,
+// the first failure is the one reported.
+MappedDrawings MapDrawings(const RigDescription& rig) {
+  try {
+    return MapDrawingsAsTraced(rig);
+  } catch (const BakeError& first) {
+    if (rig.mapping.fill_notches || !TracesPngOutline(rig)) throw;
+    RigDescription filled = rig;
+    filled.mapping.fill_notches = true;
+    try {
+      MappedDrawings again = MapDrawingsAsTraced(filled);
+      again.report.warnings.insert(again.report.warnings.begin(),
+                                   std::string(first.what()) +
+                                       "; mapped again with the outlines' thin notches filled (" +
+                                       std::to_string(again.report.filled_notch_corners) + " corners)");
+      return again;
+    } catch (const BakeError&) {
+      throw first;
+    }
+  }
+}
+
+namespace {
+
+MappedDrawings MapDrawingsAsTraced(const RigDescription& rig) {
+  MappedDrawings result;
+  std::vector<DrawnPose> drawn = DrawnPoses(rig);
+  if (drawn.empty()) return result;
+  const auto start = std::chrono::steady_clock::now();
+  const MappingParameters& prm = rig.mapping;
+  MappingReport& report = result.report;
+
+  // 1. Outlines, in rig coordinates (y up).
+  const MappingInput in = ReadDrawnOutlines(rig, drawn, report);
+  if (prm.fill_notches && report.filled_notch_corners == 0)
+    throw BakeError(rig.file, "no thin notch to fill: the outlines are as traced");  // the same mapping again
+  const mapping::MappingStages st = MapPolygonsOrSayStart(rig, drawn, in, prm);
+  for (const std::string& w : st.warnings) report.warnings.push_back(rig.file + ": " + w);
+  for (const std::string& w : SpinningWarnings(rig, drawn, in.labels, st)) report.warnings.push_back(w);
+  const mapping::CompatibleMesh& mesh = st.mesh;
+  const mapping::Grid grid{st.grid_scale};
+  report.matched_vertices = st.matched.points[0].size();
+  report.boundary_vertices = st.simplified.polygons[0].size();
+  report.simplification_error = st.simplified.max_error / grid.scale;
+  report.steiner_points = mesh.steiner_points;
+  report.features = mesh.features.size();
+  for (std::size_t v : mesh.features) result.feature_vertices.push_back(std::uint32_t(v));
+  report.min_angle_degrees = report.min_angle_before_alignment = mapping::MinAngleDegrees(mesh);
+  report.vertices = mesh.vertices[0].size();
+  report.triangles = mesh.triangles.size();
+
+  // 5. Back to rig coordinates; uvs into each pose's own drawing.
+  MeshesFromMapping(rig, drawn, mesh, grid, result);
+  // 7. The drawings align the interiors.
+  AlignDrawnInteriors(rig, drawn, mesh, result);
+  if (report.aligned) report.min_angle_degrees = MinAngleDegrees(result.triangles, result.meshes);
+  report.mapped = true;
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace
+
+bool TracesPngOutline(const RigDescription& rig) {
+  if (!rig.parts.empty()) return true;  // a part's poses may be
+  for (const PoseDescription& pose : rig.poses)
+    if (pose.drawn && pose.vertices.empty() && EndsWith(pose.drawing, ".png")) return true;
+  return false;
+}
+
+DrawnOutlines TraceDrawings(const RigDescription& rig) {
+  DrawnOutlines result;
+  std::vector<DrawnPose> drawn = DrawnPoses(rig);
+  MappingReport report;
+  const MappingInput in = ReadDrawnOutlines(rig, drawn, report);
+  for (std::size_t k = 0; k < drawn.size(); ++k) {
+    const DrawnPose& d = drawn[k];
+    const PoseDescription& pose = rig.poses[d.index];
+    DrawnPoseOutline o;
+    o.pose = d.index;
+    o.label = in.labels[k];
+    if (EndsWith(pose.drawing, ".png")) o.png_path = pose.drawing_path;
+    Eigen::AlignedBox2d box;
+    for (const Point& p : d.outline) box.extend(p), o.traced.push_back(InDrawing(p, pose));
+    if (mapping::SignedArea(d.outline) < 0) std::reverse(o.traced.begin(), o.traced.end());
+    for (const Point& p : d.landmarks) o.landmarks.push_back(InDrawing(p, pose));
+    for (const Point& p : d.features) o.features.push_back(InDrawing(p, pose));
+    o.landmark_distance = mapping::LandmarkTolerance(rig.mapping, box.diagonal().norm());
+    result.poses.push_back(std::move(o));
+  }
+  if (drawn.empty()) return result;
+  try {
+    const mapping::MappingStages st =
+        mapping::MapPolygons(in.outlines, in.landmarks, in.features, rig.mapping, in.labels, rig.file);
+    const mapping::Grid grid{st.grid_scale};
+    result.simplify_tolerance = st.sizes.simplify_tolerance;
+    for (std::size_t k = 0; k < drawn.size(); ++k) {
+      const PoseDescription& pose = rig.poses[drawn[k].index];
+      DrawnPoseOutline& o = result.poses[k];
+      for (const Point& g : st.landmarks[k]) o.placed.push_back(InDrawing(grid.FromGrid(g), pose));
+      for (const Point& g : st.simplified.polygons[k]) o.boundary.push_back(InDrawing(grid.FromGrid(g), pose));
+      for (const Point& g : st.mesh.vertices[k]) o.vertices.push_back(InDrawing(grid.FromGrid(g), pose));
+    }
+    result.triangles = SharedTriangles(st.mesh);
+  } catch (const BakeError& e) {
+    result.mapping_error = e.what();
+  }
+  return result;
+}
+
+}  // namespace posemorph::bake
