@@ -271,6 +271,12 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt
 
 std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport* report) {
   if (description.channels.size() > 1) return BakeChannels(description, report);
+  return BakeOne(description, report).bytes;
+}
+
+BakedRig BakeOne(const RigDescription& description, BakeReport* report) {
+  if (description.channels.size() > 1)
+    throw BakeError(description.file, "internal: BakeOne bakes one pose space; this description has channels");
   const auto start = std::chrono::steady_clock::now();
   const std::string& file = description.file;
   Attempt first = BakeOnce(description);
@@ -288,7 +294,7 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
   else
     RefuseFolds(description, first.written, first.inbetweens);
   std::optional<Attempt> finer = RefineFurther(chosen, again ? *again : first);
-  const Attempt& a = finer ? *finer : again ? *again : first;
+  Attempt& a = finer ? *finer : again ? *again : first;
   const PoseMeshes& meshes = a.meshes;
 
   if (report) {
@@ -326,7 +332,8 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
     r.ghosting = MeasureBakedGhosting(description, a.written.rig, &r.ghosting_skipped);
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
-  return a.bytes;
+  // a.written loaded the rig from a.bytes, the file's bytes.
+  return BakedRig{std::move(a.bytes), std::move(a.written.rig)};
 }
 
 }  // namespace posemorph::bake

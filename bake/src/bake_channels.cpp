@@ -246,8 +246,10 @@ RigDescription AttachmentDescription(const RigDescription& description, std::siz
 std::vector<unsigned char> BakeChannels(const RigDescription& d, BakeReport* report) {
   const auto start = std::chrono::steady_clock::now();
   BakeReport r;
-  const std::vector<unsigned char> body_bytes = BakeRig(ChannelBodyDescription(d), &r);
-  const Rig body = LoadBaked(body_bytes, d.file, "the body's rig");
+  // Each pose space baked on its own, its rig as its verification loaded it.
+  const BakedRig body_baked = BakeOne(ChannelBodyDescription(d), &r);
+  const std::vector<unsigned char>& body_bytes = body_baked.bytes;
+  const Rig& body = body_baked.rig;
   std::vector<Attachment> attachments;
   for (std::size_t p = 0; p < d.parts.size(); ++p) {
     if (d.parts[p].channel == 0) continue;
@@ -259,8 +261,9 @@ std::vector<unsigned char> BakeChannels(const RigDescription& d, BakeReport* rep
     BakeReport sub;
     Attachment a;
     a.channel = std::uint32_t(part.channel);
-    a.bytes = BakeRig(AttachmentDescription(d, p), &sub);
-    const Rig rig = LoadBaked(a.bytes, d.file, "part '" + part.name + "''s rig");
+    BakedRig baked = BakeOne(AttachmentDescription(d, p), &sub);
+    a.bytes = std::move(baked.bytes);
+    const Rig& rig = baked.rig;
     std::uint32_t parent = 0;
     while (parent < body.part_count() &&
            std::string(body.part(parent).name.data, body.part(parent).name.size) != glue->to)
