@@ -44,8 +44,7 @@ bool RigLoader::ReadChannels(const unsigned char* bytes, const Parser& parser, c
   if (size < fmt::kChannelsHeaderSize)
     return Fail(err, ErrorCode::kBadLayout, "CHAN section of %llu bytes is shorter than its header",
                 (unsigned long long)size);
-  fmt::ChannelsHeader header{};
-  fmt::ReadRecord(p, size, 0, &header);  // fits: checked above
+  const fmt::ChannelsHeader header = fmt::DecodeRecord<fmt::ChannelsHeader>(p);  // fits: checked above
   ch->C = header.channel_count;
   ch->A = header.attachment_count;
   if (ch->C < 2 || ch->C > fmt::kMaxChannels)

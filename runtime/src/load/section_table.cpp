@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstring>
+#include <iterator>
 
 namespace posemorph {
 
@@ -33,7 +34,7 @@ bool RigLoader::ReadHeader(const unsigned char* bytes, std::size_t size, const L
     return Fail(err, ErrorCode::kBadLayout, "header says %llu bytes, %zu given (trailing bytes)",
                 (unsigned long long)h->file_size, size);
   if (header.flags != 0) return Fail(err, ErrorCode::kBadVersion, "unknown header flags 0x%x", header.flags);
-  for (std::uint32_t i = 0; i < 7; ++i)
+  for (std::uint32_t i = 0; i < std::size(header.reserved); ++i)
     if (header.reserved[i] != 0)
       return Fail(err, ErrorCode::kBadLayout, "reserved header bytes %u..%u are not zero",
                   std::uint32_t(offsetof(fmt::FileHeader, reserved)) + 4 * i,
