@@ -358,10 +358,8 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
   if (!o.scene.path.empty() && rig.FindPath(o.scene.path.c_str()) < 0)
     return Fail(o.rig_path + ": has no path named \"" + o.scene.path + "\"");
   if (o.frames > 0 && o.headless && o.scene.path.empty()) return Usage("--frames needs --path NAME");
-#if !POSEMORPH_VIEWER_EDIT
-  if (!o.window.description.empty())
+  if (!EditModeBuilt() && !o.window.description.empty())
     return Usage("--description needs a posemorph-view built with edit mode (POSEMORPH_VIEWER_EDIT=ON)");
-#endif
   for (const std::string& name : o.hidden_parts) {
     std::string names;
     bool found = false;

@@ -17,6 +17,11 @@ struct WindowOptions {
   bool show_joints = false;  // a layered character's joints marked over the frame
 };
 
+// True when this build has edit mode and saving into the description
+// (POSEMORPH_VIEWER_EDIT=ON: window_edit.cpp; else window_edit_off.cpp, or
+// window_none.cpp in a viewer without a window).
+bool EditModeBuilt();
+
 // Runs until the window closes; returns the process exit status.
 int RunWindow(const Rig& rig, const Drawings& drawings, Scene scene, const WindowOptions& options);
 

@@ -1,10 +1,12 @@
 // SPDX-License-Identifier: MIT
 // The window's camera controls: fit, zoom about the cursor, pan, one drawing pixel per screen pixel.
-#include "window_impl.h"
+#include "window_camera.h"
+
+#include <cmath>
 
 namespace posemorph::viewer::window_impl {
 
-void Viewer::CameraUi() {
+void ViewCamera::Ui() {
   ImGui::Separator();
   ImGui::TextUnformatted("Camera (wheel: zoom; middle/right or space + drag: pan)");
   if (ImGui::Button("fit character")) fit_ = Fit::kCharacter;
@@ -15,7 +17,7 @@ void Viewer::CameraUi() {
   ImGui::Text("zoom %.3g px per unit", camera_.zoom);
 }
 
-void Viewer::CameraInput(std::int32_t x0, std::uint32_t w, std::uint32_t h) {
+void ViewCamera::Input(GLFWwindow* window, std::int32_t x0, std::uint32_t w, std::uint32_t h) {
   const ImGuiIO& io = ImGui::GetIO();
   const glm::dvec2 cursor(io.MousePos.x - x0, io.MousePos.y);
   const bool inside = io.MousePos.x >= float(x0) && cursor.y >= 0 && cursor.y < h && !io.WantCaptureMouse;
@@ -23,7 +25,7 @@ void Viewer::CameraInput(std::int32_t x0, std::uint32_t w, std::uint32_t h) {
     camera_ = ZoomAbout(camera_, cursor, std::pow(1.15, double(io.MouseWheel)), w, h);
     fit_ = Fit::kNone;
   }
-  const bool space = window_ && glfwGetKey(window_, GLFW_KEY_SPACE) == GLFW_PRESS;
+  const bool space = window && glfwGetKey(window, GLFW_KEY_SPACE) == GLFW_PRESS;
   const bool pan_button = io.MouseDown[1] || io.MouseDown[2] || (space && io.MouseDown[0]);
   if (!pan_button)
     panning_ = false;
@@ -38,6 +40,12 @@ void Viewer::CameraInput(std::int32_t x0, std::uint32_t w, std::uint32_t h) {
     if (ImGui::IsKeyPressed(GLFW_KEY_A)) fit_ = Fit::kAll;
     if (ImGui::IsKeyPressed(GLFW_KEY_1)) fit_ = Fit::kNone, one_to_one_ = true;
   }
+}
+
+void ViewCamera::Follow(const SceneBounds& bounds, bool character, std::uint32_t w, std::uint32_t h) {
+  if (fit_ == Fit::kNone && !one_to_one_) return;
+  camera_ = FitCamera(fit_ == Fit::kCharacter || character ? bounds.first : bounds.all, w, h);
+  if (one_to_one_) camera_.zoom = 1, camera_ = PixelExact(camera_, w, h), one_to_one_ = false;
 }
 
 }  // namespace posemorph::viewer::window_impl

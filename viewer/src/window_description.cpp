@@ -4,7 +4,7 @@
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/input_file.h"
 #include "posemorph/bake/rig_description.h"
-#include "window_impl.h"
+#include "window_editor.h"
 
 namespace posemorph::viewer::window_impl {
 namespace {
@@ -31,21 +31,20 @@ std::string SaveIntoDescription(const std::string& description, const char* what
 
 }  // namespace
 
-void Viewer::SaveGesture() {
+void Editor::SaveGesture(const Gesture& gesture, std::string* status) const {
   bake::PathDescription path;
   path.name = "gesture";
   path.loop = true;
   double last = -1;  // key times must increase strictly
-  for (const auto& k : gesture_.keys)
+  for (const auto& k : gesture.keys)
     if (k[0] > last + 1e-3) path.keys.push_back({k[0], k[1], k[2]}), last = k[0];
-  status_ = SaveIntoDescription(options_.description, "gestures", {}, {path});
+  *status = SaveIntoDescription(description_, "gestures", {}, {path});
 }
 
-// The edited pose as a deformation of the pose it started from, at the pad's point.
-void Viewer::SavePose() {
+void Editor::SavePose(const Scene& scene, std::string* status) const {
   bake::PoseDescription pose;
   pose.name = "edit";
-  pose.point = {scene_.x, scene_.y};
+  pose.point = {scene.x, scene.y};
   pose.deformed = true;
   const StringView from = rig_.pose_name(std::uint32_t(edit_.pose));
   pose.deform.from.assign(from.data, from.size);
@@ -56,7 +55,7 @@ void Viewer::SavePose() {
     h.to = Eigen::Vector2d(edit_.targets[k].x, edit_.targets[k].y);
     pose.deform.handles.push_back(h);
   }
-  status_ = SaveIntoDescription(options_.description, "poses", {pose}, {});
+  *status = SaveIntoDescription(description_, "poses", {pose}, {});
 }
 
 }  // namespace posemorph::viewer::window_impl

@@ -3,7 +3,10 @@
 // Part of the edit component (with window_description.cpp): it links the bake.
 #include "posemorph/bake/arap_deformer.h"
 #include "posemorph/bake/error.h"
-#include "window_impl.h"
+#include "window_editor.h"
+
+#include <algorithm>
+#include <cmath>
 
 namespace posemorph::viewer::window_impl {
 namespace {
@@ -42,9 +45,7 @@ class EditDeformer {
 
 void EditDeformerDelete::operator()(EditDeformer* d) const { delete d; }
 
-bool EditModeBuilt() { return true; }
-
-void Viewer::EditUi() {
+void Editor::Ui(const Scene& scene, std::string* status) {
   ImGui::Separator();
   ImGui::TextUnformatted("Edit (drag handles on a base pose)");
   if (ImGui::Checkbox("edit mode", &edit_.on)) edit_.dragging = -1;
@@ -62,20 +63,19 @@ void Viewer::EditUi() {
   }
   if (ImGui::Button("clear handles")) edit_.handles.clear(), edit_.targets.clear(), edit_.deformer.reset();
   ImGui::SameLine();
-  if (ImGui::Button("save pose") && edit_.handles.size() >= 2) SavePose();
+  if (ImGui::Button("save pose") && edit_.handles.size() >= 2) SavePose(scene, status);
   ImGui::Text("%zu handle(s): click the mesh to add, drag to move", edit_.handles.size());
 }
 
-void Viewer::EditInput(std::int32_t x0, std::uint32_t w, std::uint32_t h) {
+void Editor::Input(const ViewMap& map, bool panning) {
   const ImGuiIO& io = ImGui::GetIO();
-  const ViewMap map{camera_, x0, w, h};
   ImDrawList* draw = ImGui::GetForegroundDrawList();
   for (std::size_t k = 0; k < edit_.handles.size(); ++k) {
     const ImVec2 p = map.ToScreen(edit_.targets[k]);
     draw->AddCircleFilled(p, 6, IM_COL32(230, 60, 40, 230));
     draw->AddCircle(p, 7, IM_COL32(20, 20, 20, 255), 0, 1.5f);
   }
-  if (io.WantCaptureMouse || io.MousePos.x < x0 || panning_) return;
+  if (io.WantCaptureMouse || io.MousePos.x < map.x0 || panning) return;
   if (io.MouseClicked[0]) {
     edit_.dragging = -1;
     for (std::size_t k = 0; k < edit_.handles.size(); ++k) {
@@ -100,7 +100,7 @@ void Viewer::EditInput(std::int32_t x0, std::uint32_t w, std::uint32_t h) {
   if (edit_.dragging >= 0) edit_.targets[std::size_t(edit_.dragging)] = map.ToRig(io.MousePos);
 }
 
-bool Viewer::EditScene(SceneBounds* bounds, std::uint32_t* count) {
+bool Editor::Prepare(RigRenderer& renderer, SceneBounds* bounds, std::uint32_t* count, std::string* status) {
   const std::uint32_t V = rig_.vertex_count();
   const Span<const double> p = rig_.pose_positions(std::uint32_t(edit_.pose));
   edit_.rest.resize(V);
@@ -111,11 +111,11 @@ bool Viewer::EditScene(SceneBounds* bounds, std::uint32_t* count) {
       if (!edit_.deformer) edit_.deformer.reset(new EditDeformer(edit_.rest, rig_, edit_.handles));
       edit_.deformer->Deform(edit_.targets, &edit_.current);
     } catch (const bake::BakeError& e) {
-      status_ = e.what();
+      *status = e.what();
       edit_.current = edit_.rest;
     }
   }
-  float* out = renderer_->positions();
+  float* out = renderer.positions();
   for (std::uint32_t v = 0; v < V; ++v)
     out[2 * v] = float(edit_.current[v].x), out[2 * v + 1] = float(edit_.current[v].y);
   DrawList list;  // the edited pose's own drawing, where the character stands unmoved
@@ -123,10 +123,14 @@ bool Viewer::EditScene(SceneBounds* bounds, std::uint32_t* count) {
   list.drawings[0].pose = std::uint32_t(edit_.pose);
   list.drawings[0].weight = 1;
   list.parts = rig_.draw_sequence(std::uint32_t(edit_.pose));
-  renderer_->SetCharacter(0, list);
+  renderer.SetCharacter(0, list);
   bounds->all = bounds->first = CharacterBounds(rig_);
   *count = 1;
   return true;
 }
 
 }  // namespace posemorph::viewer::window_impl
+
+namespace posemorph::viewer {
+bool EditModeBuilt() { return true; }
+}  // namespace posemorph::viewer

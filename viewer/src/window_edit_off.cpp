@@ -3,26 +3,32 @@
 // into the description (the component that links the bake is left out, so
 // this viewer needs the runtime, Vulkan, GLFW and Dear ImGui alone). The
 // panel says so where the controls would be.
-#include "window_impl.h"
+#include "window_editor.h"
+
+namespace posemorph::viewer {
+bool EditModeBuilt() { return false; }
+}  // namespace posemorph::viewer
 
 namespace posemorph::viewer::window_impl {
 
 class EditDeformer {};
 void EditDeformerDelete::operator()(EditDeformer* d) const { delete d; }
 
-bool EditModeBuilt() { return false; }
-
-void Viewer::EditUi() {
+void Editor::Ui(const Scene&, std::string*) {
   ImGui::Separator();
   ImGui::TextWrapped("Edit mode is not in this build (POSEMORPH_VIEWER_EDIT=OFF)");
 }
 
-void Viewer::EditInput(std::int32_t, std::uint32_t, std::uint32_t) {}
+void Editor::Input(const ViewMap&, bool) {}
 
-bool Viewer::EditScene(SceneBounds*, std::uint32_t*) { return false; }
+bool Editor::Prepare(RigRenderer&, SceneBounds*, std::uint32_t*, std::string*) { return false; }
 
-void Viewer::SaveGesture() { status_ = "saving gestures needs a viewer built with POSEMORPH_VIEWER_EDIT=ON"; }
+void Editor::SaveGesture(const Gesture&, std::string* status) const {
+  *status = "saving gestures needs a viewer built with POSEMORPH_VIEWER_EDIT=ON";
+}
 
-void Viewer::SavePose() { status_ = "saving poses needs a viewer built with POSEMORPH_VIEWER_EDIT=ON"; }
+void Editor::SavePose(const Scene&, std::string* status) const {
+  *status = "saving poses needs a viewer built with POSEMORPH_VIEWER_EDIT=ON";
+}
 
 }  // namespace posemorph::viewer::window_impl

@@ -6,6 +6,8 @@
 
 namespace posemorph::viewer {
 
+bool EditModeBuilt() { return false; }
+
 int RunWindow(const Rig&, const Drawings&, Scene, const WindowOptions&) {
   std::fprintf(stderr, "posemorph-view: this build has no window support; use --headless -o OUT.png\n");
   return 2;

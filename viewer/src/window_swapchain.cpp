@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: MIT
 // The window's Vulkan swapchain: created for the framebuffer size, rebuilt on resize.
-#include "window_impl.h"
+#include <algorithm>
+#include <vector>
+
+#include "window_presenter.h"
 
 namespace posemorph::viewer::window_impl {
 
-bool Viewer::CreateSwapchain() {
+bool Presenter::CreateSwapchain() {
   VkSurfaceCapabilitiesKHR caps;
   vkGetPhysicalDeviceSurfaceCapabilitiesKHR(gpu_.physical(), surface_, &caps);
   int fw = 0, fh = 0;
@@ -54,7 +57,7 @@ bool Viewer::CreateSwapchain() {
 
 // The panel's render pass: it loads what the characters' pass drew and
 // leaves the image ready to present.
-void Viewer::CreateUiPass() {
+void Presenter::CreateUiPass() {
   if (ui_pass_) vkDestroyRenderPass(gpu_.device(), ui_pass_, nullptr);
   VkAttachmentDescription at{};
   at.format = sc_.format;
@@ -87,7 +90,7 @@ void Viewer::CreateUiPass() {
 
 // Per swapchain image: a view, the panel's framebuffer and the semaphore its
 // rendering signals.
-void Viewer::CreateImageViews() {
+void Presenter::CreateImageViews() {
   const VkExtent2D extent = sc_.extent;
   for (VkImage image : sc_.images) {
     VkImageViewCreateInfo vi{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
@@ -115,7 +118,7 @@ void Viewer::CreateImageViews() {
   }
 }
 
-void Viewer::DestroySwapchain() {
+void Presenter::DestroySwapchain() {
   VkDevice dev = gpu_.device();
   VkCheck(vkDeviceWaitIdle(dev), "vkDeviceWaitIdle");
   for (VkFramebuffer f : sc_.framebuffers) vkDestroyFramebuffer(dev, f, nullptr);

@@ -1,0 +1,67 @@
+// SPDX-License-Identifier: MIT
+// The window's editor: edit mode (handles dragged on one base pose's mesh
+// make a new pose, as-rigid-as-possible shape manipulation: the bake's
+// ArapDeformer) and saving gestures and poses into the rig description.
+// window_edit.cpp and window_description.cpp implement it and are the one
+// component that links the bake; a build with POSEMORPH_VIEWER_EDIT=OFF
+// takes window_edit_off.cpp in their place.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rig_renderer.h"
+#include "scene.h"
+#include "window_common.h"
+#include "window_pad.h"
+
+namespace posemorph::viewer::window_impl {
+
+// The deformer behind edit mode (the bake's ArapDeformer, window_edit.cpp).
+class EditDeformer;
+struct EditDeformerDelete {
+  void operator()(EditDeformer* d) const;
+};
+
+// Edit mode's state: the base pose, the handles (vertices) and where they
+// are dragged, the mesh as deformed.
+struct Edit {
+  bool on = false;
+  int pose = 0;
+  std::vector<std::uint32_t> handles;
+  std::vector<glm::dvec2> targets;
+  std::unique_ptr<EditDeformer, EditDeformerDelete> deformer;  // for this handle set
+  std::vector<glm::dvec2> rest, current;
+  int dragging = -1;
+};
+
+class Editor {
+ public:
+  // `description`: the rig description to save into ("" refuses saving with a status line).
+  Editor(const Rig& rig, std::string description) : rig_(rig), description_(std::move(description)) {}
+
+  // The panel's edit controls; saving the pose needs the pad's point.
+  void Ui(const Scene& scene, std::string* status);
+  // Handles: a click on the mesh adds one, a drag moves one (not while the camera pans).
+  void Input(const ViewMap& map, bool panning);
+  // The edited pose into the renderer's first character, standing unmoved;
+  // false when this build has no edit mode.
+  bool Prepare(RigRenderer& renderer, SceneBounds* bounds, std::uint32_t* count, std::string* status);
+  // The gesture as a path, and the edited pose as a deformation of the pose
+  // it started from at the pad's point, added to the rig description
+  // (bake::AddToRigDescription; the names are stems) and written back
+  // atomically; `status` says what was done.
+  void SaveGesture(const Gesture& gesture, std::string* status) const;
+  void SavePose(const Scene& scene, std::string* status) const;
+
+  Edit& state() { return edit_; }
+  bool on() const { return edit_.on; }
+
+ private:
+  [[maybe_unused]] const Rig& rig_;  // unused in a build without edit mode
+  std::string description_;
+  Edit edit_;
+};
+
+}  // namespace posemorph::viewer::window_impl
