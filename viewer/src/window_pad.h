@@ -48,7 +48,7 @@ class PosePad {
 
   static constexpr int kCells = 48;  // the weight field's cells across a pad
   Field body_;
-  std::vector<Field> channels_;  // channels 1 .. C-1 (index c - 1)
+  std::vector<Field> channels_;     // channels 1 .. C-1 (index c - 1)
   std::vector<char> play_channel_;  // channel c - 1 follows its first path
   Gesture gesture_;
   bool play_path_ = false;

@@ -45,9 +45,9 @@ struct Parts {
   Editor editor;
   ViewCamera view;
   SceneScratch scratch;
-  std::string status;  // the panel's last line: what a save did, or why a frame failed
-  double clock = 0;    // seconds since the window opened (1/60 a frame in the smoke test)
-  double eval_ms = 0;  // the runtime's time for the last frame's characters
+  std::string status;                 // the panel's last line: what a save did, or why a frame failed
+  double clock = 0;                   // seconds since the window opened (1/60 a frame in the smoke test)
+  double eval_ms = 0;                 // the runtime's time for the last frame's characters
   std::vector<std::uint32_t> joints;  // a layered character's joint vertices (JointVertices)
   bool show_joints = false;           // markers on the joints (--joints, or the panel's toggle)
   // The last overlay's markers in window pixels (the smoke test finds them in its shot).
