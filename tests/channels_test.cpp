@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "posemorph/bake/bake.h"
+#include "posemorph/bake/bake_channels.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/rig_description.h"
 #include "posemorph/jobs.h"
@@ -525,4 +526,28 @@ TEST_CASE("channels: Pell's face reproduces every expression on the head, and it
   MESSAGE("joint residual over 121 frames of both paths: " << residual << " px");
   CHECK(residual < 0.25);
   CHECK(residual < 1e-9 * size);
+}
+
+TEST_CASE("channels: the character is planned before anything is baked: the body and each attachment") {
+  const bake::RigDescription d = bake::ParseRigDescription(ArmChannels().dump(), "arm.json", ".");
+  const bake::CharacterPlan plan = bake::PlanCharacter(d);
+  CHECK(plan.channels == std::vector<std::string>{"body", "arm"});
+  // The body: the first channel's parts alone, without channels.
+  REQUIRE(plan.body.parts.size() == 1);
+  CHECK(plan.body.parts[0].name == d.parts[0].name);
+  CHECK(plan.body.channels.empty());
+  // One attachment: the arm, over its channel's poses, pinned by its glue.
+  REQUIRE(plan.attachments.size() == 1);
+  const bake::AttachmentPlan& arm = plan.attachments[0];
+  CHECK(arm.part == 1);
+  CHECK(arm.description.file == "arm.json: part '" + d.parts[1].name + "'");
+  CHECK(arm.description.poses.size() == d.channels[1].poses.size());
+  CHECK(arm.description.paths.size() == 1);
+  CHECK(arm.glue.to == d.parts[0].name);
+  // BakeRig bakes a character with channels through it, to the same bytes each time.
+  bake::BakeReport report;
+  const std::vector<unsigned char> bytes = bake::BakeCharacter(d, &report);
+  CHECK(bytes == bake::BakeRig(d));
+  CHECK(report.attachments.size() == 1);
+  CHECK(Load(bytes).attachment_count() == 1);
 }

@@ -1,14 +1,17 @@
 // SPDX-License-Identifier: MIT
 // The bake's compact encoding: a 1035-vertex, 8-pose plate within 100 KB at
 // the default budget, the bake's own measurement within budget, the same
-// bytes twice, and --precision exact unchanged.
+// bytes twice, and --precision exact unchanged; the bake's steps hand each
+// other sections, which WriteRig lays out as the loader reads them.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 
 #include "posemorph/bake/bake.h"
 #include "posemorph/rig.h"
+#include "posemorph/rig_format.h"
 #include "strip_rig.h"
 
 using namespace posemorph;
@@ -60,4 +63,40 @@ TEST_CASE("a budget no compact encoding reaches gives the exact encoding, and th
   CHECK_FALSE(report.compact);
   CHECK(bytes.size() == report.exact_bytes);
   CHECK(report.max_reproduction_error <= 1e-9);
+}
+
+TEST_CASE("the bake hands sections, not bytes: WriteRig lays them out as the loader reads them") {
+  for (const bool compact : {false, true}) {
+    CAPTURE(compact);
+    bake::RigDescription desc = samples::SnakeRig();
+    desc.parameters.compact = compact;
+    bake::BakeReport report;
+    const bake::BakedRig baked = bake::BakeOne(desc, &report);
+    REQUIRE(!baked.sections.sections.empty());
+    // The file is WriteRig of the sections, and RigFileSize says its size without writing it.
+    CHECK(bake::WriteRig(baked.sections) == baked.bytes);
+    CHECK(bake::RigFileSize(baked.sections) == baked.bytes.size());
+    CHECK(report.bytes == baked.bytes.size());
+    // The loader's table holds each section in order, aligned, byte for byte.
+    RigSection table[format::kMaxSections];
+    std::uint32_t count = 0;
+    Error err;
+    REQUIRE_MESSAGE(ReadRigSections(baked.bytes.data(), baked.bytes.size(), table, format::kMaxSections, &count, &err),
+                    err.message);
+    REQUIRE(count == baked.sections.sections.size());
+    for (std::uint32_t k = 0; k < count; ++k) {
+      const bake::RigSections::Section& s = baked.sections.sections[k];
+      CHECK(table[k].tag == s.tag);
+      CHECK(table[k].offset % format::kSectionAlignment == 0);
+      REQUIRE(table[k].size == s.bytes.size());
+      CHECK(std::equal(s.bytes.begin(), s.bytes.end(), baked.bytes.begin() + std::ptrdiff_t(table[k].offset)));
+      CHECK(baked.sections.Find(s.tag) == &s.bytes);
+    }
+    CHECK(baked.sections.Find(format::kChannels) == nullptr);
+    // The compact encoding's sections are the quantised ones.
+    CHECK((baked.sections.Find(format::kQuantPositions) != nullptr) == compact);
+    CHECK((baked.sections.Find(format::kPosePositions) != nullptr) == !compact);
+    // And the verification's rig is those bytes, loaded.
+    CHECK(baked.rig.vertex_count() == report.vertices);
+  }
 }

@@ -113,9 +113,11 @@ struct Attempt {
   PoseMeshes meshes;
   std::uint64_t factor_nonzeros = 0, matrix_nonzeros = 0;
   int grid_cells_x = 0, grid_cells_y = 0;
-  bool grid_coarsened = false;  // a coarser grid than the default (grid_resolution.h)
-  double grid_move_px = 0;      // and its estimate
-  std::vector<unsigned char> exact, bytes;
+  bool grid_coarsened = false;       // a coarser grid than the default (grid_resolution.h)
+  double grid_move_px = 0;           // and its estimate
+  std::uint64_t exact_bytes = 0;     // the exact encoding's file size
+  RigSections sections;              // what is written: the exact or the compact encoding
+  std::vector<unsigned char> bytes;  // WriteRig(sections), as the verification loaded them
   CompactSettings compact_settings;
   CompactReport compact;
   bool is_compact = false;
@@ -159,8 +161,11 @@ Attempt BakeOnce(const RigDescription& description) {
   weight_parameters.grid_resolution_given = true;
   const WeightGrid grid = SolvePoseSpaceWeights(points, names, weight_parameters, file, &a.weight_warnings);
   BakeStage write_stage("writing and encoding the rig");
-  a.exact = SerialiseRig(description, meshes, analysis, system, grid);
-  a.bytes = description.parameters.compact ? CompactRig(a.exact, a.compact_settings, file, &a.compact) : a.exact;
+  RigSections exact = SerialiseRig(description, meshes, analysis, system, grid);
+  a.exact_bytes = RigFileSize(exact);
+  a.sections =
+      description.parameters.compact ? CompactRig(exact, a.compact_settings, file, &a.compact) : std::move(exact);
+  a.bytes = WriteRig(a.sections);
   a.is_compact = description.parameters.compact && !a.compact.fell_back;
   BakeStage check_stage("checking the baked rig");
   const double tolerance = std::max(
@@ -270,7 +275,7 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt
 }  // namespace
 
 std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport* report) {
-  if (description.channels.size() > 1) return BakeChannels(description, report);
+  if (description.channels.size() > 1) return BakeCharacter(description, report);
   return BakeOne(description, report).bytes;
 }
 
@@ -315,7 +320,7 @@ BakedRig BakeOne(const RigDescription& description, BakeReport* report) {
     r.bytes = a.bytes.size();
     r.max_reproduction_error = a.written.max_error;
     r.compact = a.is_compact;
-    r.exact_bytes = a.exact.size();
+    r.exact_bytes = a.exact_bytes;
     r.max_error_px = description.parameters.compact ? description.parameters.max_error_px : 0;
     r.pixels_per_unit = description.parameters.compact ? a.compact_settings.pixels_per_unit : 0;
     r.compact_report = a.compact;
@@ -333,7 +338,7 @@ BakedRig BakeOne(const RigDescription& description, BakeReport* report) {
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   // a.written loaded the rig from a.bytes, the file's bytes.
-  return BakedRig{std::move(a.bytes), std::move(a.written.rig)};
+  return BakedRig{std::move(a.sections), std::move(a.bytes), std::move(a.written.rig)};
 }
 
 }  // namespace posemorph::bake

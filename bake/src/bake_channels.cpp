@@ -12,6 +12,7 @@
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
 #include "rig_writer.h"
+#include "runtime_oracle.h"
 
 namespace posemorph::bake {
 namespace {
@@ -22,14 +23,6 @@ std::string Point(const Eigen::Vector2d& p) {
   std::ostringstream s;
   s << "(" << p.x() << ", " << p.y() << ")";
   return s.str();
-}
-
-Rig LoadBaked(const std::vector<unsigned char>& bytes, const std::string& file, const std::string& what) {
-  Rig rig;
-  Error err;
-  if (!LoadRig(bytes.data(), bytes.size(), &rig, &err))
-    throw BakeError(file, what + " does not load in the runtime: " + err.message);
-  return rig;
 }
 
 // A point of a pose-0 drawing in the rig's units (y up, origin at the
@@ -94,9 +87,9 @@ struct Attachment {
   std::vector<unsigned char> bytes;
 };
 
-// The body's file with a CHAN section added (runtime/FORMAT.md).
-std::vector<unsigned char> Compose(const std::vector<unsigned char>& body, const std::vector<std::string>& names,
-                                   const std::vector<Attachment>& attachments, const std::string& file) {
+// The body's sections with a CHAN section added (runtime/FORMAT.md).
+RigSections Compose(RigSections body, const std::vector<std::string>& names,
+                    const std::vector<Attachment>& attachments) {
   std::vector<unsigned char> chan;
   fmt::ChannelsHeader header{};
   header.channel_count = std::uint32_t(names.size());
@@ -119,18 +112,8 @@ std::vector<unsigned char> Compose(const std::vector<unsigned char>& body, const
     fmt::EncodeRecord(entry, chan.data() + entries + a * fmt::kAttachmentEntrySize);
     chan.insert(chan.end(), at.bytes.begin(), at.bytes.end());
   }
-  RigSection sections[fmt::kMaxSections];
-  std::uint32_t count = 0;
-  Error err;
-  if (!ReadRigSections(body.data(), body.size(), sections, fmt::kMaxSections, &count, &err))
-    throw BakeError(file, std::string("the body's rig cannot be read back: ") + err.message);
-  RigWriter writer;
-  for (std::uint32_t k = 0; k < count; ++k)
-    writer.Add(sections[k].tag,
-               std::vector<unsigned char>(body.begin() + std::ptrdiff_t(sections[k].offset),
-                                          body.begin() + std::ptrdiff_t(sections[k].offset + sections[k].size)));
-  writer.Add(fmt::kChannels, std::move(chan));
-  return writer.Finish();
+  body.Add(fmt::kChannels, std::move(chan));
+  return body;
 }
 
 // Each attachment in each pose of its channel, the body at pose 0 and the
@@ -243,25 +226,36 @@ RigDescription AttachmentDescription(const RigDescription& description, std::siz
   return sub;
 }
 
-std::vector<unsigned char> BakeChannels(const RigDescription& d, BakeReport* report) {
-  const auto start = std::chrono::steady_clock::now();
-  BakeReport r;
-  // Each pose space baked on its own, its rig as its verification loaded it.
-  const BakedRig body_baked = BakeOne(ChannelBodyDescription(d), &r);
-  const std::vector<unsigned char>& body_bytes = body_baked.bytes;
-  const Rig& body = body_baked.rig;
-  std::vector<Attachment> attachments;
+CharacterPlan PlanCharacter(const RigDescription& d) {
+  CharacterPlan plan;
+  plan.body = ChannelBodyDescription(d);
   for (std::size_t p = 0; p < d.parts.size(); ++p) {
     if (d.parts[p].channel == 0) continue;
-    const PartDescription& part = d.parts[p];
     const GlueDescription* glue = nullptr;
     for (const GlueDescription& g : d.glue)
       if (g.part_index == p) glue = &g;
-    if (!glue) throw BakeError(d.file, "part '" + part.name + "' is glued to nothing");
+    if (!glue) throw BakeError(d.file, "part '" + d.parts[p].name + "' is glued to nothing");
+    plan.attachments.push_back({p, AttachmentDescription(d, p), *glue});
+  }
+  for (const ChannelDescription& c : d.channels) plan.channels.push_back(c.name);
+  return plan;
+}
+
+std::vector<unsigned char> BakeCharacter(const RigDescription& d, BakeReport* report) {
+  const auto start = std::chrono::steady_clock::now();
+  const CharacterPlan plan = PlanCharacter(d);
+  BakeReport r;
+  // Each pose space baked on its own, its rig as its verification loaded it.
+  BakedRig body_baked = BakeOne(plan.body, &r);
+  const Rig& body = body_baked.rig;
+  std::vector<Attachment> attachments;
+  for (const AttachmentPlan& planned : plan.attachments) {
+    const PartDescription& part = d.parts[planned.part];
+    const GlueDescription* glue = &planned.glue;
     BakeReport sub;
     Attachment a;
     a.channel = std::uint32_t(part.channel);
-    BakedRig baked = BakeOne(AttachmentDescription(d, p), &sub);
+    BakedRig baked = BakeOne(planned.description, &sub);
     a.bytes = std::move(baked.bytes);
     const Rig& rig = baked.rig;
     std::uint32_t parent = 0;
@@ -296,10 +290,11 @@ std::vector<unsigned char> BakeChannels(const RigDescription& d, BakeReport* rep
     for (const std::string& w : sub.warnings) r.warnings.push_back(w);
     attachments.push_back(std::move(a));
   }
-  std::vector<std::string> names;
-  for (const ChannelDescription& c : d.channels) names.push_back(c.name);
-  std::vector<unsigned char> bytes = Compose(body_bytes, names, attachments, d.file);
-  const Rig whole = LoadBaked(bytes, d.file, "the rig written");
+  const std::vector<std::string>& names = plan.channels;
+  // The file, written once, and its verification: the runtime loads it and
+  // places each attachment at its joint in every pose of its channel.
+  std::vector<unsigned char> bytes = WriteRig(Compose(std::move(body_baked.sections), names, attachments));
+  const Rig whole = LoadWithRuntime(bytes, d.file, "the rig written does not load in the runtime");
   const std::vector<double> placed = PlacedErrors(whole);
   std::uint64_t exact = r.exact_bytes;
   for (std::size_t a = 0; a < r.attachments.size(); ++a) {

@@ -97,21 +97,14 @@ std::string TagText(std::uint32_t tag) {
 
 }  // namespace
 
-std::map<std::uint32_t, std::vector<unsigned char>> RawSections(const std::vector<unsigned char>& bytes) {
+std::map<std::uint32_t, std::vector<unsigned char>> RawSections(const RigSections& exact) {
   std::map<std::uint32_t, std::vector<unsigned char>> out;
-  RigSection table[fmt::kMaxSections];
-  std::uint32_t count = 0;
-  Error err;
-  if (!ReadRigSections(bytes.data(), bytes.size(), table, fmt::kMaxSections, &count, &err))
-    throw std::logic_error(std::string("compact encoding: the exact rig's sections: ") + err.message);
-  for (std::uint32_t i = 0; i < count; ++i)
-    out[table[i].tag].assign(bytes.begin() + std::ptrdiff_t(table[i].offset),
-                             bytes.begin() + std::ptrdiff_t(table[i].offset + table[i].size));
+  for (const RigSections::Section& section : exact.sections) out.emplace(section.tag, section.bytes);
   return out;
 }
 
-std::vector<unsigned char> Encoder::Encode(double position_step, double weight_step, CompactReport* report,
-                                           const fmt::CompactInfo* info) const {
+RigSections Encoder::Encode(double position_step, double weight_step, CompactReport* report,
+                            const fmt::CompactInfo* info) const {
   const std::uint64_t V = exact.vertex_count(), T = exact.triangle_count(), N = exact.pose_count(), n = V - 1;
   std::vector<CompactSection> sections;
   auto note = [&](std::uint32_t tag, std::size_t bytes, std::string what) {
@@ -121,7 +114,7 @@ std::vector<unsigned char> Encoder::Encode(double position_step, double weight_s
   meta.flags |= fmt::kMetaFlagCompact;
   const std::vector<unsigned char> meta_bytes = RecordBytes(meta);
 
-  RigWriter w;
+  RigSections w;
   w.Add(fmt::kMeta, meta_bytes);
   note(fmt::kMeta, meta_bytes.size(), "counts and grid geometry");
   // Positions: per pose its lower-left corner, then step * q.
@@ -320,7 +313,7 @@ std::vector<unsigned char> Encoder::Encode(double position_step, double weight_s
     w.Add(fmt::kCompactInfo, qinf);
   }
   if (report) report->sections = sections;
-  return w.Finish();
+  return w;
 }
 
 }  // namespace posemorph::bake::compact

@@ -9,13 +9,14 @@
 #include <vector>
 
 #include "posemorph/bake/compact_rig.h"
+#include "posemorph/bake/rig_sections.h"
 #include "posemorph/format/records.h"
 #include "posemorph/rig.h"
 
 namespace posemorph::bake::compact {
 
-// The exact rig's sections by tag, as its bytes hold them.
-std::map<std::uint32_t, std::vector<unsigned char>> RawSections(const std::vector<unsigned char>& bytes);
+// The exact rig's sections by tag (SerialiseRig writes each tag once).
+std::map<std::uint32_t, std::vector<unsigned char>> RawSections(const RigSections& exact);
 
 // What the encoder works from: the exact rig (loaded, and its sections), the
 // uvs' tolerance, and the whole turns learnt from a first trial.
@@ -27,11 +28,11 @@ struct Encoder {
   std::vector<std::int32_t> turns;  // T x N, filled after a first load
   bool derive_last_pose = false;
 
-  // The compact rig's bytes at these steps (empty when a position does not
-  // fit the code's range); its sections noted in `report` when given, and
-  // QINF written when `info` is.
-  std::vector<unsigned char> Encode(double position_step, double weight_step, CompactReport* report,
-                                    const format::CompactInfo* info = nullptr) const;
+  // The compact rig's sections at these steps (none when a position does
+  // not fit the code's range); each noted in `report` when given, and QINF
+  // written when `info` is.
+  RigSections Encode(double position_step, double weight_step, CompactReport* report,
+                     const format::CompactInfo* info = nullptr) const;
 };
 
 }  // namespace posemorph::bake::compact

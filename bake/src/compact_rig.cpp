@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // CompactRig: the coarsest position and weight steps whose frames stay
 // within the error budget, each trial encoded (compact_encoder.cpp), loaded
-// with the runtime and measured against the exact rig.
+// with the runtime (runtime_oracle.h) and measured against the exact rig.
 #include "posemorph/bake/compact_rig.h"
 
 #include <algorithm>
@@ -20,6 +20,7 @@
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
 #include "compact_encoder.h"
+#include "runtime_oracle.h"
 
 namespace posemorph::bake {
 namespace {
@@ -68,7 +69,7 @@ double WeightReach(const Rig& exact) {
 struct Trial {
   bool ok = false;
   double error = 0, pose_error = 0;
-  std::vector<unsigned char> bytes;
+  RigSections sections;
   std::vector<std::int32_t> turns;
 };
 
@@ -84,20 +85,19 @@ struct Trials {
 
   Trial Attempt(double ps, double ws) {
     const std::uint64_t V = exact.vertex_count(), T = exact.triangle_count(), N = exact.pose_count();
-    Error err;
     Trial t;
     ++rep.trials;
     // First without turns, to learn the principal angles the runtime derives.
     enc.turns.clear();
-    std::vector<unsigned char> bytes = enc.Encode(ps, ws, nullptr);
+    const RigSections first = enc.Encode(ps, ws, nullptr);
     Rig rig;
-    if (bytes.empty() || !LoadRig(bytes.data(), bytes.size(), &rig, &err)) return t;
+    if (first.sections.empty() || !LoadWithRuntime(WriteRig(first), &rig)) return t;
     enc.turns.resize(T * N);
     for (std::uint64_t k = 0; k < T * N; ++k)
       enc.turns[k] = std::int32_t(std::llround((exact.angles()[k] - rig.angles()[k]) / (2 * M_PI)));
-    t.bytes = enc.Encode(ps, ws, nullptr);
+    t.sections = enc.Encode(ps, ws, nullptr);
     t.turns = enc.turns;
-    if (!LoadRig(t.bytes.data(), t.bytes.size(), &rig, &err)) return t;
+    if (!LoadWithRuntime(WriteRig(t.sections), &rig)) return t;
     std::vector<double> x;
     for (std::size_t s = 0; s < samples.size(); ++s) {
       if (!EvaluateFrame(rig, samples[s], x)) return t;
@@ -114,15 +114,12 @@ struct Trials {
 
 }  // namespace
 
-std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_bytes, const CompactSettings& settings,
-                                      const std::string& file, CompactReport* report) {
-  Rig exact;
-  Error err;
-  if (!LoadRig(exact_bytes.data(), exact_bytes.size(), &exact, &err))
-    throw BakeError(file, std::string("internal error: the exact rig does not load: ") + err.message);
+RigSections CompactRig(const RigSections& exact_sections, const CompactSettings& settings, const std::string& file,
+                       CompactReport* report) {
   if (!(settings.max_error_px > 0) || !(settings.pixels_per_unit > 0))
     throw BakeError(file, "the compact encoding needs a positive error budget and pixels per unit");
-  Encoder enc{exact, settings.max_error_px / 2, settings.pixels_per_unit, RawSections(exact_bytes), {}, false};
+  const Rig exact = LoadWithRuntime(WriteRig(exact_sections), file, "internal error: the exact rig does not load");
+  Encoder enc{exact, settings.max_error_px / 2, settings.pixels_per_unit, RawSections(exact_sections), {}, false};
   enc.derive_last_pose = GridSumsToOne(exact);
 
   const std::vector<Eigen::Vector2d> samples = SamplePoints(exact);
@@ -158,7 +155,7 @@ std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_by
     // the exact encoding, and the caller says so.
     rep.fell_back = true;
     if (report) *report = rep;
-    return exact_bytes;
+    return exact_sections;
   }
   double ws = budget / (4 * reach);
   Trial t = attempt(ps, ws);
@@ -182,12 +179,12 @@ std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact_by
   // (QINF, which the loader does not read).
   enc.turns = t.turns;
   const fmt::CompactInfo info{settings.max_error_px, rep.max_error_px, rep.pose_error_px, settings.pixels_per_unit};
-  t.bytes = enc.Encode(ps, ws, &rep, &info);
+  t.sections = enc.Encode(ps, ws, &rep, &info);
   rep.samples = std::uint32_t(samples.size());
   rep.position_step_px = ps * settings.pixels_per_unit;
   rep.weight_step = ws;
   if (report) *report = rep;
-  return t.bytes;
+  return t.sections;
 }
 
 }  // namespace posemorph::bake

@@ -6,15 +6,14 @@
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/pose_space_samples.h"
 #include "posemorph/bake/serialise_rig.h"
+#include "runtime_oracle.h"
 
 namespace posemorph::bake {
 
 ReproductionCheck CheckReproduction(const std::vector<unsigned char>& bytes, const PoseMeshes& meshes, double tolerance,
                                     const std::string& file) {
   ReproductionCheck check;
-  Error err;
-  if (!LoadRig(bytes.data(), bytes.size(), &check.rig, &err))
-    throw BakeError(file, std::string("internal error: the baked rig does not load: ") + err.message);
+  check.rig = LoadWithRuntime(bytes, file, "internal error: the baked rig does not load");
   std::vector<double> x;
   double worst = 0;
   for (const PoseMesh& pose : meshes.poses) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 #include "rig_writer.h"
 
+#include "posemorph/bake/rig_sections.h"
 #include "posemorph/rig_format.h"
 
 namespace posemorph::bake {
@@ -12,25 +13,37 @@ void AppendString(std::vector<unsigned char>& out, const std::string& s) {
   out.insert(out.end(), s.begin(), s.end());
 }
 
-std::vector<unsigned char> RigWriter::Finish() const {
+namespace {
+
+std::uint64_t Aligned(std::uint64_t v) {
+  return (v + format::kSectionAlignment - 1) / format::kSectionAlignment * format::kSectionAlignment;
+}
+
+}  // namespace
+
+std::uint64_t RigFileSize(const RigSections& rig) {
+  std::uint64_t at = Aligned(format::kHeaderSize + rig.sections.size() * format::kSectionEntrySize);
+  for (const RigSections::Section& s : rig.sections) at = Aligned(at + s.bytes.size());
+  return at;
+}
+
+std::vector<unsigned char> WriteRig(const RigSections& rig) {
+  const std::vector<RigSections::Section>& sections = rig.sections;
   namespace fmt = format;
-  auto align = [](std::uint64_t v) {
-    return (v + fmt::kSectionAlignment - 1) / fmt::kSectionAlignment * fmt::kSectionAlignment;
-  };
-  std::uint64_t at = align(fmt::kHeaderSize + sections_.size() * fmt::kSectionEntrySize);
+  std::uint64_t at = Aligned(fmt::kHeaderSize + sections.size() * fmt::kSectionEntrySize);
   std::vector<std::uint64_t> offsets;
-  for (const Section& s : sections_) {
+  for (const RigSections::Section& s : sections) {
     offsets.push_back(at);
-    at = align(at + s.bytes.size());
+    at = Aligned(at + s.bytes.size());
   }
   std::vector<unsigned char> out(at, 0);
-  for (std::size_t i = 0; i < sections_.size(); ++i) {
+  for (std::size_t i = 0; i < sections.size(); ++i) {
     fmt::SectionEntry entry{};
-    entry.tag = sections_[i].tag;
+    entry.tag = sections[i].tag;
     entry.offset = offsets[i];
-    entry.size = sections_[i].bytes.size();
+    entry.size = sections[i].bytes.size();
     fmt::EncodeRecord(entry, out.data() + fmt::kHeaderSize + i * fmt::kSectionEntrySize);
-    if (entry.size) std::memcpy(out.data() + offsets[i], sections_[i].bytes.data(), std::size_t(entry.size));
+    if (entry.size) std::memcpy(out.data() + offsets[i], sections[i].bytes.data(), std::size_t(entry.size));
   }
   fmt::FileHeader header{};
   std::memcpy(header.magic, fmt::kMagic, sizeof(fmt::kMagic));
@@ -38,7 +51,7 @@ std::vector<unsigned char> RigWriter::Finish() const {
   header.version_minor = fmt::kVersionMinor;
   header.header_size = fmt::kHeaderSize;
   header.file_size = out.size();
-  header.section_count = std::uint32_t(sections_.size());
+  header.section_count = std::uint32_t(sections.size());
   // The checksum covers the table and the sections, written above.
   header.checksum = fmt::Crc32(out.data() + fmt::kHeaderSize, out.size() - fmt::kHeaderSize);
   fmt::EncodeRecord(header, out.data());

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Serialising sections into the runtime's binary layout (runtime/FORMAT.md).
+// Serialising records and strings into the runtime's binary layout
+// (runtime/FORMAT.md); the file around them is WriteRig (rig_sections.h).
 #pragma once
 #include <cstdint>
 #include <cstring>
@@ -25,25 +26,6 @@ void AppendRecord(std::vector<unsigned char>& out, const R& record) {
   out.resize(at + R::kSize);
   format::EncodeRecord(record, out.data() + at);
 }
-
-class RigWriter {
- public:
-  void Add(std::uint32_t tag, std::vector<unsigned char> bytes) { sections_.push_back({tag, std::move(bytes)}); }
-  template <typename T>
-  void AddArray(std::uint32_t tag, const std::vector<T>& values) {
-    std::vector<unsigned char> bytes(values.size() * sizeof(T));
-    if (!values.empty()) std::memcpy(bytes.data(), values.data(), bytes.size());
-    Add(tag, std::move(bytes));
-  }
-  std::vector<unsigned char> Finish() const;
-
- private:
-  struct Section {
-    std::uint32_t tag;
-    std::vector<unsigned char> bytes;
-  };
-  std::vector<Section> sections_;
-};
 
 // Appends a u32 length and the bytes of s.
 void AppendString(std::vector<unsigned char>& out, const std::string& s);

@@ -151,9 +151,8 @@ NamesAndPaths FlattenNamesAndPaths(const RigDescription& description, const Pose
 
 }  // namespace
 
-std::vector<unsigned char> SerialiseRig(const RigDescription& description, const PoseMeshes& meshes,
-                                        const PoseAnalysis& analysis, const ArapSystem& system,
-                                        const WeightGrid& grid) {
+RigSections SerialiseRig(const RigDescription& description, const PoseMeshes& meshes, const PoseAnalysis& analysis,
+                         const ArapSystem& system, const WeightGrid& grid) {
   const std::optional<std::string> drawing_folder = DrawingFolder(description, meshes);
   const fmt::Meta meta = MakeMeta(description, meshes, system, grid, drawing_folder.has_value());
   const bool has_uvs = !meshes.poses[0].uvs.empty();
@@ -161,7 +160,7 @@ std::vector<unsigned char> SerialiseRig(const RigDescription& description, const
   for (const auto& t : meshes.triangles) tris.insert(tris.end(), t.begin(), t.end());
   const PoseArrays poses = FlattenPoses(meshes, system.vertex_masses);
   const NamesAndPaths names = FlattenNamesAndPaths(description, meshes, drawing_folder);
-  RigWriter w;
+  RigSections w;
   w.Add(fmt::kMeta, RecordBytes(meta));
   w.AddArray(fmt::kTriangles, tris);
   w.AddArray(fmt::kPosePositions, poses.positions);
@@ -207,7 +206,7 @@ std::vector<unsigned char> SerialiseRig(const RigDescription& description, const
         orders.push_back(std::uint32_t(std::int32_t(part.pose_orders.empty() ? part.order : part.pose_orders[i])));
     w.AddArray(fmt::kPartPoseOrders, orders);
   }
-  return w.Finish();
+  return w;
 }
 
 }  // namespace posemorph::bake

@@ -11,6 +11,7 @@
 #include "posemorph/bake/map_drawings.h"
 #include "posemorph/bake/output_file.h"
 #include "posemorph/bake/rig_description.h"
+#include "posemorph/bake/rig_sections.h"
 #include "posemorph/rig.h"
 
 namespace posemorph::bake {
@@ -82,16 +83,18 @@ struct BakeReport {
 // Returns the rig's bytes. Throws BakeError naming the file and the problem.
 std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport* report = nullptr);
 
-// A baked rig: the file's bytes and the Rig the bake's verification loaded
-// from exactly those bytes (the runtime as the oracle), so that a later
-// step reads the rig without loading it again.
+// A baked rig: its sections, the file's bytes (WriteRig of them) and the Rig
+// the bake's verification loaded from exactly those bytes (the runtime as
+// the oracle), so that a later step adds to the sections or reads the rig
+// without reading the bytes back.
 struct BakedRig {
+  RigSections sections;
   std::vector<unsigned char> bytes;
   Rig rig;
 };
 
 // BakeRig for one pose space: a description without control channels, or
-// one channel's part of a character (BakeChannels bakes each with it).
+// one channel's part of a character (BakeCharacter bakes each with it).
 // Throws BakeError as BakeRig does, and on a description with channels.
 BakedRig BakeOne(const RigDescription& description, BakeReport* report = nullptr);
 

@@ -7,6 +7,7 @@
 // triangle under its joint (runtime/FORMAT.md, format 1.7).
 #pragma once
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "posemorph/bake/bake.h"
@@ -24,13 +25,33 @@ RigDescription ChannelBodyDescription(const RigDescription& description);
 // part 'NAME'", so that every message names the part.
 RigDescription AttachmentDescription(const RigDescription& description, std::size_t part);
 
-// Bakes the body and every attachment (BakeRig each, with their checks),
-// pins each attachment to the body triangle under its joint in pose 0, and
-// writes them as one rig; then loads it with the runtime and measures each
-// attachment's placement (AttachmentReport::placed_error). Throws BakeError
-// naming the file, the part and the pose: a part that cannot be baked, a
-// joint off the part it is glued to (outside its triangles in pose 0), or off
-// the attached part.
-std::vector<unsigned char> BakeChannels(const RigDescription& description, BakeReport* report);
+// A part of a later channel, planned: its own description and its joint.
+struct AttachmentPlan {
+  std::size_t part = 0;        // its index in the description's parts
+  RigDescription description;  // AttachmentDescription(description, part)
+  GlueDescription glue;        // the joint that pins it to a body part
+};
+
+// What BakeCharacter bakes, decided before any of it is baked: the body and
+// the attachments in part order, and the channels' names (the CHAN section's).
+struct CharacterPlan {
+  RigDescription body;  // ChannelBodyDescription
+  std::vector<AttachmentPlan> attachments;
+  std::vector<std::string> channels;
+};
+
+// Throws BakeError naming the file and the part where a drawn part's joint
+// is not given in each of its channel's poses (AttachmentDescription); the
+// description's reader has checked the rest of the glue.
+CharacterPlan PlanCharacter(const RigDescription& description);
+
+// Bakes the plan: the body and every attachment (BakeOne each, with their
+// checks), pins each attachment to the body triangle under its joint in pose
+// 0, adds them as CHAN to the body's sections and writes the file once; then
+// loads it with the runtime and measures each attachment's placement
+// (AttachmentReport::placed_error). Throws BakeError naming the file, the
+// part and the pose: a part that cannot be baked, a joint off the part it is
+// glued to (outside its triangles in pose 0), or off the attached part.
+std::vector<unsigned char> BakeCharacter(const RigDescription& description, BakeReport* report);
 
 }  // namespace posemorph::bake

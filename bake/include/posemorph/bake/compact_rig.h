@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The compact encoding of a baked rig (format 1.3, runtime/FORMAT.md): from
-// the exact rig's bytes to a rig whose every frame stays within an error
+// the exact rig's sections to a rig whose every frame stays within an error
 // budget stated in drawing pixels. Positions and the weight grid are
 // quantised (the grid also predicted and Exp-Golomb coded), triangles and the
 // permutation bit-packed, uvs stored as affine maps of a pose's positions
@@ -13,6 +13,8 @@
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "posemorph/bake/rig_sections.h"
 
 namespace posemorph::bake {
 
@@ -35,14 +37,16 @@ struct CompactReport {
   double weight_step = 0;       // quantisation step of the weight grid
   std::uint32_t trials = 0;     // encodings tried
   bool affine_uvs = false;
-  bool fell_back = false;  // no encoding within budget: the exact bytes were returned
+  bool fell_back = false;  // no encoding within budget: the exact sections were returned
   std::vector<CompactSection> sections;
 };
 
-// When no encoding within budget is found (twelve halvings of the position
-// step), returns the exact bytes and sets report->fell_back. Throws
-// BakeError(file, ...) only when the exact rig itself does not load.
-std::vector<unsigned char> CompactRig(const std::vector<unsigned char>& exact, const CompactSettings& settings,
-                                      const std::string& file, CompactReport* report = nullptr);
+// The compact rig's sections (WriteRig makes its file). When no encoding
+// within budget is found (twelve halvings of the position step), returns the
+// exact sections and sets report->fell_back. Throws BakeError(file, ...)
+// only when the exact rig itself does not load or the settings are not
+// positive.
+RigSections CompactRig(const RigSections& exact, const CompactSettings& settings, const std::string& file,
+                       CompactReport* report = nullptr);
 
 }  // namespace posemorph::bake

@@ -10,6 +10,7 @@
 #include "posemorph/bake/pose_meshes.h"
 #include "posemorph/bake/pose_space_weights.h"
 #include "posemorph/bake/rig_description.h"
+#include "posemorph/bake/rig_sections.h"
 
 namespace posemorph::bake {
 
@@ -23,7 +24,8 @@ bool HasCanvases(const PoseMeshes& meshes);
 
 // Names, paths, the texture filter hint and the default sigma come from the
 // description; the rest from the steps before. Needs validated meshes.
-std::vector<unsigned char> SerialiseRig(const RigDescription& description, const PoseMeshes& meshes,
-                                        const PoseAnalysis& analysis, const ArapSystem& system, const WeightGrid& grid);
+// Returns the sections in file order (WriteRig makes the file of them).
+RigSections SerialiseRig(const RigDescription& description, const PoseMeshes& meshes, const PoseAnalysis& analysis,
+                         const ArapSystem& system, const WeightGrid& grid);
 
 }  // namespace posemorph::bake
