@@ -95,3 +95,35 @@ file(WRITE ${WORK}/bomb.json [=[{"posemorph": 1, "poses": [
  {"name": "b", "point": [1, 0], "drawing": "bomb.png", "landmarks": [[0, 0], [10, 0], [10, 10]]}]}]=])
 expect_refusal("a decompression bomb" "bomb.json: pose 'a' \\(index 0\\): .*bomb.png: PNG size 8192 x 2049 is outside 1..16384 per side or above the limit of 16777216 pixels"
                ${WORK}/bomb.json -o ${WORK}/bomb.pmrig)
+
+# Names that cannot be written are refused before any work: an empty -o, a
+# file name beyond the 255 bytes a file system allows (the message shows
+# the path shortened).
+find_program(SH sh REQUIRED)  # CMake drops an empty argument: the shell passes it
+execute_process(COMMAND ${SH} -c "exec \"$0\" \"$1\" -o ''" ${BAKE} ${WORK}/ok.json
+                RESULT_VARIABLE status OUTPUT_QUIET ERROR_VARIABLE err)
+if(NOT status EQUAL 1 OR NOT err MATCHES "^posemorph-bake: error: cannot write: the output file name is empty\n$")
+  message(FATAL_ERROR "-o '': status '${status}', message: ${err}")
+endif()
+string(REPEAT "n" 300 long)
+expect_refusal("-o a 300-byte name" "\\.\\.\\. \\([0-9]+ bytes\\): cannot write: the file name is 300 bytes long; a file system allows 255"
+               ${WORK}/ok.json -o ${WORK}/${long})
+# A 250-byte name is written (its temporary's name is shortened to fit).
+string(REPEAT "m" 250 fits)
+execute_process(COMMAND ${BAKE} ${WORK}/ok.json -o ${WORK}/${fits} RESULT_VARIABLE status OUTPUT_QUIET ERROR_VARIABLE err)
+if(NOT status EQUAL 0 OR NOT EXISTS ${WORK}/${fits})
+  message(FATAL_ERROR "a 250-byte name: status '${status}', message: ${err}")
+endif()
+
+# A write past the process's file-size limit (ulimit -f 1: 1024 bytes, less
+# than the exact rig) fails with the system's cause, exit status 1, and
+# leaves neither the file nor its temporary (SIGXFSZ would have ended the
+# process before it could remove it).
+execute_process(COMMAND ${SH} -c "ulimit -f 1 && exec \"$0\" \"$1\" --precision exact -o \"$2\"" ${BAKE}
+                        ${WORK}/ok.json ${WORK}/limited.pmrig
+                RESULT_VARIABLE status OUTPUT_QUIET ERROR_VARIABLE err)
+file(GLOB leftovers ${WORK}/.limited*)
+if(NOT status EQUAL 1 OR NOT err MATCHES "limited.pmrig: cannot write the file: File too large" OR EXISTS ${WORK}/limited.pmrig
+   OR leftovers)
+  message(FATAL_ERROR "ulimit -f 1: status '${status}', message: ${err}, left: ${leftovers}")
+endif()

@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/output_file.h"
 
 namespace posemorph::bake {
 
@@ -57,6 +58,8 @@ std::vector<unsigned char> ReadInputFile(const std::string& path, std::uint64_t 
 
 void CheckOutputPath(const std::string& output, const std::vector<std::string>& inputs) {
   namespace fs = std::filesystem;
+  if (const std::optional<std::string> problem = OutputNameProblem(output))
+    throw BakeError(ShownPath(output), "cannot write: " + *problem);
   std::error_code ec;
   const fs::file_status status = fs::symlink_status(output, ec);
   if (ec || !fs::exists(status)) return;  // a new file

@@ -28,7 +28,9 @@ std::vector<unsigned char> ReadInputFile(const std::string& path, std::uint64_t 
 
 // Refuses (BakeError) an output path that names an input, an existing
 // directory, or an existing file that is not a regular file (a device, a
-// pipe, or a symbolic link, which a rename would replace).
+// pipe, or a symbolic link, which a rename would replace), and a name that
+// cannot be written (OutputNameProblem: empty, or too long): before any
+// work is done.
 void CheckOutputPath(const std::string& output, const std::vector<std::string>& inputs);
 
 }  // namespace posemorph::bake
