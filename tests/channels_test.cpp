@@ -417,6 +417,23 @@ TEST_CASE("channels: bad channels are refused naming the channel, the part and t
     d["parts"][1]["poses"][1]["vertices"][3] = {15, -10};  // arm pose 'mid' turned over
     const std::string e = BakeError(d);
     CHECK(e.find("arm.json: part 'arm'") == 0);
+    CHECK(e.find("part 'arm': part 'arm'") == std::string::npos);  // the part named once
+  }
+  {
+    json d = good;
+    d["channels"][1]["poses"][2]["name"] = d["channels"][1]["poses"][0]["name"];
+    CHECK(BakeError(d) ==
+          "arm.json: channels[1].poses[2].name: channel 'arm' names two poses 'rest' (poses 0 and 2): each pose of "
+          "a channel has its own name");
+  }
+  {
+    json d = good;
+    json tail = d["channels"][1];
+    tail["name"] = "tail";
+    d["channels"].push_back(tail);
+    CHECK(BakeError(d) ==
+          "arm.json: channels[2]: channel 'tail' drives no part: give a part \"channel\": \"tail\", or remove the "
+          "channel");
   }
 }
 

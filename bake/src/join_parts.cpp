@@ -159,7 +159,12 @@ void CheckCanvases(const RigDescription& d, const std::vector<MappedPart>& parts
 RigDescription PartRigDescription(const RigDescription& description, std::size_t p) {
   const PartDescription& part = description.parts.at(p);
   RigDescription sub = description;
-  sub.file = description.file + ": part '" + part.name + "'";
+  // Messages name the part once: an attachment's description (a rig of one
+  // part, bake_channels.cpp) already names it in its file.
+  const std::string label = ": part '" + part.name + "'";
+  const bool named = description.file.size() >= label.size() &&
+                     description.file.compare(description.file.size() - label.size(), label.size(), label) == 0;
+  sub.file = named ? description.file : description.file + label;
   sub.parts.clear();
   sub.glue.clear();
   sub.paths.clear();

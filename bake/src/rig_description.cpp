@@ -63,6 +63,12 @@ void ParseChannels(const Reader& r, const json& root, RigDescription* rig) {
     if (channel.poses.size() < 2 || channel.poses.size() > format::kMaxPoses)
       r.Fail(w + ".poses", "channel '" + channel.name + "' has " + std::to_string(channel.poses.size()) +
                                " poses: a channel needs 2 to " + std::to_string(format::kMaxPoses));
+    for (std::size_t j = 1; j < channel.poses.size(); ++j)
+      for (std::size_t i = 0; i < j; ++i)
+        if (channel.poses[i].name == channel.poses[j].name)
+          r.Fail(w + ".poses[" + std::to_string(j) + "].name",
+                 "channel '" + channel.name + "' names two poses '" + channel.poses[j].name + "' (poses " +
+                     std::to_string(i) + " and " + std::to_string(j) + "): each pose of a channel has its own name");
     if (jc.contains("paths")) {
       const json& paths = r.Array(jc, "paths", w);
       for (std::size_t i = 0; i < paths.size(); ++i) {
@@ -110,6 +116,14 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
     if (have_triangles) r.Fail("triangles", "with \"parts\", each part has its own triangles; remove it");
     rig.poses = rig.channels[0].poses;
     rig.parts = ParseParts(r, r.Array(root, "parts", ""), rig.channels, file, base_dir);
+    for (std::size_t c = 1; c < rig.channels.size(); ++c) {
+      bool driven = false;
+      for (const PartDescription& part : rig.parts) driven = driven || part.channel == c;
+      if (!driven)
+        r.Fail("channels[" + std::to_string(c) + "]", "channel '" + rig.channels[c].name +
+                                                          "' drives no part: give a part \"channel\": \"" +
+                                                          rig.channels[c].name + "\", or remove the channel");
+    }
     if (rig.parts.size() > 1 || rig.channels.size() > 1) {
       std::size_t attachments = 0;
       for (const PartDescription& part : rig.parts) attachments += part.channel != 0;
