@@ -122,7 +122,7 @@ int pm_draw_lists(const pm_rig* rig, const pm_draw_options* options, size_t coun
   job.max_drawings = o.max_drawings;
   job.workspace = {workspace, need_workspace};
   job.positions = {positions, need_positions};
-  if (!job.Validate()) return PM_ERROR_INVALID_ARGUMENT;
+  if (!posemorph::detail::ValidDrawListInputs(job)) return PM_ERROR_INVALID_ARGUMENT;
   const auto transform_at = [transforms](std::size_t k) {
     posemorph::Transform2D t;
     if (transforms) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <new>
 
 #include "draw_list_internal.h"
@@ -13,29 +14,35 @@
 
 namespace posemorph {
 
-Transform2D Transform2D::Make(double x, double y, double radians, double scale_x, double scale_y, bool flip_x) {
+namespace {
+
+// The transform with these fields, or the identity when one does not fit a
+// float (or is not a number): a transform's fields are always finite.
+Transform2D Fitted(double a, double b, double c, double d, double tx, double ty) {
+  constexpr double kMax = 3.4028234663852886e38;  // the largest float
+  for (double v : {a, b, c, d, tx, ty})
+    if (!(std::fabs(v) <= kMax)) return Transform2D{};
   Transform2D t;
-  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(radians) || !std::isfinite(scale_x) ||
-      !std::isfinite(scale_y))
-    return t;
-  // Linear part R * F * S with F = diag(-1, 1) when flipped, S = diag(sx, sy).
-  const double cs = std::cos(radians), sn = std::sin(radians);
-  const double fx = flip_x ? -scale_x : scale_x;
-  t.a = float(cs * fx), t.b = float(sn * fx);
-  t.c = float(-sn * scale_y), t.d = float(cs * scale_y);
-  t.tx = float(x), t.ty = float(y);
+  t.a = float(a), t.b = float(b), t.c = float(c), t.d = float(d), t.tx = float(tx), t.ty = float(ty);
   return t;
 }
 
+}  // namespace
+
+Transform2D Transform2D::Make(double x, double y, double radians, double scale_x, double scale_y, bool flip_x) {
+  if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(radians) || !std::isfinite(scale_x) ||
+      !std::isfinite(scale_y))
+    return Transform2D{};
+  // Linear part R * F * S with F = diag(-1, 1) when flipped, S = diag(sx, sy).
+  const double cs = std::cos(radians), sn = std::sin(radians);
+  const double fx = flip_x ? -scale_x : scale_x;
+  return Fitted(cs * fx, sn * fx, -sn * scale_y, cs * scale_y, x, y);
+}
+
 Transform2D Compose(const Transform2D& o, const Transform2D& i) {
-  Transform2D t;
-  t.a = float(double(o.a) * i.a + double(o.c) * i.b);
-  t.b = float(double(o.b) * i.a + double(o.d) * i.b);
-  t.c = float(double(o.a) * i.c + double(o.c) * i.d);
-  t.d = float(double(o.b) * i.c + double(o.d) * i.d);
-  t.tx = float(double(o.a) * i.tx + double(o.c) * i.ty + o.tx);
-  t.ty = float(double(o.b) * i.tx + double(o.d) * i.ty + o.ty);
-  return t;
+  return Fitted(double(o.a) * i.a + double(o.c) * i.b, double(o.b) * i.a + double(o.d) * i.b,
+                double(o.a) * i.c + double(o.c) * i.d, double(o.b) * i.c + double(o.d) * i.d,
+                double(o.a) * i.tx + double(o.c) * i.ty + o.tx, double(o.b) * i.tx + double(o.d) * i.ty + o.ty);
 }
 
 std::uint32_t PickDrawings(Span<const double> w, std::uint32_t max_drawings, Span<BlendedDrawing> out) {
@@ -45,8 +52,8 @@ std::uint32_t PickDrawings(Span<const double> w, std::uint32_t max_drawings, Spa
   std::uint32_t best[kMaxBlendDrawings] = {};
   double weight[kMaxBlendDrawings] = {};
   std::uint32_t count = 0;
-  for (std::uint32_t i = 0; i < w.size; ++i) {  // insertion into a short list, largest first
-    const double wi = w[i] > 0 ? w[i] : 0.0;    // also maps NaN to 0
+  for (std::uint32_t i = 0; i < w.size; ++i) {                   // insertion into a short list, largest first
+    const double wi = w[i] > 0 && w[i] < HUGE_VAL ? w[i] : 0.0;  // NaN and infinity count as 0
     std::uint32_t at = count;
     while (at > 0 && weight[at - 1] < wi) --at;
     if (at >= K) continue;
@@ -56,6 +63,12 @@ std::uint32_t PickDrawings(Span<const double> w, std::uint32_t max_drawings, Spa
   }
   double sum = 0;
   for (std::uint32_t k = 0; k < count; ++k) sum += weight[k];
+  if (!(sum < HUGE_VAL)) {  // finite weights whose sum overflows: scaled by the largest first
+    for (std::uint32_t k = 1; k < count; ++k) weight[k] /= weight[0];
+    weight[0] = 1;
+    sum = 0;
+    for (std::uint32_t k = 0; k < count; ++k) sum += weight[k];
+  }
   for (std::uint32_t k = 0; k < count; ++k) {
     out[k].pose = best[k];
     out[k].weight = sum > 0 ? float(weight[k] / sum) : (k == 0 ? 1.0f : 0.0f);
@@ -129,21 +142,25 @@ std::uint32_t CharacterDrawSteps(const Rig& rig, const DrawList& body, const Dra
   return total;
 }
 
-bool DrawListJob::Validate() const {
+bool DrawListJob::Validate() const { return detail::ValidDrawListInputs(*this) && output.data && output.size >= count; }
+
+bool detail::ValidDrawListInputs(const DrawListJob& job) {
+  const Rig* rig = job.rig;
+  const std::size_t count = job.count;
   if (!rig || !rig->loaded() || count == 0) return false;
   if (count > MaxDrawListCount(*rig)) return false;
-  if (!points.data || points.size / 2 < count) return false;
-  if (transforms.size != 0 && (!transforms.data || transforms.size != count)) return false;
-  if (max_drawings < 1 || max_drawings > kMaxBlendDrawings) return false;
-  if (interpolation != Interpolation::kRigid && interpolation != Interpolation::kLinear) return false;
-  if (!workspace.data || workspace.size < DrawListWorkspaceSize(*rig, count)) return false;
-  if (!positions.data || positions.size / (2 * std::size_t(rig->vertex_count())) < count) return false;
-  if (attached_output.size == 0) return attached_positions.size == 0;
+  if (!job.points.data || job.points.size / 2 < count) return false;
+  if (job.transforms.size != 0 && (!job.transforms.data || job.transforms.size != count)) return false;
+  if (job.max_drawings < 1 || job.max_drawings > kMaxBlendDrawings) return false;
+  if (job.interpolation != Interpolation::kRigid && job.interpolation != Interpolation::kLinear) return false;
+  if (!job.workspace.data || job.workspace.size < DrawListWorkspaceSize(*rig, count)) return false;
+  if (!job.positions.data || job.positions.size / (2 * std::size_t(rig->vertex_count())) < count) return false;
+  if (job.attached_output.size == 0) return job.attached_positions.size == 0;
   const std::size_t A = rig->attachment_count(), a2 = 2 * std::size_t(rig->attached_vertex_count());
-  if (A == 0 || !attached_output.data || attached_output.size / A < count) return false;
-  if (!attached_positions.data || attached_positions.size / a2 < count) return false;
+  if (A == 0 || !job.attached_output.data || job.attached_output.size / A < count) return false;
+  if (!job.attached_positions.data || job.attached_positions.size / a2 < count) return false;
   const std::size_t c2 = 2 * std::size_t(rig->channel_count() - 1);
-  if (channel_points.size != 0 && (!channel_points.data || channel_points.size / c2 < count)) return false;
+  if (job.channel_points.size != 0 && (!job.channel_points.data || job.channel_points.size / c2 < count)) return false;
   return true;
 }
 
@@ -220,7 +237,7 @@ bool RunAttachedLists(const DrawListJob& job, double* body, double* extra_end) {
 }  // namespace
 
 bool DrawListJob::Run() const {
-  if (!Validate() || !output.data || output.size < count) return false;
+  if (!Validate()) return false;
   double* body = attached_output.size ? workspace.data + BodyWorkspace(*rig, count) : nullptr;
   if (!detail::RunDrawLists(
           *this, [this](std::size_t k) { return transforms.size ? transforms[k] : Transform2D(); },

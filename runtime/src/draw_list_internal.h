@@ -10,7 +10,11 @@
 
 namespace posemorph::detail {
 
-// Expects job.Validate(). Returns false only when a morph job refuses its
+// DrawListJob::Validate() without its output lists: what pm_draw_lists
+// checks, which emits into its own structs (job.output stays empty).
+bool ValidDrawListInputs(const DrawListJob& job);
+
+// Expects ValidDrawListInputs(job). Returns false only when a morph job refuses its
 // input, which Validate() and WeightsJob's bounds rule out.
 // transform_at(k) gives character k's transform (the job's own span is not
 // read: the C API passes its pm_transform array this way). With

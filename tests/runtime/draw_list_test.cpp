@@ -89,6 +89,26 @@ TEST_CASE("draw lists: all drawings up to K, else the K most weighted, renormali
   CHECK(PickDrawings(Span<const double>(), 8, d) == 0);
   CHECK(PickDrawings(five, 0, d) == 0);
   CHECK(PickDrawings(five, 8, Span<BlendedDrawing>(d, 2)) == 2);  // never past the output
+
+  // Infinite weights count as 0 like NaN; finite weights whose sum overflows
+  // keep their proportions: every weight written is finite, and they sum to 1.
+  const double inf = std::numeric_limits<double>::infinity();
+  const double wild[4] = {inf, 1e308, -inf, 1e308};
+  REQUIRE(PickDrawings(wild, 8, d) == 4);
+  CHECK(d[0].pose == 1);
+  CHECK(d[1].pose == 3);
+  CHECK(d[0].weight == 0.5f);
+  CHECK(d[1].weight == 0.5f);
+  CHECK(d[2].weight == 0.0f);
+  CHECK(d[3].weight == 0.0f);
+  const double huge[3] = {1.7e308, 1.7e308, 0.85e308};
+  REQUIRE(PickDrawings(huge, 8, d) == 3);
+  CHECK(d[0].weight == doctest::Approx(0.4));
+  CHECK(d[2].weight == doctest::Approx(0.2));
+  const double only_inf[2] = {inf, inf};
+  REQUIRE(PickDrawings(only_inf, 8, d) == 2);
+  CHECK(d[0].weight == 1.0f);  // every weight 0: the first drawing
+  CHECK(d[1].weight == 0.0f);
 }
 
 TEST_CASE("draw lists: positions bit for bit as the morph jobs give them, drawings as WeightsJob's texture weights") {
@@ -179,6 +199,19 @@ TEST_CASE("transforms: scale, flip, rotate, move, in that order, composition") {
   const Transform2D bad = Transform2D::Make(std::numeric_limits<double>::infinity(), 0);
   CHECK(bad.a == 1.0f);
   CHECK(bad.tx == 0.0f);  // non-finite: the identity
+  // Finite inputs whose fields would not fit a float: the identity too, so
+  // that every field of every transform is finite.
+  for (const Transform2D& f :
+       {Transform2D::Make(1e300, 0), Transform2D::Make(0, 0, 0, 1e300), Transform2D::Make(0, 0, 0, 1, -1e39),
+        Compose(Transform2D::Make(0, 0, 0, 1e30, 1e30), Transform2D::Make(0, 0, 0, 1e30, 1e30))}) {
+    for (float v : {f.a, f.b, f.c, f.d, f.tx, f.ty}) CHECK(std::isfinite(v));
+    CHECK(f.a == 1.0f);
+    CHECK(f.d == 1.0f);
+    CHECK(f.tx == 0.0f);
+  }
+  const Transform2D big = Transform2D::Make(3e38, -3e38, 0, 3e38);  // within float: kept
+  CHECK(big.tx == 3e38f);
+  CHECK(big.a == 3e38f);
 }
 
 TEST_CASE("DrawListJob::Validate refuses each listed failure case, and Run then does nothing") {
@@ -203,6 +236,8 @@ TEST_CASE("DrawListJob::Validate refuses each listed failure case, and Run then 
       {"short workspace", [](DrawListJob& j) { j.workspace.size -= 1; }},
       {"short positions", [](DrawListJob& j) { j.positions.size -= 1; }},
       {"bad interpolation", [](DrawListJob& j) { j.interpolation = Interpolation(7); }},
+      {"fewer output lists than characters", [](DrawListJob& j) { j.output.size = 3; }},
+      {"no output", [](DrawListJob& j) { j.output = {}; }},
   };
   for (const Case& c : cases) {
     CAPTURE(c.what);
@@ -213,10 +248,6 @@ TEST_CASE("DrawListJob::Validate refuses each listed failure case, and Run then 
     CHECK(!l.job.Run());
     CHECK(l.positions == before);
   }
-  Lists short_output(rig, points);
-  short_output.job.output.size = 3;
-  CHECK(short_output.job.Validate());  // Validate checks the evaluation's inputs,
-  CHECK(!short_output.job.Run());      // Run its output too
   // Any point gives a finite frame.
   const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
   const std::vector<double> wild = {inf, -inf, nan, nan, 1e308, -1e308, 0, 0};

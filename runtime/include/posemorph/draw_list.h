@@ -31,7 +31,8 @@ struct Transform2D {
 
   // Scale (sx, sy), then flip horizontally (facing left: x -> -x) when
   // flip_x, then rotate counter-clockwise by `radians` (y up), then move to
-  // (x, y). Non-finite inputs give the identity.
+  // (x, y). Non-finite inputs, and inputs whose fields would not fit a
+  // float, give the identity: the fields are always finite.
   static PM_API Transform2D Make(double x, double y, double radians = 0, double scale_x = 1, double scale_y = 1,
                                  bool flip_x = false);
   // A mirrored transform (negative determinant) turns counter-clockwise
@@ -42,7 +43,8 @@ struct Transform2D {
     *out_y = double(b) * x + double(d) * y + ty;
   }
 };
-// outer * inner: first inner, then outer (a camera after a character's place).
+// outer * inner: first inner, then outer (a camera after a character's place);
+// the identity when a field of the product would not fit a float.
 PM_API Transform2D Compose(const Transform2D& outer, const Transform2D& inner);
 
 // One drawing of a character's cross-fade.
@@ -54,8 +56,9 @@ struct BlendedDrawing {
 
 // The `max_drawings` (1..8) largest texture weights, largest first (ties to
 // the lower pose), clamped at 0 and renormalised to sum 1; all N drawings
-// when N <= max_drawings. When every weight is 0 the first picked drawing
-// gets weight 1. Writes min(N, max_drawings, out.size) entries (uvs left
+// when N <= max_drawings. NaN and infinite weights count as 0; when every
+// weight is 0 the first picked drawing gets weight 1. The weights written
+// are finite and sum to 1 for any input. Writes min(N, max_drawings, out.size) entries (uvs left
 // null) and returns that count; 0 for empty input.
 PM_API std::uint32_t PickDrawings(Span<const double> texture_weights, std::uint32_t max_drawings,
                                   Span<BlendedDrawing> out);
