@@ -5,8 +5,10 @@
 // checksum. A rig that loads must give finite weights, positions and uvs at
 // every pose point and at points far outside the pose space, and so must its
 // attachments (format 1.7: each a nested rig with its own checksum, which is
-// not checked here, so that mutations reach the nested rigs' parsers too);
-// anything else aborts (a finding).
+// not checked here, so that mutations reach the nested rigs' parsers too),
+// and a crowd's draw lists (DrawListJob: finite positions, drawing weights
+// that are finite and sum to 1, finite transforms, for the body and each
+// attachment); anything else aborts (a finding).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -14,6 +16,7 @@
 #include <cstring>
 #include <vector>
 
+#include "posemorph/draw_list.h"
 #include "posemorph/jobs.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
@@ -51,6 +54,44 @@ void Frame(const Rig& rig, double x, double y, std::vector<double>& raw, std::ve
   // Run fails only where the solve went beyond kMaxPosition, and then writes zeros.
   if (!morph.Validate()) std::abort();
   RequireWithin(positions.data(), positions.size(), morph.Run());
+}
+
+// One list's drawings and transform: what a renderer is handed.
+void RequireDrawable(const DrawList& list) {
+  if (list.drawing_count < 1 || list.drawing_count > kMaxBlendDrawings) std::abort();
+  double sum = 0;
+  for (std::uint32_t d = 0; d < list.drawing_count; ++d) {
+    const float w = list.drawings[d].weight;
+    if (!(w >= 0 && w <= 1)) std::abort();
+    sum += w;
+  }
+  if (!(std::fabs(sum - 1) <= 1e-5)) std::abort();
+  const Transform2D& t = list.transform;
+  for (float v : {t.a, t.b, t.c, t.d, t.tx, t.ty})
+    if (!std::isfinite(v)) std::abort();
+}
+
+// Two characters' draw lists, one at pose 0's point and one far outside,
+// the second placed by a transform beyond float range (the identity then).
+void DrawLists(const Rig& rig) {
+  const CharacterBuffers buffers = CharacterBuffers::For(rig, 2);
+  if (buffers.count != 2) return;  // a rig too large for a crowd of two
+  std::vector<double> block(buffers.bytes / sizeof(double) + 1);
+  DrawListJob job;
+  if (!buffers.Bind(rig, block.data(), block.size() * sizeof(double), &job)) std::abort();
+  const double points[4] = {rig.pose_points()[0], rig.pose_points()[1], -1e9, 1e300};
+  const Transform2D transforms[2] = {Transform2D::Make(3, -2, 0.5, 2, 2, true), Transform2D::Make(1e300, 0, 0, 1e300)};
+  job.points = {points, 4};
+  job.transforms = {transforms, 2};
+  if (!job.Validate()) std::abort();
+  const bool ran = job.Run();
+  for (std::size_t i = 0; i < job.positions.size; ++i)
+    if (!std::isfinite(job.positions[i])) std::abort();
+  for (std::size_t i = 0; i < job.attached_positions.size; ++i)
+    if (!std::isfinite(job.attached_positions[i])) std::abort();
+  if (!ran) return;
+  for (std::size_t k = 0; k < job.output.size; ++k) RequireDrawable(job.output[k]);
+  for (std::size_t k = 0; k < job.attached_output.size; ++k) RequireDrawable(job.attached_output[k]);
 }
 
 }  // namespace
@@ -114,5 +155,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (std::size_t k = 0; k < uv.size; ++k)
       if (!std::isfinite(uv.data[k])) std::abort();
   }
+  DrawLists(rig);
   return 0;
 }
