@@ -47,6 +47,36 @@ static double JointGap(const pm_rig* rig, uint32_t a, const double* x, const dou
   return hypot(p[0] - j[0], p[1] - j[1]);
 }
 
+/* Load limits: the untrusted bounds, a rig within them loading each way,
+ * and one bound below the rig's count refusing it with its name, the
+ * memory size query included. */
+static void Limits(const unsigned char* bytes, size_t size) {
+  pm_load_limits limits;
+  pm_load_limits_untrusted(&limits);
+  EXPECT(limits.max_bytes == 4u << 20 && limits.max_memory == 32u << 20 && limits.max_vertices == 20000 &&
+         limits.max_poses == 64 && limits.max_attachments == 8 && limits.max_factor_nonzeros == 1000000);
+  pm_rig* rig = NULL;
+  pm_error err;
+  EXPECT(pm_rig_load_limited(bytes, size, &limits, &rig, &err) == PM_OK);
+  pm_rig_info info;
+  pm_rig_get_info(rig, &info);
+  pm_rig_free(rig);
+  size_t needed = 0;
+  EXPECT(pm_rig_memory_size_limited(bytes, size, &limits, &needed, &err) == PM_OK && needed > 0);
+  unsigned char* block = malloc(needed + PM_RIG_MEMORY_ALIGNMENT);
+  void* memory = block + (PM_RIG_MEMORY_ALIGNMENT - (size_t)block % PM_RIG_MEMORY_ALIGNMENT) % PM_RIG_MEMORY_ALIGNMENT;
+  rig = NULL;
+  EXPECT(pm_rig_load_in_place_limited(bytes, size, &limits, memory, needed, &rig, &err) == PM_OK);
+  pm_rig_free(rig);
+  limits.max_vertices = info.vertex_count - 1;
+  rig = NULL;
+  EXPECT(pm_rig_load_limited(bytes, size, &limits, &rig, &err) == PM_ERROR_TOO_LARGE && rig == NULL);
+  EXPECT(strstr(err.message, "(LoadLimits::max_vertices)") != NULL);
+  EXPECT(pm_rig_memory_size_limited(bytes, size, &limits, &needed, &err) == PM_ERROR_TOO_LARGE);
+  EXPECT(pm_rig_load_in_place_limited(bytes, size, &limits, memory, needed, &rig, &err) == PM_ERROR_TOO_LARGE);
+  free(block);
+}
+
 /* A rig with a face channel: names, weights per channel, the attachments
  * placed with their joints on the body, one character and a batch agreeing
  * bit for bit, and bad arguments refused. */
@@ -280,6 +310,7 @@ int main(int argc, char** argv) {
   EXPECT(pm_rig_channel_count(rig) == 1 && pm_rig_attachment_count(rig) == 0);
   EXPECT(pm_rig_channel_count(NULL) == 0 && pm_rig_attached_vertex_count(rig) == 0);
   pm_rig_free(rig);
+  Limits(bytes, (size_t)size);
   free(bytes), free(raw), free(limited), free(tex), free(work), free(x), free(xf);
   if (argc == 3) Channels(argv[2]);
   printf("c_api_test: %s\n", failures ? "FAILED" : "ok");

@@ -16,15 +16,41 @@
 using namespace posemorph::c_api;  // NOLINT(google-build-using-namespace): the C API's own helpers
 using posemorph::Span;
 
+namespace {
+
+// The loader's options with the caller's limits (NULL: the format's).
+posemorph::LoadOptions OptionsWith(const pm_load_limits* limits) {
+  posemorph::LoadOptions options;
+  if (limits) {
+    posemorph::LoadLimits& l = options.limits;
+    l.max_bytes = limits->max_bytes, l.max_memory = limits->max_memory, l.max_vertices = limits->max_vertices;
+    l.max_poses = limits->max_poses, l.max_attachments = limits->max_attachments;
+    l.max_factor_nonzeros = limits->max_factor_nonzeros;
+  }
+  return options;
+}
+
+}  // namespace
+
 extern "C" {
 
+void pm_load_limits_untrusted(pm_load_limits* out) {
+  if (!out) return;
+  const posemorph::LoadLimits l = posemorph::LoadLimits::Untrusted();
+  *out = {l.max_bytes, l.max_memory, l.max_vertices, l.max_poses, l.max_attachments, l.max_factor_nonzeros};
+}
+
 int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err) {
+  return pm_rig_load_limited(bytes, size, nullptr, out_rig, err);
+}
+
+int pm_rig_load_limited(const void* bytes, size_t size, const pm_load_limits* limits, pm_rig** out_rig, pm_error* err) {
   posemorph::Error e;
   if (err) *err = pm_error{};
   if (const int status = CheckOutput(out_rig, err)) return status;
   pm_rig* rig = new (std::nothrow) pm_rig;
   if (!rig) return Fail(err, PM_ERROR_OUT_OF_MEMORY, "cannot allocate the rig handle");
-  if (!posemorph::LoadRig(bytes, size, &rig->rig, &e)) {
+  if (!posemorph::LoadRig(bytes, size, &rig->rig, &e, OptionsWith(limits))) {
     delete rig;
     return Report(err, e);
   }
@@ -33,16 +59,26 @@ int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err)
 }
 
 int pm_rig_memory_size(const void* bytes, size_t size, size_t* needed, pm_error* err) {
+  return pm_rig_memory_size_limited(bytes, size, nullptr, needed, err);
+}
+
+int pm_rig_memory_size_limited(const void* bytes, size_t size, const pm_load_limits* limits, size_t* needed,
+                               pm_error* err) {
   posemorph::Error e;
   if (err) *err = pm_error{};
   std::size_t arena = 0;
-  if (!posemorph::RigMemorySize(bytes, size, &arena, &e)) return Report(err, e);
+  if (!posemorph::RigMemorySize(bytes, size, &arena, &e, OptionsWith(limits))) return Report(err, e);
   if (needed) *needed = kHandleBytes + arena;
   return PM_OK;
 }
 
 int pm_rig_load_in_place(const void* bytes, size_t size, void* memory, size_t memory_size, pm_rig** out_rig,
                          pm_error* err) {
+  return pm_rig_load_in_place_limited(bytes, size, nullptr, memory, memory_size, out_rig, err);
+}
+
+int pm_rig_load_in_place_limited(const void* bytes, size_t size, const pm_load_limits* limits, void* memory,
+                                 size_t memory_size, pm_rig** out_rig, pm_error* err) {
   posemorph::Error e;
   if (err) *err = pm_error{};
   if (const int status = CheckOutput(out_rig, err)) return status;
@@ -54,7 +90,7 @@ int pm_rig_load_in_place(const void* bytes, size_t size, void* memory, size_t me
   pm_rig* rig = new (memory) pm_rig;
   rig->in_place = true;
   if (!posemorph::LoadRigInPlace(bytes, size, static_cast<unsigned char*>(memory) + kHandleBytes,
-                                 memory_size - kHandleBytes, &rig->rig, &e)) {
+                                 memory_size - kHandleBytes, &rig->rig, &e, OptionsWith(limits))) {
     rig->~pm_rig();
     return Report(err, e);
   }

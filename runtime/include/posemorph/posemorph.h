@@ -81,6 +81,27 @@ PM_API void pm_rig_free(pm_rig* rig);
 PM_API int pm_rig_memory_size(const void* bytes, size_t size, size_t* needed, pm_error* err);
 PM_API int pm_rig_load_in_place(const void* bytes, size_t size, void* memory, size_t memory_size, pm_rig** out_rig,
                                 pm_error* err);
+/* Bounds for rigs from sources the game does not control (LoadLimits in
+ * rig.h): a rig beyond one is refused with PM_ERROR_TOO_LARGE and a message
+ * naming it, before its arrays are read. Each 0 keeps the format's limit. */
+typedef struct pm_load_limits {
+  uint64_t max_bytes;           /* the file */
+  uint64_t max_memory;          /* the rig's memory (pm_rig_memory_size, less the handle), attachments included */
+  uint32_t max_vertices;        /* the body's and its attachments' together */
+  uint32_t max_poses;           /* in any one pose space */
+  uint32_t max_attachments;     /* parts of later channels */
+  uint64_t max_factor_nonzeros; /* the solve's work per frame, attachments included */
+} pm_load_limits;
+/* The bounds for characters from players (LoadLimits::Untrusted()). */
+PM_API void pm_load_limits_untrusted(pm_load_limits* out);
+/* pm_rig_load, pm_rig_memory_size and pm_rig_load_in_place within `limits`
+ * (NULL: the format's limits, as the functions above). */
+PM_API int pm_rig_load_limited(const void* bytes, size_t size, const pm_load_limits* limits, pm_rig** out_rig,
+                               pm_error* err);
+PM_API int pm_rig_memory_size_limited(const void* bytes, size_t size, const pm_load_limits* limits, size_t* needed,
+                                      pm_error* err);
+PM_API int pm_rig_load_in_place_limited(const void* bytes, size_t size, const pm_load_limits* limits, void* memory,
+                                        size_t memory_size, pm_rig** out_rig, pm_error* err);
 PM_API void pm_rig_get_info(const pm_rig* rig, pm_rig_info* info);
 /* The rig's own arrays, read-only, valid while the rig is. */
 PM_API const uint32_t* pm_rig_triangles(const pm_rig* rig);                   /* 3 x triangle_count */

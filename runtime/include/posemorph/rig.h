@@ -114,6 +114,38 @@ struct AttachmentView {
   double joint_weights[3] = {0, 0, 0};   // the joint's barycentric weights there (its pose 0)
 };
 
+// Bounds for rigs from sources the game does not control (characters that
+// players send): a rig beyond one is refused with ErrorCode::kTooLarge and a
+// message naming the bound, before its arrays are read, so that the load's
+// memory and each frame's solve stay within what the bounds allow. Each 0
+// keeps the format's own limit (rig_format.h), as LoadOptions does by
+// default. A character's attachments count with it: their bytes are inside
+// the file, their memory inside its arena, their vertices and factors add
+// to the body's.
+struct LoadLimits {
+  std::uint64_t max_bytes = 0;            // the file
+  std::uint64_t max_memory = 0;           // the rig's arena (RigMemorySize), attachments included
+  std::uint32_t max_vertices = 0;         // the body's and every attachment's together
+  std::uint32_t max_poses = 0;            // in any one pose space (the body's, a channel's)
+  std::uint32_t max_attachments = 0;      // parts of later channels
+  std::uint64_t max_factor_nonzeros = 0;  // the solve's work per frame, body and attachments together
+  // Bounds for a game loading characters from players: 4 MiB files, 32 MiB
+  // in memory, 20,000 vertices, 8 attachments, 1,000,000 factor nonzeros
+  // (the samples need at most 1.4 MB files, 2 MB of memory, 991 vertices
+  // with attachments and 5,733 nonzeros). docs/runtime.md says what they
+  // cost.
+  static LoadLimits Untrusted() {
+    LoadLimits l;
+    l.max_bytes = std::uint64_t(4) << 20;
+    l.max_memory = std::uint64_t(32) << 20;
+    l.max_vertices = 20000;
+    l.max_poses = 64;
+    l.max_attachments = 8;
+    l.max_factor_nonzeros = 1000000;
+    return l;
+  }
+};
+
 struct LoadOptions {
   // Tests turn this off to prove the structural checks alone keep corrupted
   // bytes from crashing the loader; applications leave it on.
@@ -126,6 +158,8 @@ struct LoadOptions {
   // the fastest path the CPU runs. A path this build lacks or this CPU
   // cannot run fails the load with ErrorCode::kUnsupportedIsa.
   Isa isa = Isa::kAuto;
+  // Bounds beyond the format's (LoadLimits::Untrusted() for rigs from players).
+  LoadLimits limits;
 };
 
 class PM_API Rig {

@@ -105,9 +105,12 @@ bool RigLoader::ReadChannels(const unsigned char* bytes, const Parser& parser, c
     size_only.kind = ArenaSource::kSizeOnly;
     size_only.needed = &needed;
     size_only.nested = true;
+    std::uint64_t vertices = 0, nonzeros = 0;
+    size_only.vertices = &vertices, size_only.nonzeros = &nonzeros;
     Rig scratch;
     if (!Load(slot.bytes, std::size_t(entry.size), &scratch, err, options, size_only)) return NestedFail(err, a);
     slot.arena = needed;
+    ch->vertices += vertices, ch->nonzeros += nonzeros;
   }
   for (std::uint32_t k = 1; k < ch->C; ++k)
     if (!driven[k]) return Fail(err, ErrorCode::kBadValue, "channel %u drives no attachment", k);

@@ -51,17 +51,27 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   const detail::KernelTable* kernels = nullptr;
   if (!detail::SelectKernels(options.isa, &kernels, err)) return false;
   const auto* bytes = static_cast<const unsigned char*>(data);
+  const LoadLimits& limits = options.limits;
+  if (!source.nested && limits.max_bytes && size > limits.max_bytes)
+    return Fail(err, ErrorCode::kTooLarge, "the file is %zu bytes, above the limit of %llu (LoadLimits::max_bytes)",
+                size, (unsigned long long)limits.max_bytes);
 
   Header h;
   if (!ReadHeader(bytes, size, options, &h, err)) return false;
   Parser parser{bytes, size, {}, err};
   if (!ReadSectionTable(bytes, size, h, &parser, err)) return false;
   Counts c;
-  if (!ReadCounts(parser, &c, err)) return false;
+  if (!ReadCounts(parser, &c, err) || !CheckLimits(c, limits, err)) return false;
+  if (source.vertices) *source.vertices = c.V;
+  if (source.nonzeros) *source.nonzeros = c.nnz;
   Sources s;
   if (!FindSections(bytes, h, parser, c, &s, err)) return false;
   Channels channels;
   if (!ReadChannels(bytes, parser, c, options, source.nested, &channels, err)) return false;
+  if (limits.max_attachments && channels.A > limits.max_attachments)
+    return Fail(err, ErrorCode::kTooLarge, "%u attachments, above the limit of %u (LoadLimits::max_attachments)",
+                channels.A, limits.max_attachments);
+  if (channels.A && !CheckCharacterLimits(c, limits, channels, err)) return false;
 
   // Two passes over one layout: size the arena, then fill it.
   Rig rig;
@@ -79,6 +89,10 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
       if (arena.used > std::uint64_t(SIZE_MAX / 2))
         return Fail(err, ErrorCode::kTooLarge, "the rig needs %llu bytes in memory, more than this target addresses",
                     (unsigned long long)arena.used);
+      if (!source.nested && limits.max_memory && arena.used > limits.max_memory)
+        return Fail(err, ErrorCode::kTooLarge,
+                    "the rig needs %llu bytes in memory, above the limit of %llu (LoadLimits::max_memory)",
+                    (unsigned long long)arena.used, (unsigned long long)limits.max_memory);
       rig.arena_size_ = std::size_t(arena.used);
       if (source.kind == ArenaSource::kSizeOnly) {
         *source.needed = rig.arena_size_;
@@ -96,6 +110,37 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   Finish(h, c, kernels, &rig);
   if (channels.A && !LoadAttachments(channels, options, nested, nested_memory, &rig, err)) return false;
   *out = std::move(rig);
+  return true;
+}
+
+// One pose space's counts against the bounds (each attachment's too, as it loads).
+bool RigLoader::CheckLimits(const Counts& c, const LoadLimits& limits, Error* err) {
+  if (limits.max_vertices && c.V > limits.max_vertices)
+    return Fail(err, ErrorCode::kTooLarge, "%llu vertices, above the limit of %u (LoadLimits::max_vertices)",
+                (unsigned long long)c.V, limits.max_vertices);
+  if (limits.max_poses && c.N > limits.max_poses)
+    return Fail(err, ErrorCode::kTooLarge, "%llu poses, above the limit of %u (LoadLimits::max_poses)",
+                (unsigned long long)c.N, limits.max_poses);
+  if (limits.max_factor_nonzeros && c.nnz > limits.max_factor_nonzeros)
+    return Fail(err, ErrorCode::kTooLarge,
+                "a factor of %llu nonzeros, above the limit of %llu "
+                "(LoadLimits::max_factor_nonzeros)",
+                (unsigned long long)c.nnz, (unsigned long long)limits.max_factor_nonzeros);
+  return true;
+}
+
+// A character's totals: the body's vertices and factor with its attachments'.
+bool RigLoader::CheckCharacterLimits(const Counts& c, const LoadLimits& limits, const Channels& ch, Error* err) {
+  const std::uint64_t vertices = c.V + ch.vertices, nonzeros = c.nnz + ch.nonzeros;
+  if (limits.max_vertices && vertices > limits.max_vertices)
+    return Fail(err, ErrorCode::kTooLarge,
+                "%llu vertices with the attachments', above the limit of %u (LoadLimits::max_vertices)",
+                (unsigned long long)vertices, limits.max_vertices);
+  if (limits.max_factor_nonzeros && nonzeros > limits.max_factor_nonzeros)
+    return Fail(err, ErrorCode::kTooLarge,
+                "factors of %llu nonzeros with the attachments', above the limit of %llu "
+                "(LoadLimits::max_factor_nonzeros)",
+                (unsigned long long)nonzeros, (unsigned long long)limits.max_factor_nonzeros);
   return true;
 }
 

@@ -126,6 +126,9 @@ struct ArenaSource {
   std::size_t memory_size = 0;
   std::size_t* needed = nullptr;
   bool nested = false;  // an attachment's rig (format 1.7): no CHAN of its own
+  // A nested size-only load reports its counts here (the character's totals, LoadLimits).
+  std::uint64_t* vertices = nullptr;
+  std::uint64_t* nonzeros = nullptr;
 };
 
 // The header's fields the later steps use.
@@ -196,6 +199,7 @@ struct Channels {
   const unsigned char* names[fmt::kMaxChannels] = {};
   std::uint32_t name_sizes[fmt::kMaxChannels] = {};
   std::uint64_t name_bytes = 0;
+  std::uint64_t vertices = 0, nonzeros = 0;  // the attachments' together
 };
 
 }  // namespace detail::load
@@ -214,6 +218,8 @@ struct RigLoader {
 
   static bool Load(const void* data, std::size_t size, Rig* out, Error* err, const LoadOptions& options,
                    const ArenaSource& source);
+  static bool CheckLimits(const Counts& c, const LoadLimits& limits, Error* err);
+  static bool CheckCharacterLimits(const Counts& c, const LoadLimits& limits, const Channels& ch, Error* err);
   static bool ReadHeader(const unsigned char* bytes, std::size_t size, const LoadOptions& options, Header* h,
                          Error* err);
   static bool ReadSectionTable(const unsigned char* bytes, std::size_t size, const Header& h, Parser* parser,
