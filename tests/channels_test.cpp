@@ -21,6 +21,7 @@
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/bake_channels.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/reproduction_check.h"
 #include "posemorph/bake/rig_description.h"
 #include "posemorph/jobs.h"
 #include "posemorph/path.h"
@@ -567,4 +568,35 @@ TEST_CASE("channels: the character is planned before anything is baked: the body
   CHECK(bytes == bake::BakeRig(d));
   CHECK(report.attachments.size() == 1);
   CHECK(Load(bytes).attachment_count() == 1);
+}
+
+TEST_CASE("channels: the file written is verified from its one load: every pose space gives its poses back") {
+  const bake::RigDescription d = bake::ParseRigDescription(ArmChannels().dump(), "arm.json", ".");
+  const bake::CharacterPlan plan = bake::PlanCharacter(d);
+  bake::BakeReport report;
+  const Rig whole = Load(bake::BakeCharacter(d, &report));
+  REQUIRE(whole.attachment_count() == 1);
+  REQUIRE(report.attachments.size() == 1);
+  // What is reported is measured in the character's file: the body with the
+  // body's poses, the arm's rig inside it with the arm's.
+  const bake::BakedRig body = bake::BakeOne(plan.body), arm = bake::BakeOne(plan.attachments[0].description);
+  const Rig& arm_in_file = *whole.attachment(0).rig;
+  CHECK(report.max_reproduction_error ==
+        bake::MeasureReproduction(whole, body.meshes, body.reproduction_tolerance, d.file, "body"));
+  CHECK(report.attachments[0].max_reproduction_error ==
+        bake::MeasureReproduction(arm_in_file, arm.meshes, arm.reproduction_tolerance, d.file, "part 'arm'"));
+  CHECK(report.max_reproduction_error <= body.reproduction_tolerance);
+  CHECK(report.attachments[0].max_reproduction_error <= arm.reproduction_tolerance);
+  // A pose space that is not the one baked is refused, naming it.
+  CHECK_THROWS_WITH_AS(
+      bake::MeasureReproduction(arm_in_file, body.meshes, body.reproduction_tolerance, d.file, "part 'arm'"),
+      "arm.json: internal error: the baked rig's part 'arm' does not hold the poses and vertices baked",
+      bake::BakeError);
+  // Poses moved after the bake (here by one unit) come back too far.
+  bake::PoseMeshes moved = arm.meshes;
+  moved.poses.back().vertices[0].x() += 1;
+  CHECK_THROWS_WITH_AS(
+      bake::MeasureReproduction(arm_in_file, moved, arm.reproduction_tolerance, d.file, "part 'arm'"),
+      doctest::Contains("arm.json: internal error: the baked rig's part 'arm' reproduces its poses only to"),
+      bake::BakeError);
 }

@@ -8,9 +8,11 @@
 #include <sstream>
 
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/reproduction_check.h"
 #include "posemorph/jobs.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
+#include "rig_message.h"
 #include "rig_writer.h"
 #include "runtime_oracle.h"
 
@@ -18,12 +20,6 @@ namespace posemorph::bake {
 namespace {
 
 namespace fmt = format;
-
-std::string Point(const Eigen::Vector2d& p) {
-  std::ostringstream s;
-  s << "(" << p.x() << ", " << p.y() << ")";
-  return s.str();
-}
 
 // A point of a pose-0 drawing in the rig's units (y up, origin at the
 // canvas's pivot); a rig given as vertices has no canvas and takes it as is.
@@ -249,6 +245,7 @@ std::vector<unsigned char> BakeCharacter(const RigDescription& d, BakeReport* re
   BakedRig body_baked = BakeOne(plan.body, &r);
   const Rig& body = body_baked.rig;
   std::vector<Attachment> attachments;
+  std::vector<BakedRig> attached;  // each attachment's bake, its poses for the verification
   for (const AttachmentPlan& planned : plan.attachments) {
     const PartDescription& part = d.parts[planned.part];
     const GlueDescription* glue = &planned.glue;
@@ -269,14 +266,14 @@ std::vector<unsigned char> BakeCharacter(const RigDescription& d, BakeReport* re
     a.parent = Locate(body, pv.first_triangle, pv.triangle_count, ToRig(body, glue->at[0]));
     if (!(a.parent.inside >= tolerance))
       throw BakeError(d.file,
-                      where + ": the joint " + Point(glue->at[0]) + " lies off part '" + glue->to + "' in " +
+                      where + ": the joint " + PointText(glue->at[0]) + " lies off part '" + glue->to + "' in " +
                           PoseLabel(body.pose_name(0).data ? std::string(body.pose_name(0).data, body.pose_name(0).size)
                                                            : std::string(),
                                     0) +
                           ": a joint lies on both parts");
     a.joint = Locate(rig, 0, rig.triangle_count(), ToRig(rig, glue->at[0]));
     if (!(a.joint.inside >= tolerance))
-      throw BakeError(d.file, where + ": the joint " + Point(glue->at[0]) + " lies off part '" + part.name +
+      throw BakeError(d.file, where + ": the joint " + PointText(glue->at[0]) + " lies off part '" + part.name +
                                   "' in its channel's first pose: a joint lies on both parts");
     AttachmentReport ar;
     ar.part = part.name;
@@ -285,19 +282,30 @@ std::vector<unsigned char> BakeCharacter(const RigDescription& d, BakeReport* re
     ar.vertices = sub.vertices, ar.triangles = sub.triangles, ar.poses = sub.poses;
     ar.parent_triangle = a.parent.triangle;
     ar.bytes = a.bytes.size(), ar.exact_bytes = sub.exact_bytes;
-    ar.max_reproduction_error = sub.max_reproduction_error;
     r.attachments.push_back(ar);
     for (const std::string& w : sub.warnings) r.warnings.push_back(w);
     attachments.push_back(std::move(a));
+    attached.push_back(std::move(baked));
   }
   const std::vector<std::string>& names = plan.channels;
-  // The file, written once, and its verification: the runtime loads it and
-  // places each attachment at its joint in every pose of its channel.
+  // The file, written once, and its verification from one load by the
+  // runtime: every pose space of the file (the body, each attachment) gives
+  // its poses back, and each attachment sits at its joint in every pose of
+  // its channel. (Each pose space's bake loaded its own bytes before, to
+  // check its in-betweens for folds; what is reported is measured here.)
   std::vector<unsigned char> bytes = WriteRig(Compose(std::move(body_baked.sections), names, attachments));
   const Rig whole = LoadWithRuntime(bytes, d.file, "the rig written does not load in the runtime");
+  if (whole.attachment_count() != attached.size())
+    throw BakeError(d.file, "internal error: the rig written holds " + std::to_string(whole.attachment_count()) +
+                                " attachments, not " + std::to_string(attached.size()));
+  r.max_reproduction_error =
+      MeasureReproduction(whole, body_baked.meshes, body_baked.reproduction_tolerance, d.file, "body");
   const std::vector<double> placed = PlacedErrors(whole);
   std::uint64_t exact = r.exact_bytes;
   for (std::size_t a = 0; a < r.attachments.size(); ++a) {
+    r.attachments[a].max_reproduction_error =
+        MeasureReproduction(*whole.attachment(std::uint32_t(a)).rig, attached[a].meshes,
+                            attached[a].reproduction_tolerance, d.file, "part '" + r.attachments[a].part + "'");
     r.attachments[a].placed_error = placed[a];
     exact += r.attachments[a].exact_bytes;
   }

@@ -10,22 +10,31 @@
 
 namespace posemorph::bake {
 
+double MeasureReproduction(const Rig& rig, const PoseMeshes& meshes, double tolerance, const std::string& file,
+                           const std::string& what) {
+  const std::string subject = what.empty() ? "the baked rig" : "the baked rig's " + what;
+  for (const PoseMesh& pose : meshes.poses)
+    if (rig.pose_count() != meshes.poses.size() || rig.vertex_count() != pose.vertices.size())
+      throw BakeError(file, "internal error: " + subject + " does not hold the poses and vertices baked");
+  std::vector<double> x;
+  double worst = 0;
+  for (const PoseMesh& pose : meshes.poses) {
+    if (!EvaluateFrame(rig, pose.point, x)) throw BakeError(file, "internal error: " + subject + " does not evaluate");
+    for (std::size_t v = 0; v < pose.vertices.size(); ++v)
+      worst = std::max(worst, (Eigen::Vector2d(x[2 * v], x[2 * v + 1]) - pose.vertices[v]).norm());
+  }
+  const double error = worst / RigBoundingBoxDiagonal(meshes);
+  if (!(error <= tolerance))
+    throw BakeError(
+        file, "internal error: " + subject + " reproduces its poses only to " + std::to_string(error) + " of its size");
+  return error;
+}
+
 ReproductionCheck CheckReproduction(const std::vector<unsigned char>& bytes, const PoseMeshes& meshes, double tolerance,
                                     const std::string& file) {
   ReproductionCheck check;
   check.rig = LoadWithRuntime(bytes, file, "internal error: the baked rig does not load");
-  std::vector<double> x;
-  double worst = 0;
-  for (const PoseMesh& pose : meshes.poses) {
-    if (!EvaluateFrame(check.rig, pose.point, x))
-      throw BakeError(file, "internal error: the baked rig does not evaluate");
-    for (std::size_t v = 0; v < pose.vertices.size(); ++v)
-      worst = std::max(worst, (Eigen::Vector2d(x[2 * v], x[2 * v + 1]) - pose.vertices[v]).norm());
-  }
-  check.max_error = worst / RigBoundingBoxDiagonal(meshes);
-  if (!(check.max_error <= tolerance))
-    throw BakeError(file, "internal error: the baked rig reproduces its poses only to " +
-                              std::to_string(check.max_error) + " of its size");
+  check.max_error = MeasureReproduction(check.rig, meshes, tolerance, file, "");
   return check;
 }
 

@@ -10,6 +10,7 @@
 #include "posemorph/bake/inbetween_check.h"
 #include "posemorph/bake/map_drawings.h"
 #include "posemorph/bake/output_file.h"
+#include "posemorph/bake/pose_meshes.h"
 #include "posemorph/bake/rig_description.h"
 #include "posemorph/bake/rig_sections.h"
 #include "posemorph/rig.h"
@@ -90,7 +91,9 @@ std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport
 struct BakedRig {
   RigSections sections;
   std::vector<unsigned char> bytes;
-  Rig rig;
+  Rig rig;                        // the bytes as the bake's checks loaded them
+  PoseMeshes meshes;              // the poses it must give back
+  double reproduction_tolerance;  // within this (relative to the rig's size)
 };
 
 // BakeRig for one pose space: a description without control channels, or

@@ -23,4 +23,10 @@ struct ReproductionCheck {
 ReproductionCheck CheckReproduction(const std::vector<unsigned char>& bytes, const PoseMeshes& meshes, double tolerance,
                                     const std::string& file);
 
+// The same measure on a rig already loaded (one pose space of a character's
+// file: its body, or an attachment's rig); `what` names it in the message
+// ("part 'face'"). Returns the largest distance relative to the rig size.
+double MeasureReproduction(const Rig& rig, const PoseMeshes& meshes, double tolerance, const std::string& file,
+                           const std::string& what);
+
 }  // namespace posemorph::bake
