@@ -16,27 +16,27 @@ using Vec2 = Eigen::Vector2d;
 
 namespace {
 
-constexpr int kSize = 160;
+constexpr int kCanvasSize = 160;
 
 // An opaque body disc of radius 70 at (80, 80), tan, premultiplied.
 pm::AlignmentImage Body() {
   pm::AlignmentImage image;
-  image.width = image.height = kSize;
-  image.rgba.assign(std::size_t(kSize) * kSize * 4, 0.0f);
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x) {
+  image.width = image.height = kCanvasSize;
+  image.rgba.assign(std::size_t(kCanvasSize) * kCanvasSize * 4, 0.0f);
+  for (int y = 0; y < kCanvasSize; ++y)
+    for (int x = 0; x < kCanvasSize; ++x) {
       if (std::hypot(x + 0.5 - 80, y + 0.5 - 80) > 70) continue;
-      float* p = &image.rgba[(std::size_t(y) * kSize + std::size_t(x)) * 4];
+      float* p = &image.rgba[(std::size_t(y) * kCanvasSize + std::size_t(x)) * 4];
       p[0] = 0.9f, p[1] = 0.6f, p[2] = 0.3f, p[3] = 1.0f;
     }
   return image;
 }
 
 void Disc(pm::AlignmentImage& image, const Vec2& centre, double radius, float r, float g, float b) {
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x) {
+  for (int y = 0; y < kCanvasSize; ++y)
+    for (int x = 0; x < kCanvasSize; ++x) {
       if ((Vec2(x + 0.5, y + 0.5) - centre).norm() > radius) continue;
-      float* p = &image.rgba[(std::size_t(y) * kSize + std::size_t(x)) * 4];
+      float* p = &image.rgba[(std::size_t(y) * kCanvasSize + std::size_t(x)) * 4];
       p[0] = r, p[1] = g, p[2] = b, p[3] = 1.0f;
     }
 }
@@ -82,9 +82,9 @@ TEST_CASE("interior regions: an eye with its pupil is one region centred on the 
   // have no sharp edge.
   pm::AlignmentImage edge = Body();
   Disc(edge, Vec2(80, 12), 8, 0.2f, 0.2f, 0.6f);
-  for (int y = 0; y < kSize; ++y)
-    for (int x = 0; x < kSize; ++x) {
-      float* p = &edge.rgba[(std::size_t(y) * kSize + std::size_t(x)) * 4];
+  for (int y = 0; y < kCanvasSize; ++y)
+    for (int x = 0; x < kCanvasSize; ++x) {
+      float* p = &edge.rgba[(std::size_t(y) * kCanvasSize + std::size_t(x)) * 4];
       if (p[3] > 0 && y > 40) p[1] = float(0.2 + 0.6 * (y - 40) / 110.0);
     }
   CHECK(pm::FindInteriorRegions(edge).empty());

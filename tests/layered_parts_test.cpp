@@ -51,7 +51,7 @@ Rig Bake(const json& description, bool exact = true) {
   return out;
 }
 
-std::vector<double> MorphAt(const Rig& rig, double px, double py) {
+std::vector<double> LayeredMorphAt(const Rig& rig, double px, double py) {
   const std::size_t N = rig.pose_count();
   std::vector<double> w(N), ws(N), tex(N), work(rig.morph_workspace_size()), x(2 * std::size_t(rig.vertex_count()));
   WeightsJob weights;
@@ -83,7 +83,7 @@ json OnePart(const json& rig, int part) {
   return one;
 }
 
-std::string BakeError(const json& description, const char* file = nullptr) {
+std::string LayeredBakeError(const json& description, const char* file = nullptr) {
   try {
     const bake::RigDescription rig = bake::ParseRigDescription(description.dump(), file ? file : "arm.json", ".");
     bake::BakeRig(rig);
@@ -120,7 +120,8 @@ TEST_CASE("layered: the glued shoulder holds along the path, where the same part
   for (int k = 0; k <= 40; ++k) {
     double px = 0, py = 0;
     REQUIRE(SamplePath(path, path.end_time() * k / 40.0, &px, &py));
-    const std::vector<double> b = MorphAt(body, px, py), a = MorphAt(arm, px, py), g = MorphAt(glued, px, py);
+    const std::vector<double> b = LayeredMorphAt(body, px, py), a = LayeredMorphAt(arm, px, py),
+                              g = LayeredMorphAt(glued, px, py);
     drift =
         std::max(drift, std::hypot(a[2 * arm_joint] - b[2 * body_joint], a[2 * arm_joint + 1] - b[2 * body_joint + 1]));
     const double length = std::hypot(g[2 * glued_tip] - g[2 * joint], g[2 * glued_tip + 1] - g[2 * joint + 1]);
@@ -146,7 +147,7 @@ TEST_CASE("layered: each part's base poses are reproduced, exact and compact, an
     CHECK(rig.part(1).triangle_count == 16);
     const double tolerance = exact ? 1e-9 * rig.bounding_box_diagonal() : 0.01 / 4;  // 0.01 px at 4 px per unit
     for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
-      const std::vector<double> x = MorphAt(rig, rig.pose_points()[2 * i], rig.pose_points()[2 * i + 1]);
+      const std::vector<double> x = LayeredMorphAt(rig, rig.pose_points()[2 * i], rig.pose_points()[2 * i + 1]);
       double worst = 0;
       for (std::size_t k = 0; k < x.size(); ++k) worst = std::max(worst, std::fabs(x[k] - rig.pose_positions(i)[k]));
       CHECK(worst <= tolerance);
@@ -219,10 +220,10 @@ TEST_CASE("layered: the draw order may change with the pose, and the dominant dr
   CHECK(fixed.draw_sequence(2).data == fixed.draw_sequence(0).data);
   // Bad orders.
   description["parts"][1]["order"] = json::array({1, 2});
-  CHECK(BakeError(description) ==
+  CHECK(LayeredBakeError(description) ==
         "arm.json: parts[1].order: part 'arm' has 2 draw orders, the rig 3 poses: give one order, or one per pose");
   description["parts"][1]["order"] = json::array({1, 2, 0.5});
-  CHECK(BakeError(description) ==
+  CHECK(LayeredBakeError(description) ==
         "arm.json: parts[1].order[2]: expected an integer in -1000000..1000000 (lower "
         "draws first)");
 }
@@ -276,39 +277,40 @@ TEST_CASE("layered: bad parts and glue are refused with the part, the pose and t
   {
     json d = good;
     d["parts"][1]["poses"].erase(2);
-    CHECK(BakeError(d) ==
+    CHECK(LayeredBakeError(d) ==
           "arm.json: parts[1].poses: part 'arm' has 2 poses, the rig 3: every part is drawn in every "
           "pose (one that should vanish is drawn tiny, or hidden behind another by its order)");
   }
   {
     json d = good;
     d["glue"][0]["to"] = "torso";
-    CHECK(BakeError(d) == "arm.json: glue[0].to: no part is named 'torso'");
+    CHECK(LayeredBakeError(d) == "arm.json: glue[0].to: no part is named 'torso'");
   }
   {
     json d = good;
     d["glue"][0]["at"] = json::array({12.5, 3});
-    CHECK(BakeError(d).find("arm.json: part 'body': glue[0] ('arm' to 'body'): no vertex of part 'body' lies at the "
-                            "joint (12.5, 3) in pose 'rest' (index 0) (the nearest is ") == 0);
+    CHECK(LayeredBakeError(d).find(
+              "arm.json: part 'body': glue[0] ('arm' to 'body'): no vertex of part 'body' lies at the "
+              "joint (12.5, 3) in pose 'rest' (index 0) (the nearest is ") == 0);
   }
   {
     json d = good;
     d["glue"].push_back(d["glue"][0]);
-    CHECK(BakeError(d) ==
+    CHECK(LayeredBakeError(d) ==
           "arm.json: glue[1]: gluing 'arm' to 'body' closes a cycle: they are glued together already "
           "(directly or through other parts), and a cycle of glue over-constrains the joints; remove one");
   }
   {
     json d = good;
     d.erase("glue");
-    CHECK(BakeError(d) == "arm.json: missing \"glue\": the parts must be glued together at joints");
+    CHECK(LayeredBakeError(d) == "arm.json: missing \"glue\": the parts must be glued together at joints");
   }
   {
     json d = good;
     json hat = d["parts"][1];
     hat["name"] = "hat";
     d["parts"].push_back(hat);
-    CHECK(BakeError(d) ==
+    CHECK(LayeredBakeError(d) ==
           "arm.json: glue: part 'hat' is not glued to part 'body' (directly or through other parts): "
           "a character's parts are one piece");
   }
@@ -319,7 +321,7 @@ TEST_CASE("layered: bad parts and glue are refused with the part, the pose and t
       extra["name"] = "extra" + std::to_string(k);
       d["parts"].push_back(extra);
     }
-    CHECK(BakeError(d) == "arm.json: parts: 66 parts, more than the rig format's limit of 64");
+    CHECK(LayeredBakeError(d) == "arm.json: parts: 66 parts, more than the rig format's limit of 64");
   }
   {
     // The arm's end moved off the body's corner in pose 'mid', the joint given in pose 0 only.
@@ -327,7 +329,7 @@ TEST_CASE("layered: bad parts and glue are refused with the part, the pose and t
     d["glue"][0]["at"] = d["glue"][0]["at"][0];
     const double x = d["parts"][1]["poses"][1]["vertices"][5][0];
     d["parts"][1]["poses"][1]["vertices"][5][0] = x + 1;
-    const std::string e = BakeError(d);
+    const std::string e = LayeredBakeError(d);
     CHECK(e.find("arm.json: glue[0] ('arm' to 'body'): in pose 'mid' (index 1) the joint is at (") == 0);
     CHECK(e.find("on part 'arm' but at (") != std::string::npos);
     CHECK(e.find("on part 'body': a joint is one point in every pose") != std::string::npos);
@@ -335,14 +337,14 @@ TEST_CASE("layered: bad parts and glue are refused with the part, the pose and t
   {
     json d = good;
     d["parts"][1]["poses"][0]["vertices"][3] = json::array({1e300, 0});
-    CHECK(BakeError(d) ==
+    CHECK(LayeredBakeError(d) ==
           "arm.json: part 'arm', pose 'rest': parts[1].poses[0].vertices[3]: "
           "coordinate beyond +-1e9 ([1e+300,0])");
   }
   {
     json d = good;
     d["poses"][0]["vertices"] = d["parts"][0]["poses"][0]["vertices"];
-    CHECK(BakeError(d) ==
+    CHECK(LayeredBakeError(d) ==
           "arm.json: poses[0].vertices: with \"parts\", a rig's pose gives its name and point only; "
           "what it looks like goes in each part's \"poses\"");
   }
@@ -393,7 +395,7 @@ TEST_CASE("layered: drawn parts are mapped on their own and share a vertex exact
   CHECK(in[joint] == 3);
   // A joint off the body in one pose is refused, naming the part and the pose.
   d["glue"][0]["at"][1] = json::array({200, 50});
-  CHECK(BakeError(d, "drawn.json")
+  CHECK(LayeredBakeError(d, "drawn.json")
             .find("drawn.json: part 'body': pose 'p1' (index 1): feature 0 lies outside the outline") !=
         std::string::npos);
 }

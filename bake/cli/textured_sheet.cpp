@@ -17,7 +17,7 @@
 namespace posemorph::bake {
 namespace {
 
-std::string Name(StringView v) { return std::string(v.data, v.size); }
+std::string RigString(StringView v) { return std::string(v.data, v.size); }
 
 RgbaImage DecodeRgba(const std::vector<unsigned char>& file, const std::string& path) {
   png_image image;
@@ -71,9 +71,9 @@ std::vector<RgbaImage> ReadPoseDrawings(const Rig& rig, const std::string& rig_f
   for (std::uint32_t p = 0; p < rig.part_count(); ++p)
     for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
       // "pose 'x'" for a rig without parts, "part 'a' in pose 'x'" for a layered one.
-      const std::string whose =
-          (parts ? "part '" + Name(rig.part(p).name) + "' in pose '" : "pose '") + Name(rig.pose_name(i)) + "'";
-      const std::string ref = Name(rig.part_image(p, i));
+      const std::string whose = (parts ? "part '" + RigString(rig.part(p).name) + "' in pose '" : "pose '") +
+                                RigString(rig.pose_name(i)) + "'";
+      const std::string ref = RigString(rig.part_image(p, i));
       if (ref.empty())
         throw BakeError(rig_file,
                         whose + " has no drawing: --textured needs one per " + (parts ? "part and " : "") + "pose");

@@ -11,6 +11,7 @@
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/orient_triangles.h"
 #include "posemorph/bake/validate_rig.h"
+#include "rig_message.h"
 
 namespace posemorph::bake {
 namespace {
@@ -24,12 +25,6 @@ constexpr double kJointTolerance = 1e-9;
 constexpr double kDrawnJointTolerance = 1e-3;
 // How far a joint given to a mesh may lie off its vertex, times the part's size.
 constexpr double kVertexTolerance = 1e-6;
-
-std::string Point(const Eigen::Vector2d& p) {
-  std::ostringstream s;
-  s << "(" << p.x() << ", " << p.y() << ")";
-  return s.str();
-}
 
 std::string GlueLabel(const RigDescription& d, std::size_t g) {
   return "glue[" + std::to_string(g) + "] ('" + d.glue[g].part + "' to '" + d.glue[g].to + "')";
@@ -83,16 +78,16 @@ MappedPart MapPart(const RigDescription& description, std::size_t p) {
     }
     if (!(best_distance <= tolerance))
       throw BakeError(sub.file, GlueLabel(description, g) + ": no vertex of part '" + description.parts[p].name +
-                                    "' lies at the joint " + Point(glue.at[0]) + " in " +
+                                    "' lies at the joint " + PointText(glue.at[0]) + " in " +
                                     PoseLabel(sub.poses[0].name, 0) + " (the nearest is " +
                                     std::to_string(best_distance) +
                                     " away): a joint of parts given as vertices is a vertex of both");
     for (std::size_t i = 1; i < glue.at.size() && i < N; ++i)
       if (!((out.meshes.poses[i].vertices[best] - glue.at[i]).norm() <= tolerance))
-        throw BakeError(sub.file, GlueLabel(description, g) + ": in " + PoseLabel(sub.poses[i].name, i) +
-                                      " the joint's vertex " + std::to_string(best) + " of part '" +
-                                      description.parts[p].name + "' is at " +
-                                      Point(out.meshes.poses[i].vertices[best]) + ", not at " + Point(glue.at[i]));
+        throw BakeError(sub.file,
+                        GlueLabel(description, g) + ": in " + PoseLabel(sub.poses[i].name, i) + " the joint's vertex " +
+                            std::to_string(best) + " of part '" + description.parts[p].name + "' is at " +
+                            PointText(out.meshes.poses[i].vertices[best]) + ", not at " + PointText(glue.at[i]));
     out.joint_vertex.push_back(best);
   }
   return out;
@@ -139,10 +134,10 @@ void CheckCanvases(const RigDescription& d, const std::vector<MappedPart>& parts
         first = &m, first_part = p;
       } else if (m.canvas_size != first->canvas_size || m.canvas_pivot != first->canvas_pivot) {
         throw BakeError(d.file, "part '" + d.parts[p].name + "', " + PoseLabel(d.poses[i].name, i) +
-                                    ": its drawing's canvas (" + Point(m.canvas_size) + ", origin at " +
-                                    Point(m.canvas_pivot) + ") differs from part '" + d.parts[first_part].name +
-                                    "''s (" + Point(first->canvas_size) + ", origin at " + Point(first->canvas_pivot) +
-                                    "): a pose's parts are layers of one canvas");
+                                    ": its drawing's canvas (" + PointText(m.canvas_size) + ", origin at " +
+                                    PointText(m.canvas_pivot) + ") differs from part '" + d.parts[first_part].name +
+                                    "''s (" + PointText(first->canvas_size) + ", origin at " +
+                                    PointText(first->canvas_pivot) + "): a pose's parts are layers of one canvas");
       }
     }
   }
@@ -244,8 +239,8 @@ JoinedParts JoinParts(const RigDescription& d) {
       const bool drawn = d.parts[glue.part_index].poses[i].drawn || d.parts[glue.to_index].poses[i].drawn;
       if (!((pa - pb).norm() <= (drawn ? std::max(tolerance, kDrawnJointTolerance) : tolerance)))
         throw BakeError(d.file, GlueLabel(d, g) + ": in " + PoseLabel(d.poses[i].name, i) + " the joint is at " +
-                                    Point(pa) + " on part '" + glue.part + "' but at " + Point(pb) + " on part '" +
-                                    glue.to + "': a joint is one point in every pose");
+                                    PointText(pa) + " on part '" + glue.part + "' but at " + PointText(pb) +
+                                    " on part '" + glue.to + "': a joint is one point in every pose");
     }
     out.joints.push_back(std::uint32_t(id[offset[glue.part_index] + a]));
   }

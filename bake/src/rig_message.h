@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // What the bake's messages about a baked rig share (inbetween_check.cpp,
 // mesh_quality.cpp): a rig's string as a std::string, a number to three
-// significant digits with tiny values as 0, the part a triangle is in, and a
-// rig point in a pose's drawing pixels.
+// significant digits with tiny values as 0, a point as "(x, y)", the part a
+// triangle is in, and a rig point in a pose's drawing pixels.
 #pragma once
 #include <cmath>
 #include <cstdint>
@@ -19,6 +19,15 @@ inline std::string MessageNumber(double v) {
   std::ostringstream s;
   s.precision(3);
   s << (std::abs(v) < 5e-4 ? 0.0 : v);
+  return s.str();
+}
+
+// A point (anything with x() and y(): an Eigen::Vector2d) as "(x, y)", each
+// coordinate as a stream prints it.
+template <class Point>
+std::string PointText(const Point& p) {
+  std::ostringstream s;
+  s << "(" << p.x() << ", " << p.y() << ")";
   return s.str();
 }
 
