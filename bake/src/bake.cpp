@@ -121,7 +121,6 @@ struct Attempt {
   CompactSettings compact_settings;
   CompactReport compact;
   bool is_compact = false;
-  double reproduction_tolerance = 0;  // what `written` was checked within
   ReproductionCheck written;
   InbetweenCheck inbetweens;
   std::vector<std::string> weight_warnings;
@@ -173,7 +172,6 @@ Attempt BakeOnce(const RigDescription& description) {
       1e-6, a.is_compact
                 ? a.compact_settings.max_error_px / a.compact_settings.pixels_per_unit / RigBoundingBoxDiagonal(meshes)
                 : 0.0);
-  a.reproduction_tolerance = tolerance;
   a.written = CheckReproduction(a.bytes, meshes, tolerance, file);
   BakeStage inbetween_stage("checking the in-betweens for folds");
   a.inbetweens = CheckInbetweens(a.written.rig, file);
@@ -341,7 +339,7 @@ BakedRig BakeOne(const RigDescription& description, BakeReport* report) {
   }
   // a.written loaded the rig from a.bytes, the file's bytes.
   return BakedRig{std::move(a.sections), std::move(a.bytes), std::move(a.written.rig), std::move(a.meshes),
-                  a.reproduction_tolerance};
+                  a.written.tolerance};
 }
 
 }  // namespace posemorph::bake

@@ -245,7 +245,11 @@ std::vector<unsigned char> BakeCharacter(const RigDescription& d, BakeReport* re
   BakedRig body_baked = BakeOne(plan.body, &r);
   const Rig& body = body_baked.rig;
   std::vector<Attachment> attachments;
-  std::vector<BakedRig> attached;  // each attachment's bake, its poses for the verification
+  struct Poses {
+    PoseMeshes meshes;
+    double tolerance;
+  };
+  std::vector<Poses> attached;  // each attachment's poses, for the verification
   for (const AttachmentPlan& planned : plan.attachments) {
     const PartDescription& part = d.parts[planned.part];
     const GlueDescription* glue = &planned.glue;
@@ -285,7 +289,7 @@ std::vector<unsigned char> BakeCharacter(const RigDescription& d, BakeReport* re
     r.attachments.push_back(ar);
     for (const std::string& w : sub.warnings) r.warnings.push_back(w);
     attachments.push_back(std::move(a));
-    attached.push_back(std::move(baked));
+    attached.push_back({std::move(baked.meshes), baked.reproduction_tolerance});
   }
   const std::vector<std::string>& names = plan.channels;
   // The file, written once, and its verification from one load by the
@@ -304,8 +308,8 @@ std::vector<unsigned char> BakeCharacter(const RigDescription& d, BakeReport* re
   std::uint64_t exact = r.exact_bytes;
   for (std::size_t a = 0; a < r.attachments.size(); ++a) {
     r.attachments[a].max_reproduction_error =
-        MeasureReproduction(*whole.attachment(std::uint32_t(a)).rig, attached[a].meshes,
-                            attached[a].reproduction_tolerance, d.file, "part '" + r.attachments[a].part + "'");
+        MeasureReproduction(*whole.attachment(std::uint32_t(a)).rig, attached[a].meshes, attached[a].tolerance, d.file,
+                            "part '" + r.attachments[a].part + "'");
     r.attachments[a].placed_error = placed[a];
     exact += r.attachments[a].exact_bytes;
   }

@@ -13,12 +13,13 @@ namespace posemorph::bake {
 double MeasureReproduction(const Rig& rig, const PoseMeshes& meshes, double tolerance, const std::string& file,
                            const std::string& what) {
   const std::string subject = what.empty() ? "the baked rig" : "the baked rig's " + what;
-  for (const PoseMesh& pose : meshes.poses)
-    if (rig.pose_count() != meshes.poses.size() || rig.vertex_count() != pose.vertices.size())
-      throw BakeError(file, "internal error: " + subject + " does not hold the poses and vertices baked");
+  if (rig.pose_count() != meshes.poses.size())
+    throw BakeError(file, "internal error: " + subject + " does not hold the poses and vertices baked");
   std::vector<double> x;
   double worst = 0;
   for (const PoseMesh& pose : meshes.poses) {
+    if (rig.vertex_count() != pose.vertices.size())
+      throw BakeError(file, "internal error: " + subject + " does not hold the poses and vertices baked");
     if (!EvaluateFrame(rig, pose.point, x)) throw BakeError(file, "internal error: " + subject + " does not evaluate");
     for (std::size_t v = 0; v < pose.vertices.size(); ++v)
       worst = std::max(worst, (Eigen::Vector2d(x[2 * v], x[2 * v + 1]) - pose.vertices[v]).norm());
@@ -35,6 +36,7 @@ ReproductionCheck CheckReproduction(const std::vector<unsigned char>& bytes, con
   ReproductionCheck check;
   check.rig = LoadWithRuntime(bytes, file, "internal error: the baked rig does not load");
   check.max_error = MeasureReproduction(check.rig, meshes, tolerance, file, "");
+  check.tolerance = tolerance;
   return check;
 }
 

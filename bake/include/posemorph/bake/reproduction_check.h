@@ -15,6 +15,7 @@ namespace posemorph::bake {
 struct ReproductionCheck {
   Rig rig;               // the bytes, loaded (the in-between check evaluates it next)
   double max_error = 0;  // largest vertex distance at the pose points, relative to the rig size
+  double tolerance = 0;  // what it was checked within
 };
 
 // Throws BakeError(file, "internal error: ...") when the bytes do not load,
