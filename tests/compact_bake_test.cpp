@@ -8,8 +8,10 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 
 #include "posemorph/bake/bake.h"
+#include "posemorph/bake/pose_space_samples.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
 #include "strip_rig.h"
@@ -41,6 +43,33 @@ TEST_CASE("a 1035-vertex, 8-pose rig bakes compact within 100 KB and within the 
   Error err;
   REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
   CHECK(rig.format_minor() == 7);
+}
+
+TEST_CASE("frames evaluated in batches, as the compact search and the fold check do, are EvaluateFrame's bits") {
+  bake::RigDescription desc = samples::PlateRig(10, 5);
+  desc.file = "plate";
+  const std::vector<unsigned char> bytes = bake::BakeRig(desc);
+  Rig rig;
+  Error err;
+  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
+  std::vector<Eigen::Vector2d> at;
+  for (const bake::PoseSpaceSample& s : bake::SamplePoseSpace(rig, bake::PoseSpaceSampling{})) at.push_back(s.at);
+  at.push_back({3.5, -2.0});  // far outside the pose points: limited weights differ from raw ones
+  REQUIRE(at.size() > 2 * bake::kFrameBatch);
+  const std::size_t frame = 2 * std::size_t(rig.vertex_count());
+  bake::FrameBuffers buffers;
+  std::vector<double> one;
+  // A whole batch, then batches of 5 frames (a partial group), the buffers reused.
+  for (std::size_t first = 0, count = 0; first < at.size(); first += count) {
+    count = std::min<std::size_t>(first == 0 ? bake::kFrameBatch : 5, at.size() - first);
+    REQUIRE(bake::EvaluateFrames(rig, at, first, count, buffers));
+    REQUIRE(buffers.positions.size() == count * frame);
+    for (std::size_t k = 0; k < count; ++k) {
+      CAPTURE(first + k);
+      REQUIRE(bake::EvaluateFrame(rig, at[first + k], one));
+      CHECK(std::memcmp(one.data(), buffers.positions.data() + k * frame, frame * sizeof(double)) == 0);
+    }
+  }
 }
 
 TEST_CASE("--precision exact keeps the exact encoding") {

@@ -95,13 +95,14 @@ std::string TagText(std::uint32_t tag) {
   return s;
 }
 
-}  // namespace
-
-std::map<std::uint32_t, std::vector<unsigned char>> RawSections(const RigSections& exact) {
-  std::map<std::uint32_t, std::vector<unsigned char>> out;
-  for (const RigSections::Section& section : exact.sections) out.emplace(section.tag, section.bytes);
-  return out;
+// A section SerialiseRig always writes.
+const std::vector<unsigned char>& ExactSection(const RigSections& exact, std::uint32_t tag) {
+  const std::vector<unsigned char>* bytes = exact.Find(tag);
+  if (!bytes) throw std::logic_error("the exact rig has no section " + TagText(tag));
+  return *bytes;
 }
+
+}  // namespace
 
 RigSections Encoder::Encode(double position_step, double weight_step, CompactReport* report,
                             const fmt::CompactInfo* info) const {
@@ -110,7 +111,7 @@ RigSections Encoder::Encode(double position_step, double weight_step, CompactRep
   auto note = [&](std::uint32_t tag, std::size_t bytes, std::string what) {
     sections.push_back({TagText(tag), bytes, std::move(what)});
   };
-  fmt::Meta meta = fmt::DecodeRecord<fmt::Meta>(raw.at(fmt::kMeta).data());
+  fmt::Meta meta = fmt::DecodeRecord<fmt::Meta>(ExactSection(raw, fmt::kMeta).data());
   meta.flags |= fmt::kMetaFlagCompact;
   const std::vector<unsigned char> meta_bytes = RecordBytes(meta);
 
@@ -295,17 +296,17 @@ RigSections Encoder::Encode(double position_step, double weight_step, CompactRep
       note(fmt::kAffineUVs, quva.size(), "uvs as affine maps of a pose's positions");
       w.Add(fmt::kAffineUVs, quva);
     } else {
-      note(fmt::kUVs, raw.at(fmt::kUVs).size(), "f32 uvs (not affine in any pose's positions)");
-      w.Add(fmt::kUVs, raw.at(fmt::kUVs));
+      note(fmt::kUVs, ExactSection(raw, fmt::kUVs).size(), "f32 uvs (not affine in any pose's positions)");
+      w.Add(fmt::kUVs, ExactSection(raw, fmt::kUVs));
     }
     if (report) report->affine_uvs = affine;
   }
   for (std::uint32_t tag : {fmt::kPosePoints, fmt::kStrings, fmt::kPaths, fmt::kPathKeys, fmt::kCanvases, fmt::kParts,
                             fmt::kPartPoseOrders}) {
-    const auto it = raw.find(tag);
-    if (it == raw.end()) continue;
-    w.Add(tag, it->second);
-    note(tag, it->second.size(), "as in the exact rig");
+    const std::vector<unsigned char>* bytes = raw.Find(tag);
+    if (!bytes) continue;
+    w.Add(tag, *bytes);
+    note(tag, bytes->size(), "as in the exact rig");
   }
   if (info) {
     const std::vector<unsigned char> qinf = RecordBytes(*info);

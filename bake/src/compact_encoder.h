@@ -5,7 +5,6 @@
 // runtime.
 #pragma once
 #include <cstdint>
-#include <map>
 #include <vector>
 
 #include "posemorph/bake/compact_rig.h"
@@ -15,16 +14,14 @@
 
 namespace posemorph::bake::compact {
 
-// The exact rig's sections by tag (SerialiseRig writes each tag once).
-std::map<std::uint32_t, std::vector<unsigned char>> RawSections(const RigSections& exact);
-
-// What the encoder works from: the exact rig (loaded, and its sections), the
-// uvs' tolerance, and the whole turns learnt from a first trial.
+// What the encoder works from: the exact rig (loaded, and its sections, each
+// tag once as SerialiseRig writes them), the uvs' tolerance, and the whole
+// turns learnt from a first trial.
 struct Encoder {
   const Rig& exact;
   double uv_tolerance_px;
   double pixels_per_unit;
-  std::map<std::uint32_t, std::vector<unsigned char>> raw;
+  const RigSections& raw;
   std::vector<std::int32_t> turns;  // T x N, filled after a first load
   bool derive_last_pose = false;
 

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <map>
 #include <stdexcept>
+#include <tuple>
 
 #include <Eigen/Dense>
 
@@ -28,13 +29,27 @@ namespace {
 namespace fmt = format;
 
 using compact::Encoder;
-using compact::RawSections;
 
 // Frames sampled where the rig is used: the pose points, a grid over the
-// convex hull of the pose points and its edges, and every path.
+// convex hull of the pose points (24 cells a side) and its edges (32 parts
+// each), and every path (201 frames each). Where frames x vertices would
+// pass kMaxMeasureWork (a rig of tens of thousands of vertices with paths),
+// grid, edges and paths are sampled more sparsely together, down to 2 parts
+// each, so that each trial costs a bounded number of vertex evaluations.
+constexpr double kMaxMeasureWork = 1e7;
+
 std::vector<Eigen::Vector2d> SamplePoints(const Rig& rig) {
+  PoseSpaceSampling sampling;
+  std::vector<PoseSpaceSample> samples = SamplePoseSpace(rig, sampling);
+  while (double(samples.size()) * rig.vertex_count() > kMaxMeasureWork &&
+         (sampling.grid > 2 || sampling.per_edge > 2 || sampling.per_path > 2)) {
+    sampling.grid = std::max(2, sampling.grid * 3 / 4);
+    sampling.per_edge = std::max(2, sampling.per_edge * 3 / 4);
+    sampling.per_path = std::max(2, sampling.per_path * 3 / 4);
+    samples = SamplePoseSpace(rig, sampling);
+  }
   std::vector<Eigen::Vector2d> out;
-  for (const PoseSpaceSample& s : SamplePoseSpace(rig, PoseSpaceSampling{})) out.push_back(s.at);
+  for (const PoseSpaceSample& s : samples) out.push_back(s.at);
   return out;
 }
 
@@ -66,6 +81,31 @@ double WeightReach(const Rig& exact) {
   return std::max(reach, 0.05 * exact.bounding_box_diagonal());
 }
 
+// Whole turns of the exact rig's angles over the principal angles of its own
+// positions (the polar split of E_i E_0^-1, as the runtime's decoder takes
+// it): what a trial's decoded positions nearly always give too.
+std::vector<std::int32_t> ExactTurns(const Rig& exact) {
+  const std::uint64_t T = exact.triangle_count(), N = exact.pose_count();
+  std::vector<std::int32_t> turns(T * N);
+  auto edges = [&](std::uint64_t i, const std::uint32_t* tri) {
+    const double* p = exact.pose_positions(std::uint32_t(i)).data;
+    Eigen::Matrix2d e;
+    e << p[2 * tri[0]] - p[2 * tri[2]], p[2 * tri[1]] - p[2 * tri[2]], p[2 * tri[0] + 1] - p[2 * tri[2] + 1],
+        p[2 * tri[1] + 1] - p[2 * tri[2] + 1];
+    return e;
+  };
+  for (std::uint64_t t = 0; t < T; ++t) {
+    const std::uint32_t* tri = exact.triangles().data + 3 * t;
+    const Eigen::Matrix2d rest_inverse = edges(0, tri).inverse();
+    for (std::uint64_t i = 0; i < N; ++i) {
+      const Eigen::Matrix2d a = edges(i, tri) * rest_inverse;
+      const double alpha = std::atan2(a(1, 0) - a(0, 1), a(0, 0) + a(1, 1));
+      turns[t * N + i] = std::int32_t(std::llround((exact.angles()[t * N + i] - alpha) / (2 * M_PI)));
+    }
+  }
+  return turns;
+}
+
 struct Trial {
   bool ok = false;
   double error = 0, pose_error = 0;
@@ -74,7 +114,8 @@ struct Trial {
 };
 
 // Encodes at a position step and a weight step, loads the result with the
-// runtime and measures every sample frame against the exact rig's.
+// runtime and measures the sample frames against the exact rig's, stopping
+// at the first frame beyond what a trial may reach.
 struct Trials {
   const Rig& exact;
   Encoder& enc;
@@ -82,32 +123,55 @@ struct Trials {
   const std::vector<std::vector<double>>& reference;
   double accept;  // the error a trial may reach
   CompactReport& rep;
+  // Whole turns per position step: the angles the runtime derives depend on
+  // the decoded positions only, so trials of weight steps at one position
+  // step share them. A new position step starts from the last step's turns.
+  std::map<double, std::vector<std::int32_t>> turns_at{};
+  std::vector<std::int32_t> guess;  // starts as the exact positions' own turns
+  RuntimeArena arena{};             // a large rig's arena faulted in once, not once per load
+  FrameBuffers frames{};
 
-  Trial Attempt(double ps, double ws) {
+  // A trial that goes beyond `stop_above` (at most `accept`) is refused.
+  Trial Attempt(double ps, double ws, double stop_above) {
     const std::uint64_t V = exact.vertex_count(), T = exact.triangle_count(), N = exact.pose_count();
     Trial t;
     ++rep.trials;
-    // First without turns, to learn the principal angles the runtime derives.
-    enc.turns.clear();
-    const RigSections first = enc.Encode(ps, ws, nullptr);
     Rig rig;
-    if (first.sections.empty() || !LoadWithRuntime(WriteRig(first), &rig)) return t;
-    enc.turns.resize(T * N);
-    for (std::uint64_t k = 0; k < T * N; ++k)
-      enc.turns[k] = std::int32_t(std::llround((exact.angles()[k] - rig.angles()[k]) / (2 * M_PI)));
+    const auto known = turns_at.find(ps);
+    enc.turns = known != turns_at.end() ? known->second : guess;
     t.sections = enc.Encode(ps, ws, nullptr);
-    t.turns = enc.turns;
-    if (!LoadWithRuntime(WriteRig(t.sections), &rig)) return t;
-    std::vector<double> x;
-    for (std::size_t s = 0; s < samples.size(); ++s) {
-      if (!EvaluateFrame(rig, samples[s], x)) return t;
-      double worst = 0;
-      for (std::uint64_t v = 0; v < V; ++v)
-        worst = std::max(worst, std::hypot(x[2 * v] - reference[s][2 * v], x[2 * v + 1] - reference[s][2 * v + 1]));
-      t.error = std::max(t.error, worst);
-      if (s < N) t.pose_error = std::max(t.pose_error, worst);
+    if (t.sections.sections.empty() || !arena.Load(WriteRig(t.sections), &rig)) return t;
+    if (known == turns_at.end()) {
+      // The turns that bring each angle the runtime derived to the exact
+      // angle; when a guessed turn was wrong, encoded and loaded again.
+      bool corrected = false;
+      for (std::uint64_t k = 0; k < T * N; ++k) {
+        const auto c = std::llround((exact.angles()[k] - rig.angles()[k]) / (2 * M_PI));
+        if (c != 0) enc.turns[k] = std::int32_t(enc.turns[k] + c), corrected = true;
+      }
+      turns_at.emplace(ps, enc.turns);
+      guess = enc.turns;
+      if (corrected) {
+        t.sections = enc.Encode(ps, ws, nullptr);
+        if (t.sections.sections.empty() || !arena.Load(WriteRig(t.sections), &rig)) return t;
+      }
     }
-    t.ok = t.error <= accept;
+    t.turns = enc.turns;
+    for (std::size_t first = 0; first < samples.size(); first += kFrameBatch) {
+      const std::size_t count = std::min(kFrameBatch, samples.size() - first);
+      if (!EvaluateFrames(rig, samples, first, count, frames)) return t;
+      for (std::size_t k = 0; k < count; ++k) {
+        const double* f = frames.positions.data() + k * 2 * V;
+        const std::vector<double>& r = reference[first + k];
+        double worst = 0;
+        for (std::uint64_t v = 0; v < V; ++v)
+          worst = std::max(worst, std::hypot(f[2 * v] - r[2 * v], f[2 * v + 1] - r[2 * v + 1]));
+        t.error = std::max(t.error, worst);
+        if (first + k < N) t.pose_error = std::max(t.pose_error, worst);
+      }
+      if (t.error > stop_above) return t;  // refused whatever the other frames give
+    }
+    t.ok = true;
     return t;
   }
 };
@@ -119,33 +183,51 @@ RigSections CompactRig(const RigSections& exact_sections, const CompactSettings&
   if (!(settings.max_error_px > 0) || !(settings.pixels_per_unit > 0))
     throw BakeError(file, "the compact encoding needs a positive error budget and pixels per unit");
   const Rig exact = LoadWithRuntime(WriteRig(exact_sections), file, "internal error: the exact rig does not load");
-  Encoder enc{exact, settings.max_error_px / 2, settings.pixels_per_unit, RawSections(exact_sections), {}, false};
+  Encoder enc{exact, settings.max_error_px / 2, settings.pixels_per_unit, exact_sections, {}, false};
   enc.derive_last_pose = GridSumsToOne(exact);
 
   const std::vector<Eigen::Vector2d> samples = SamplePoints(exact);
   std::vector<std::vector<double>> reference(samples.size());
-  for (std::size_t s = 0; s < samples.size(); ++s)
-    if (!EvaluateFrame(exact, samples[s], reference[s]))
+  const std::size_t frame_size = 2 * std::size_t(exact.vertex_count());
+  FrameBuffers frames;
+  for (std::size_t first = 0; first < samples.size(); first += kFrameBatch) {
+    const std::size_t count = std::min(kFrameBatch, samples.size() - first);
+    if (!EvaluateFrames(exact, samples, first, count, frames))
       throw BakeError(file, "internal error: the exact rig does not evaluate");
+    for (std::size_t k = 0; k < count; ++k)
+      reference[first + k].assign(frames.positions.begin() + std::ptrdiff_t(k * frame_size),
+                                  frames.positions.begin() + std::ptrdiff_t((k + 1) * frame_size));
+  }
 
   const double budget = settings.max_error_px / settings.pixels_per_unit;  // rig units
   const double reach = WeightReach(exact);
   // Accepted at 90% of the budget: frames between the samples may come out
   // slightly worse than the worst sample.
   CompactReport rep;
-  Trials trials{exact, enc, samples, reference, 0.9 * budget, rep};
-  auto attempt = [&](double ps, double ws) { return trials.Attempt(ps, ws); };
-  // Positions first, with a fine grid, to within half the budget; then the
-  // coarsest grid step that keeps the whole within budget.
+  Trials trials{exact, enc, samples, reference, 0.9 * budget, rep, {}, ExactTurns(exact), {}, {}};
+  // Each trial once: the searches below come back to a step they tried.
+  std::map<std::tuple<double, double, double>, Trial> tried;
+  auto attempt = [&](double ps, double ws, double stop_above) {
+    const std::tuple<double, double, double> key{ps, ws, std::min(stop_above, trials.accept)};
+    auto it = tried.find(key);
+    if (it == tried.end()) it = tried.emplace(key, trials.Attempt(ps, ws, std::get<2>(key))).first;
+    return it->second;
+  };
+  // Positions first, with a fine grid, to within half the budget: from half
+  // the budget down, halving, to the first step that is; then coarser while
+  // it stays so, up to 16 times that step and at most 4 budgets.
   const double fine_weights = 1e-9;
-  double ps = budget / 4;
+  double ps = budget / 2;
   Trial best;
-  for (int k = 0; k < 12; ++k, ps /= 2) {
-    best = attempt(ps, fine_weights);
+  for (int k = 0; k < 13; ++k, ps /= 2) {
+    // Beyond half the budget the next, finer step is tried; the last step
+    // tried may use the whole budget.
+    best = attempt(ps, fine_weights, k < 12 ? budget / 2 : budget);
     if (best.ok && best.error <= budget / 2) break;
   }
-  for (int k = 0; k < 4 && best.ok; ++k) {  // coarser while well inside
-    Trial coarser = attempt(2 * ps, fine_weights);
+  const double coarsest = std::min(16 * ps, 4 * budget);
+  while (best.ok && 2 * ps <= coarsest) {  // coarser while well inside
+    Trial coarser = attempt(2 * ps, fine_weights, budget / 2);
     if (!coarser.ok || coarser.error > budget / 2) break;
     ps *= 2;
     best = std::move(coarser);
@@ -157,11 +239,16 @@ RigSections CompactRig(const RigSections& exact_sections, const CompactSettings&
     if (report) *report = rep;
     return exact_sections;
   }
-  double ws = budget / (4 * reach);
-  Trial t = attempt(ps, ws);
+  // Then the weights: the step that moves a vertex by a quarter of the
+  // budget (w0) or, first, twice that; coarser while within budget, up to
+  // 64 w0, or finer until it is, down to w0 / 4096.
+  const double w0 = budget / (4 * reach);
+  double ws = 2 * w0;
+  Trial t = attempt(ps, ws, budget);
+  if (!t.ok) ws = w0, t = attempt(ps, ws, budget);
   if (t.ok) {
-    for (int k = 0; k < 6; ++k) {
-      Trial coarser = attempt(ps, 2 * ws);
+    while (ws < 64 * w0) {
+      Trial coarser = attempt(ps, 2 * ws, budget);
       if (!coarser.ok) break;
       ws *= 2;
       t = std::move(coarser);
@@ -169,7 +256,7 @@ RigSections CompactRig(const RigSections& exact_sections, const CompactSettings&
   } else {
     for (int k = 0; k < 12 && !t.ok; ++k) {
       ws /= 2;
-      t = attempt(ps, ws);
+      t = attempt(ps, ws, budget);
     }
   }
   if (!t.ok) t = std::move(best), ws = fine_weights;

@@ -55,16 +55,22 @@ InbetweenCheck CheckInbetweens(const Rig& rig, const std::string& file, double m
   std::vector<double> worst[2] = {std::vector<double>(T, std::numeric_limits<double>::infinity()),
                                   std::vector<double>(T, std::numeric_limits<double>::infinity())};
   std::vector<std::size_t> where[2] = {std::vector<std::size_t>(T, 0), std::vector<std::size_t>(T, 0)};
-  std::vector<double> x;
-  for (std::size_t s = 0; s < samples.size(); ++s) {
-    if (!EvaluateFrame(rig, samples[s].at, x))
+  std::vector<Eigen::Vector2d> points;
+  for (const PoseSpaceSample& s : samples) points.push_back(s.at);
+  FrameBuffers frames;
+  for (std::size_t first = 0; first < samples.size(); first += kFrameBatch) {
+    const std::size_t count = std::min(kFrameBatch, samples.size() - first);
+    if (!EvaluateFrames(rig, points, first, count, frames))
       throw BakeError(file, "internal error: the baked rig does not evaluate at an in-between");
-    for (std::uint32_t t = 0; t < T; ++t) {
-      const double ratio = SignedArea(x.data(), tris + 3 * t) / reference[t];
-      if (samples[s].in_hull && ratio < check.min_area_ratio)
-        check.min_area_ratio = ratio, check.min_at = samples[s].at, check.min_triangle = t;
-      const int side = samples[s].in_hull ? 0 : 1;
-      if (ratio < worst[side][t]) worst[side][t] = ratio, where[side][t] = s;
+    for (std::size_t s = first; s < first + count; ++s) {
+      const double* x = frames.positions.data() + (s - first) * 2 * std::size_t(V);
+      for (std::uint32_t t = 0; t < T; ++t) {
+        const double ratio = SignedArea(x, tris + 3 * t) / reference[t];
+        if (samples[s].in_hull && ratio < check.min_area_ratio)
+          check.min_area_ratio = ratio, check.min_at = samples[s].at, check.min_triangle = t;
+        const int side = samples[s].in_hull ? 0 : 1;
+        if (ratio < worst[side][t]) worst[side][t] = ratio, where[side][t] = s;
+      }
     }
   }
   for (std::uint32_t t = 0; t < T; ++t) {

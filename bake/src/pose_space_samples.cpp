@@ -104,4 +104,30 @@ bool EvaluateFrame(const Rig& rig, const Eigen::Vector2d& at, std::vector<double
   return wj.Run() && mj.Run();
 }
 
+bool EvaluateFrames(const Rig& rig, const std::vector<Eigen::Vector2d>& at, std::size_t first, std::size_t count,
+                    FrameBuffers& buffers) {
+  const std::size_t N = rig.pose_count();
+  buffers.raw.resize(count * N);
+  buffers.limited.resize(count * N);
+  buffers.workspace.resize(rig.batch_workspace_size());
+  buffers.positions.resize(count * 2 * std::size_t(rig.vertex_count()));  // the job writes every value
+  for (std::size_t k = 0; k < count; ++k) {
+    WeightsJob wj;
+    wj.rig = &rig;
+    wj.x = at[first + k].x();
+    wj.y = at[first + k].y();
+    wj.raw = Span<double>{buffers.raw.data() + k * N, N};
+    wj.limited = Span<double>{buffers.limited.data() + k * N, N};
+    if (!wj.Run()) return false;
+  }
+  MorphBatchJob mj;
+  mj.rig = &rig;
+  mj.count = count;
+  mj.weights = MakeSpan(buffers.raw);
+  mj.limited_weights = MakeSpan(buffers.limited);
+  mj.workspace = MakeSpan(buffers.workspace);
+  mj.positions = MakeSpan(buffers.positions);
+  return mj.Run();
+}
+
 }  // namespace posemorph::bake

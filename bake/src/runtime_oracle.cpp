@@ -19,4 +19,13 @@ Rig LoadWithRuntime(const std::vector<unsigned char>& bytes, const std::string& 
   return rig;
 }
 
+bool RuntimeArena::Load(const std::vector<unsigned char>& bytes, Rig* rig) {
+  std::size_t needed = 0;
+  Error err;
+  if (bytes.empty() || !RigMemorySize(bytes.data(), bytes.size(), &needed, &err)) return false;
+  const std::size_t chunks = (needed + sizeof(Chunk) - 1) / sizeof(Chunk);
+  if (chunks_ < chunks) memory_.reset(new Chunk[chunks]), chunks_ = chunks;
+  return LoadRigInPlace(bytes.data(), bytes.size(), memory_.get(), chunks_ * sizeof(Chunk), rig, &err);
+}
+
 }  // namespace posemorph::bake

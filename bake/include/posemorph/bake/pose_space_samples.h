@@ -40,5 +40,19 @@ bool EvaluateFrame(const Rig& rig, const Eigen::Vector2d& at, std::vector<double
 // The same, with the limited weights (what the texture weights come from).
 bool EvaluateFrame(const Rig& rig, const Eigen::Vector2d& at, std::vector<double>& positions,
                    std::vector<double>& limited_weights);
+// What EvaluateFrames works in, kept from one call to the next (a large
+// rig's workspace is then allocated once): positions holds the frames.
+struct FrameBuffers {
+  std::vector<double> raw, limited, workspace;
+  std::vector<double> positions;  // count x 2V, frame after frame
+};
+
+// The frames at at[first], ..., at[first + count - 1] into buffers.positions,
+// each bit for bit what EvaluateFrame gives: MorphBatchJob, which reads the
+// rig's data once per group of kFrameBatch frames. False if a job fails.
+// Callers that may stop early pass kFrameBatch frames at a time.
+constexpr std::size_t kFrameBatch = 8;
+bool EvaluateFrames(const Rig& rig, const std::vector<Eigen::Vector2d>& at, std::size_t first, std::size_t count,
+                    FrameBuffers& buffers);
 
 }  // namespace posemorph::bake
