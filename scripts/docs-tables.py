@@ -14,7 +14,8 @@
 # builds). Default: those three. --check writes nothing and fails, naming the table,
 # when a document differs from what the scripts print now (CI checks
 # `examples`, whose figures depend only on the sources). bench
-# (scripts/bench.sh 5) and paths (scripts/bench-paths.sh 5) run the
+# (scripts/bench.sh 5), paths (scripts/bench-paths.sh 5) and bakes
+# (scripts/bench-bake.py: Pip at 256-4096 px, a 90,000-vertex mesh) run the
 # benchmarks: minutes each, on a quiet machine, so they are never in the
 # default set; name them.
 import glob
@@ -31,6 +32,7 @@ TABLES = {
     # Minutes each, on a quiet machine; never in CI.
     'bench': ['scripts/bench.sh', '5'],
     'paths': ['scripts/bench-paths.sh', '5'],
+    'bakes': ['scripts/bench-bake.py', 'build/release'],
 }
 
 
