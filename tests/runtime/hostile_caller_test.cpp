@@ -9,6 +9,7 @@
 #include <cstring>
 #include <string>
 
+#include "c_api_internal.h"
 #include "posemorph/image_reference.h"
 #include "posemorph/path.h"
 #include "posemorph/posemorph.h"
@@ -160,23 +161,84 @@ TEST_CASE("the factor's inverse diagonal is held to the limit on stored values")
   CHECK_MESSAGE(LoadRig(edge.data(), edge.size(), &rig, &err), err.message);
 }
 
-TEST_CASE("a factor that amplifies the solve: the jobs write zeros and fail instead of giving infinite positions") {
-  // Issue 38, F1: every stored value within its limit, the factor's values
-  // all 1e3, and MorphJob returned success with positions near 7.9e303
-  // (infinite in float). Now every job fails for it, writing zeros.
-  const std::vector<unsigned char> bytes = TestRigBytes("snake");
+// The rig with every factor value 1e3: each stored value within its limit.
+std::vector<unsigned char> AmplifyingFactor(const std::vector<unsigned char>& bytes) {
   Rig honest;
-  Error err;
-  REQUIRE(LoadRig(bytes.data(), bytes.size(), &honest, &err));
+  REQUIRE(LoadRig(bytes.data(), bytes.size(), &honest, nullptr));
   const std::size_t nnz = honest.factor().value.size;
   const std::size_t at = SectionOffset(bytes, format::kFactorValues);
   REQUIRE(at != 0);
   std::vector<unsigned char> bad = bytes;
   const double thousand = 1e3;
   for (std::size_t q = 1; q < nnz; ++q) std::memcpy(bad.data() + at + 8 * q, &thousand, 8);
-  bad = WithValue(bad, at, thousand);  // the first value, and the checksum
+  return WithValue(bad, at, thousand);  // the first value, and the checksum
+}
+
+TEST_CASE("a factor that amplifies the solve is refused at load, in C++ and C") {
+  // Issue 38, F1: every stored value within its limit, the factor's values
+  // all 1e3, and the rig loaded and gave positions near 7.9e303 (infinite
+  // in float). The loader now bounds the solve for every weight the jobs
+  // accept (solve_bound.cpp); the honest snake's bound is about 2e10.
+  const std::vector<unsigned char> bad = AmplifyingFactor(TestRigBytes("snake"));
   Rig rig;
-  REQUIRE_MESSAGE(LoadRig(bad.data(), bad.size(), &rig, &err), err.message);  // every value within its limit
+  Error err;
+  CHECK_FALSE(LoadRig(bad.data(), bad.size(), &rig, &err));
+  CHECK(err.code == ErrorCode::kBadValue);
+  CHECK_MESSAGE(std::string(err.message).find("the factor can amplify the solve beyond 1e+30") != std::string::npos,
+                err.message);
+  CHECK_FALSE(rig.loaded());
+  std::size_t needed = 0;
+  REQUIRE(RigMemorySize(bad.data(), bad.size(), &needed, &err));  // sizing reads no values
+  std::vector<double> memory(needed / sizeof(double) + 2);
+  CHECK_FALSE(LoadRigInPlace(bad.data(), bad.size(), memory.data(), memory.size() * sizeof(double), &rig, &err));
+  CHECK(err.code == ErrorCode::kBadValue);
+  pm_rig* handle = nullptr;
+  pm_error perr;
+  CHECK(pm_rig_load(bad.data(), bad.size(), &handle, &perr) == PM_ERROR_BAD_VALUE);
+  CHECK(handle == nullptr);
+  CHECK(std::string(perr.message).find("amplify") != std::string::npos);
+}
+
+TEST_CASE("an attachment whose factor amplifies the solve is refused with the whole character") {
+  // Issue 38, F1: "an attachment's factor does the same". The nested rig is
+  // a rig file inside CHAN with its own checksum; poisoned, then both
+  // checksums made right again.
+  const std::vector<unsigned char> bytes = TestRigBytes("pell-face");
+  Rig face;
+  Error err;
+  REQUIRE(LoadRig(bytes.data(), bytes.size(), &face, &err));
+  REQUIRE(face.attachment_count() > 0);
+  const std::size_t chan = SectionOffset(bytes, format::kChannels);
+  REQUIRE(chan != 0);
+  format::AttachmentEntry e{};
+  REQUIRE(format::ReadRecord(bytes.data() + chan, bytes.size() - chan, format::ChannelsHeader::kSize, &e));
+  std::vector<unsigned char> nested(bytes.begin() + std::ptrdiff_t(chan + e.offset),
+                                    bytes.begin() + std::ptrdiff_t(chan + e.offset + e.size));
+  nested = AmplifyingFactor(nested);
+  std::vector<unsigned char> bad = bytes;
+  std::copy(nested.begin(), nested.end(), bad.begin() + std::ptrdiff_t(chan + e.offset));
+  bad = WithValue(bad, format::kOffChecksum, std::uint32_t(0));  // placeholder; WithValue writes the real checksum
+  Rig rig;
+  CHECK_FALSE(LoadRig(bad.data(), bad.size(), &rig, &err));
+  CHECK(err.code == ErrorCode::kBadValue);
+  const std::string message = err.message;
+  CHECK_MESSAGE(message.find("attachment 0: ") != std::string::npos, message);
+  CHECK_MESSAGE(message.find("the factor can amplify the solve") != std::string::npos, message);
+  LoadOptions unbounded;
+  unbounded.bound_solve = false;
+  CHECK_MESSAGE(LoadRig(bad.data(), bad.size(), &rig, &err, unbounded), err.message);  // only the bound refused it
+}
+
+TEST_CASE("a factor that amplifies the solve, loaded past the bound: the jobs write zeros and fail") {
+  // Defence in depth: with the load's bound off (a test-only option), every
+  // job still refuses to return success with a position beyond kMaxPosition.
+  const Rig honest = LoadTestRig("snake");
+  const std::vector<unsigned char> bad = AmplifyingFactor(TestRigBytes("snake"));
+  Error err;
+  LoadOptions unbounded;
+  unbounded.bound_solve = false;
+  Rig rig;
+  REQUIRE_MESSAGE(LoadRig(bad.data(), bad.size(), &rig, &err, unbounded), err.message);
   const std::size_t N = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
   std::vector<double> w(N, 0.0), work(rig.morph_workspace_size()), x(v2, 1.0);
   std::vector<float> x32(v2, 1.0f);
@@ -204,9 +266,7 @@ TEST_CASE("a factor that amplifies the solve: the jobs write zeros and fail inst
   CHECK(std::all_of(bx.begin(), bx.end(), [](double v) { return v == 0; }));
 
   // The C API says PM_ERROR_BAD_VALUE (not a bad argument).
-  pm_rig* handle = nullptr;
-  pm_error perr;
-  REQUIRE(pm_rig_load(bad.data(), bad.size(), &handle, &perr) == PM_OK);
+  pm_rig* handle = new pm_rig{std::move(rig), false};
   CHECK(pm_morph(handle, w.data(), w.data(), 0, work.data(), work.size(), x.data(), nullptr, x.size()) ==
         PM_ERROR_BAD_VALUE);
   CHECK(pm_morph_batch(handle, count, bw.data(), bw.data(), bwork.data(), bwork.size(), bx.data(), nullptr,

@@ -150,6 +150,10 @@ struct LoadOptions {
   // Tests turn this off to prove the structural checks alone keep corrupted
   // bytes from crashing the loader; applications leave it on.
   bool verify_checksum = true;
+  // Tests turn this off to reach the jobs' own check of their output: the
+  // loader refuses a rig whose solve could pass kMaxPosition (jobs.h) for
+  // some weights the jobs accept; applications leave it on.
+  bool bound_solve = true;
   // Tests turn this on to run the solve with 32-bit indices (what rigs of
   // 32,768 vertices or more use) on a small rig.
   bool wide_solve_indices = false;

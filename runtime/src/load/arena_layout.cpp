@@ -162,7 +162,8 @@ void RigLoader::LayoutArena(ArenaLayout& arena, const Counts& c, const Sources& 
   scratch->row_col2_16 = arena.Take<std::uint16_t>(narrow ? nnz : 0);
   scratch->col_row2_16 = arena.Take<std::uint16_t>(narrow ? nnz : 0);
   scratch->row_value = arena.Take<double>(nnz);
-  scratch->row_fill = arena.Take<std::uint32_t>(n);  // scratch for the transpose
+  scratch->row_fill = arena.Take<std::uint32_t>(n);  // scratch for the transpose, then CheckSolveBound
+  scratch->solve_bound = arena.Take<double>(n);
   const std::uint64_t blocks = scratch->blocks = (T + 7) / 8;
   scratch->blend = arena.Take<double>(blocks * 4 * N * 8);
 }

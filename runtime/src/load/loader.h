@@ -14,6 +14,7 @@
 //   arena_layout.cpp   PlaceArena, CheckArenaSize, LayoutArena (twice: sizing, then filling)
 //   value_checks.cpp   ReadStrings, ReadPaths, CheckIndices, CheckFactor, ReadParts, CheckNumbers
 //   kernel_data.cpp    BuildSolveRows, BuildBlendBlocks, Finish (what the kernels read)
+//   solve_bound.cpp    CheckSolveBound (what the solve can give for any weights the jobs take)
 // The records read are defined once, with the bake's writer, in
 // posemorph/format/records.h.
 #pragma once
@@ -182,6 +183,7 @@ struct Scratch {
   std::uint16_t *row_col2_16 = nullptr, *col_row2_16 = nullptr;
   double* row_value = nullptr;
   std::uint32_t* row_fill = nullptr;
+  double* solve_bound = nullptr;  // n, for CheckSolveBound
   std::uint64_t blocks = 0;
   double* blend = nullptr;
   std::uint32_t* draw_sequence = nullptr;  // the parts back to front (format 1.6); per pose with PORD
@@ -244,6 +246,7 @@ struct RigLoader {
   static void BuildSolveRows(const Counts& c, const Scratch& scratch, Rig* rig);
   static void BuildBlendBlocks(const Counts& c, const Scratch& scratch, Rig* rig);
   static bool CheckNumbers(const Rig& rig, Error* err);
+  static bool CheckSolveBound(const Counts& c, const Scratch& scratch, const Rig& rig, Error* err);
   static bool ReadChannels(const unsigned char* bytes, const Parser& parser, const Counts& c,
                            const LoadOptions& options, bool nested, Channels* ch, Error* err);
   static void LayoutChannels(ArenaLayout& arena, const Channels& ch, Rig* rig, Rig** nested, unsigned char** memory);
