@@ -54,7 +54,8 @@ static void Limits(const unsigned char* bytes, size_t size) {
   pm_load_limits limits;
   pm_load_limits_untrusted(&limits);
   EXPECT(limits.max_bytes == 4u << 20 && limits.max_memory == 32u << 20 && limits.max_vertices == 20000 &&
-         limits.max_poses == 64 && limits.max_attachments == 8 && limits.max_factor_nonzeros == 1000000);
+         limits.max_poses == 64 && limits.max_attachments == 8 && limits.max_factor_nonzeros == 1000000 &&
+         limits.max_fill == 8);
   pm_rig* rig = NULL;
   pm_error err;
   EXPECT(pm_rig_load_limited(bytes, size, &limits, &rig, &err) == PM_OK);

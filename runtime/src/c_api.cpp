@@ -25,7 +25,7 @@ posemorph::LoadOptions OptionsWith(const pm_load_limits* limits) {
     posemorph::LoadLimits& l = options.limits;
     l.max_bytes = limits->max_bytes, l.max_memory = limits->max_memory, l.max_vertices = limits->max_vertices;
     l.max_poses = limits->max_poses, l.max_attachments = limits->max_attachments;
-    l.max_factor_nonzeros = limits->max_factor_nonzeros;
+    l.max_factor_nonzeros = limits->max_factor_nonzeros, l.max_fill = limits->max_fill;
   }
   return options;
 }
@@ -37,7 +37,7 @@ extern "C" {
 void pm_load_limits_untrusted(pm_load_limits* out) {
   if (!out) return;
   const posemorph::LoadLimits l = posemorph::LoadLimits::Untrusted();
-  *out = {l.max_bytes, l.max_memory, l.max_vertices, l.max_poses, l.max_attachments, l.max_factor_nonzeros};
+  *out = {l.max_bytes, l.max_memory, l.max_vertices, l.max_poses, l.max_attachments, l.max_factor_nonzeros, l.max_fill};
 }
 
 int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err) {

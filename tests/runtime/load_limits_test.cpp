@@ -105,3 +105,43 @@ TEST_CASE("load limits: a character's attachments count alone and with the body"
   CHECK(e.find(" nonzeros with the attachments', above the limit of " + std::to_string(body_nonzeros) +
                " (LoadLimits::max_factor_nonzeros)") != std::string::npos);
 }
+
+TEST_CASE("load limits: a factor filled beyond what the bake's orders give is refused before its arrays are read") {
+  // Issue 38, F2: a rig with a poor fill-reducing order loaded in 1.8 s and
+  // evaluated 35x slower than an honest bake of the same mesh. max_fill
+  // bounds nnz by max_fill x V x ceil(log2 V) per pose space (the bake's
+  // orders: at most 0.92 for the samples, 2.7 for a 90,000-vertex grid).
+  std::vector<unsigned char> snake = TestRigBytes("snake");  // 205 vertices: 8 x 205 x 8 = 13,120 nonzeros at most
+  RigSection sections[format::kMaxSections];
+  std::uint32_t count = 0;
+  REQUIRE(ReadRigSections(snake.data(), snake.size(), sections, format::kMaxSections, &count, nullptr));
+  std::size_t meta = 0;
+  for (std::uint32_t k = 0; k < count; ++k)
+    if (sections[k].tag == format::kMeta) meta = std::size_t(sections[k].offset);
+  REQUIRE(meta != 0);
+  format::Meta m = format::DecodeRecord<format::Meta>(snake.data() + meta);
+  CHECK(m.factor_nonzeros <= 205 * 8);  // the honest snake: under a fill of 1
+  // META claiming 13,121 nonzeros: refused by the counts alone, before the
+  // sections' sizes (which then no longer match) are looked at.
+  m.factor_nonzeros = 8 * 205 * 8 + 1;
+  format::EncodeRecord(m, snake.data() + meta);
+  const std::uint32_t crc = format::Crc32(snake.data() + format::kHeaderSize, snake.size() - format::kHeaderSize);
+  std::memcpy(snake.data() + format::kOffChecksum, &crc, 4);
+  CHECK(Refusal(snake, LoadLimits::Untrusted()) ==
+        "a factor of 13121 nonzeros for 205 vertices, above 8 x V x log2 V (LoadLimits::max_fill): a fill-reducing "
+        "order the bake does not write");
+  LoadLimits fill_only;
+  fill_only.max_fill = 8;
+  CHECK(Refusal(snake, fill_only).find("LoadLimits::max_fill") != std::string::npos);
+  // At the bound itself the counts pass, and the sizes that no longer match refuse it instead.
+  m.factor_nonzeros = 8 * 205 * 8;
+  format::EncodeRecord(m, snake.data() + meta);
+  const std::uint32_t crc2 = format::Crc32(snake.data() + format::kHeaderSize, snake.size() - format::kHeaderSize);
+  std::memcpy(snake.data() + format::kOffChecksum, &crc2, 4);
+  LoadOptions options;
+  options.limits = fill_only;
+  Rig rig;
+  Error err;
+  CHECK_FALSE(LoadRig(snake.data(), snake.size(), &rig, &err, options));
+  CHECK(std::string(err.message).find("max_fill") == std::string::npos);
+}

@@ -91,6 +91,7 @@ typedef struct pm_load_limits {
   uint32_t max_poses;           /* in any one pose space */
   uint32_t max_attachments;     /* parts of later channels */
   uint64_t max_factor_nonzeros; /* the solve's work per frame, attachments included */
+  uint32_t max_fill;            /* factor nonzeros per vertex and bit of V in each pose space (LoadLimits::max_fill) */
 } pm_load_limits;
 /* The bounds for characters from players (LoadLimits::Untrusted()). */
 PM_API void pm_load_limits_untrusted(pm_load_limits* out);

@@ -129,11 +129,16 @@ struct LoadLimits {
   std::uint32_t max_poses = 0;            // in any one pose space (the body's, a channel's)
   std::uint32_t max_attachments = 0;      // parts of later channels
   std::uint64_t max_factor_nonzeros = 0;  // the solve's work per frame, body and attachments together
+  // Factor nonzeros per vertex and bit of the vertex count, in each pose
+  // space (nnz <= max_fill x V x ceil(log2 V)): the fill of an order the
+  // bake would not write, however small the rig. The bake's orders give at
+  // most 0.9 for the samples and 2.7 for a 90,000-vertex grid.
+  std::uint32_t max_fill = 0;
   // Bounds for a game loading characters from players: 4 MiB files, 32 MiB
-  // in memory, 20,000 vertices, 8 attachments, 1,000,000 factor nonzeros
-  // (the samples need at most 1.4 MB files, 2 MB of memory, 991 vertices
-  // with attachments and 5,733 nonzeros). docs/runtime.md says what they
-  // cost.
+  // in memory, 20,000 vertices, 8 attachments, 1,000,000 factor nonzeros,
+  // a fill of 8 (the samples need at most 1.4 MB files, 2 MB of memory, 991
+  // vertices with attachments and 5,733 nonzeros). docs/runtime.md says
+  // what they cost.
   static LoadLimits Untrusted() {
     LoadLimits l;
     l.max_bytes = std::uint64_t(4) << 20;
@@ -142,6 +147,7 @@ struct LoadLimits {
     l.max_poses = 64;
     l.max_attachments = 8;
     l.max_factor_nonzeros = 1000000;
+    l.max_fill = 8;
     return l;
   }
 };

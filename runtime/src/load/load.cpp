@@ -126,6 +126,13 @@ bool RigLoader::CheckLimits(const Counts& c, const LoadLimits& limits, Error* er
                 "a factor of %llu nonzeros, above the limit of %llu "
                 "(LoadLimits::max_factor_nonzeros)",
                 (unsigned long long)c.nnz, (unsigned long long)limits.max_factor_nonzeros);
+  std::uint64_t bits = 1;  // ceil(log2 V), at least 1
+  while (bits < 63 && (std::uint64_t(1) << bits) < c.V) ++bits;
+  if (limits.max_fill && c.nnz > std::uint64_t(limits.max_fill) * c.V * bits)
+    return Fail(err, ErrorCode::kTooLarge,
+                "a factor of %llu nonzeros for %llu vertices, above %u x V x log2 V (LoadLimits::max_fill): "
+                "a fill-reducing order the bake does not write",
+                (unsigned long long)c.nnz, (unsigned long long)c.V, limits.max_fill);
   return true;
 }
 
