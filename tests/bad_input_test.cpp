@@ -15,6 +15,7 @@
 
 #include "cli.h"
 #include "posemorph/posemorph.h"
+#include "posemorph/bake/validate_rig.h"
 #include "posemorph/bake/stage.h"
 #include "test_support.h"
 
@@ -109,6 +110,20 @@ TEST_CASE("wrong vertex count") {
   json d = ValidDescription();
   d["poses"][1]["vertices"].erase(3);
   ExpectFailure(d.dump(), "pose 'b' (index 1) has 3 vertices, pose 0 has 4");
+}
+
+TEST_CASE("a rig beyond the bake's work bound is refused at once, from its counts") {
+  // Issue 38, point 2: 500,001 vertices in 2 poses pass kMaxBakeVertexPoses
+  // (1,000,000): refused with the counts, before the mesh is checked or
+  // factored (one triangle, the rest unused vertices, would fail later).
+  const std::size_t V = bake::kMaxBakeVertexPoses / 2 + 1;
+  std::string vertices;
+  vertices.reserve(V * 6);
+  for (std::size_t v = 0; v < V; ++v) vertices += v ? ",[0,0]" : "[0,0]";
+  const std::string text = R"({"posemorph": 1, "triangles": [[0, 1, 2]], "poses": [)"
+                           R"({"name": "a", "point": [0, 0], "vertices": [)" +
+                           vertices + R"(]}, {"name": "b", "point": [1, 0], "vertices": [)" + vertices + "]}]}";
+  ExpectFailure(text, "500001 vertices in 2 poses (1000002 vertex-poses), above the bake's bound of 1000000");
 }
 
 TEST_CASE("out-of-range index") {

@@ -23,4 +23,12 @@ namespace posemorph::bake {
 // limits on poses, vertices, triangles, paths, keys and string bytes.
 std::optional<std::string> ValidateRig(const PoseMeshes& meshes, const std::vector<PathDescription>& paths);
 
+// The bake's work bound, checked with the counts: its time and memory grow
+// with vertices x poses (a 90,000-vertex, 3-pose mesh: about 10 s and
+// 800 MB on the development machine, docs/performance.md "Bake times"), so
+// a rig beyond this many vertex-poses is refused at once, not after
+// minutes. The runtime's own limit for rigs from players is far below it
+// (LoadLimits::Untrusted(): 20,000 vertices).
+constexpr std::uint64_t kMaxBakeVertexPoses = 1000000;
+
 }  // namespace posemorph::bake
