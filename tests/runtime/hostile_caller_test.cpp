@@ -6,6 +6,7 @@
 // input a job accepts.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -189,8 +190,12 @@ TEST_CASE("a factor that amplifies the solve is refused at load, in C++ and C") 
   CHECK_FALSE(rig.loaded());
   std::size_t needed = 0;
   REQUIRE(RigMemorySize(bad.data(), bad.size(), &needed, &err));  // sizing reads no values
-  std::vector<double> memory(needed / sizeof(double) + 2);
-  CHECK_FALSE(LoadRigInPlace(bad.data(), bad.size(), memory.data(), memory.size() * sizeof(double), &rig, &err));
+  // Memory on a kRigMemoryAlignment boundary (WebAssembly's vectors align to 8).
+  std::vector<double> memory(needed / sizeof(double) + 8);
+  const std::uintptr_t start = reinterpret_cast<std::uintptr_t>(memory.data());
+  void* aligned =
+      reinterpret_cast<void*>((start + kRigMemoryAlignment - 1) / kRigMemoryAlignment * kRigMemoryAlignment);
+  CHECK_FALSE(LoadRigInPlace(bad.data(), bad.size(), aligned, needed, &rig, &err));
   CHECK(err.code == ErrorCode::kBadValue);
   pm_rig* handle = nullptr;
   pm_error perr;
