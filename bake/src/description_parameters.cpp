@@ -45,6 +45,13 @@ void ParseMapping(const Reader& r, const json& m, MappingParameters* parameters)
       r.Fail("mapping.max_vertices", "expected an integer in 16..100000");
     p.max_vertices = int(m["max_vertices"].get<long long>());
   }
+  if (m.contains("working_size")) {
+    const json& w = m["working_size"];
+    if (!w.is_number_integer() ||
+        !(w.get<long long>() == 0 || (w.get<long long>() >= 32 && w.get<long long>() <= 16384)))
+      r.Fail("mapping.working_size", "expected 0 (full resolution) or an integer in 32..16384 (pixels)");
+    p.working_size = int(w.get<long long>());
+  }
 }
 
 void ParseBakeParameters(const Reader& r, const json& b, BakeParameters* parameters) {

@@ -8,11 +8,13 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <sstream>
 
 #include "mapping/format_number.h"
 #include "mapping/geometry.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/input_file.h"
 #include "posemorph/bake/mapping/interior_alignment.h"
 #include "posemorph/bake/mapping/interior_features.h"
 #include "posemorph/bake/mapping/outline_image.h"
@@ -53,6 +55,79 @@ std::string DroppedParts(const mapping::ImageOutline& io) {
          " pixels, " + share(io.dropped_parts[0]) + ")";
 }
 
+// What a PNG drawing gives the mapping (its traced outline, its alignment
+// image), by the drawing's bytes and the settings it was made with. A bake
+// maps the same drawings again and again (the fold retries, further
+// refinement, each part and channel), and at 4096 pixels decoding a
+// drawing and finding its drop shadow cost more than the mapping on the
+// working level. The bytes are compared exactly (no hash stands in for
+// them), so a drawing rewritten between two bakes of one process is read
+// again. At most kEntries values and kBytes of drawings are kept (the
+// oldest go first); thread-safe.
+template <class Settings, class Value>
+class DrawingMemo {
+ public:
+  template <class Make>
+  Value Get(const std::string& path, const Settings& settings, const ErrorSource& source, const Make& make) {
+    std::vector<unsigned char> png = ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source);
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      for (const Entry& e : entries_)
+        if (e.settings == settings && e.png == png) return e.value;
+    }
+    Value value = make(png);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (png.size() > kBytes) return value;
+    while (!entries_.empty() && (entries_.size() >= kEntries || bytes_ + png.size() > kBytes)) {
+      bytes_ -= entries_.front().png.size();
+      entries_.erase(entries_.begin());
+    }
+    bytes_ += png.size();
+    entries_.push_back({settings, std::move(png), value});
+    return value;
+  }
+
+ private:
+  static constexpr std::size_t kEntries = 64, kBytes = std::size_t(64) << 20;
+  struct Entry {
+    Settings settings;
+    std::vector<unsigned char> png;
+    Value value;
+  };
+  std::mutex mutex_;
+  std::vector<Entry> entries_;
+  std::size_t bytes_ = 0;
+};
+
+struct TraceSettings {
+  double threshold;
+  bool fill_notches, drop_shadows;
+  int halvings;
+  bool operator==(const TraceSettings& o) const {
+    return threshold == o.threshold && fill_notches == o.fill_notches && drop_shadows == o.drop_shadows &&
+           halvings == o.halvings;
+  }
+};
+
+mapping::ImageOutline TraceOutline(const std::string& path, const MappingParameters& prm, int halvings,
+                                   const ErrorSource& source) {
+  static DrawingMemo<TraceSettings, mapping::ImageOutline> memo;
+  return memo.Get(path, {prm.alpha_threshold, prm.fill_notches, prm.drop_shadows, halvings}, source,
+                  [&](const std::vector<unsigned char>& png) {
+                    return mapping::OutlineFromPngBytes(png, prm.alpha_threshold, source, prm.fill_notches,
+                                                        prm.drop_shadows, halvings);
+                  });
+}
+
+mapping::AlignmentImage AlignmentImageOf(const std::string& path, int halvings, const ErrorSource& source) {
+  static DrawingMemo<int, mapping::AlignmentImage> memo;
+  return memo.Get(path, halvings, source, [&](const std::vector<unsigned char>& png) {
+    int width = 0, height = 0;
+    const std::vector<unsigned char> rgba = mapping::DecodePngRgba(png, &width, &height, source);
+    return mapping::AlignmentImageFromRgba(rgba.data(), width, height, halvings);
+  });
+}
+
 // A point of a pose's drawing (y down) -> rig coordinates (y up, the pose's
 // origin at 0), and back.
 Point InRig(const Point& p, const PoseDescription& pose) {
@@ -73,7 +148,8 @@ Triangles SharedTriangles(const mapping::CompatibleMesh& mesh) {
 // Step 1 for one drawn pose: its outline and landmarks in rig coordinates
 // (y up), and where its drawing's canvas lies. Dropped parts of a PNG become
 // warnings in `report`.
-void ReadDrawnOutline(const RigDescription& rig, const MappingParameters& prm, DrawnPose& d, MappingReport& report) {
+void ReadDrawnOutline(const RigDescription& rig, const MappingParameters& prm, int halvings, DrawnPose& d,
+                      MappingReport& report) {
   auto fail = [&](const std::string& problem) -> void {
     throw BakeError(rig.file, PoseLabel(rig.poses[d.index].name, d.index) + ": " + problem);
   };
@@ -88,8 +164,7 @@ void ReadDrawnOutline(const RigDescription& rig, const MappingParameters& prm, D
       raw = pose.outline;
       d.landmarks = pose.landmarks;
     } else if (png) {
-      mapping::ImageOutline io =
-          mapping::OutlineFromPng(pose.drawing_path, prm.alpha_threshold, source, prm.fill_notches, prm.drop_shadows);
+      const mapping::ImageOutline io = TraceOutline(pose.drawing_path, prm, halvings, source);
       if (io.shadow_pixels > 0)
         report.warnings.push_back(rig.file + ": " + PoseLabel(pose.name, d.index) + ": " + pose.drawing_path +
                                   ": a dark, semi-transparent region of " + std::to_string(io.shadow_pixels) +
@@ -133,7 +208,8 @@ void ReadDrawnOutline(const RigDescription& rig, const MappingParameters& prm, D
 // The mapped meshes back in rig coordinates, with uvs into each pose's own
 // drawing (or its outline's box) and the canvas a drawing was on.
 void MeshesFromMapping(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
-                       const mapping::CompatibleMesh& mesh, const mapping::Grid& grid, MappedDrawings& result) {
+                       const mapping::CompatibleMesh& mesh, const mapping::Grid& grid, double working_scale,
+                       MappedDrawings& result) {
   result.triangles = SharedTriangles(mesh);
   for (std::size_t k = 0; k < drawn.size(); ++k) {
     const DrawnPose& d = drawn[k];
@@ -147,7 +223,7 @@ void MeshesFromMapping(const RigDescription& rig, const std::vector<DrawnPose>& 
     Eigen::AlignedBox2d box;
     for (const Point& p : d.outline) box.extend(p);
     for (const Point& g : mesh.vertices[k]) {
-      const Point p = grid.FromGrid(g);
+      const Point p = grid.FromGrid(g) * working_scale;  // exact: a power of two
       pose.vertices.push_back(p);
       Point uv;
       if (d.from_drawing)
@@ -198,12 +274,13 @@ std::string AlignmentSkipped(const RigDescription& rig, const std::vector<DrawnP
 // the features') move so that the drawings agree through the meshes
 // (interior_alignment.h), in each drawing's pixels; uvs follow.
 void AlignDrawnInteriors(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
-                         const mapping::CompatibleMesh& mesh, MappedDrawings& result) {
+                         const mapping::CompatibleMesh& mesh, int working_halvings, MappedDrawings& result) {
   MappingReport& report = result.report;
   report.alignment_skipped = AlignmentSkipped(rig, drawn);
   if (!report.alignment_skipped.empty()) return;
-  // One scale for every drawing: the largest brought to kAlignmentMaxSide.
-  int halvings = 0;
+  // One scale for every drawing: the largest brought to kAlignmentMaxSide,
+  // and no finer than the level the outlines were traced on.
+  int halvings = working_halvings;
   for (const DrawnPose& d : drawn)
     halvings = std::max(halvings, mapping::AlignmentHalvings(int(d.size.x()), int(d.size.y())));
   const double scale = std::ldexp(1.0, -halvings);
@@ -212,11 +289,8 @@ void AlignDrawnInteriors(const RigDescription& rig, const std::vector<DrawnPose>
   for (std::size_t k = 0; k < drawn.size(); ++k) {
     const DrawnPose& d = drawn[k];
     const PoseDescription& pose = rig.poses[d.index];
-    int width = 0, height = 0;
-    const std::vector<unsigned char> rgba =
-        mapping::ReadPngRgba(pose.drawing_path, &width, &height,
-                             ErrorSource(rig.file, PoseLabel(pose.name, d.index) + ": " + pose.drawing_path));
-    images.push_back(mapping::AlignmentImageFromRgba(rgba.data(), width, height, halvings));
+    images.push_back(AlignmentImageOf(pose.drawing_path, halvings,
+                                      ErrorSource(rig.file, PoseLabel(pose.name, d.index) + ": " + pose.drawing_path)));
     pixels.emplace_back();
     for (const Point& p : result.meshes[k].vertices)
       pixels.back().push_back(scale * Point(p.x() - d.origin.x(), -p.y() - d.origin.y()));
@@ -262,18 +336,54 @@ std::vector<DrawnPose> DrawnPoses(const RigDescription& rig) {
 }
 
 // Step 1 for every drawn pose: what MapPolygons takes.
+// Outlines, landmarks and features are in working units: rig coordinates
+// divided by 2^halvings (exact), so that the mapping's lengths are the
+// working level's pixels.
 struct MappingInput {
   std::vector<Polygon> outlines;
   std::vector<std::vector<Point>> landmarks, features;
   std::vector<std::string> labels;
+  int halvings = 0;              // the pyramid level the PNG drawings were traced on
+  double working_scale = 1;      // 2^halvings: rig units per working unit
+  MappingParameters parameters;  // the description's, with working_scale set
 };
+
+// The pyramid level the character's PNG drawings are traced on
+// (mapping.working_size): the most halvings any of them needs, so that one
+// working unit is the same in every pose.
+int CharacterHalvings(const RigDescription& rig, const std::vector<DrawnPose>& drawn) {
+  int halvings = 0;
+  if (rig.mapping.working_size <= 0) return 0;
+  for (const DrawnPose& d : drawn) {
+    const PoseDescription& pose = rig.poses[d.index];
+    if (!pose.drawing.empty() && !EndsWith(pose.drawing, ".png") && !EndsWith(pose.drawing, ".svg"))
+      throw BakeError(rig.file,
+                      PoseLabel(pose.name, d.index) + ": drawing \"" + pose.drawing + "\" is neither .png nor .svg");
+    if (!EndsWith(pose.drawing, ".png") || !pose.vertices.empty()) continue;
+    int width = 0, height = 0;
+    mapping::ReadPngSize(pose.drawing_path, &width, &height,
+                         ErrorSource(rig.file, PoseLabel(pose.name, d.index) + ": " + pose.drawing_path));
+    halvings = std::max(halvings, mapping::WorkingHalvings(width, height, rig.mapping.working_size));
+  }
+  return halvings;
+}
+
 MappingInput ReadDrawnOutlines(const RigDescription& rig, std::vector<DrawnPose>& drawn, MappingReport& report) {
   MappingInput in;
+  in.halvings = CharacterHalvings(rig, drawn);
+  in.working_scale = std::ldexp(1.0, in.halvings);
+  in.parameters = rig.mapping;
+  in.parameters.working_scale = in.working_scale;
+  const double to_working = 1 / in.working_scale;
+  auto working = [&](std::vector<Point> points) {
+    for (Point& p : points) p *= to_working;
+    return points;
+  };
   for (DrawnPose& d : drawn) {
-    ReadDrawnOutline(rig, rig.mapping, d, report);
-    in.outlines.push_back(d.outline);
-    in.landmarks.push_back(d.landmarks);
-    in.features.push_back(d.features);
+    ReadDrawnOutline(rig, rig.mapping, in.halvings, d, report);
+    in.outlines.push_back(working(d.outline));
+    in.landmarks.push_back(working(d.landmarks));
+    in.features.push_back(working(d.features));
     in.labels.push_back(PoseLabel(rig.poses[d.index].name, d.index));
   }
   return in;
@@ -281,10 +391,11 @@ MappingInput ReadDrawnOutlines(const RigDescription& rig, std::vector<DrawnPose>
 
 // "FILE: POSE: ..." for each pose whose start landmark seems misplaced.
 std::vector<std::string> SpinningWarnings(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
-                                          const std::vector<std::string>& labels, const mapping::MappingStages& st) {
+                                          const MappingInput& in, const mapping::MappingStages& st) {
+  const std::vector<std::string>& labels = in.labels;
   std::vector<std::string> warnings;
   for (const auto& s : st.spinning) {
-    const Point at = InDrawing(s.suggested, rig.poses[drawn[s.pose].index]);
+    const Point at = InDrawing(s.suggested * in.working_scale, rig.poses[drawn[s.pose].index]);
     warnings.push_back(rig.file + ": " + labels[s.pose] + ": its start landmark (landmark 0) may sit on another part " +
                        "of the outline than in " + labels[0] + ": the outlines' bends agree best with the start " +
                        Format(100 * s.shift) + "% of the way round, counter-clockwise as seen (mean difference " +
@@ -304,7 +415,8 @@ MappedDrawings MapDrawingsAsTraced(const RigDescription& rig);
 // failure it led to (a feature or a joint that cannot be placed, no
 // enclosing polygon) names a symptom, not the cause.
 mapping::MappingStages MapPolygonsOrSayStart(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
-                                             const MappingInput& in, const MappingParameters& prm) {
+                                             const MappingInput& in) {
+  const MappingParameters& prm = in.parameters;
   try {
     return mapping::MapPolygons(in.outlines, in.landmarks, in.features, prm, in.labels, rig.file);
   } catch (const BakeError& e) {
@@ -314,7 +426,8 @@ mapping::MappingStages MapPolygonsOrSayStart(const RigDescription& rig, const st
       const mapping::StartAlignment a =
           mapping::AlignStart(in.outlines[0], in.landmarks[0][0], in.outlines[k], in.landmarks[k][0]);
       if (!a.Misplaced()) continue;
-      const Point at = InDrawing(mapping::PointAtArcLength(in.outlines[k], a.best_start), rig.poses[drawn[k].index]);
+      const Point at = InDrawing(mapping::PointAtArcLength(in.outlines[k], a.best_start) * in.working_scale,
+                                 rig.poses[drawn[k].index]);
       hint += "; " + in.labels[k] + ": its start landmark (landmark 0) may sit on another part of the outline than " +
               "in " + in.labels[0] + " (a start that switches feet between poses, say), which is what can make " +
               "this fail: the outlines' bends agree best with the start near (" + Format(at.x()) + ", " +
@@ -367,14 +480,14 @@ MappedDrawings MapDrawingsAsTraced(const RigDescription& rig) {
   const MappingInput in = ReadDrawnOutlines(rig, drawn, report);
   if (prm.fill_notches && report.filled_notch_corners == 0)
     throw BakeError(rig.file, "no thin notch to fill: the outlines are as traced");  // the same mapping again
-  const mapping::MappingStages st = MapPolygonsOrSayStart(rig, drawn, in, prm);
+  const mapping::MappingStages st = MapPolygonsOrSayStart(rig, drawn, in);
   for (const std::string& w : st.warnings) report.warnings.push_back(rig.file + ": " + w);
-  for (const std::string& w : SpinningWarnings(rig, drawn, in.labels, st)) report.warnings.push_back(w);
+  for (const std::string& w : SpinningWarnings(rig, drawn, in, st)) report.warnings.push_back(w);
   const mapping::CompatibleMesh& mesh = st.mesh;
   const mapping::Grid grid{st.grid_scale};
   report.matched_vertices = st.matched.points[0].size();
   report.boundary_vertices = st.simplified.polygons[0].size();
-  report.simplification_error = st.simplified.max_error / grid.scale;
+  report.simplification_error = st.simplified.max_error / grid.scale * in.working_scale;
   report.steiner_points = mesh.steiner_points;
   report.features = mesh.features.size();
   for (std::size_t v : mesh.features) result.feature_vertices.push_back(std::uint32_t(v));
@@ -383,9 +496,9 @@ MappedDrawings MapDrawingsAsTraced(const RigDescription& rig) {
   report.triangles = mesh.triangles.size();
 
   // 5. Back to rig coordinates; uvs into each pose's own drawing.
-  MeshesFromMapping(rig, drawn, mesh, grid, result);
+  MeshesFromMapping(rig, drawn, mesh, grid, in.working_scale, result);
   // 7. The drawings align the interiors.
-  AlignDrawnInteriors(rig, drawn, mesh, result);
+  AlignDrawnInteriors(rig, drawn, mesh, in.halvings, result);
   if (report.aligned) report.min_angle_degrees = MinAngleDegrees(result.triangles, result.meshes);
   report.mapped = true;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -418,15 +531,16 @@ DrawnOutlines TraceDrawings(const RigDescription& rig) {
     if (mapping::SignedArea(d.outline) < 0) std::reverse(o.traced.begin(), o.traced.end());
     for (const Point& p : d.landmarks) o.landmarks.push_back(InDrawing(p, pose));
     for (const Point& p : d.features) o.features.push_back(InDrawing(p, pose));
-    o.landmark_distance = mapping::LandmarkTolerance(rig.mapping, box.diagonal().norm());
+    o.landmark_distance =
+        mapping::LandmarkTolerance(rig.mapping, box.diagonal().norm() / in.working_scale) * in.working_scale;
     result.poses.push_back(std::move(o));
   }
   if (drawn.empty()) return result;
   try {
     const mapping::MappingStages st =
-        mapping::MapPolygons(in.outlines, in.landmarks, in.features, rig.mapping, in.labels, rig.file);
-    const mapping::Grid grid{st.grid_scale};
-    result.simplify_tolerance = st.sizes.simplify_tolerance;
+        mapping::MapPolygons(in.outlines, in.landmarks, in.features, in.parameters, in.labels, rig.file);
+    const mapping::Grid grid{st.grid_scale * (1 / in.working_scale)};  // working grid -> rig units
+    result.simplify_tolerance = st.sizes.simplify_tolerance * in.working_scale;
     for (std::size_t k = 0; k < drawn.size(); ++k) {
       const PoseDescription& pose = rig.poses[drawn[k].index];
       DrawnPoseOutline& o = result.poses[k];

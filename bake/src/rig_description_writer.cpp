@@ -96,6 +96,7 @@ json MappingJson(const MappingParameters& p) {
   put("align_interiors", p.align_interiors, d.align_interiors);
   put("drop_shadows", p.drop_shadows, d.drop_shadows);
   put("align_rigidity", p.align_rigidity, d.align_rigidity);
+  put("working_size", p.working_size, d.working_size);
   return j.empty() ? json() : j;
 }
 

@@ -310,21 +310,27 @@ CASES = [
     # Traced at alpha 0.5 (the default is 0.05 since the fringe is meshed): at
     # 0.05 the anti-aliased spike tips at the matching's capped spacing leave
     # no enclosing polygon, which the 300-spike case below covers.
-    Case('png-star-1024-60-spikes', B, [RIG] + OUT, 0, r'matched at a spacing of', {'rig.json': drawn_rig(landmarks=([[972, 512]], [[972, 512]]), mapping={'alpha_threshold': 0.5}),
+    Case('png-star-1024-60-spikes', B, [RIG] + OUT, 0, r'matched at a spacing of', {'rig.json': drawn_rig(landmarks=([[972, 512]], [[972, 512]]), mapping={'alpha_threshold': 0.5, 'working_size': 0}),
          'a.png': lambda p: open(p, 'wb').write(star_png(1024, 60, 0.6)), 'b.png': lambda p: open(p, 'wb').write(star_png(1024, 60, 0.5))},
          writes=['out.pmrig']),
+    # The limits below are met at full resolution (mapping.working_size 0);
+    # by default such drawings are traced on a 256-pixel level and bake.
     Case('png-star-1024-300-spikes', B, [RIG] + OUT, 1, r'cannot build a polygon enclosing the outline .*8192 samples',
-         {'rig.json': drawn_rig(landmarks=([[972, 512]], [[972, 512]])),
+         {'rig.json': drawn_rig(landmarks=([[972, 512]], [[972, 512]]), mapping={'working_size': 0}),
           'a.png': lambda p: open(p, 'wb').write(star_png(1024, 300, 0.8)), 'b.png': lambda p: open(p, 'wb').write(star_png(1024, 300, 0.7))},
          [RIG]),
     Case('png-comb-4096', B, [RIG] + OUT, 1, r"a\.png: the shape's border crosses more than 1000000 pixel edges",
-         {'rig.json': drawn_rig(landmarks=([[8, 4090]], [[8, 4090]])),
+         {'rig.json': drawn_rig(landmarks=([[8, 4090]], [[8, 4090]]), mapping={'working_size': 0}),
           'a.png': lambda p: open(p, 'wb').write(comb_png(4096, 4)), 'b.png': lambda p: open(p, 'wb').write(comb_png(4096, 6))},
          [RIG]),
     Case('png-comb-512', B, [RIG] + OUT, 1, r"a\.png.*the outline has [0-9]+ points, more than the limit of 100000",
-         {'rig.json': drawn_rig(landmarks=([[8, 506]], [[8, 506]])),
+         {'rig.json': drawn_rig(landmarks=([[8, 506]], [[8, 506]]), mapping={'working_size': 0}),
           'a.png': lambda p: open(p, 'wb').write(comb_png(512, 2)), 'b.png': lambda p: open(p, 'wb').write(comb_png(512, 3))},
          [RIG]),
+    Case('png-comb-4096-working-level', B, [RIG] + OUT, 0, r'baked .*vertices',
+         {'rig.json': drawn_rig(landmarks=([[8, 4090]], [[8, 4090]])),
+          'a.png': lambda p: open(p, 'wb').write(comb_png(4096, 4)), 'b.png': lambda p: open(p, 'wb').write(comb_png(4096, 6))},
+         writes=['out.pmrig']),
     Case('landmark-counts-differ', B, [RIG] + OUT, 1, r'landmark', {'rig.json': outline_rig(
         SQUARE, landmarks=([[0, 0], [40, 40]], [[0, 0]]))}, [RIG]),
     Case('landmark-far-away', B, [RIG] + OUT, 1, r'landmark 0 is', {'rig.json': outline_rig(

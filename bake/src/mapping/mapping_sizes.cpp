@@ -14,6 +14,7 @@ MappingSizes ResolveMappingSizes(const MappingParameters& parameters, double out
       parameters.max_edge_length > 0 ? parameters.max_edge_length : std::max(8.0, outline_size / 10);
   sizes.spacing *= parameters.spacing_scale;
   sizes.max_edge_length *= parameters.edge_scale;
+  sizes.working_scale = parameters.working_scale;
   return sizes;
 }
 

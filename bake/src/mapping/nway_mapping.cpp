@@ -102,10 +102,12 @@ std::vector<Point> PlaceLandmarks(const Polygon& outline, const Polygon& rig_out
     double dist = 0;
     const double s = NearestArcLength(outline, grid.ToGrid(given[l]), &dist);
     dist /= grid.scale;
+    // Messages give drawing units: working units times working_scale.
+    const double u = prm.working_scale;
     if (dist > LandmarkTolerance(prm, size))
-      fail("landmark " + std::to_string(l) + " is " + Format(dist) + " from the outline (more than " +
-           Format(prm.landmark_distance * 100) + "% of the outline's size, " + Format(size) + ", and more than " +
-           Format(kLandmarkToleranceFloor) + ", the least allowed)");
+      fail("landmark " + std::to_string(l) + " is " + Format(dist * u) + " from the outline (more than " +
+           Format(prm.landmark_distance * 100) + "% of the outline's size, " + Format(size * u) + ", and more than " +
+           Format(kLandmarkToleranceFloor * u) + ", the least allowed)");
     on.push_back(PointAtArcLength(outline, s));
     at.push_back(s);
   }
@@ -158,8 +160,9 @@ std::vector<std::vector<Point>> GridFeatures(const std::vector<Polygon>& outline
       for (std::size_t e = 0; e < f; ++e) {
         const double apart = (given[f] - given[e]).norm();
         if (apart < resolution)
-          fail("features " + std::to_string(e) + " and " + std::to_string(f) + " are " + Format(apart) +
-               " apart, closer than the mesh resolution (a quarter of the longest edge, " + Format(resolution) +
+          fail("features " + std::to_string(e) + " and " + std::to_string(f) + " are " +
+               Format(apart * sizes.working_scale) + " apart, closer than the mesh resolution (a quarter of the " +
+               "longest edge, " + Format(resolution * sizes.working_scale) +
                "): give one feature, or a smaller mapping.max_edge_length");
       }
       out.back().push_back(g);
@@ -201,14 +204,16 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   mp.spacing = st.sizes.spacing * grid.scale;
   st.matched = MatchBoundaries(st.outlines, st.landmarks, mp);
   if (st.matched.spacing > mp.spacing)
-    st.warnings.push_back(
-        labels[0] + ": the outline is " + Format(CumulativeArcLength(st.outlines[0]).back() / grid.scale) +
-        " long; it is matched at a spacing of " + Format(st.matched.spacing / grid.scale) + " instead of " +
-        Format(st.sizes.spacing) + " (mapping.spacing; at most " + std::to_string(kMaxMatchedSamples) + " samples)");
+    st.warnings.push_back(labels[0] + ": the outline is " +
+                          Format(CumulativeArcLength(st.outlines[0]).back() / grid.scale * prm.working_scale) +
+                          " long; it is matched at a spacing of " +
+                          Format(st.matched.spacing / grid.scale * prm.working_scale) + " instead of " +
+                          Format(st.sizes.spacing) + " (mapping.spacing; at most " +
+                          std::to_string(kMaxMatchedSamples) + " samples)");
   // Each stage throws its errors complete: file, pose, and why the input is as it is.
   const std::string coarse =
       st.matched.spacing > mp.spacing
-          ? "the outlines are matched at a spacing of " + Format(st.matched.spacing / grid.scale) +
+          ? "the outlines are matched at a spacing of " + Format(st.matched.spacing / grid.scale * prm.working_scale) +
                 ", coarser than mapping.spacing, because " + labels[0] + "'s outline is longer than " +
                 std::to_string(kMaxMatchedSamples) + " samples allow"
           : "";
@@ -243,7 +248,7 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
     // refined again around them, the features held.
     std::vector<ErrorSource> each;
     for (const std::string& label : labels) each.emplace_back(file, label);
-    PlaceFeatures(st.mesh, features, each, grid.scale);
+    PlaceFeatures(st.mesh, features, each, grid.scale / prm.working_scale);  // messages in drawing units
     refine();
   }
   return st;

@@ -7,6 +7,7 @@
 #include <png.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <deque>
@@ -364,6 +365,11 @@ std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int
   return DecodePng(ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source), source, width, height, false);
 }
 
+std::vector<unsigned char> DecodePngRgba(const std::vector<unsigned char>& png, int* width, int* height,
+                                         const ErrorSource& source) {
+  return DecodePng(png, source, width, height, true);
+}
+
 std::vector<unsigned char> ReadPngRgba(const std::string& path, int* width, int* height, const ErrorSource& source) {
   return DecodePng(ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source), source, width, height, true);
 }
@@ -379,18 +385,46 @@ ImageOutline OutlineFromPng(const std::string& path, double threshold, const Err
 }
 
 ImageOutline OutlineFromPng(const std::string& path, double threshold, const ErrorSource& source, bool fill_notches,
-                            bool drop_shadows) {
-  if (!drop_shadows) return OutlineFromPng(path, threshold, source, fill_notches);
+                            bool drop_shadows, int halvings) {
+  return OutlineFromPngBytes(ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source), threshold, source,
+                             fill_notches, drop_shadows, halvings);
+}
+
+ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double threshold, const ErrorSource& source,
+                                 bool fill_notches, bool drop_shadows, int halvings) {
   int width = 0, height = 0;
-  const std::vector<unsigned char> rgba = ReadPngRgba(path, &width, &height, source);
-  const std::size_t n = std::size_t(width) * std::size_t(height);
-  std::vector<unsigned char> alpha(n), shadow;
-  for (std::size_t i = 0; i < n; ++i) alpha[i] = rgba[4 * i + 3];
+  std::vector<unsigned char> alpha;
   ImageOutline found;
-  if (FindDropShadow(rgba.data(), width, height, threshold, shadow, found) > 0)
-    for (std::size_t i = 0; i < n; ++i)
-      if (shadow[i]) alpha[i] = 0;  // transparent to the tracing; the drawing keeps it
-  ImageOutline result = OutlineFromAlpha(alpha, width, height, threshold, source, fill_notches);
+  if (drop_shadows) {
+    const std::vector<unsigned char> rgba = DecodePng(png, source, &width, &height, true);
+    const std::size_t n = std::size_t(width) * std::size_t(height);
+    alpha.resize(n);
+    std::vector<unsigned char> shadow;
+    for (std::size_t i = 0; i < n; ++i) alpha[i] = rgba[4 * i + 3];
+    if (FindDropShadow(rgba.data(), width, height, threshold, shadow, found) > 0)
+      for (std::size_t i = 0; i < n; ++i)
+        if (shadow[i]) alpha[i] = 0;  // transparent to the tracing; the drawing keeps it
+  } else {
+    alpha = DecodePng(png, source, &width, &height, false);
+  }
+  ImageOutline result;
+  if (halvings == 0) {
+    result = OutlineFromAlpha(alpha, width, height, threshold, source, fill_notches);
+  } else {
+    int level_width = 0, level_height = 0;
+    const std::vector<unsigned char> level = AlphaAtLevel(alpha, width, height, halvings, &level_width, &level_height);
+    alpha = {};
+    result = OutlineFromAlpha(level, level_width, level_height, threshold, source, fill_notches);
+    const double scale = std::ldexp(1.0, halvings);  // exact: a power of two
+    for (Point& p : result.outline) p *= scale;
+    const std::size_t area = std::size_t(1) << (2 * halvings);
+    result.width = width;
+    result.height = height;
+    result.dropped_pixels *= area;
+    for (std::size_t& part : result.dropped_parts) part *= area;
+    result.shape_pixels *= area;
+    result.filled_hole_pixels *= area;
+  }
   result.shadow_pixels = found.shadow_pixels;
   result.shadow_x0 = found.shadow_x0, result.shadow_y0 = found.shadow_y0;
   result.shadow_x1 = found.shadow_x1, result.shadow_y1 = found.shadow_y1;
@@ -398,14 +432,55 @@ ImageOutline OutlineFromPng(const std::string& path, double threshold, const Err
   return result;
 }
 
+std::vector<unsigned char> AlphaAtLevel(const std::vector<unsigned char>& alpha, int width, int height, int halvings,
+                                        int* level_width, int* level_height) {
+  if (halvings < 0 || halvings > 12 || width <= 0 || height <= 0 ||
+      alpha.size() != std::size_t(width) * std::size_t(height))
+    throw BakeError("", "internal: AlphaAtLevel on a bad image or level");
+  const int w = int((std::int64_t(width) + (std::int64_t(1) << halvings) - 1) >> halvings);
+  const int h = int((std::int64_t(height) + (std::int64_t(1) << halvings) - 1) >> halvings);
+  *level_width = w;
+  *level_height = h;
+  if (halvings == 0) return alpha;
+  // Sums of up to 2^24 bytes of 255 fit 32 bits.
+  std::vector<std::uint32_t> sums(std::size_t(w) * std::size_t(h), 0);
+  for (int y = 0; y < height; ++y) {
+    std::uint32_t* row = &sums[std::size_t(y >> halvings) * std::size_t(w)];
+    const unsigned char* a = &alpha[std::size_t(y) * std::size_t(width)];
+    for (int x = 0; x < width; ++x) row[x >> halvings] += a[x];
+  }
+  const std::uint64_t n = std::uint64_t(1) << (2 * halvings);
+  std::vector<unsigned char> level(sums.size());
+  for (std::size_t i = 0; i < sums.size(); ++i) level[i] = (unsigned char)((sums[i] + n / 2) / n);
+  return level;
+}
+
+int WorkingHalvings(int width, int height, int working_size) {
+  if (working_size <= 0) return 0;
+  const std::int64_t side = std::max(width, height);
+  int h = 0;
+  while (h < 12 && ((side + (std::int64_t(1) << h) - 1) >> h) > working_size) ++h;
+  return h;
+}
+
+void ReadPngSize(const std::string& path, int* width, int* height, const ErrorSource& source) {
+  const std::vector<unsigned char> file = ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source);
+  png_image image;
+  std::memset(&image, 0, sizeof image);
+  image.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_memory(&image, file.data(), file.size()))
+    throw source.Error(std::string("cannot read PNG: ") + image.message);
+  *width = int(std::min<png_uint_32>(image.width, 1u << 30));
+  *height = int(std::min<png_uint_32>(image.height, 1u << 30));
+  png_image_free(&image);
+}
+
 ImageOutline OutlineFromPng(const std::string& path, double threshold) {
   return OutlineFromPng(path, threshold, ErrorSource(path));
 }
 
 ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double threshold, const ErrorSource& source) {
-  int width = 0, height = 0;
-  const std::vector<unsigned char> alpha = DecodePng(png, source, &width, &height, false);
-  return OutlineFromAlpha(alpha, width, height, threshold, source);
+  return OutlineFromPngBytes(png, threshold, source, false, false, 0);
 }
 
 }  // namespace posemorph::bake::mapping

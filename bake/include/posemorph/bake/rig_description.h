@@ -60,7 +60,9 @@ struct PoseDescription {
 
 // How drawings become meshes (bake/RIG_DESCRIPTION.md, "mapping").
 struct MappingParameters {
-  // Lengths in drawing units (pixels); 0: from the drawing's size (mapping/mapping_sizes.h).
+  // Lengths in working units: the drawing's pixels (or SVG units) at the
+  // pyramid level the drawings are traced on (working_size); 0: from the
+  // drawing's size (mapping/mapping_sizes.h).
   double simplify_tolerance = 0;  // how far the boundary may stand off the outline
   double max_edge_length = 0;     // longest mesh edge in any pose
   double min_angle = 20;          // degrees: refinement splits triangles below it (bounded rounds)
@@ -77,6 +79,12 @@ struct MappingParameters {
   double landmark_distance = 0.05;  // a landmark may lie this far off its outline, times the outline's size
   int max_steiner_points = 100;     // interior points the compatible triangulation may add
   int max_vertices = 20000;         // refinement's vertex budget (mesh vertices in all)
+  // PNG drawings larger than this (longer side, pixels) are traced and
+  // mapped on the pyramid level that brings the largest to at most this
+  // size (each level halves both sides), so that the same drawing at 256
+  // or 4096 pixels gives the same mesh, scaled; the lengths above are that
+  // level's pixels. 0: trace at full resolution (lengths in drawing pixels).
+  int working_size = 256;
   // PNG drawings align the interiors (mapping/interior_alignment.h): on by
   // default; rigidity weighs the as-rigid-as-possible term against colour.
   bool align_interiors = true;
@@ -92,6 +100,10 @@ struct MappingParameters {
   // (mapping/compatible_refinement.h). The bake refines further when the
   // mesh it made stays below its quality floor (bake.h).
   int refinement_rounds = 4;
+  // Not in the description: drawing units per working unit (2^halvings),
+  // set by the mapping driver; messages multiply what they measure on the
+  // drawing by it, so that they speak in the drawing's pixels.
+  double working_scale = 1;
 };
 
 struct PathDescription {

@@ -10,9 +10,11 @@
 namespace posemorph::bake::mapping {
 
 struct MappingSizes {
-  double simplify_tolerance = 0;  // drawing units: how far the boundary may stand off the outline
-  double spacing = 0;             // drawing units between matched boundary samples
-  double max_edge_length = 0;     // drawing units: longest mesh edge in any pose
+  // Working units (MappingParameters): drawing units at the working level.
+  double simplify_tolerance = 0;  // how far the boundary may stand off the outline
+  double spacing = 0;             // between matched boundary samples
+  double max_edge_length = 0;     // longest mesh edge in any pose
+  double working_scale = 1;       // drawing units per working unit, for messages
 };
 
 // Automatic values (size s = the outline's bounding-box diagonal):
