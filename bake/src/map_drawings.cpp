@@ -8,9 +8,10 @@
 #include <chrono>
 #include <cmath>
 #include <map>
-#include <mutex>
 #include <sstream>
 
+#include "drawing_memo.h"
+#include "drawn_pose.h"
 #include "mapping/format_number.h"
 #include "mapping/geometry.h"
 #include "posemorph/bake/error.h"
@@ -26,21 +27,6 @@ using mapping::Format;
 using mapping::Point;
 using mapping::Polygon;
 
-bool EndsWith(std::string s, const std::string& suffix) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-
-struct DrawnPose {
-  std::size_t index = 0;  // in rig.poses
-  Polygon outline;        // rig coordinates (y up), counter-clockwise
-  std::vector<Point> landmarks;
-  std::vector<Point> features;
-  // uv = ((x - origin.x) / size.x, (-y - origin.y) / size.y) for drawings (rows go down)
-  bool from_drawing = false;
-  Point origin{0, 0}, size{1, 1};
-};
-
 // What a PNG's tracing left out: only the largest part is mapped, so a
 // separate eye or a loose hand is left out of the mesh (and drawn only
 // where the mesh covers it).
@@ -53,79 +39,6 @@ std::string DroppedParts(const mapping::ImageOutline& io) {
   return std::to_string(n) + " separate parts of " + std::to_string(io.dropped_pixels) + " pixels (" +
          share(io.dropped_pixels) + " of the drawing; the largest " + std::to_string(io.dropped_parts[0]) +
          " pixels, " + share(io.dropped_parts[0]) + ")";
-}
-
-// What a PNG drawing gives the mapping (its traced outline, its alignment
-// image), by the drawing's bytes and the settings it was made with. A bake
-// maps the same drawings again and again (the fold retries, further
-// refinement, each part and channel), and at 4096 pixels decoding a
-// drawing and finding its drop shadow cost more than the mapping on the
-// working level. The bytes are compared exactly (no hash stands in for
-// them), so a drawing rewritten between two bakes of one process is read
-// again. At most kEntries values and kBytes of drawings are kept (the
-// oldest go first); thread-safe.
-template <class Settings, class Value>
-class DrawingMemo {
- public:
-  template <class Make>
-  Value Get(const std::string& path, const Settings& settings, const ErrorSource& source, const Make& make) {
-    std::vector<unsigned char> png = ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source);
-    {
-      const std::lock_guard<std::mutex> lock(mutex_);
-      for (const Entry& e : entries_)
-        if (e.settings == settings && e.png == png) return e.value;
-    }
-    Value value = make(png);
-    const std::lock_guard<std::mutex> lock(mutex_);
-    if (png.size() > kBytes) return value;
-    while (!entries_.empty() && (entries_.size() >= kEntries || bytes_ + png.size() > kBytes)) {
-      bytes_ -= entries_.front().png.size();
-      entries_.erase(entries_.begin());
-    }
-    bytes_ += png.size();
-    entries_.push_back({settings, std::move(png), value});
-    return value;
-  }
-
- private:
-  static constexpr std::size_t kEntries = 64, kBytes = std::size_t(64) << 20;
-  struct Entry {
-    Settings settings;
-    std::vector<unsigned char> png;
-    Value value;
-  };
-  std::mutex mutex_;
-  std::vector<Entry> entries_;
-  std::size_t bytes_ = 0;
-};
-
-struct TraceSettings {
-  double threshold;
-  bool fill_notches, drop_shadows;
-  int halvings;
-  bool operator==(const TraceSettings& o) const {
-    return threshold == o.threshold && fill_notches == o.fill_notches && drop_shadows == o.drop_shadows &&
-           halvings == o.halvings;
-  }
-};
-
-mapping::ImageOutline TraceOutline(const std::string& path, const MappingParameters& prm, int halvings,
-                                   const ErrorSource& source) {
-  static DrawingMemo<TraceSettings, mapping::ImageOutline> memo;
-  return memo.Get(path, {prm.alpha_threshold, prm.fill_notches, prm.drop_shadows, halvings}, source,
-                  [&](const std::vector<unsigned char>& png) {
-                    return mapping::OutlineFromPngBytes(png, prm.alpha_threshold, source, prm.fill_notches,
-                                                        prm.drop_shadows, halvings);
-                  });
-}
-
-mapping::AlignmentImage AlignmentImageOf(const std::string& path, int halvings, const ErrorSource& source) {
-  static DrawingMemo<int, mapping::AlignmentImage> memo;
-  return memo.Get(path, halvings, source, [&](const std::vector<unsigned char>& png) {
-    int width = 0, height = 0;
-    const std::vector<unsigned char> rgba = mapping::DecodePngRgba(png, &width, &height, source);
-    return mapping::AlignmentImageFromRgba(rgba.data(), width, height, halvings);
-  });
 }
 
 // A point of a pose's drawing (y down) -> rig coordinates (y up, the pose's
@@ -253,76 +166,6 @@ double MinAngleDegrees(const Triangles& triangles, const std::vector<PoseMesh>& 
         least = std::min(least, std::atan2(std::abs(u.x() * v.y() - u.y() * v.x()), u.dot(v)) * 180 / M_PI);
       }
   return least;
-}
-
-// Why the drawings cannot align the interiors, or empty when they can: it
-// needs two drawn poses or more, every one a PNG drawing that is also the
-// texture drawn.
-std::string AlignmentSkipped(const RigDescription& rig, const std::vector<DrawnPose>& drawn) {
-  if (!rig.mapping.align_interiors) return "turned off (mapping.align_interiors)";
-  if (drawn.size() < 2) return "one drawn pose";
-  for (const DrawnPose& d : drawn) {
-    const PoseDescription& pose = rig.poses[d.index];
-    if (!EndsWith(pose.drawing, ".png")) return PoseLabel(pose.name, d.index) + " is not a PNG drawing";
-    if (!pose.image.empty() && pose.image != pose.drawing)
-      return PoseLabel(pose.name, d.index) + " draws another image than its drawing";
-  }
-  return "";
-}
-
-// Stage 7: every drawn pose's interior vertices (all but the boundary's and
-// the features') move so that the drawings agree through the meshes
-// (interior_alignment.h), in each drawing's pixels; uvs follow.
-void AlignDrawnInteriors(const RigDescription& rig, const std::vector<DrawnPose>& drawn,
-                         const mapping::CompatibleMesh& mesh, int working_halvings, MappedDrawings& result) {
-  MappingReport& report = result.report;
-  report.alignment_skipped = AlignmentSkipped(rig, drawn);
-  if (!report.alignment_skipped.empty()) return;
-  // One scale for every drawing: the largest brought to kAlignmentMaxSide,
-  // and no finer than the level the outlines were traced on.
-  int halvings = working_halvings;
-  for (const DrawnPose& d : drawn)
-    halvings = std::max(halvings, mapping::AlignmentHalvings(int(d.size.x()), int(d.size.y())));
-  const double scale = std::ldexp(1.0, -halvings);
-  std::vector<mapping::AlignmentImage> images;
-  std::vector<Points> pixels;
-  for (std::size_t k = 0; k < drawn.size(); ++k) {
-    const DrawnPose& d = drawn[k];
-    const PoseDescription& pose = rig.poses[d.index];
-    images.push_back(AlignmentImageOf(pose.drawing_path, halvings,
-                                      ErrorSource(rig.file, PoseLabel(pose.name, d.index) + ": " + pose.drawing_path)));
-    pixels.emplace_back();
-    for (const Point& p : result.meshes[k].vertices)
-      pixels.back().push_back(scale * Point(p.x() - d.origin.x(), -p.y() - d.origin.y()));
-  }
-  const std::vector<char> boundary = mapping::BoundaryVertices(mesh);
-  std::vector<bool> fixed(boundary.begin(), boundary.end());
-  for (std::uint32_t v : result.feature_vertices) fixed[v] = true;
-  mapping::AlignmentParameters parameters;
-  parameters.rigidity = rig.mapping.align_rigidity;
-  // The quality the description asks of the mesh holds through the
-  // alignment (or what refinement reached, when that is less).
-  parameters.min_angle_floor_degrees = rig.mapping.min_angle;
-  mapping::AlignmentReport aligned;
-  mapping::AlignInteriors(images, result.triangles, fixed, pixels, parameters, &aligned);
-  for (std::size_t k = 0; k < drawn.size(); ++k) {
-    const DrawnPose& d = drawn[k];
-    PoseMesh& pose = result.meshes[k];
-    for (std::size_t v = 0; v < pose.vertices.size(); ++v) {
-      if (fixed[v]) continue;  // exactly where the mapping put it
-      const Point q = pixels[k][v] / scale;
-      const Point p(q.x() + d.origin.x(), 0.0 - (q.y() + d.origin.y()));
-      pose.vertices[v] = p;
-      pose.uvs[v] = Point((p.x() - d.origin.x()) / d.size.x(), (-p.y() - d.origin.y()) / d.size.y()).cast<float>();
-    }
-  }
-  report.aligned = true;
-  report.alignment_before = aligned.difference_before;
-  report.alignment_after = aligned.difference_after;
-  for (double m : aligned.max_move) report.alignment_max_move = std::max(report.alignment_max_move, m / scale);
-  report.alignment_seconds = aligned.seconds;
-  report.regions_found = aligned.regions_found;
-  report.regions_matched = aligned.regions_matched;
 }
 
 std::vector<DrawnPose> DrawnPoses(const RigDescription& rig) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/mapping/working_level.h"
 #include "posemorph/bake/mapping/polygon.h"
 
 namespace posemorph::bake::mapping {
@@ -56,21 +57,6 @@ ImageOutline OutlineFromPng(const std::string& path, double alpha_threshold, con
 // exact); the pixel counts of the result count each level pixel as 4^h.
 ImageOutline OutlineFromPng(const std::string& path, double alpha_threshold, const ErrorSource& source,
                             bool fill_notches, bool drop_shadows, int halvings = 0);
-// Pyramid level h of an alpha image: pixel (x, y) is the mean (rounded) of
-// the drawing's pixels [x 2^h, (x + 1) 2^h) x [y 2^h, (y + 1) 2^h), those
-// past the drawing's edge counting as transparent; the level is
-// ceil(width / 2^h) x ceil(height / 2^h). Linear in the drawing's pixels.
-// h in 0..12 (0 returns the alpha as it is).
-std::vector<unsigned char> AlphaAtLevel(const std::vector<unsigned char>& alpha, int width, int height, int halvings,
-                                        int* level_width, int* level_height);
-// The pyramid level a character's drawings are traced on (mapping's
-// working_size): the fewest halvings that bring a width x height drawing's
-// longer side to at most working_size pixels (ceil(side / 2^h) <=
-// working_size); 0 when working_size is 0 (trace at full resolution).
-int WorkingHalvings(int width, int height, int working_size);
-// A PNG's size from its header, nothing decoded (the checks of ReadPngAlpha
-// on the header). Throws BakeError as ReadPngAlpha does.
-void ReadPngSize(const std::string& path, int* width, int* height, const ErrorSource& source);
 // The same from a PNG already in memory (`source` names it in messages).
 ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double alpha_threshold,
                                  const ErrorSource& source);
