@@ -110,7 +110,7 @@ struct LevelSolve {
   bool Acceptable(const Points& x) const {
     for (std::size_t t = 0; t < triangles.size(); ++t) {
       const Vec2 &a = x[triangles[t][0]], &b = x[triangles[t][1]], &c = x[triangles[t][2]];
-      if (!(SignedArea(x, triangles[t]) * orientation[t] > 0)) return false;
+      if (!(bake::SignedArea(x, triangles[t]) * orientation[t] > 0)) return false;
       if (!(SmallestAngleCosine(a, b, c) <= max_cosine[t])) return false;
     }
     return true;
@@ -243,7 +243,7 @@ struct LevelSolve {
     // The shortest step tried: which triangles it would spoil.
     for (std::uint32_t t = 0; t < triangles.size(); ++t) {
       const Vec2 &a = trial[triangles[t][0]], &b = trial[triangles[t][1]], &c = trial[triangles[t][2]];
-      if (!(SignedArea(trial, triangles[t]) * orientation[t] > 0) || !(SmallestAngleCosine(a, b, c) <= max_cosine[t]))
+      if (!(bake::SignedArea(trial, triangles[t]) * orientation[t] > 0) || !(SmallestAngleCosine(a, b, c) <= max_cosine[t]))
         blocking->push_back(t);
     }
     return false;
@@ -294,7 +294,7 @@ void AlignInteriors(const std::vector<AlignmentImage>& images, const Triangles& 
       std::vector<double> max_cosine(triangles.size()), orientation(triangles.size());
       for (std::size_t t = 0; t < triangles.size(); ++t) {
         const Vec2 &a = rest[triangles[t][0]], &b = rest[triangles[t][1]], &c = rest[triangles[t][2]];
-        orientation[t] = SignedArea(rest, triangles[t]) > 0 ? 1.0 : -1.0;
+        orientation[t] = bake::SignedArea(rest, triangles[t]) > 0 ? 1.0 : -1.0;
         const double own = SmallestAngle(a, b, c);
         const double floor = std::min(least, parameters.min_angle_floor_degrees * M_PI / 180);
         // Its own cosine when that is the limit: a triangle at it may stay.
