@@ -243,7 +243,8 @@ struct LevelSolve {
     // The shortest step tried: which triangles it would spoil.
     for (std::uint32_t t = 0; t < triangles.size(); ++t) {
       const Vec2 &a = trial[triangles[t][0]], &b = trial[triangles[t][1]], &c = trial[triangles[t][2]];
-      if (!(bake::SignedArea(trial, triangles[t]) * orientation[t] > 0) || !(SmallestAngleCosine(a, b, c) <= max_cosine[t]))
+      if (!(bake::SignedArea(trial, triangles[t]) * orientation[t] > 0) ||
+          !(SmallestAngleCosine(a, b, c) <= max_cosine[t]))
         blocking->push_back(t);
     }
     return false;
