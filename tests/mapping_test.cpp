@@ -481,6 +481,72 @@ TEST_CASE("mapping: refinement stops at its vertex budget and says so") {
   CHECK(mesh.vertices[0].size() < rp.max_vertices);
 }
 
+namespace {
+// Whether p lies in (or on) some triangle of the mesh in pose k.
+bool Covered(const pm::CompatibleMesh& mesh, std::size_t k, const Point& p) {
+  const Polygon& v = mesh.vertices[k];
+  for (const auto& t : mesh.triangles) {
+    auto side = [&](const Point& a, const Point& b) { return (b - a).x() * (p - a).y() - (b - a).y() * (p - a).x(); };
+    if (side(v[t[0]], v[t[1]]) >= 0 && side(v[t[1]], v[t[2]]) >= 0 && side(v[t[2]], v[t[0]]) >= 0) return true;
+  }
+  return false;
+}
+}  // namespace
+
+TEST_CASE("mapping: refinement removes a boundary vertex whose short edge makes a sliver, and only grows the mesh") {
+  // A 4000 x 2000 box (grid units) whose bottom has two more vertices: in
+  // pose 0 on the straight edge 400 apart, in pose 1 pushed in by 100 and
+  // 20 apart (a squeeze: both are reflex corners there), so the triangle on
+  // that 20-unit edge is a sliver in pose 1 that no split lifts.
+  const Polygon rest = {{0, 0}, {1800, 0}, {2200, 0}, {4000, 0}, {4000, 2000}, {0, 2000}};
+  const Polygon squeezed = {{0, 0}, {1990, 100}, {2010, 100}, {4000, 0}, {4000, 2000}, {0, 2000}};
+  const pm::CompatibleMesh first = pm::TriangulateCompatibly({rest, squeezed}, "squeezed box", 0);
+  pm::RefinementParameters rp;
+  rp.max_edge_length = 500;
+  rp.max_collapse_distance = 200;
+  pm::CompatibleMesh split = first, collapsed = first;
+  REQUIRE(pm::RefineCompatibly(split, rp));
+  rp.collapse_slivers = true;
+  REQUIRE(pm::RefineCompatibly(collapsed, rp));
+  const double split_angle = pm::MinAngleDegrees(split), collapsed_angle = pm::MinAngleDegrees(collapsed);
+  INFO("min angle " << split_angle << " split only, " << collapsed_angle << " with slivers removed; vertices "
+                    << split.vertices[0].size() << ", " << collapsed.vertices[0].size());
+  CHECK(split_angle < 10);
+  CHECK(collapsed_angle > split_angle + 5);
+  // Every triangle keeps its orientation in both poses, and the mesh still
+  // covers both outlines (removing a reflex corner only adds area).
+  for (std::size_t k = 0; k < 2; ++k) {
+    for (const auto& t : collapsed.triangles) {
+      const Polygon& v = collapsed.vertices[k];
+      CHECK((v[t[1]] - v[t[0]]).x() * (v[t[2]] - v[t[0]]).y() - (v[t[1]] - v[t[0]]).y() * (v[t[2]] - v[t[0]]).x() > 0);
+    }
+    for (const Point& p : k == 0 ? rest : squeezed) CHECK(Covered(collapsed, k, p));
+    // Midpoints of the outline's edges too.
+    const Polygon& o = k == 0 ? rest : squeezed;
+    for (std::size_t i = 0; i < o.size(); ++i) CHECK(Covered(collapsed, k, (o[i] + o[(i + 1) % o.size()]) / 2));
+  }
+  CHECK(collapsed.features.empty());
+  CHECK(collapsed.vertices[0].size() == collapsed.vertices[1].size());
+}
+
+TEST_CASE("mapping: refinement never removes a convex corner, which would uncover the outline") {
+  // The same squeeze pushed out instead: the two close vertices are convex
+  // corners in pose 1, so the refinement keeps them whatever the sliver.
+  const Polygon rest = {{0, 0}, {1800, 0}, {2200, 0}, {4000, 0}, {4000, 2000}, {0, 2000}};
+  const Polygon squeezed = {{0, 0}, {1990, -100}, {2010, -100}, {4000, 0}, {4000, 2000}, {0, 2000}};
+  pm::CompatibleMesh split = pm::TriangulateCompatibly({rest, squeezed}, "pushed-out box", 0);
+  pm::CompatibleMesh collapsed = split;
+  pm::RefinementParameters rp;
+  rp.max_edge_length = 500;
+  rp.max_collapse_distance = 200;
+  REQUIRE(pm::RefineCompatibly(split, rp));
+  rp.collapse_slivers = true;
+  REQUIRE(pm::RefineCompatibly(collapsed, rp));
+  for (const Point& p : squeezed) CHECK(Covered(collapsed, 1, p));
+  CHECK(pm::MinAngleDegrees(collapsed) == pm::MinAngleDegrees(split));
+  CHECK(collapsed.vertices[0].size() == split.vertices[0].size());
+}
+
 TEST_CASE("mapping: outline limits name the pose and the limit") {
   Polygon many;
   for (std::size_t k = 0; k <= pm::kMaxOutlinePoints; ++k) {

@@ -129,7 +129,8 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
         << " vertices, " << m.triangles << " triangles after refinement; "
         << "min angle " << m.min_angle_degrees << " degrees over all poses";
     if (m.refined_further_from > 0)
-      out << " (refined further: " << m.refined_further_from << " degrees after the usual rounds)";
+      out << " (refined further, " << m.refined_further_by << ": " << m.refined_further_from
+          << " degrees after the usual rounds)";
     out << "; " << m.seconds * 1e3 << " ms\n";
     out << "interior alignment: ";
     if (m.aligned) {

@@ -44,6 +44,7 @@ struct MappingReport {
   // floor (bake.h): the smallest angle before, when the finer mesh was kept
   // (0: it was not).
   double refined_further_from = 0;
+  std::string refined_further_by;     // how (bake.cpp, kFurtherRefinements)
   std::vector<std::string> warnings;  // "FILE: ...", e.g. specks dropped from a drawing
 };
 

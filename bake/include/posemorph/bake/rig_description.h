@@ -100,6 +100,10 @@ struct MappingParameters {
   // (mapping/compatible_refinement.h). The bake refines further when the
   // mesh it made stays below its quality floor (bake.h).
   int refinement_rounds = 4;
+  // Not in the description: refinement also removes the boundary vertices
+  // that make slivers opposite a short boundary edge (where one pose
+  // squeezes the outline); the bake tries it with refining further.
+  bool collapse_slivers = false;
   // Not in the description: drawing units per working unit (2^halvings),
   // set by the mapping driver; messages multiply what they measure on the
   // drawing by it, so that they speak in the drawing's pixels.

@@ -12,6 +12,17 @@ struct RefinementParameters {
   double min_angle_goal = 20;  // degrees; triangles below it get their longest edge split (bounded)
   int rounds = 4;
   std::size_t max_vertices = 20000;  // no split beyond this many vertices
+  // Each round first removes boundary vertices that make slivers: where a
+  // triangle's smallest angle is below the goal opposite a boundary edge,
+  // one end of that edge is collapsed into the other, only where the
+  // removed vertex is reflex or straight in every pose (so the mesh only
+  // grows and still encloses the outline), no triangle turns over in any
+  // pose, and the smallest angle around it rises, and it lies within
+  // max_collapse_distance of the edge that replaces it in every pose. The
+  // rounds without it are run too, and the mesh with the larger smallest
+  // angle kept.
+  bool collapse_slivers = false;
+  double max_collapse_distance = 0;
 };
 // Edge splits, flips legal in all N meshes that raise the smallest angle over
 // all poses, and angle-based smoothing of interior vertices that never
