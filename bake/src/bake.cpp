@@ -4,7 +4,9 @@
 #include "posemorph/bake/bake.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <functional>
 #include <cstdio>
 #include <filesystem>
 #include <iterator>
@@ -66,38 +68,51 @@ std::vector<std::string> FoldWarnings(const std::string& file, const Rig& rig, c
   return warnings;
 }
 
-// The ghosting measure of the rig written, reading every pose's PNG drawing;
-// *skipped says why not when a pose has none (or draws another image).
-Ghosting MeasureBakedGhosting(const RigDescription& description, const Rig& rig, std::string* skipped) {
-  if (!description.parts.empty()) {
-    *skipped = "the rig is drawn as parts, and the measure takes one drawing per pose";
-    return {};
-  }
+// Every pose's PNG drawing, reduced for the ghosting measure (ghosting.h),
+// read once per bake; `skipped` says why there are none when a pose has no
+// PNG drawing (or draws another image).
+struct GhostingDrawings {
   std::vector<std::vector<unsigned char>> pixels;
-  std::vector<DrawingPixels> drawings;
+  std::vector<std::array<std::uint32_t, 2>> sizes;  // width, height
+  std::string skipped;
+};
+
+GhostingDrawings ReadGhostingDrawings(const RigDescription& description) {
+  GhostingDrawings g;
+  if (!description.parts.empty()) {
+    g.skipped = "the rig is drawn as parts, and the measure takes one drawing per pose";
+    return g;
+  }
   for (std::size_t i = 0; i < description.poses.size(); ++i) {
     const PoseDescription& pose = description.poses[i];
     const std::string& d = pose.drawing;
     const bool png =
         d.size() > 4 && (d.compare(d.size() - 4, 4, ".png") == 0 || d.compare(d.size() - 4, 4, ".PNG") == 0);
     if (!pose.drawn || !pose.vertices.empty() || !png) {
-      *skipped = "pose '" + pose.name + "' has no PNG drawing";
-      return {};
+      return GhostingDrawings{{}, {}, "pose '" + pose.name + "' has no PNG drawing"};
     }
     if (!pose.image.empty() && pose.image != pose.drawing) {
-      *skipped = "pose '" + pose.name + "' draws another image than the PNG drawing it was mapped from";
-      return {};
+      return GhostingDrawings{
+          {}, {}, "pose '" + pose.name + "' draws another image than the PNG drawing it was mapped from"};
     }
     int width = 0, height = 0;
     std::vector<unsigned char> rgba =
         mapping::ReadPngRgba(pose.drawing_path, &width, &height,
                              ErrorSource(description.file, "pose '" + pose.name + "': " + pose.drawing_path));
     std::uint32_t w = std::uint32_t(width), h = std::uint32_t(height);
-    pixels.push_back(ReduceDrawing(std::move(rgba), &w, &h));
-    drawings.push_back({w, h, nullptr});
+    g.pixels.push_back(ReduceDrawing(std::move(rgba), &w, &h));
+    g.sizes.push_back({w, h});
   }
-  for (std::size_t i = 0; i < drawings.size(); ++i) drawings[i].rgba = pixels[i].data();
-  return MeasureGhosting(rig, drawings, description.file);
+  return g;
+}
+
+// The ghosting measure of the rig written, or nothing (g.skipped says why).
+Ghosting MeasureBakedGhosting(const GhostingDrawings& g, const Rig& rig, const std::string& file) {
+  if (!g.skipped.empty()) return {};
+  std::vector<DrawingPixels> drawings;
+  for (std::size_t i = 0; i < g.pixels.size(); ++i)
+    drawings.push_back({g.sizes[i][0], g.sizes[i][1], g.pixels[i].data()});
+  return MeasureGhosting(rig, drawings, file);
 }
 
 std::uint64_t LowerNonzeros(const Eigen::SparseMatrix<double>& K) {
@@ -237,10 +252,10 @@ std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, i
 
 // The quality floor: a mapped mesh whose smallest angle over all poses is
 // below half of mapping.min_angle (10 degrees by default) is mapped again
-// in each of the ways of kFurtherRefinements (refinement stops early once
-// every angle reaches min_angle). The best of them is kept when its
-// in-betweens do not fold either and its smallest angle is larger;
-// otherwise the first one stays. (Splitting more
+// in the ways of kFurtherRefinements (refinement stops early once every
+// angle reaches min_angle) until one reaches the floor. The best of them is
+// kept when its in-betweens do not fold either and its smallest angle is
+// larger; otherwise the first one stays. (Splitting more
 // where one pose squeezes the outline, as an arm against the body does, can
 // fold the in-betweens; trying the fold retries' variants too cost up to
 // eight more mappings and gained nothing on the game-art corpus.) A mesh
@@ -263,12 +278,14 @@ struct FurtherRefinement {
 // slivers lifted cat-springboots 12.8 -> 16.3 degrees and cat-walk 8.8 ->
 // 9.9 but cross-faded 15% and 7% worse.
 constexpr double kFurtherGhostingSlack = 1.05;
-constexpr FurtherRefinement kFurtherRefinements[] = {{kFurtherRefinementRounds, false, "16 rounds of splitting"},
-                                                     {4, true, "slivers at the boundary removed"}};
+// In this order; once one lifts the mesh over the floor, the rest are not tried.
+constexpr FurtherRefinement kFurtherRefinements[] = {{4, true, "slivers at the boundary removed"},
+                                                     {kFurtherRefinementRounds, false, "16 rounds of splitting"}};
 
 double QualityFloor(const MappingParameters& m) { return m.min_angle / 2; }
 
-std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt& a) {
+std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt& a,
+                                     const std::function<const GhostingDrawings&()>& drawings) {
   const MappingReport& m = a.drawings.report;
   const double floor = QualityFloor(chosen.mapping);
   if (!m.mapped || m.min_angle_degrees >= floor || m.min_angle_degrees < floor / 4 ||
@@ -278,8 +295,8 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt
   const char* how = "";
   // The ghosting of the first mesh, where it can be measured: a finer mesh
   // that cross-fades worse is not kept.
-  std::string skipped;
-  const Ghosting before = MeasureBakedGhosting(chosen, a.written.rig, &skipped);
+  const GhostingDrawings& g = drawings();
+  const Ghosting before = MeasureBakedGhosting(g, a.written.rig, chosen.file);
   for (const auto& [rounds, collapse, name] : kFurtherRefinements) {
     RigDescription finer = chosen;
     finer.mapping.refinement_rounds = rounds;
@@ -294,13 +311,12 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt
     if (b->inbetweens.FoldsInHull() > 0 ||
         angle <= (best ? best->drawings.report.min_angle_degrees : m.min_angle_degrees))
       continue;
-    if (skipped.empty() && !before.hull.empty()) {
-      std::string also_skipped;
-      const Ghosting after = MeasureBakedGhosting(finer, b->written.rig, &also_skipped);
-      if (also_skipped.empty() && after.hull_mean > before.hull_mean * kFurtherGhostingSlack) continue;
-    }
+    if (!before.hull.empty() &&
+        MeasureBakedGhosting(g, b->written.rig, chosen.file).hull_mean > before.hull_mean * kFurtherGhostingSlack)
+      continue;
     best = std::move(b);
     how = name;
+    if (angle >= floor) break;
   }
   if (best) {
     best->drawings.report.refined_further_from = m.min_angle_degrees;
@@ -335,7 +351,12 @@ BakedRig BakeOne(const RigDescription& description, BakeReport* report) {
                              "); mapped again with " + variant + ": fold-free");
   else
     RefuseFolds(description, first.written, first.inbetweens);
-  std::optional<Attempt> finer = RefineFurther(chosen, again ? *again : first);
+  std::optional<GhostingDrawings> ghosting_drawings;  // read once, when first needed
+  auto drawings = [&]() -> const GhostingDrawings& {
+    if (!ghosting_drawings) ghosting_drawings = ReadGhostingDrawings(description);
+    return *ghosting_drawings;
+  };
+  std::optional<Attempt> finer = RefineFurther(chosen, again ? *again : first, drawings);
   Attempt& a = finer ? *finer : again ? *again : first;
   const PoseMeshes& meshes = a.meshes;
 
@@ -371,7 +392,8 @@ BakedRig BakeOne(const RigDescription& description, BakeReport* report) {
     r.mapping = a.drawings.report;
     r.mapping.fold_retries = tried;
     BakeStage ghosting_stage("measuring the ghosting");
-    r.ghosting = MeasureBakedGhosting(description, a.written.rig, &r.ghosting_skipped);
+    r.ghosting = MeasureBakedGhosting(drawings(), a.written.rig, file);
+    r.ghosting_skipped = drawings().skipped;
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
   // a.written loaded the rig from a.bytes, the file's bytes.
