@@ -85,7 +85,7 @@ inline bake::RigDescription GingerbreadRig() {
   rig.parameters.grid_resolution_given = true;  // written into the description, as committed
   rig.parameters.sigma = 0.25;
   rig.paths.push_back(
-      {"dance", true, true, {{0, 0, 0}, {0.6, 1, 0.3}, {1.2, 0, 1}, {1.8, -1, 0.3}, {2.4, 0, -1}, {3, 0, 0}}});
+      {"dance", true, true, {{0, 0, 0}, {0.6, 1, 0.3}, {1.2, 0, 1}, {1.8, -1, 0.3}, {2.4, 0, -1}, {3, 0, 0}}, {}});
   return rig;
 }
 

@@ -87,8 +87,8 @@ inline bake::RigDescription SnakeRig() {
   rig.parameters.grid_resolution_given = true;  // written into the description, as committed
   rig.parameters.sigma = 0.25;
   rig.paths.push_back(
-      {"slither", true, true, {{0, -0.9, 0}, {0.5, 0, -0.9}, {1, 0.9, 0}, {1.5, 0, -0.9}, {2, -0.9, 0}}});
-  rig.paths.push_back({"curl-up", false, false, {{0, 0, 0}, {1, 0, 1}, {1.5, 0.3, 1.2}, {2.5, 0, 0}}});
+      {"slither", true, true, {{0, -0.9, 0}, {0.5, 0, -0.9}, {1, 0.9, 0}, {1.5, 0, -0.9}, {2, -0.9, 0}}, {}});
+  rig.paths.push_back({"curl-up", false, false, {{0, 0, 0}, {1, 0, 1}, {1.5, 0.3, 1.2}, {2.5, 0, 0}}, {}});
   return rig;
 }
 
@@ -109,7 +109,7 @@ inline bake::RigDescription WormLineRig() {
   rig.poses.push_back(StripPose("arch-right", 1, 0, shape, [=](double) { return -Degrees(150) / L; }));
   rig.parameters.grid_resolution = 64;
   rig.parameters.grid_resolution_given = true;  // written into the description, as committed
-  rig.paths.push_back({"sway", true, true, {{0, -1.3, 0}, {1, 1.3, 0}, {2, -1.3, 0}}});
+  rig.paths.push_back({"sway", true, true, {{0, -1.3, 0}, {1, 1.3, 0}, {2, -1.3, 0}}, {}});
   return rig;
 }
 

@@ -77,6 +77,8 @@ std::string DescribeSection(std::uint32_t tag, const unsigned char* d, std::uint
     s << "u32 parts: first triangle, triangle count, draw order";
   } else if (tag == f::kPartPoseOrders) {
     s << "i32 draw order per pose per part";
+  } else if (tag == f::kEvents) {
+    s << "path events: f64 time, u32 path";
   } else if (tag == f::kChannels) {
     s << "control channels: names, attachments (each a nested rig), their joints";
   } else {
@@ -93,6 +95,11 @@ void PrintPaths(const Rig& rig, const char* indent, std::ostream& out) {
         << " keys, " << duration << " s, "
         << (path.interpolation == PathInterpolation::kCatmullRom ? "catmull-rom" : "linear")
         << (path.loop ? ", loops" : "") << "\n";
+    for (std::size_t e = 0; e < path.events.size; ++e) {
+      const EventView& event = path.events[e];
+      out << indent << "    event '" << Printable(std::string(event.name.data, event.name.size)) << "' at "
+          << event.time << " s\n";
+    }
   }
 }
 

@@ -66,7 +66,7 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
       if (channel.is_object() && channel.contains("paths") && channel["paths"].is_array())
         for (std::size_t i = 0; i < channel["paths"].size(); ++i)
           WarnUnknownKeys(channel["paths"][i], w + ".paths[" + std::to_string(i) + "]",
-                          {"name", "loop", "interpolation", "keys"}, file, warnings);
+                          {"name", "loop", "interpolation", "keys", "events"}, file, warnings);
     }
   const json no_poses = json::array();
   const json& poses = root.contains("poses") && root["poses"].is_array() ? root["poses"] : no_poses;
@@ -87,8 +87,8 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
   }
   if (root.contains("paths") && root["paths"].is_array())
     for (std::size_t i = 0; i < root["paths"].size(); ++i)
-      WarnUnknownKeys(root["paths"][i], "paths[" + std::to_string(i) + "]", {"name", "loop", "interpolation", "keys"},
-                      file, warnings);
+      WarnUnknownKeys(root["paths"][i], "paths[" + std::to_string(i) + "]",
+                      {"name", "loop", "interpolation", "keys", "events"}, file, warnings);
 }
 
 }  // namespace posemorph::bake::description

@@ -2,7 +2,9 @@
 // The rig description's "mapping" and "bake" parameters and its "paths".
 #include "description_reader.h"
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "posemorph/rig_format.h"
 
@@ -116,6 +118,26 @@ PathDescription ParsePath(const Reader& r, const json& jp, std::size_t i, const 
       if (!(std::fabs(v) <= format::kMaxPathValue))
         r.Fail(wk, "times and coordinates must lie within +-1e12 (the runtime's limit)");
     if (k > 0 && !(path.keys[k][0] > path.keys[k - 1][0])) r.Fail(wk, "key times must increase strictly");
+  }
+  if (jp.contains("events")) {
+    const json& events = r.Array(jp, "events", w);
+    const double first = path.keys.front()[0], last = path.keys.back()[0];
+    for (std::size_t e = 0; e < events.size(); ++e) {
+      const std::string we = w + ".events[" + std::to_string(e) + "]";
+      if (!events[e].is_array() || events[e].size() != 2) r.Fail(we, "expected [time, \"name\"]");
+      const double time = r.Number(events[e][0], we);
+      const std::string name = r.String(events[e][1], we + " name");
+      if (name.empty()) r.Fail(we, "an event needs a name");
+      if (!(time >= first && time <= last)) {
+        std::ostringstream range;
+        range << "time " << time << " is outside path \"" << path.name << "\"'s keys [" << first << ", " << last << "]";
+        r.Fail(we, range.str());
+      }
+      path.events.emplace_back(time, name);
+    }
+    if (events.size() > format::kMaxEvents) r.Fail(w + ".events", "more events than the format holds (65536)");
+    std::stable_sort(path.events.begin(), path.events.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
   }
   for (const PathDescription& other : earlier)
     if (other.name == path.name) r.Fail(w + ".name", "path \"" + path.name + "\" is defined twice");

@@ -58,10 +58,16 @@ json PoseJson(const PoseDescription& pose) {
 }
 
 json PathJson(const PathDescription& path) {
-  return {{"name", path.name},
-          {"loop", path.loop},
-          {"interpolation", path.catmull_rom ? "catmull-rom" : "linear"},
-          {"keys", path.keys}};
+  json j = {{"name", path.name},
+            {"loop", path.loop},
+            {"interpolation", path.catmull_rom ? "catmull-rom" : "linear"},
+            {"keys", path.keys}};
+  if (!path.events.empty()) {
+    json events = json::array();
+    for (const auto& [time, name] : path.events) events.push_back(json::array({time, name}));
+    j["events"] = std::move(events);
+  }
+  return j;
 }
 
 json BakeJson(const BakeParameters& p) {

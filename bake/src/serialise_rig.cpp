@@ -60,6 +60,12 @@ std::optional<std::string> DrawingFolder(const RigDescription& description, cons
   return relative.generic_string();
 }
 
+bool HasEvents(const RigDescription& description) {
+  for (const PathDescription& path : description.paths)
+    if (!path.events.empty()) return true;
+  return false;
+}
+
 // META: counts, flags, the grid's geometry, sigma and the rig's size.
 fmt::Meta MakeMeta(const RigDescription& description, const PoseMeshes& meshes, const ArapSystem& system,
                    const WeightGrid& grid, bool has_drawing_folder) {
@@ -77,7 +83,8 @@ fmt::Meta MakeMeta(const RigDescription& description, const PoseMeshes& meshes, 
                (description.nearest_filter ? fmt::kMetaFlagNearestFilter : 0) |
                (has_drawing_folder ? fmt::kMetaFlagDrawingFolder : 0) |
                (meshes.parts.empty() ? 0 : fmt::kMetaFlagParts) |
-               (DrawOrderChanges(meshes) ? fmt::kMetaFlagPartPoseOrders : 0);
+               (DrawOrderChanges(meshes) ? fmt::kMetaFlagPartPoseOrders : 0) |
+               (HasEvents(description) ? fmt::kMetaFlagEvents : 0);
   meta.grid_origin_x = grid.origin_x;
   meta.grid_origin_y = grid.origin_y;
   meta.grid_cell_size = grid.cell;
@@ -118,9 +125,10 @@ PoseArrays FlattenPoses(const PoseMeshes& meshes, const std::vector<double>& ver
   return a;
 }
 
-// STRS (pose names, image references, path names, the drawings' folder), PATH and PKEY.
+// STRS (pose names, image references, path names, the drawings' folder, part
+// strings, event names), PATH, PKEY and EVNT.
 struct NamesAndPaths {
-  std::vector<unsigned char> strings, path_table;
+  std::vector<unsigned char> strings, path_table, events;  // events: EVNT (format 1.8), empty without
   std::vector<double> keys;
 };
 
@@ -145,7 +153,14 @@ NamesAndPaths FlattenNamesAndPaths(const RigDescription& description, const Pose
   for (const MeshPart& part : meshes.parts) AppendString(strings, part.name);
   for (const MeshPart& part : meshes.parts)
     for (const std::string& image : part.images) AppendString(strings, image);
-
+  for (std::size_t p = 0; p < description.paths.size(); ++p)
+    for (const auto& [time, name] : description.paths[p].events) {
+      AppendString(strings, name);
+      fmt::EventEntry entry{};
+      entry.time = time;
+      entry.path = std::uint32_t(p);
+      AppendRecord(a.events, entry);
+    }
   return a;
 }
 
@@ -181,6 +196,7 @@ RigSections SerialiseRig(const RigDescription& description, const PoseMeshes& me
   w.Add(fmt::kStrings, names.strings);
   w.Add(fmt::kPaths, names.path_table);
   w.AddArray(fmt::kPathKeys, names.keys);
+  if (!names.events.empty()) w.Add(fmt::kEvents, names.events);
   if (has_uvs) w.AddArray(fmt::kUVs, poses.uvs);
   if (HasCanvases(meshes)) {
     std::vector<double> canvases;

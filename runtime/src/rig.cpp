@@ -40,6 +40,7 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   part_pose_orders_ = std::exchange(other.part_pose_orders_, {});
   part_strings_ = std::exchange(other.part_strings_, {});
   paths_ = std::exchange(other.paths_, {});
+  events_ = std::exchange(other.events_, {});
   attachments_ = std::exchange(other.attachments_, {});
   channel_names_ = std::exchange(other.channel_names_, {});
   channel_offsets_ = std::exchange(other.channel_offsets_, {});
@@ -113,6 +114,8 @@ std::int32_t Rig::part_draw_order(std::uint32_t index, std::uint32_t pose) const
 }
 
 PathView Rig::path(std::uint32_t index) const { return index < path_count_ ? paths_[index] : PathView{}; }
+
+EventView Rig::event(std::uint32_t index) const { return index < events_.size ? events_[index] : EventView{}; }
 
 int Rig::FindPath(const char* name) const {
   if (!name) return -1;

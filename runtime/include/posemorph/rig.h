@@ -26,12 +26,24 @@ struct StringView {
   std::size_t size = 0;
 };
 
+// A named event on a path (format 1.8; RIG_DESCRIPTION.md, "events"): a
+// footstep, a sound cue. The Animator reports each one it crosses
+// (animator.h).
+struct EventView {
+  StringView name;
+  std::uint32_t path = 0;  // the path it belongs to
+  double time = 0;         // on the path's clock: within its first and last key times
+};
+
 // A pose-space animation path: keys (time, x, y), times strictly increasing.
 struct PathView {
   StringView name;
   bool loop = false;
   PathInterpolation interpolation = PathInterpolation::kLinear;
   Span<const double> keys;  // 3 x key count: t0, x0, y0, t1, x1, y1, ...
+  // The path's events in time order (ties in the description's order);
+  // empty before format 1.8 and for paths without events.
+  Span<const EventView> events;
   std::size_t key_count() const { return keys.size / 3; }
   // The first and last key's times (a loaded path has at least one key); 0 for an empty view.
   double start_time() const { return keys.size >= 3 ? keys.data[0] : 0.0; }
@@ -243,6 +255,11 @@ class PM_API Rig {
   PathView path(std::uint32_t index) const;
   // Index of the path with this name, or -1.
   int FindPath(const char* name) const;
+  // Every path's events, path after path (format 1.8; 0 before): event(i)
+  // is the i-th, PathView::events a path's own run of them.
+  std::uint32_t event_count() const { return std::uint32_t(events_.size); }
+  EventView event(std::uint32_t index) const;  // an empty view beyond the count
+  Span<const EventView> events() const { return events_; }
 
   const PoseSpaceGrid& grid() const { return grid_; }
   const Factor& factor() const { return solve_; }
@@ -291,13 +308,15 @@ class PM_API Rig {
   // triangles, per pose, the 8 values of alpha, S11, S12, S22 (4N x 8 per block).
   Span<const double> blend_blocks_;
   Span<const float> uvs_;
-  Span<const double> canvases_;                 // 4N, or empty
-  Span<const StringView> strings_;              // N names, N images, P path names (, drawing folder) (, part strings)
+  Span<const double> canvases_;  // 4N, or empty
+  Span<const StringView>
+      strings_;  // N names, N images, P path names (, drawing folder) (, part strings) (, event names)
   Span<const std::uint32_t> part_table_;        // 4 per part (PART), or empty
   Span<const std::uint32_t> draw_sequence_;     // part indices back to front, or empty; N x M with PORD
   Span<const std::uint32_t> part_pose_orders_;  // N x M i32 (PORD), or empty
   Span<const StringView> part_strings_;         // M names, then M x N images, or empty
   Span<const PathView> paths_;
+  Span<const EventView> events_;  // format 1.8, or empty
   // Format 1.7: the attachments (each a Rig in the arena, loaded in place)
   // and the channel names; empty for a rig with one channel.
   Span<const AttachmentView> attachments_;

@@ -20,9 +20,10 @@ constexpr std::uint16_t kVersionMajor = 1;
 // kMetaFlagCompact); 1.4 the texture-filter hint; 1.5 the drawing folder
 // (kMetaFlagDrawingFolder); 1.6 parts drawn in order (kMetaFlagParts, PART),
 // optionally an order per pose (kMetaFlagPartPoseOrders, PORD); 1.7 control
-// channels (CHAN: attachments, each a nested rig driven by its own channel).
-// Older files load unchanged.
-constexpr std::uint16_t kVersionMinor = 7;
+// channels (CHAN: attachments, each a nested rig driven by its own channel);
+// 1.8 named events on paths (kMetaFlagEvents, EVNT). Older files load
+// unchanged.
+constexpr std::uint16_t kVersionMinor = 8;
 constexpr std::uint32_t kHeaderSize = FileHeader::kSize;
 constexpr std::uint32_t kSectionEntrySize = SectionEntry::kSize;
 constexpr std::uint32_t kSectionAlignment = 16;
@@ -120,6 +121,15 @@ constexpr std::uint32_t kAttachmentEntrySize = AttachmentEntry::kSize;
 constexpr std::uint32_t kMaxChannels = 8;
 constexpr std::uint32_t kMaxAttachments = 32;
 constexpr std::uint32_t kMaxChannelName = 64;
+// 1.8: paths carry named events (EVNT): STRS ends (after the part strings,
+// when there are parts) with each event's name, in EVNT's order.
+constexpr std::uint32_t kMetaFlagEvents = 128u;
+// EVNT section (1.8): an EventEntry per event (records.h), sorted by path,
+// then by time (ties keep their order); each time lies within its path's
+// first and last key times. 1..kMaxEvents entries.
+constexpr std::uint32_t kEvents = Tag('E', 'V', 'N', 'T');
+constexpr std::uint32_t kEventEntrySize = EventEntry::kSize;
+constexpr std::uint32_t kMaxEvents = 1u << 16;
 // A joint's barycentric weights are at most this far outside [0, 1].
 constexpr double kMaxJointWeightOutside = 1e-3;
 

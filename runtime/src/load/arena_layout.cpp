@@ -152,6 +152,7 @@ void RigLoader::LayoutArena(ArenaLayout& arena, const Counts& c, const Sources& 
   scratch->chars = CopyInto<char>(arena, s.strs, s.strings_size);
   scratch->strings = arena.Take<StringView>(c.strings);
   scratch->path_views = arena.Take<PathView>(P);
+  scratch->event_views = arena.Take<EventView>(c.events);
   scratch->keys = CopyInto<double>(arena, s.pkeys, s.key_total * 3);
   scratch->seen = arena.Take<unsigned char>(n);  // scratch for the permutation check
   scratch->row_start = arena.Take<std::uint32_t>(n + 1);

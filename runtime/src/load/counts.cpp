@@ -37,7 +37,7 @@ bool RigLoader::ReadCounts(Parser& parser, Counts* c, Error* err) {
                 fmt::kMaxFactorNonzeros);
   if ((meta.flags &
        ~(fmt::kMetaFlagHasUVs | fmt::kMetaFlagGridCentres | fmt::kMetaFlagCompact | fmt::kMetaFlagNearestFilter |
-         fmt::kMetaFlagDrawingFolder | fmt::kMetaFlagParts | fmt::kMetaFlagPartPoseOrders)) != 0)
+         fmt::kMetaFlagDrawingFolder | fmt::kMetaFlagParts | fmt::kMetaFlagPartPoseOrders | fmt::kMetaFlagEvents)) != 0)
     return Fail(err, ErrorCode::kBadVersion, "unknown META flags 0x%x", meta.flags);
   if (!std::isfinite(meta.grid_origin_x) || !std::isfinite(meta.grid_origin_y) || !std::isfinite(meta.grid_cell_size) ||
       !(meta.grid_cell_size > 0) || !std::isfinite(meta.grid_cell_size * meta.grid_cells_x) ||
@@ -67,7 +67,20 @@ bool RigLoader::ReadCounts(Parser& parser, Counts* c, Error* err) {
     return Fail(err, ErrorCode::kBadLayout, "META says the draw order changes with the pose, but the rig has no parts");
   if (!c->part_pose_orders && parser.table.Find(fmt::kPartPoseOrders))
     return Fail(err, ErrorCode::kBadLayout, "PORD section present but META says the draw order is fixed");
-  c->strings = 2 * N + P + ((meta.flags & fmt::kMetaFlagDrawingFolder) ? 1 : 0) + c->parts * (1 + N);
+  if (meta.flags & fmt::kMetaFlagEvents) {
+    const Section* events = parser.table.Find(fmt::kEvents);
+    if (!events)
+      return Fail(err, ErrorCode::kBadLayout, "META says the paths have events, but there is no EVNT section");
+    if (events->size % fmt::kEventEntrySize != 0 || events->size < fmt::kEventEntrySize ||
+        events->size > std::uint64_t(fmt::kMaxEvents) * fmt::kEventEntrySize)
+      return Fail(err, ErrorCode::kBadLayout, "EVNT section of %llu bytes: 1..%u entries of %u bytes",
+                  (unsigned long long)events->size, fmt::kMaxEvents, fmt::kEventEntrySize);
+    if (P == 0) return Fail(err, ErrorCode::kBadLayout, "EVNT section present but the rig has no paths");
+    c->events = events->size / fmt::kEventEntrySize;
+  } else if (parser.table.Find(fmt::kEvents)) {
+    return Fail(err, ErrorCode::kBadLayout, "EVNT section present but META says the paths have no events");
+  }
+  c->strings = 2 * N + P + ((meta.flags & fmt::kMetaFlagDrawingFolder) ? 1 : 0) + c->parts * (1 + N) + c->events;
   c->grid_corners = std::uint64_t(meta.grid_cells_x + 1) * (meta.grid_cells_y + 1);
   c->grid_centres = (meta.flags & fmt::kMetaFlagGridCentres) ? std::uint64_t(meta.grid_cells_x) * meta.grid_cells_y : 0;
   c->grid_vertices = c->grid_corners + c->grid_centres;
@@ -114,6 +127,7 @@ bool RigLoader::FindSections(const unsigned char* bytes, const Header& h, Parser
   if (parser.table.Find(fmt::kCanvases) && !parser.Get(fmt::kCanvases, N * 32, &s->canvases)) return false;
   if (c.parts && !parser.Get(fmt::kParts, c.parts * fmt::kPartEntrySize, &s->parts)) return false;
   if (c.part_pose_orders && !parser.Get(fmt::kPartPoseOrders, N * c.parts * 4, &s->pose_orders)) return false;
+  if (c.events && !parser.Get(fmt::kEvents, c.events * fmt::kEventEntrySize, &s->events)) return false;
   if (!c.has_uvs && parser.table.Find(fmt::kUVs))
     return Fail(err, ErrorCode::kBadLayout, "UVS section present but META says none");
   std::uint64_t key_total = 0;

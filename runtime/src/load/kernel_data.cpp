@@ -77,9 +77,9 @@ void RigLoader::Finish(const Header& h, const Counts& c, const detail::KernelTab
       (c.meta.flags & fmt::kMetaFlagNearestFilter) ? TextureFilter::kNearest : TextureFilter::kLinear;
   rig->rig_size_ = c.meta.rig_size;
   if (c.meta.flags & fmt::kMetaFlagDrawingFolder) rig->drawing_folder_ = rig->strings_[std::size_t(2 * c.N + c.P)];
-  rig->part_strings_ =
-      c.parts ? rig->strings_.subspan(std::size_t(c.strings - c.parts * (1 + c.N)), std::size_t(c.parts * (1 + c.N)))
-              : Span<const StringView>{};
+  rig->part_strings_ = c.parts ? rig->strings_.subspan(std::size_t(c.strings - c.events - c.parts * (1 + c.N)),
+                                                       std::size_t(c.parts * (1 + c.N)))
+                               : Span<const StringView>{};
   rig->kernels_ = kernels;
   rig->checksum_ = h.checksum;
   rig->format_major_ = h.major;

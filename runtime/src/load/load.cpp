@@ -102,7 +102,8 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   }
   if (c.compact && !detail::DecodeCompact(s.packed, s.packed_counts, scratch.decoded, err)) return false;
   if (!ReadStrings(c, scratch, &rig, err) || !ReadPaths(c, s, scratch, &rig, err) ||
-      !CheckIndices(c, scratch, rig, err) || !CheckFactor(c, rig, err) || !ReadParts(c, scratch, &rig, err))
+      !ReadEvents(c, s, scratch, &rig, err) || !CheckIndices(c, scratch, rig, err) || !CheckFactor(c, rig, err) ||
+      !ReadParts(c, scratch, &rig, err))
     return false;
   BuildSolveRows(c, scratch, &rig);
   BuildBlendBlocks(c, scratch, &rig);

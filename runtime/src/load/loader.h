@@ -12,7 +12,7 @@
 //   counts.cpp         ReadCounts (META, bounded), FindSections (sizes implied by the counts)
 //   channels.cpp       ReadChannels (CHAN, before the arena), LayoutChannels, LoadAttachments
 //   arena_layout.cpp   PlaceArena, CheckArenaSize, LayoutArena (twice: sizing, then filling)
-//   value_checks.cpp   ReadStrings, ReadPaths, CheckIndices, CheckFactor, ReadParts, CheckNumbers
+//   value_checks.cpp   ReadStrings, ReadPaths, ReadEvents, CheckIndices, CheckFactor, ReadParts, CheckNumbers
 //   kernel_data.cpp    BuildSolveRows, BuildBlendBlocks, Finish (what the kernels read)
 //   solve_bound.cpp    CheckSolveBound (what the solve can give for any weights the jobs take)
 // The records read are defined once, with the bake's writer, in
@@ -147,8 +147,9 @@ struct Counts {
   std::uint64_t V = 0, T = 0, N = 0, P = 0, nnz = 0;
   std::uint64_t n = 0;        // V - 1 unknowns (vertex 0 is pinned)
   std::uint64_t strings = 0;  // 2N + P (+ 1) (+ M + MN): pose names, image references, path names (, drawing folder)
-                              // (, part names, part images)
+                              // (, part names, part images) (, event names)
   std::uint64_t parts = 0;    // M: PART entries (format 1.6), 0 without
+  std::uint64_t events = 0;   // E: EVNT entries (format 1.8), 0 without
   bool part_pose_orders = false;  // PORD: a draw order per pose (format 1.6)
   std::uint64_t grid_corners = 0, grid_centres = 0, grid_vertices = 0;
   bool has_uvs = false, compact = false;
@@ -161,7 +162,7 @@ struct Sources {
                       *grads = nullptr, *angles = nullptr, *stretches = nullptr, *perm = nullptr, *lcol = nullptr,
                       *lrow = nullptr, *lval = nullptr, *dinv = nullptr, *wgrid = nullptr, *uvs = nullptr,
                       *paths = nullptr, *strs = nullptr, *pkeys = nullptr, *canvases = nullptr, *parts = nullptr,
-                      *pose_orders = nullptr;
+                      *pose_orders = nullptr, *events = nullptr;
   std::uint64_t strings_size = 0, key_total = 0;
   detail::CompactLayout packed;
   detail::CompactCounts packed_counts{};
@@ -175,6 +176,7 @@ struct Scratch {
   Span<const char> chars;
   StringView* strings = nullptr;
   PathView* path_views = nullptr;
+  EventView* event_views = nullptr;
   Span<const double> keys;
   unsigned char* seen = nullptr;
   std::uint32_t* row_start = nullptr;
@@ -240,6 +242,7 @@ struct RigLoader {
   static bool CheckArenaSize(const ArenaLayout& arena, const Counts& c, std::uint64_t file_size, Error* err);
   static bool ReadStrings(const Counts& c, const Scratch& scratch, Rig* rig, Error* err);
   static bool ReadPaths(const Counts& c, const Sources& s, const Scratch& scratch, Rig* rig, Error* err);
+  static bool ReadEvents(const Counts& c, const Sources& s, const Scratch& scratch, Rig* rig, Error* err);
   static bool CheckIndices(const Counts& c, const Scratch& scratch, const Rig& rig, Error* err);
   static bool ReadParts(const Counts& c, const Scratch& scratch, Rig* rig, Error* err);
   static bool CheckFactor(const Counts& c, const Rig& rig, Error* err);

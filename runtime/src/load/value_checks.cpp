@@ -39,6 +39,7 @@ bool RigLoader::ReadPaths(const Counts& c, const Sources& s, const Scratch& scra
     const std::uint32_t count = entry.key_count, flags = entry.flags;
     PathView& view = scratch.path_views[i];
     view.name = scratch.strings[2 * c.N + i];
+    view.events = {};  // ReadEvents sets a path's run
     view.loop = (flags & fmt::kPathFlagLoop) != 0;
     view.interpolation = PathInterpolation(flags >> fmt::kPathInterpolationShift);
     view.keys = scratch.keys.subspan(std::size_t(key_at * 3), std::size_t(count) * 3);
@@ -50,6 +51,42 @@ bool RigLoader::ReadPaths(const Counts& c, const Sources& s, const Scratch& scra
                     (unsigned long long)i, k);
   }
   rig->paths_ = {scratch.path_views, std::size_t(c.P)};
+  return true;
+}
+
+// Events (format 1.8): each on a path, at a finite time within the path's
+// keys, sorted by path then time; their names end STRS. Each path's run
+// becomes its PathView::events.
+bool RigLoader::ReadEvents(const Counts& c, const Sources& s, const Scratch& scratch, Rig* rig, Error* err) {
+  if (!c.events) return true;
+  const std::uint64_t first_name = c.strings - c.events;
+  std::uint64_t run_start = 0;
+  for (std::uint64_t i = 0; i < c.events; ++i) {
+    const auto entry = fmt::DecodeEntry<fmt::EventEntry>(s.events, i);
+    EventView& view = scratch.event_views[i];
+    view.name = scratch.strings[first_name + i];
+    view.path = entry.path;
+    view.time = entry.time;
+    if (entry.path >= c.P)
+      return Fail(err, ErrorCode::kBadValue, "event %llu names path %u; the rig has %llu", (unsigned long long)i,
+                  entry.path, (unsigned long long)c.P);
+    if (entry.reserved != 0)
+      return Fail(err, ErrorCode::kBadValue, "event %llu: reserved field is not zero", (unsigned long long)i);
+    const PathView& path = scratch.path_views[entry.path];
+    if (!std::isfinite(entry.time) || !(entry.time >= path.start_time() && entry.time <= path.end_time()))
+      return Fail(err, ErrorCode::kBadValue, "event %llu at time %g, outside its path %u's keys [%g, %g]",
+                  (unsigned long long)i, entry.time, entry.path, path.start_time(), path.end_time());
+    if (view.name.size == 0) return Fail(err, ErrorCode::kBadValue, "event %llu has no name", (unsigned long long)i);
+    if (i > 0) {
+      const EventView& before = scratch.event_views[i - 1];
+      if (entry.path < before.path || (entry.path == before.path && !(entry.time >= before.time)))
+        return Fail(err, ErrorCode::kBadValue, "event %llu is out of order (events are sorted by path, then time)",
+                    (unsigned long long)i);
+      if (entry.path != before.path) run_start = i;
+    }
+    scratch.path_views[entry.path].events = {scratch.event_views + run_start, std::size_t(i - run_start + 1)};
+  }
+  rig->events_ = {scratch.event_views, std::size_t(c.events)};
   return true;
 }
 

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -115,6 +116,10 @@ struct PathDescription {
   bool loop = false;
   bool catmull_rom = false;
   std::vector<std::array<double, 3>> keys;  // t, x, y
+  // Named events at times on the path's clock ("events": [[0.42,
+  // "footstep"], ...]), within its keys' times; sorted by time at parse,
+  // ties kept in the description's order. The Animator reports them.
+  std::vector<std::pair<double, std::string>> events;
 };
 
 struct BakeParameters {

@@ -182,6 +182,18 @@ struct PathEntry {
   }
 };
 
+// EVNT (1.8): one entry per event; its name is in STRS.
+struct EventEntry {
+  static constexpr std::uint32_t kSize = 16;
+  double time;         // seconds on the path's clock, within its first and last key times
+  std::uint32_t path;  // index into PATH
+  std::uint32_t reserved;
+  template <typename Self, typename F>
+  static constexpr void Fields(Self& r, F& f) {
+    f(r.time), f(r.path), f(r.reserved);
+  }
+};
+
 // PART (1.6): one entry per part; the parts tile the triangles in order.
 struct PartEntry {
   static constexpr std::uint32_t kSize = 16;
@@ -359,6 +371,9 @@ PM_FORMAT_FIELD(Meta, grid_origin_x, 32);
 PM_FORMAT_FIELD(Meta, rig_size, 64);
 PM_FORMAT_RECORD(PathEntry);
 PM_FORMAT_FIELD(PathEntry, flags, 4);
+PM_FORMAT_RECORD(EventEntry);
+PM_FORMAT_FIELD(EventEntry, path, 8);
+PM_FORMAT_FIELD(EventEntry, reserved, 12);
 PM_FORMAT_RECORD(PartEntry);
 PM_FORMAT_FIELD(PartEntry, triangle_count, 4);
 PM_FORMAT_FIELD(PartEntry, draw_order, 8);
