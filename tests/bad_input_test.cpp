@@ -273,6 +273,27 @@ TEST_CASE("descriptions beyond the rig format's limits are refused by name, not 
   ExpectFailure(j.dump(), "paths: 1048577 keys in all, more than the rig format's limit of 1048576");
 }
 
+TEST_CASE("path events outside their path, unnamed or malformed are refused by path and event") {
+  json j = ValidDescription();
+  j["paths"] =
+      json::parse(R"([{"name": "walk", "keys": [[0, 0, 0], [1, 1, 0]], "events": [[0.5, "step"], [1.5, "late"]]}])");
+  ExpectFailure(j.dump(), "paths[0].events[1]: time 1.5 is outside path \"walk\"'s keys [0, 1]");
+  j["paths"][0]["events"] = json::parse(R"([[0.5, ""]])");
+  ExpectFailure(j.dump(), "paths[0].events[0]: an event needs a name");
+  j["paths"][0]["events"] = json::parse(R"([["step", 0.5]])");
+  ExpectFailure(j.dump(), "paths[0].events[0]: expected a number");
+  j["paths"][0]["events"] = json::parse("[[0.5]]");
+  ExpectFailure(j.dump(), "paths[0].events[0]: expected [time, \"name\"]");
+  j["paths"][0]["events"] = "step";
+  ExpectFailure(j.dump(), "paths[0].events: expected an array");
+  j = ValidDescription();
+  json events = json::array();
+  for (int k = 0; k < 65537; ++k) events.push_back(json::array({0.5, "e"}));
+  j["paths"] = json::parse(R"([{"name": "walk", "keys": [[0, 0, 0], [1, 1, 0]]}])");
+  j["paths"][0]["events"] = events;
+  ExpectFailure(j.dump(), "paths: 65537 events in all, more than the rig format's limit of 65536");
+}
+
 TEST_CASE("a failure without context of its own names the bake stage it happened in") {
   try {
     bake::BakeStage outer("mapping the drawings");

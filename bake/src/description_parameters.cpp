@@ -135,7 +135,6 @@ PathDescription ParsePath(const Reader& r, const json& jp, std::size_t i, const 
       }
       path.events.emplace_back(time, name);
     }
-    if (events.size() > format::kMaxEvents) r.Fail(w + ".events", "more events than the format holds (65536)");
     std::stable_sort(path.events.begin(), path.events.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
   }

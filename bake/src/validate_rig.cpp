@@ -209,6 +209,11 @@ std::string CheckFormatLimits(const PoseMeshes& rig, const std::vector<PathDescr
   if (keys > format::kMaxPathKeys)
     return "paths: " + std::to_string(keys) + " keys in all, more than the rig format's limit of " +
            std::to_string(format::kMaxPathKeys);
+  std::size_t events = 0;
+  for (const PathDescription& path : paths) events += path.events.size();
+  if (events > format::kMaxEvents)
+    return "paths: " + std::to_string(events) + " events in all, more than the rig format's limit of " +
+           std::to_string(format::kMaxEvents);
   std::size_t string_bytes = 0, longest = 0;
   std::string longest_name;
   auto count = [&](const std::string& text, const std::string& what) {
@@ -220,6 +225,9 @@ std::string CheckFormatLimits(const PoseMeshes& rig, const std::vector<PathDescr
     count(rig.poses[i].image, PoseLabel(rig.poses[i].name, i) + "'s image reference");
   }
   for (std::size_t k = 0; k < paths.size(); ++k) count(paths[k].name, "paths[" + std::to_string(k) + "].name");
+  for (std::size_t k = 0; k < paths.size(); ++k)
+    for (const auto& event : paths[k].events)
+      count(event.second, "paths[" + std::to_string(k) + "]'s event '" + event.second.substr(0, 32) + "'");
   for (const MeshPart& part : rig.parts) {
     count(part.name, "part '" + part.name + "''s name");
     for (std::size_t i = 0; i < part.images.size(); ++i)

@@ -8,6 +8,7 @@
 #include <new>
 #include <string>
 
+#include "posemorph/animator.h"
 #include "posemorph/path.h"
 #include "posemorph/posemorph.h"
 #include "posemorph/quantize.h"
@@ -279,4 +280,51 @@ TEST_CASE("loading in place allocates nothing at all, in C++ and through the C A
     CHECK(g_allocations.load() == 0);
     pm_rig_free(c_rig);
   }
+}
+
+TEST_CASE("animator commands and updates allocate nothing: mixes, queues, snapshots, events, a full buffer") {
+  const Rig rig = LoadTestRig("pell-face");
+  const std::size_t count = 16, C = rig.channel_count(), N = rig.pose_count(), A = rig.attached_weight_count();
+  std::vector<AnimatorTrack> tracks(count * C);
+  std::vector<double> raw(count * N), limited(count * N), texture(count * N), ar(count * A), al(count * A),
+      at(count * A);
+  std::vector<AnimatorEvent> events(8);  // small: it fills
+  AnimatorUpdateJob job;
+  job.rig = &rig;
+  job.count = count;
+  job.tracks = MakeSpan(tracks);
+  job.weights = MakeSpan(raw), job.limited_weights = MakeSpan(limited), job.texture_weights = MakeSpan(texture);
+  job.attached_weights = MakeSpan(ar), job.attached_limited_weights = MakeSpan(al);
+  job.attached_texture_weights = MakeSpan(at);
+  job.events = MakeSpan(events);
+  std::size_t written = 0;
+  std::uint64_t missed = 0;
+  job.event_count = &written, job.events_missed = &missed;
+  std::size_t most = 0;
+  std::uint64_t most_missed = 0;
+  g_allocations = 0;
+  g_counting = true;
+  bool ok = true;
+  for (std::size_t i = 0; i < count; ++i) ok &= AnimatorReset(rig, Span<AnimatorTrack>{tracks.data() + i * C, C});
+  for (int f = 0; f < 240; ++f) {
+    for (std::size_t i = 0; i < count; ++i) {
+      const Span<AnimatorTrack> t{tracks.data() + i * C, C};
+      PlayOptions o;
+      o.mix = 0.25;
+      if ((f + int(i)) % 40 == 0) ok &= AnimatorPlay(rig, t, std::uint32_t(i % C), 0, o);
+      if ((f + int(i)) % 40 == 10) ok &= AnimatorPlay(rig, t, std::uint32_t(i % C), 0, o);  // interrupts a mix
+      if ((f + int(i)) % 40 == 20) ok &= AnimatorQueue(rig, t, 0, 0, o);
+      if ((f + int(i)) % 40 == 30) ok &= AnimatorSetPoint(rig, t, 1, 0.5, 0.5, 0.3);
+      if ((f + int(i)) % 97 == 0) ok &= AnimatorStop(rig, t, 0, 0.2);
+    }
+    job.dt = f % 50 == 0 ? 7.0 : 1.0 / 60;
+    ok &= job.Run();
+    most = std::max(most, written);
+    most_missed = std::max(most_missed, missed);
+  }
+  g_counting = false;
+  CHECK(ok);
+  CHECK(most == events.size());  // the 7 s updates fill the buffer
+  CHECK(most_missed > 0);
+  CHECK(g_allocations.load() == 0);
 }

@@ -1,0 +1,184 @@
+// SPDX-License-Identifier: MIT
+// The animation layer over the jobs: per control channel, a track that
+// plays a path (a gesture) once or looped at a speed, queues the next,
+// follows a point set by code (a pad), stops, and hands over from one to the
+// next over a mix duration without a jump; an update advances every
+// character of a batch by dt, reports the path events it crossed, and
+// writes each channel's weights in the layouts MorphBatchJob and AttachJob
+// read. docs/animation.md is the guide.
+//
+// What a mix blends: the two motions' weight vectors (raw, limited and
+// texture, each as WeightsJob gives it at the motion's point), as
+// (1 - a) x outgoing + a x incoming with a = elapsed / duration. Each is a
+// partition of unity, so the blend is one too, and it passes through no pose
+// that neither motion shows (blending the two pose-space points would cross
+// the poses between them). The outgoing motion keeps playing during the mix
+// (and reports its events); a command that interrupts a mix freezes the
+// blend it had reached (a snapshot of its weights, which reports nothing)
+// and mixes from that.
+//
+// Determinism: an update is plain IEEE-754 double arithmetic in a fixed
+// order, so the same commands and dt sequence give the same bits on every
+// compiler, target and kernel path. Nothing here allocates or throws.
+#pragma once
+#include "posemorph/export.h"
+#include <cstddef>
+#include <cstdint>
+
+#include "posemorph/rig.h"
+#include "posemorph/rig_format.h"
+#include "posemorph/span.h"
+
+namespace posemorph {
+
+// The largest dt an update takes: beyond it (and for +inf) it counts as
+// this; a NaN or negative dt counts as 0.
+constexpr double kMaxAnimatorStep = 1e9;
+// Speeds, mix durations and start offsets are clamped to [0, this]
+// (a NaN speed or mix counts as 0).
+constexpr double kMaxAnimatorSpeed = 1e6;
+constexpr double kMaxAnimatorMix = 1e6;
+
+enum class MotionKind : std::uint8_t {
+  kRest = 0,      // the channel's pose 0 (its point): a stopped track
+  kPath = 1,      // a path played from its clock
+  kPoint = 2,     // a pose-space point set by code (a pad)
+  kSnapshot = 3,  // a mix frozen by an interrupting command (only ever outgoing)
+};
+
+// What one layer of a track shows.
+struct Motion {
+  MotionKind kind = MotionKind::kRest;
+  bool loop = false;
+  bool ended = false;      // a path played once has reached its last key (and reported its events there)
+  std::uint32_t path = 0;  // kPath: in the channel's rig
+  double time = 0;         // kPath: on the path's clock; looping: within [first key, last key)
+  double speed = 1;        // kPath: path seconds per second, >= 0
+  double x = 0, y = 0;     // kPoint
+};
+
+// How to play a path.
+struct PlayOptions {
+  double speed = 1;
+  // -1: as the path says (its "loop"); 0: once, holding the last key; 1: looped.
+  int loop = -1;
+  // Seconds over which the track hands over from what it shows now; 0 cuts.
+  double mix = 0.2;
+  // Where on the path's clock to start, in seconds after its first key.
+  double start = 0;
+};
+
+// One channel of one character. A plain value: copy it, store it, compare
+// it; Animator functions change it. Its size is fixed (sizeof, about 1.7
+// KB, most of it the snapshot a rare interrupted mix needs), so a
+// character's animator is rig.channel_count() tracks in caller memory.
+struct AnimatorTrack {
+  Motion current;  // what it plays
+  Motion from;     // during a mix: what it hands over from
+  bool mixing = false;
+  double mix_elapsed = 0, mix_duration = 0;
+  // A command since the last update: applied at the start of the next.
+  bool has_pending = false;
+  Motion pending;
+  double pending_mix = 0;
+  // What starts when the current path ends (once: at its last key; looped:
+  // at the end of the cycle in progress; a point or a stopped track: at once).
+  bool has_queued = false;
+  Motion queued;
+  double queued_mix = 0;
+  // from.kind == kSnapshot: raw, limited, texture weights, N each.
+  double snapshot[3 * format::kMaxPoses] = {};
+};
+
+// Commands on one character's tracks (rig.channel_count() of them, indexed
+// by channel). Each takes effect at the start of the next update, so
+// commands between two updates happen at the same instant; the last of
+// several on one channel wins (a queue entry is kept apart). They return
+// false, changing nothing, when the rig is not loaded, `tracks` is shorter
+// than the channel count, the channel or path is out of range.
+//
+// Initialise: every track stopped (at the channel's pose 0).
+PM_API bool AnimatorReset(const Rig& rig, Span<AnimatorTrack> tracks);
+// Play path `path` of the channel's rig (Rig::channel_rig) now, handing over
+// over options.mix seconds; clears the channel's queue.
+PM_API bool AnimatorPlay(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel, std::uint32_t path,
+                         const PlayOptions& options = PlayOptions());
+// Play `path` when the current one ends (see AnimatorTrack::queued),
+// replacing what was queued; options.mix is the hand-over then.
+PM_API bool AnimatorQueue(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel, std::uint32_t path,
+                          const PlayOptions& options = PlayOptions());
+// Follow a pose-space point set by code. A track already following a point
+// moves to the new one at once (no mix: the code sets it every frame);
+// otherwise it hands over over `mix` seconds. Non-finite coordinates are
+// taken as WeightsJob takes them (finite weights for any input).
+PM_API bool AnimatorSetPoint(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel, double x, double y,
+                             double mix = 0.2);
+// Hand over to the channel's pose 0 over `mix` seconds; clears the queue.
+PM_API bool AnimatorStop(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel, double mix = 0.2);
+// Change the speed of the path the channel plays (and of a pending one).
+PM_API bool AnimatorSetSpeed(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel, double speed);
+
+// An event an update crossed.
+struct AnimatorEvent {
+  std::uint32_t character = 0;  // in the batch
+  std::uint32_t channel = 0;
+  std::uint32_t event = 0;  // index into rig.channel_rig(channel)->event(...)
+  bool outgoing = false;    // reported by the motion a mix hands over from
+  double time = 0;          // seconds into the update when it was crossed, in [0, dt]
+};
+
+// Advances `count` characters sharing one rig by dt and writes their
+// weights. Per track, in order: the pending command is applied; then time
+// runs, split where a mix ends or a queued path starts (so the result does
+// not depend on how dt is split, up to rounding); then the weights are
+// those of the track's motion, or of its mix.
+//
+// Events: a path's event at time e is crossed when the playhead passes it,
+// half-open: a playhead going from t0 to t1 crosses [t0, t1); a path played
+// once also crosses its last key's time on reaching it, and then nothing
+// more. A looping path's events repeat every cycle (an event at the last
+// key's time is the next cycle's first-key instant). Each crossing is
+// reported once, character after character, within a character in time
+// order (ties: channel order, outgoing before incoming, event order). When
+// `events` is full the rest are counted in *events_missed; the first
+// *event_count are written.
+//
+// Output layouts: channel 0's weights character after character (count x N,
+// as MorphBatchJob reads them); channels 1 .. C-1 in AttachJob's layout
+// (count x rig.attached_weight_count(): channel by channel, each count x
+// that channel's pose count).
+//
+// Validate() fails (and Run() does nothing) when: rig is null or not
+// loaded; count is above kMaxAnimatorBatch; tracks holds fewer than count x
+// rig.channel_count(); weights or limited_weights holds fewer than count x
+// N; texture_weights is given but shorter; the rig has attachments and
+// attached_weights or attached_limited_weights holds fewer than count x
+// rig.attached_weight_count(), or attached_texture_weights is given but
+// shorter; event_count or events_missed is null while `events` is given.
+// A track's fields are checked as it is read (a path index out of range,
+// a kind out of the enum or a non-finite time is taken as a stopped
+// track), so any bytes give finite weights.
+struct PM_API AnimatorUpdateJob {
+  const Rig* rig = nullptr;
+  std::size_t count = 1;  // characters
+  double dt = 0;          // seconds (see kMaxAnimatorStep)
+  double sigma = -1;      // texture sharpening; < 0 or NaN: each channel rig's default
+  bool limit_weights = true;
+  Span<AnimatorTrack> tracks;  // count x C, character after character
+  Span<double> weights;        // count x N
+  Span<double> limited_weights;
+  Span<double> texture_weights;   // optional
+  Span<double> attached_weights;  // count x attached_weight_count (layout above)
+  Span<double> attached_limited_weights;
+  Span<double> attached_texture_weights;   // optional
+  Span<AnimatorEvent> events;              // optional
+  std::size_t* event_count = nullptr;      // written: events written
+  std::uint64_t* events_missed = nullptr;  // written: crossings that did not fit (saturating)
+
+  bool Validate() const;
+  bool Run() const;
+};
+
+constexpr std::size_t kMaxAnimatorBatch = std::size_t(1) << 24;
+
+}  // namespace posemorph
