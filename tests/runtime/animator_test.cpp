@@ -237,7 +237,7 @@ TEST_CASE("a path played once reports its events up to and including its last ke
   }
 }
 
-TEST_CASE("during a mix both gestures report their events; the outgoing one stops at the mix's end") {
+TEST_CASE("during a mix both gestures report their events, the outgoing one until at the mix's end") {
   const Rig rig = LoadTestRig("pell-face");
   const Rig& face = *rig.channel_rig(1);
   std::mt19937_64 rng(5);
