@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
-// Tracks, mixes, queues and path events (animator.h; docs/animation.md).
+// Tracks, mixes, queues and path events (animator.h; docs/animation.md);
+// the event streams and their merge are in animator_events.cpp.
 // An update runs each track through at most a few segments of time, split
 // where a mix ends or a queued path takes over; each segment of a path with
 // events becomes a stream of crossings, and a character's streams are
@@ -11,13 +12,16 @@
 
 #include "posemorph/jobs.h"
 #include "posemorph/path.h"
+#include "animator_events.h"
 
 namespace posemorph {
 namespace {
 
 constexpr std::uint32_t kN = format::kMaxPoses;
-constexpr int kMaxSegments = 8;
-constexpr int kMaxStreams = int(format::kMaxChannels) * kMaxSegments * 2;
+constexpr int kMaxSegments = detail::kMaxAnimatorSegments;
+constexpr int kMaxStreams = detail::kMaxEventStreams;
+using detail::EventStream;
+using detail::EventStreams;
 
 double Clamp(double v, double lo, double hi) { return v < lo ? lo : (v > hi ? hi : v); }
 // NaN -> 0; then clamped to [0, hi].
@@ -163,79 +167,10 @@ void HandOver(const Rig& crig, AnimatorTrack* t, const Motion& m, double mix, co
   t->mix_duration = mix;
 }
 
-// Crossings of one path's events by one layer over one segment of time.
-struct Stream {
-  const EventView* events = nullptr;
-  std::uint32_t n = 0, base = 0;  // base: the first event's index in the channel rig
-  std::uint32_t channel = 0;
-  bool outgoing = false, loop = false, closed = false;
-  double t0 = 0, t1 = 0;  // path clock: [t0, t1), or [t0, t1] when closed
-  double start = 0, period = 0, speed = 1, offset = 0;
-  // The next crossing: cycle (looping) and event.
-  double cycle = 0;
-  std::uint32_t j = 0;
-  bool has = false;
-  double u = 0;  // its time on the path's clock
-  std::uint64_t emitted = 0;
-
-  bool Inside(double v) const { return v >= t0 && (closed ? v <= t1 : v < t1); }
-  double At(double c, std::uint32_t k) const {
-    return loop ? start + c * period + (events[k].time - start) : events[k].time;
-  }
-  void Step() {
-    if (++j == n) {
-      j = 0;
-      cycle += 1;
-      if (!loop) {
-        has = false;
-        return;
-      }
-    }
-    u = At(cycle, j);
-  }
-  // Moves to the first crossing at or after t0, then checks it is inside.
-  void Begin() {
-    cycle = loop ? std::floor((t0 - start) / period) - 1 : 0;
-    j = 0;
-    has = true;
-    u = At(cycle, j);
-    for (int guard = 0; has && u < t0 && guard < int(3 * n + 3); ++guard) Step();
-    Check();
-  }
-  void Check() {
-    if (has && !Inside(u)) has = false;
-  }
-  void Next() {
-    Step();
-    Check();
-  }
-  double FireTime() const { return offset + (u - t0) / speed; }
-  // Crossings in the interval in all (for the missed count).
-  double Total() const {
-    if (!loop) {
-      double c = 0;
-      for (std::uint32_t k = 0; k < n; ++k) c += Inside(events[k].time) ? 1 : 0;
-      return c;
-    }
-    double c = 0;
-    for (std::uint32_t k = 0; k < n; ++k) {
-      const double e = events[k].time;
-      const double d = std::ceil((t1 - e) / period) - std::ceil((t0 - e) / period);
-      if (d > 0) c += d;
-    }
-    return c;
-  }
-};
-
-struct Streams {
-  Stream s[kMaxStreams];
-  int count = 0;
-};
-
 // Advances a path motion by `seconds` (to its end, or its cycle's end,
 // when `to_end`), adding the stream of what it crossed.
 void Advance(const Rig& crig, std::uint32_t channel, bool outgoing, Motion* m, double seconds, bool to_end,
-             double offset, Streams* streams) {
+             double offset, EventStreams* streams) {
   if (m->kind != MotionKind::kPath) return;
   const PathView p = crig.path(m->path);
   const double start = p.start_time(), end = p.end_time();
@@ -259,8 +194,8 @@ void Advance(const Rig& crig, std::uint32_t channel, bool outgoing, Motion* m, d
     m->time = t1;
   }
   if (p.events.empty() || !(t1 > t0 || closed) || !(m->speed > 0) || streams->count >= kMaxStreams) return;
-  Stream& s = streams->s[streams->count++];
-  s = Stream{};
+  EventStream& s = streams->s[streams->count++];
+  s = EventStream{};
   s.events = p.events.data;
   s.n = std::uint32_t(p.events.size);
   s.base = std::uint32_t(p.events.data - crig.events().data);
@@ -289,7 +224,7 @@ double TimeToHandOver(const Rig& crig, const Motion& m) {
 
 // One track through one update: its command, its segments, its weights.
 void UpdateTrack(const Rig& crig, std::uint32_t channel, AnimatorTrack* t, double dt, const Settings& s,
-                 Streams* streams, Weights* out) {
+                 EventStreams* streams, Weights* out) {
   Sanitise(crig, t);
   if (t->has_pending) {
     t->has_pending = false;
@@ -335,36 +270,6 @@ void UpdateTrack(const Rig& crig, std::uint32_t channel, AnimatorTrack* t, doubl
     if (!(left > 0) && !t->has_queued && !t->mixing) break;
   }
   TrackWeights(crig, *t, s, out);
-}
-
-// A character's streams into the buffer, in time order.
-void Emit(Streams* streams, std::uint32_t character, double dt, const Span<AnimatorEvent>& events, std::size_t* written,
-          double* missed) {
-  for (;;) {
-    int best = -1;
-    double best_time = 0;
-    for (int k = 0; k < streams->count; ++k) {
-      const Stream& s = streams->s[k];
-      if (!s.has) continue;
-      const double f = s.FireTime();
-      if (best < 0 || f < best_time) best = k, best_time = f;
-    }
-    if (best < 0 || *written >= events.size) break;
-    Stream& s = streams->s[best];
-    AnimatorEvent& e = events.data[(*written)++];
-    e.character = character;
-    e.channel = s.channel;
-    e.event = s.base + s.j;
-    e.outgoing = s.outgoing;
-    e.time = Clamp(best_time, 0, dt);
-    ++s.emitted;
-    s.Next();
-  }
-  for (int k = 0; k < streams->count; ++k) {
-    const Stream& s = streams->s[k];
-    const double rest = s.Total() - double(s.emitted);
-    if (rest > 0) *missed += rest;
-  }
 }
 
 bool Valid(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel) {
@@ -475,7 +380,7 @@ bool AnimatorUpdateJob::Run() const {
   const double step = dt > 0 ? (dt < kMaxAnimatorStep ? dt : kMaxAnimatorStep) : 0.0;
   std::size_t written = 0;
   double missed = 0;
-  Streams streams;
+  EventStreams streams;
   Weights w;
   for (std::size_t i = 0; i < count; ++i) {
     streams.count = 0;
@@ -499,7 +404,7 @@ bool AnimatorUpdateJob::Run() const {
       std::memcpy(limited, limit_weights ? w.limited : w.raw, n * sizeof(double));
       if (texture) std::memcpy(texture, w.texture, n * sizeof(double));
     }
-    if (!events.empty()) Emit(&streams, std::uint32_t(i), step, events, &written, &missed);
+    if (!events.empty()) detail::EmitEvents(&streams, std::uint32_t(i), step, events, &written, &missed);
   }
   if (event_count) *event_count = written;
   if (events_missed) *events_missed = missed >= 1.8e19 ? ~std::uint64_t(0) : std::uint64_t(missed);
