@@ -21,6 +21,7 @@
 #include "posemorph/bake/join_parts.h"
 #include "posemorph/bake/rig_description.h"
 #include "posemorph/jobs.h"
+#include "bench_rigs.h"
 
 using namespace posemorph;
 
@@ -343,6 +344,11 @@ void BM_ChannelsCrowd1000(benchmark::State& state) {
 }
 
 }  // namespace
+
+const Rig* PellFaceRig() {
+  const Loaded* l = PellFace();
+  return l ? &l->rig : nullptr;
+}
 
 BENCHMARK(BM_ChannelsFrame)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ChannelsCrowd1000)->Unit(benchmark::kMillisecond);

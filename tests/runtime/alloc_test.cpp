@@ -13,6 +13,7 @@
 #include "posemorph/posemorph.h"
 #include "posemorph/quantize.h"
 #include "posemorph/draw_list.h"
+#include "animator_support.h"
 #include "runtime_support.h"
 
 // GCC cannot see that these replacements pair malloc with free on purpose.
@@ -282,33 +283,27 @@ TEST_CASE("loading in place allocates nothing at all, in C++ and through the C A
   }
 }
 
-TEST_CASE("animator commands and updates allocate nothing: mixes, queues, snapshots, events, a full buffer") {
+TEST_CASE("animator commands and updates allocate nothing: mixes, queues, snapshots, events, behaviours") {
   const Rig rig = LoadTestRig("pell-face");
-  const std::size_t count = 16, C = rig.channel_count(), N = rig.pose_count(), A = rig.attached_weight_count();
-  std::vector<AnimatorTrack> tracks(count * C);
-  std::vector<double> raw(count * N), limited(count * N), texture(count * N), ar(count * A), al(count * A),
-      at(count * A);
-  std::vector<AnimatorEvent> events(8);  // small: it fills
-  AnimatorUpdateJob job;
-  job.rig = &rig;
-  job.count = count;
-  job.tracks = MakeSpan(tracks);
-  job.weights = MakeSpan(raw), job.limited_weights = MakeSpan(limited), job.texture_weights = MakeSpan(texture);
-  job.attached_weights = MakeSpan(ar), job.attached_limited_weights = MakeSpan(al);
-  job.attached_texture_weights = MakeSpan(at);
-  job.events = MakeSpan(events);
-  std::size_t written = 0;
-  std::uint64_t missed = 0;
-  job.event_count = &written, job.events_missed = &missed;
+  const std::size_t count = 16, C = rig.channel_count();
+  Crowd crowd(rig, count, 8);  // a small event buffer: it fills
   std::size_t most = 0;
   std::uint64_t most_missed = 0;
   g_allocations = 0;
   g_counting = true;
   bool ok = true;
-  for (std::size_t i = 0; i < count; ++i) ok &= AnimatorReset(rig, Span<AnimatorTrack>{tracks.data() + i * C, C});
+  Behaviours b;  // every behaviour on every channel
+  b.blink.enabled = b.breath.enabled = b.look_at.enabled = b.spring.enabled = true;
+  b.blink.interval = 0.5, b.breath.y = 0.05;
+  for (std::size_t i = 0; i < count; ++i) {
+    const Span<AnimatorTrack> t = crowd.Tracks(i);
+    ok &= AnimatorReset(rig, t);
+    b.blink.seed = i;
+    for (std::uint32_t c = 0; c < C; ++c) ok &= AnimatorSetBehaviours(rig, t, c, b);
+  }
   for (int f = 0; f < 240; ++f) {
     for (std::size_t i = 0; i < count; ++i) {
-      const Span<AnimatorTrack> t{tracks.data() + i * C, C};
+      const Span<AnimatorTrack> t = crowd.Tracks(i);
       PlayOptions o;
       o.mix = 0.25;
       if ((f + int(i)) % 40 == 0) ok &= AnimatorPlay(rig, t, std::uint32_t(i % C), 0, o);
@@ -316,15 +311,15 @@ TEST_CASE("animator commands and updates allocate nothing: mixes, queues, snapsh
       if ((f + int(i)) % 40 == 20) ok &= AnimatorQueue(rig, t, 0, 0, o);
       if ((f + int(i)) % 40 == 30) ok &= AnimatorSetPoint(rig, t, 1, 0.5, 0.5, 0.3);
       if ((f + int(i)) % 97 == 0) ok &= AnimatorStop(rig, t, 0, 0.2);
+      if ((f + int(i)) % 13 == 0) ok &= AnimatorLookAt(rig, t, std::uint32_t(f % C), 0.01 * f, -0.5);
     }
-    job.dt = f % 50 == 0 ? 7.0 : 1.0 / 60;
-    ok &= job.Run();
-    most = std::max(most, written);
-    most_missed = std::max(most_missed, missed);
+    ok &= crowd.Job(f == 120 ? 1e9 : f % 50 == 0 ? 7.0 : 1.0 / 60).Run();  // 1e9: the behaviours settle
+    most = std::max(most, crowd.written);
+    most_missed = std::max(most_missed, crowd.missed);
   }
   g_counting = false;
   CHECK(ok);
-  CHECK(most == events.size());  // the 7 s updates fill the buffer
+  CHECK(most == crowd.buffer.size());  // the 7 s updates fill the buffer
   CHECK(most_missed > 0);
   CHECK(g_allocations.load() == 0);
 }

@@ -16,54 +16,13 @@
 #include "posemorph/animator.h"
 #include "posemorph/path.h"
 #include "posemorph/rig_format.h"
+#include "animator_support.h"
 #include "runtime_support.h"
 
 using namespace posemorph;
 using namespace posemorph::test;
 
 namespace {
-
-// One character of a rig: its tracks and its outputs.
-struct Character {
-  const Rig* rig;
-  std::vector<AnimatorTrack> tracks;
-  std::vector<double> raw, limited, texture, attached_raw, attached_limited, attached_texture;
-  std::vector<AnimatorEvent> buffer;
-  explicit Character(const Rig& r, std::size_t capacity = 4096)
-      : rig(&r),
-        tracks(r.channel_count()),
-        raw(r.pose_count()),
-        limited(r.pose_count()),
-        texture(r.pose_count()),
-        attached_raw(r.attached_weight_count()),
-        attached_limited(r.attached_weight_count()),
-        attached_texture(r.attached_weight_count()),
-        buffer(capacity) {
-    REQUIRE(AnimatorReset(r, MakeSpan(tracks)));
-  }
-  Span<AnimatorTrack> Tracks() { return MakeSpan(tracks); }
-  // Runs one update; returns its events.
-  std::vector<AnimatorEvent> Update(double dt, std::uint64_t* missed_out = nullptr) {
-    AnimatorUpdateJob job;
-    job.rig = rig;
-    job.dt = dt;
-    job.tracks = MakeSpan(tracks);
-    job.weights = MakeSpan(raw);
-    job.limited_weights = MakeSpan(limited);
-    job.texture_weights = MakeSpan(texture);
-    job.attached_weights = MakeSpan(attached_raw);
-    job.attached_limited_weights = MakeSpan(attached_limited);
-    job.attached_texture_weights = MakeSpan(attached_texture);
-    job.events = MakeSpan(buffer);
-    std::size_t n = 0;
-    std::uint64_t missed = 0;
-    job.event_count = &n;
-    job.events_missed = &missed;
-    REQUIRE(job.Run());
-    if (missed_out) *missed_out = missed;
-    return {buffer.begin(), buffer.begin() + std::ptrdiff_t(n)};
-  }
-};
 
 struct Crossing {
   std::uint32_t channel, event;

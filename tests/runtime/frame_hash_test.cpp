@@ -5,13 +5,17 @@
 // tests/goldens/frame-hashes.txt. This is what lets network peers in
 // lockstep compute the same vertices from the same 4 bytes. The same test
 // runs natively (GCC, Clang, every x86-64 path), under qemu-aarch64, wine
-// and node (.ci/run). POSEMORPH_BLESS=1 rewrites the file.
+// and node (.ci/run). Animator timelines on the character with channels
+// (behaviours, mixes, events) are hashed the same way. POSEMORPH_BLESS=1
+// rewrites the file.
 #include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <map>
 #include <sstream>
 
+#include "animator_support.h"
+#include "posemorph/animator.h"
 #include "posemorph/path.h"
 #include "runtime_support.h"
 
@@ -181,6 +185,76 @@ FrameHashes HashFrames(const Rig& rig) {
   return {Hex(hw.h), Hex(hx.h), Hex(hf.h)};
 }
 
+// An animator timeline on a character with channels: three characters in
+// one batch with every behaviour (spring, breath, blink, look-at), plays,
+// mixes, queues, an interrupted mix, pad points and look targets, over
+// uneven steps (a long one too). Weights and events of every update, and
+// every tenth update's positions (body and attachments) join the hashes.
+FrameHashes HashAnimator(const Rig& rig) {
+  const std::size_t count = 3, C = rig.channel_count(), A = rig.attached_weight_count();
+  const std::size_t v2 = 2 * std::size_t(rig.vertex_count()), a2 = 2 * std::size_t(rig.attached_vertex_count());
+  Crowd crowd(rig, count, 64);
+  for (std::size_t i = 0; i < count; ++i) {
+    const Span<AnimatorTrack> t = crowd.Tracks(i);
+    Behaviours body;
+    body.spring.enabled = true, body.spring.frequency = 2 + double(i), body.spring.damping = 0.25;
+    body.breath.enabled = true, body.breath.period = 3.1, body.breath.y = 0.04;
+    REQUIRE(AnimatorSetBehaviours(rig, t, 0, body));
+    Behaviours face;
+    face.blink.enabled = true, face.blink.pose = 3, face.blink.interval = 0.7, face.blink.seed = 11 + i;
+    face.look_at.enabled = true, face.look_at.smoothing = 0.15, face.look_at.strength = 0.7;
+    face.spring.enabled = true, face.spring.frequency = 3.5;
+    if (C > 1) REQUIRE(AnimatorSetBehaviours(rig, t, 1, face));
+  }
+  Fnv64 hw, hx, hf;
+  std::vector<double> work(rig.batch_workspace_size()), x(count * v2), attach_work(rig.attach_workspace_size()),
+      xa(count * a2);
+  std::vector<float> xf(count * v2);
+  const double dts[] = {1.0 / 60, 1.0 / 144, 0.05, 0, 1.0 / 30};
+  for (int f = 0; f < 200; ++f) {
+    for (std::size_t i = 0; i < count; ++i) {
+      const Span<AnimatorTrack> t = crowd.Tracks(i);
+      const int g = f + 7 * int(i);
+      PlayOptions o;
+      o.mix = 0.3, o.speed = 0.8 + 0.2 * double(i), o.start = 0.05 * g;
+      if (g % 37 == 0) AnimatorPlay(rig, t, 0, 0, o);
+      if (g % 37 == 6) AnimatorPlay(rig, t, 0, 0, o);  // interrupts the mix
+      if (g % 41 == 7) AnimatorQueue(rig, t, 0, 0, o);
+      if (g % 53 == 5) AnimatorSetPoint(rig, t, C - 1, 0.3, 0.6, 0.2);
+      if (g % 43 == 9) AnimatorPlay(rig, t, C - 1, 0, o);
+      if (g % 29 == 3) AnimatorLookAt(rig, t, C - 1, std::cos(0.1 * g), std::sin(0.1 * g));
+      if (g % 61 == 20) AnimatorSetPoint(rig, t, 0, -1, 0, 0);  // a cut: the spring rings
+    }
+    REQUIRE(crowd.Job(f == 100 ? 3.0 : dts[f % 5]).Run());
+    hw.Add(crowd.raw), hw.Add(crowd.limited), hw.Add(crowd.texture);
+    hw.Add(crowd.attached_raw), hw.Add(crowd.attached_limited), hw.Add(crowd.attached_texture);
+    for (std::size_t k = 0; k < crowd.written; ++k) {
+      const AnimatorEvent& e = crowd.buffer[k];
+      const std::uint32_t fields[] = {e.character, e.channel, e.event, e.outgoing ? 1u : 0u};
+      hw.Add(fields, sizeof(fields)), hw.Add(&e.time, sizeof(e.time));
+    }
+    hw.Add(&crowd.missed, sizeof(crowd.missed));
+    if (f % 10 != 0) continue;
+    MorphBatchJob morph;
+    morph.rig = &rig, morph.count = count;
+    morph.weights = MakeSpan(crowd.raw), morph.limited_weights = MakeSpan(crowd.limited);
+    morph.workspace = MakeSpan(work), morph.positions = MakeSpan(x), morph.positions_f32 = MakeSpan(xf);
+    REQUIRE(morph.Run());
+    hx.Add(x), hf.Add(xf);
+    if (A == 0) continue;
+    AttachJob attach;
+    attach.rig = &rig, attach.count = count;
+    attach.body_positions = MakeSpan(x);
+    attach.weights = MakeSpan(crowd.attached_raw), attach.limited_weights = MakeSpan(crowd.attached_limited);
+    attach.workspace = MakeSpan(attach_work), attach.positions = MakeSpan(xa);
+    REQUIRE(attach.Run());
+    hx.Add(xa);
+  }
+  return {Hex(hw.h), Hex(hx.h), Hex(hf.h)};
+}
+
+const char* const kAnimatorRigs[] = {"pell-face", "pell-face.compact"};
+
 std::string GoldenPath() {
   if (const char* env = std::getenv("POSEMORPH_GOLDENS")) return std::string(env) + "/frame-hashes.txt";
 #ifdef POSEMORPH_SOURCE_DIR
@@ -214,19 +288,26 @@ TEST_CASE("frames hash to the committed values on every kernel path") {
   if (!bless) REQUIRE_MESSAGE(!goldens.empty(), "cannot read " << GoldenPath());
   std::ostringstream blessed;
   blessed << "# Frame hashes (FNV-1a 64) per sample rig: weights (raw, limited, texture), positions (double),\n"
-             "# positions (float), at the points of tests/runtime/frame_hash_test.cpp. POSEMORPH_BLESS=1 rewrites.\n";
+             "# positions (float), at the points of tests/runtime/frame_hash_test.cpp; animator:R lines hash an\n"
+             "# animator timeline on R (HashAnimator there). POSEMORPH_BLESS=1 rewrites.\n";
   int paths_run = 0;
-  for (const char* name : kSampleRigs) {
+  std::vector<std::string> names(std::begin(kSampleRigs), std::end(kSampleRigs));
+  for (const char* name : kAnimatorRigs) names.push_back(std::string("animator:") + name);
+  for (const std::string& key : names) {
+    // "animator:R": the animator timeline (HashAnimator) on rig R.
+    const bool animator = key.rfind("animator:", 0) == 0;
+    const std::string name = animator ? key.substr(9) : key;
+    auto hash = [&](const Rig& r) { return animator ? HashAnimator(r) : HashFrames(r); };
     const Rig rig = LoadTestRig(name);  // the default path (POSEMORPH_ISA when set)
-    const FrameHashes h = HashFrames(rig);
-    blessed << name << ' ' << h.weights << ' ' << h.positions << ' ' << h.positions_f32 << '\n';
-    const std::string rig_name = name;
+    const FrameHashes h = hash(rig);
+    blessed << key << ' ' << h.weights << ' ' << h.positions << ' ' << h.positions_f32 << '\n';
+    const std::string rig_name = key;
     CAPTURE(rig_name);
     const std::string path = IsaName(rig.isa());
     CAPTURE(path);
     if (!bless) {
-      REQUIRE_MESSAGE(goldens.count(name), "no golden for " << name);
-      const FrameHashes& g = goldens.at(name);
+      REQUIRE_MESSAGE(goldens.count(key), "no golden for " << key);
+      const FrameHashes& g = goldens.at(key);
       CHECK(h.weights == g.weights);
       CHECK(h.positions == g.positions);
       CHECK(h.positions_f32 == g.positions_f32);
@@ -236,7 +317,7 @@ TEST_CASE("frames hash to the committed values on every kernel path") {
       if (!IsaAvailable(isa) || isa == rig.isa()) continue;
       const std::string other_path = IsaName(isa);
       CAPTURE(other_path);
-      const FrameHashes other = HashFrames(LoadTestRig(name, isa));
+      const FrameHashes other = hash(LoadTestRig(name, isa));
       CHECK(other.weights == h.weights);
       CHECK(other.positions == h.positions);
       CHECK(other.positions_f32 == h.positions_f32);

@@ -5,7 +5,8 @@
 // next over a mix duration without a jump; an update advances every
 // character of a batch by dt, reports the path events it crossed, and
 // writes each channel's weights in the layouts MorphBatchJob and AttachJob
-// read. docs/animation.md is the guide.
+// read; small procedural behaviours (blink, breath, look-at, a spring) run
+// on top of what a track plays. docs/animation.md is the guide.
 //
 // What a mix blends: the two motions' weight vectors (raw, limited and
 // texture, each as WeightsJob gives it at the motion's point), as
@@ -68,8 +69,75 @@ struct PlayOptions {
   double start = 0;
 };
 
+// Procedural motion: small behaviours declared per channel on top of what
+// the track plays (docs/animation.md, "Behaviours"). Each acts in pose
+// space: look-at, breath and the spring move every motion's point before
+// its weights are taken (p -> p + strength (look - p) + breath + spring);
+// a blink pulses the channel's weights toward one pose afterwards. Look-at
+// and the spring integrate on a fixed step (kBehaviourStep, shown
+// interpolated between the last two steps), breath and blinks are functions
+// of the channel's clock, so the pose at a given time does not depend on
+// the update rate. Parameters are clamped to the ranges given; a behaviour
+// that is not enabled costs nothing and contributes nothing.
+struct BlinkBehaviour {
+  bool enabled = false;
+  std::uint32_t pose = 0;  // of the channel's rig; out of range: no blink
+  double interval = 4;     // mean seconds from one blink to the next, [0.02, 1e6]
+  double jitter = 0.5;     // each interval is interval x (1 + jitter u), u uniform in [-1, 1); [0, 0.95]
+  double duration = 0.15;  // seconds of one blink, [0.001, 60]; intervals are never shorter
+  double strength = 1;     // the pose's weight at the blink's height, [0, 1]
+  std::uint64_t seed = 1;  // of the jitter's generator (splitmix64): give each character its own
+};
+struct BreathBehaviour {
+  bool enabled = false;
+  double period = 3.5;  // seconds, [0.05, 1e6]
+  double x = 0, y = 0;  // amplitude: the offset at the breath's height, pose-space units, [-1e3, 1e3]
+};
+struct LookAtBehaviour {
+  bool enabled = false;
+  double x = 0, y = 0;     // the target (AnimatorLookAt sets it); non-finite: the look point stays
+  double smoothing = 0.1;  // seconds: the look point closes 1/e of its gap to the target in this, [0, 1e3]
+  double strength = 1;     // 1: the channel shows the look point; 0: its motion; [0, 1]
+};
+struct SpringBehaviour {
+  bool enabled = false;
+  double frequency = 2.5;  // Hz, [0.01, 20]
+  double damping = 0.3;    // ratio to critical damping, [0, 100]
+  double strength = 1;     // scale of the lag shown, [0, 4]
+};
+struct Behaviours {
+  BlinkBehaviour blink;
+  BreathBehaviour breath;
+  LookAtBehaviour look_at;
+  SpringBehaviour spring;  // secondary motion
+};
+
+// The fixed step of look-at and the spring, seconds. A step whose time an
+// update reaches within kBehaviourStepSnap (rounding) is taken in that
+// update, so a command at a step's time (at a frame time shared by 30, 60
+// and 144 Hz, say) always takes effect from the next step.
+constexpr double kBehaviourStep = 1.0 / 120.0;
+constexpr double kBehaviourStepSnap = 1e-9 * kBehaviourStep;
+// An update that spans more fixed steps than this (10 s) runs the last of
+// them and settles the spring and the look point at their targets first.
+constexpr int kMaxBehaviourSteps = 1200;
+
+// What the behaviours remember between updates (part of the track).
+struct BehaviourState {
+  std::uint32_t primed = 0;  // bit per behaviour that has started: 1 blink, 2 breath, 4 look-at, 8 spring
+  std::uint32_t reserved = 0;
+  double clock = 0;          // seconds the channel has run
+  double since_step = 0;     // seconds since the last fixed step, [-kBehaviourStepSnap, kBehaviourStep)
+  double breath_origin = 0;  // clock at which breath started
+  double blink_next = 0;     // clock at which the next (or current) blink starts
+  std::uint64_t blink_rng = 0;
+  double look[4] = {};    // look point at the last two steps: x0, y0, x1, y1
+  double spring[4] = {};  // spring point and velocity: x, y, vx, vy
+  double lag[4] = {};     // spring point minus its target at the last two steps
+};
+
 // One channel of one character. A plain value: copy it, store it, compare
-// it; Animator functions change it. Its size is fixed (sizeof, about 1.7
+// it; Animator functions change it. Its size is fixed (sizeof, about 2
 // KB, most of it the snapshot a rare interrupted mix needs), so a
 // character's animator is rig.channel_count() tracks in caller memory.
 struct AnimatorTrack {
@@ -86,7 +154,10 @@ struct AnimatorTrack {
   bool has_queued = false;
   Motion queued;
   double queued_mix = 0;
-  // from.kind == kSnapshot: raw, limited, texture weights, N each.
+  Behaviours behaviours;
+  BehaviourState behaviour_state;
+  // from.kind == kSnapshot: raw, limited, texture weights, N each (and
+  // from.x, from.y the point the spring followed then).
   double snapshot[3 * format::kMaxPoses] = {};
 };
 
@@ -118,6 +189,15 @@ PM_API bool AnimatorStop(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32
 // Change the speed of the path the channel plays (and of a pending one).
 PM_API bool AnimatorSetSpeed(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel, double speed);
 
+// Declare the channel's behaviours (replacing its previous ones). A
+// behaviour that was off starts from where the channel is, without a jump;
+// one switched off stops contributing at once. Takes effect at once.
+PM_API bool AnimatorSetBehaviours(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel,
+                                  const Behaviours& behaviours);
+// Move the channel's look-at target (its look point follows it over the
+// behaviour's smoothing time).
+PM_API bool AnimatorLookAt(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel, double x, double y);
+
 // An event an update crossed.
 struct AnimatorEvent {
   std::uint32_t character = 0;  // in the batch
@@ -128,10 +208,12 @@ struct AnimatorEvent {
 };
 
 // Advances `count` characters sharing one rig by dt and writes their
-// weights. Per track, in order: the pending command is applied; then time
-// runs, split where a mix ends or a queued path starts (so the result does
-// not depend on how dt is split, up to rounding); then the weights are
-// those of the track's motion, or of its mix.
+// weights. Per track, in order: the pending command is applied; the
+// behaviours that were switched on start; look-at and the spring take the
+// fixed steps that fall within dt; time runs, split where a mix ends or a
+// queued path starts (so the result does not depend on how dt is split, up
+// to rounding); then the weights are those of the track's motion, or of
+// its mix, at points moved by the behaviours, pulsed by a blink.
 //
 // Events: a path's event at time e is crossed when the playhead passes it,
 // half-open: a playhead going from t0 to t1 crosses [t0, t1); a path played
