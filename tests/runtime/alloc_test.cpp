@@ -227,6 +227,44 @@ TEST_CASE("the C API evaluates frames without allocating either") {
   pm_rig_free(rig);
 }
 
+TEST_CASE("the C API animates a crowd without allocating: commands, behaviours, updates, events") {
+  const std::vector<unsigned char> bytes = TestRigBytes("pell-face");
+  pm_rig* rig = nullptr;
+  pm_error err;
+  REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &rig, &err) == PM_OK);
+  pm_rig_info info;
+  pm_rig_get_info(rig, &info);
+  const std::size_t count = 8, N = info.pose_count, A = pm_rig_attached_weight_count(rig);
+  const std::size_t size = pm_animator_size(rig, count);
+  std::vector<double> tracks((size + sizeof(double) - 1) / sizeof(double));
+  std::vector<double> raw(count * N), limited(count * N), ar(count * A), al(count * A);
+  std::vector<pm_animator_event> events(4);
+  std::size_t written = 0;
+  std::uint64_t missed = 0, most_missed = 0;
+  pm_behaviours b;
+  pm_behaviours_default(&b);
+  b.blink_enabled = b.breath_enabled = b.look_at_enabled = b.spring_enabled = 1;
+  g_allocations = 0;
+  g_counting = true;
+  int status = pm_animator_reset(rig, tracks.data(), size, count);
+  for (int f = 0; f < 120; ++f) {
+    for (std::size_t i = 0; i < count; ++i) {
+      if (f == 0) status |= pm_animator_set_behaviours(rig, tracks.data(), size, i, 1, &b);
+      if ((f + int(i)) % 30 == 0) status |= pm_animator_play(rig, tracks.data(), size, i, 0, 0, nullptr);
+      if ((f + int(i)) % 17 == 0) status |= pm_animator_look_at(rig, tracks.data(), size, i, 1, 0.5, 0.5);
+    }
+    status |= pm_animator_update(rig, tracks.data(), size, count, f % 40 == 0 ? 5.0 : 1.0 / 60, -1, 1, raw.data(),
+                                 limited.data(), nullptr, raw.size(), ar.data(), al.data(), nullptr, ar.size(),
+                                 events.data(), events.size(), &written, &missed);
+    most_missed = std::max(most_missed, missed);
+  }
+  g_counting = false;
+  CHECK(status == PM_OK);
+  CHECK(most_missed > 0);  // the 5 s updates overflow the 4 entries
+  CHECK(g_allocations.load() == 0);
+  pm_rig_free(rig);
+}
+
 TEST_CASE("the C API reports a failed allocation with a message, whichever allocation fails") {
   const std::vector<unsigned char> bytes = TestRigBytes("small");
   const char* expected[] = {"rig handle", "cannot allocate"};  // the handle, then the rig's arena
