@@ -160,6 +160,20 @@ static void Animator(const pm_rig* rig) {
                             kCount * NW, NULL, 0, NULL, NULL) == PM_ERROR_INVALID_ARGUMENT);
   EXPECT(pm_animator_update(rig, tracks, size, kCount, NAN, -1, 1, raw, limited, NULL, kCount * N, w, wl, NULL,
                             kCount * NW, events, 16, NULL, &missed) == PM_ERROR_INVALID_ARGUMENT);
+  /* A late joiner: character 1's state loaded into character 0; both then give the same weights. */
+  {
+    unsigned char state[4096];
+    size_t n = 0;
+    EXPECT(pm_animator_state_size(rig, tracks, size, 1) > 5);
+    EXPECT(pm_animator_save(rig, tracks, size, 1, state, 4, &n) == PM_ERROR_BUFFER_TOO_SMALL);
+    EXPECT(pm_animator_save(rig, tracks, size, 1, state, sizeof state, &n) == PM_OK);
+    EXPECT(n == pm_animator_state_size(rig, tracks, size, 1));
+    EXPECT(pm_animator_load(rig, state, n - 1, tracks, size, 0) == PM_ERROR_BAD_VALUE);
+    EXPECT(pm_animator_load(rig, state, n, tracks, size, 0) == PM_OK);
+    EXPECT(pm_animator_update(rig, tracks, size, kCount, 0.25, -1, 1, raw, limited, NULL, kCount * N, w, wl, NULL,
+                              kCount * NW, NULL, 0, NULL, NULL) == PM_OK);
+    EXPECT(memcmp(raw, raw + N, N * sizeof(double)) == 0 && memcmp(w, w + NW, NW * sizeof(double)) == 0);
+  }
   printf("c_api_test: animator: %zu events over 1.5 s for %d characters, weights within %g of the path's\n", seen,
          kCount, worst);
   free(raw), free(limited), free(w), free(wl), free(path_raw), free(path_limited), free(tracks);

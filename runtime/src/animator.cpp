@@ -20,7 +20,6 @@ namespace posemorph {
 namespace {
 
 using detail::ChannelWeights;
-using detail::ClampTo;
 using detail::EventStreams;
 using detail::Freeze;
 using detail::NonNegative;
@@ -30,33 +29,6 @@ using detail::WeightSettings;
 
 const Rig* ChannelRig(const Rig& rig, std::uint32_t channel) {
   return rig.loaded() && channel < rig.channel_count() ? rig.channel_rig(channel) : nullptr;
-}
-
-bool SnapshotUsable(const AnimatorTrack& t, std::size_t n) {
-  for (std::size_t i = 0; i < 3 * n; ++i)
-    if (!(std::fabs(t.snapshot[i]) <= kMaxJobWeight)) return false;
-  return true;
-}
-
-// A track read from caller memory, made valid.
-void Sanitise(const Rig& crig, AnimatorTrack* t) {
-  const std::size_t n = crig.pose_count();
-  t->behaviours = detail::SanitisedBehaviours(t->behaviours, crig.pose_count());
-  detail::SanitiseBehaviourState(&t->behaviour_state);
-  t->current = detail::SanitisedMotion(crig, t->current, false);
-  t->from = detail::SanitisedMotion(crig, t->from, true);
-  if (t->mixing && (!(t->mix_duration > 0) || !(t->mix_duration <= kMaxAnimatorMix) || !std::isfinite(t->mix_elapsed) ||
-                    (t->from.kind == MotionKind::kSnapshot && !SnapshotUsable(*t, n))))
-    t->mixing = false;
-  if (t->mixing) t->mix_elapsed = ClampTo(t->mix_elapsed, 0, t->mix_duration);
-  if (t->has_pending) {
-    t->pending = detail::SanitisedMotion(crig, t->pending, false);
-    t->pending_mix = NonNegative(t->pending_mix, kMaxAnimatorMix);
-  }
-  if (t->has_queued) {
-    t->queued = detail::SanitisedMotion(crig, t->queued, false);
-    t->queued_mix = NonNegative(t->queued_mix, kMaxAnimatorMix);
-  }
 }
 
 // Look-at and the spring through one update: a fixed step each time the
@@ -96,7 +68,7 @@ void StepBehaviours(const Rig& crig, std::uint32_t channel, const Playhead& p, c
 // its weights.
 void UpdateTrack(const Rig& crig, std::uint32_t channel, AnimatorTrack* t, double dt, const WeightSettings& s,
                  EventStreams* streams, ChannelWeights* out) {
-  Sanitise(crig, t);
+  detail::SanitiseTrack(crig, t);
   BehaviourState& st = t->behaviour_state;
   const Behaviours& b = t->behaviours;
   Freeze f{detail::Adjustment(b, st, true), detail::Adjustment(b, st, false), t->snapshot};
@@ -263,7 +235,7 @@ bool AnimatorUpdateJob::Run() const {
     for (std::uint32_t c = 0; c < C; ++c) {
       const Rig& crig = *rig->channel_rig(c);
       const std::size_t n = crig.pose_count();
-      const WeightSettings s{sigma >= 0 ? ClampTo(sigma, 0, 1) : crig.default_sigma(), limit_weights};
+      const WeightSettings s{sigma >= 0 ? detail::ClampTo(sigma, 0, 1) : crig.default_sigma(), limit_weights};
       UpdateTrack(crig, c, &tracks[i * C + c], step, s, &streams, &w);
       double *raw, *limited, *texture;
       if (c == 0) {

@@ -86,6 +86,12 @@ double TimeToHandOver(const Rig& crig, const Motion& m) {
   return (p.end_time() - m.time) / m.speed;
 }
 
+bool SnapshotUsable(const AnimatorTrack& t, std::size_t n) {
+  for (std::size_t i = 0; i < 3 * n; ++i)
+    if (!(std::fabs(t.snapshot[i]) <= kMaxJobWeight)) return false;
+  return true;
+}
+
 }  // namespace
 
 Playhead LoadPlayhead(const AnimatorTrack& t) {
@@ -247,6 +253,26 @@ void RunTime(const Rig& crig, std::uint32_t channel, Playhead* p, double dt, con
     }
     if (!(left > 0) && !hand_over && !mix_ends) break;
     if (!(left > 0) && !p->has_queued && !p->mixing) break;
+  }
+}
+
+void SanitiseTrack(const Rig& crig, AnimatorTrack* t) {
+  const std::size_t n = crig.pose_count();
+  t->behaviours = SanitisedBehaviours(t->behaviours, crig.pose_count());
+  SanitiseBehaviourState(&t->behaviour_state);
+  t->current = SanitisedMotion(crig, t->current, false);
+  t->from = SanitisedMotion(crig, t->from, true);
+  if (t->mixing && (!(t->mix_duration > 0) || !(t->mix_duration <= kMaxAnimatorMix) || !std::isfinite(t->mix_elapsed) ||
+                    (t->from.kind == MotionKind::kSnapshot && !SnapshotUsable(*t, n))))
+    t->mixing = false;
+  if (t->mixing) t->mix_elapsed = ClampTo(t->mix_elapsed, 0, t->mix_duration);
+  if (t->has_pending) {
+    t->pending = SanitisedMotion(crig, t->pending, false);
+    t->pending_mix = NonNegative(t->pending_mix, kMaxAnimatorMix);
+  }
+  if (t->has_queued) {
+    t->queued = SanitisedMotion(crig, t->queued, false);
+    t->queued_mix = NonNegative(t->queued_mix, kMaxAnimatorMix);
   }
 }
 

@@ -50,6 +50,10 @@ double NonNegative(double v, double hi);
 // A motion read from caller memory made valid (a stopped one when it names
 // nothing the channel has).
 Motion SanitisedMotion(const Rig& crig, const Motion& in, bool allow_snapshot);
+// A track read from caller memory made valid: its behaviours clamped, a
+// hostile behaviour state started afresh, its motions sanitised, a mix that
+// cannot be shown ended.
+void SanitiseTrack(const Rig& crig, AnimatorTrack* t);
 // The point a motion shows (a snapshot has none: pose 0's).
 void MotionPoint(const Rig& crig, const Motion& m, double* x, double* y);
 // The point a playhead follows (the spring's target): its motion's, or

@@ -205,6 +205,31 @@ int pm_animator_update(const pm_rig* rig, void* tracks, size_t capacity, size_t 
   return PM_OK;
 }
 
+size_t pm_animator_state_size(const pm_rig* rig, const void* tracks, size_t capacity, size_t character) {
+  Span<AnimatorTrack> t;
+  if (CharacterTracks(rig, const_cast<void*>(tracks), capacity, character, &t) != PM_OK) return 0;
+  return posemorph::AnimatorStateSize(rig->rig, t);
+}
+
+int pm_animator_save(const pm_rig* rig, const void* tracks, size_t capacity, size_t character, unsigned char* out,
+                     size_t out_capacity, size_t* written) {
+  Span<AnimatorTrack> t;
+  const int r = CharacterTracks(rig, const_cast<void*>(tracks), capacity, character, &t);
+  if (r != PM_OK) return r;
+  if (!out || !written) return PM_ERROR_INVALID_ARGUMENT;
+  if (posemorph::AnimatorStateSize(rig->rig, t) > out_capacity) return PM_ERROR_BUFFER_TOO_SMALL;
+  return posemorph::AnimatorSave(rig->rig, t, {out, out_capacity}, written) ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
+}
+
+int pm_animator_load(const pm_rig* rig, const unsigned char* bytes, size_t size, void* tracks, size_t capacity,
+                     size_t character) {
+  Span<AnimatorTrack> t;
+  const int r = CharacterTracks(rig, tracks, capacity, character, &t);
+  if (r != PM_OK) return r;
+  if (!bytes) return PM_ERROR_INVALID_ARGUMENT;
+  return posemorph::AnimatorLoad(rig->rig, {bytes, size}, t) ? PM_OK : PM_ERROR_BAD_VALUE;
+}
+
 uint32_t pm_channel_event_count(const pm_rig* rig, uint32_t channel) {
   const posemorph::Rig* c = rig ? rig->rig.channel_rig(channel) : nullptr;
   return c ? c->event_count() : 0;

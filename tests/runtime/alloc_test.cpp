@@ -227,7 +227,7 @@ TEST_CASE("the C API evaluates frames without allocating either") {
   pm_rig_free(rig);
 }
 
-TEST_CASE("the C API animates a crowd without allocating: commands, behaviours, updates, events") {
+TEST_CASE("the C API animates a crowd without allocating: commands, behaviours, updates, events, states") {
   const std::vector<unsigned char> bytes = TestRigBytes("pell-face");
   pm_rig* rig = nullptr;
   pm_error err;
@@ -241,6 +241,7 @@ TEST_CASE("the C API animates a crowd without allocating: commands, behaviours, 
   std::vector<pm_animator_event> events(4);
   std::size_t written = 0;
   std::uint64_t missed = 0, most_missed = 0;
+  unsigned char state[4096];
   pm_behaviours b;
   pm_behaviours_default(&b);
   b.blink_enabled = b.breath_enabled = b.look_at_enabled = b.spring_enabled = 1;
@@ -252,6 +253,11 @@ TEST_CASE("the C API animates a crowd without allocating: commands, behaviours, 
       if (f == 0) status |= pm_animator_set_behaviours(rig, tracks.data(), size, i, 1, &b);
       if ((f + int(i)) % 30 == 0) status |= pm_animator_play(rig, tracks.data(), size, i, 0, 0, nullptr);
       if ((f + int(i)) % 17 == 0) status |= pm_animator_look_at(rig, tracks.data(), size, i, 1, 0.5, 0.5);
+    }
+    if (f % 10 == 0) {  // a late joiner: character 0's state into character 1
+      std::size_t n = 0;
+      status |= pm_animator_save(rig, tracks.data(), size, 0, state, sizeof state, &n);
+      status |= pm_animator_load(rig, state, n, tracks.data(), size, 1);
     }
     status |= pm_animator_update(rig, tracks.data(), size, count, f % 40 == 0 ? 5.0 : 1.0 / 60, -1, 1, raw.data(),
                                  limited.data(), nullptr, raw.size(), ar.data(), al.data(), nullptr, ar.size(),

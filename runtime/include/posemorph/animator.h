@@ -198,6 +198,37 @@ PM_API bool AnimatorSetBehaviours(const Rig& rig, Span<AnimatorTrack> tracks, st
 // behaviour's smoothing time).
 PM_API bool AnimatorLookAt(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel, double x, double y);
 
+// Late joiners: one character's animator as bytes, and back. The bytes
+// (a versioned little-endian layout, docs/animation.md "State for late
+// joiners") hold every field that affects later updates, each double as
+// its 8 bytes, so a peer that loads them and then runs the same commands
+// and dt gives the same bits as the peer that saved them. 5 bytes of
+// header, then per channel: a stopped one takes 2 bytes; a path playing at
+// speed 1 on a running clock 30; mixes, commands not yet applied, a frozen
+// blend (24 per pose) and declared behaviours add theirs
+// (AnimatorStateSize). Parameters of a behaviour that is switched off are
+// not carried (declaring it again restores them).
+//
+// The largest state of one channel, bytes: flags, four motions of at most
+// 21 bytes, the mix and a frozen blend, two mix durations, the clock, then
+// the behaviours' masks, parameters and state.
+constexpr std::size_t kMaxAnimatorStateBytesPerChannel =
+    1 + 4 * 21 + 16 + 24 * format::kMaxPoses + 2 * 8 + 16 + 2 + (44 + 24 + 32 + 24) + (16 + 8 + 32 + 64);
+// What AnimatorSave writes for these tracks (0 when the rig is not loaded
+// or `tracks` is shorter than its channel count).
+PM_API std::size_t AnimatorStateSize(const Rig& rig, Span<const AnimatorTrack> tracks);
+// Writes the state into `out` and its length into *written; false (writing
+// nothing) when AnimatorStateSize is 0 or above out.size.
+PM_API bool AnimatorSave(const Rig& rig, Span<const AnimatorTrack> tracks, Span<unsigned char> out,
+                         std::size_t* written);
+// Reads a state AnimatorSave wrote for this rig into `tracks` (its channel
+// count of them). The bytes are hostile: false, changing nothing, for a
+// wrong version or channel count, a size that does not match what its
+// flags say, a reserved bit set, a kind out of the enum or a path out of
+// range; values are taken as any track's are (animator.h: finite weights
+// for any bytes).
+PM_API bool AnimatorLoad(const Rig& rig, Span<const unsigned char> bytes, Span<AnimatorTrack> tracks);
+
 // An event an update crossed.
 struct AnimatorEvent {
   std::uint32_t character = 0;  // in the batch

@@ -430,6 +430,15 @@ PM_API int pm_animator_update(const pm_rig* rig, void* tracks, size_t capacity, 
                               size_t weights_capacity, double* attached_weights, double* attached_limited_weights,
                               double* attached_texture_weights, size_t attached_capacity, pm_animator_event* events,
                               size_t events_capacity, size_t* event_count, uint64_t* events_missed);
+/* One character's animator as bytes for a late-joining peer (animator.h:
+ * AnimatorSave, AnimatorLoad): the size, the bytes (out_capacity bytes;
+ * *written their length), and back (PM_ERROR_BAD_VALUE, changing nothing,
+ * for bytes that are not such a state for this rig). */
+PM_API size_t pm_animator_state_size(const pm_rig* rig, const void* tracks, size_t capacity, size_t character);
+PM_API int pm_animator_save(const pm_rig* rig, const void* tracks, size_t capacity, size_t character,
+                            unsigned char* out, size_t out_capacity, size_t* written);
+PM_API int pm_animator_load(const pm_rig* rig, const unsigned char* bytes, size_t size, void* tracks, size_t capacity,
+                            size_t character);
 /* A channel's path events (format 1.8): their number, the path and time of
  * one, its name. */
 PM_API uint32_t pm_channel_event_count(const pm_rig* rig, uint32_t channel); /* 0 for NULL */
