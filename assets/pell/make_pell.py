@@ -127,6 +127,10 @@ def write_json(name, value):
     text = re.sub(r"\[\s*(-?[\d.]+),\s*(-?[\d.]+)\s*\]", r"[\1, \2]", text)
     text = re.sub(r"\[\s*(-?[\d.]+),\s*(-?[\d.]+),\s*(-?[\d.]+)\s*\]", r"[\1, \2, \3]", text)
     text = re.sub(r"\[\s*(-?[\d.]+),\s*(-?[\d.]+),\s*(-?[\d.]+),\s*(-?[\d.]+)\s*\]", r"[\1, \2, \3, \4]", text)
+    # events, [time, "name"], and a list of them, on one line
+    text = re.sub(r'\[\s*(-?[\d.]+),\s*("[^"]*")\s*\]', r"[\1, \2]", text)
+    text = re.sub(r'\[\s*((?:\[-?[\d.]+, "[^"]*"\],?\s*)+)\]',
+                  lambda m: "[" + re.sub(r"\],\s*", "], ", m.group(1).strip()) + "]", text)
     with open(os.path.join(HERE, name), "w") as f:
         f.write(text + "\n")
 
@@ -173,15 +177,50 @@ for name, point, rx, ry, mouth, lowest in FACES:
     face_part_poses["mouth"].append({"drawing": f"face-{name}-mouth.png", "landmarks": [list(lowest)]})
     face_joints["mouth"].append(list(MOUTH))
 
+# Pell with a face: the body's gesture and the face's chatter carry named
+# events, and a state machine drives both channels (docs/animation.md).
+greet = {"name": "greet", "loop": True,
+         "events": [[0.8, "wave-peak"], [2.4, "cross"], [4.0, "lean"], [4.8, "cycle"]],
+         "interpolation": "catmull-rom", "keys": rig["paths"][0]["keys"]}
+chatter = {"name": "chatter", "loop": True,
+           "events": [[0.0, "open"], [0.6, "smile"], [1.8, "gasp"], [1.8, "blink"], [3.0, "yawn"]],
+           "interpolation": "catmull-rom",
+           "keys": [[0, 0, 0], [0.6, 1, 0], [1.2, 0, 0], [1.8, 0, 1], [2.4, 0, 0], [3, -1, 0], [3.6, 0, 0]]}
+state_machine = {
+    "inputs": [
+        {"name": "wave", "type": "trigger"},
+        {"name": "sway", "type": "number", "default": 0},
+        {"name": "talking", "type": "bool"},
+        {"name": "looking", "type": "bool"},
+        {"name": "gaze", "type": "point", "default": [0, 0]},
+    ],
+    "layers": [
+        {"channel": "body", "initial": "idle",
+         "states": [{"name": "idle", "stop": True},
+                    {"name": "waving", "play": "greet", "loop": False},
+                    {"name": "swaying", "blend": "greet", "by": "sway"}],
+         "transitions": [
+             {"from": "idle", "to": "waving", "when": ["wave"], "mix": 0.3},
+             {"from": "waving", "to": "idle", "exit_time": 1.0, "mix": 0.5},
+             {"from": "*", "to": "swaying", "when": [["sway", ">", 0]], "mix": 0.4},
+             {"from": "swaying", "to": "idle", "when": [["sway", "<=", 0]], "mix": 0.4}]},
+        {"channel": "face", "initial": "calm",
+         "states": [{"name": "calm", "stop": True},
+                    {"name": "chatting", "play": "chatter"},
+                    {"name": "looking-at", "pad": "gaze"}],
+         "transitions": [
+             {"from": "*", "to": "looking-at", "when": ["looking"], "mix": 0.25},
+             {"from": "looking-at", "to": "calm", "when": ["!looking"], "mix": 0.25},
+             {"from": "calm", "to": "chatting", "when": ["talking"], "mix": 0.2},
+             {"from": "chatting", "to": "calm", "when": ["!talking"], "mix": 0.3}]},
+    ],
+}
 layered = {
     "posemorph": 1,
     "name": "pell-face",
     "channels": [
-        {"name": "body", "poses": poses, "paths": rig["paths"]},
-        {"name": "face", "poses": face_poses,
-         "paths": [{"name": "chatter", "loop": True, "interpolation": "catmull-rom",
-                    "keys": [[0, 0, 0], [0.6, 1, 0], [1.2, 0, 0], [1.8, 0, 1], [2.4, 0, 0], [3, -1, 0],
-                             [3.6, 0, 0]]}]},
+        {"name": "body", "poses": poses, "paths": [greet]},
+        {"name": "face", "poses": face_poses, "paths": [chatter]},
     ],
     "parts": [p for p in parts if p["name"] not in FACE_PARTS]
     + [{"name": p, "channel": "face", "order": ORDER[p], "poses": face_part_poses[p]} for p in FACE_PARTS],
@@ -189,5 +228,6 @@ layered = {
     + [{"part": p, "to": "head", "at": face_joints[p]} for p in FACE_PARTS],
     "mapping": rig["mapping"],
     "bake": rig["bake"],
+    "state_machine": state_machine,
 }
 write_json("pell-face.json", layered)

@@ -79,6 +79,8 @@ std::string DescribeSection(std::uint32_t tag, const unsigned char* d, std::uint
     s << "i32 draw order per pose per part";
   } else if (tag == f::kEvents) {
     s << "path events: f64 time, u32 path";
+  } else if (tag == f::kMachine) {
+    s << "state machine: inputs, layers, states, transitions, conditions, names";
   } else if (tag == f::kChannels) {
     s << "control channels: names, attachments (each a nested rig), their joints";
   } else {
@@ -249,6 +251,72 @@ void PrintPosesAndPaths(const Rig& rig, std::ostream& out) {
   }
 }
 
+std::string Name(StringView v) { return Printable(std::string(v.data, v.size)); }
+
+void PrintTransition(const Rig& rig, const MachineTransitionView& t, const char* lead, std::ostream& out) {
+  static const char* const kOps[] = {"", "not ", "==", "!=", "<", "<=", ">", ">="};
+  out << lead << "-> '" << Name(rig.machine_states()[t.to].name) << "'";
+  for (std::size_t k = 0; k < t.conditions.size; ++k) {
+    const MachineConditionView& c = t.conditions[k];
+    out << (k ? " and " : " when ");
+    const std::string input = Name(rig.machine_inputs()[c.input].name);
+    if (c.op == MachineOp::kIsTrue || c.op == MachineOp::kIsFalse)
+      out << kOps[int(c.op)] << input;
+    else
+      out << input << ' ' << kOps[int(c.op)] << ' ' << c.value;
+  }
+  if (t.has_exit_time) out << (t.conditions.size ? ", " : " ") << "at exit time " << t.exit_time;
+  out << ", mix " << t.mix << " s\n";
+}
+
+// The state machine (format 1.9): inputs, then each layer's states and transitions.
+void PrintStateMachine(const Rig& rig, std::ostream& out) {
+  if (rig.machine_layers().empty()) return;
+  static const char* const kTypes[] = {"bool", "number", "trigger", "point"};
+  out << "  state machine: " << rig.machine_inputs().size << " inputs";
+  for (std::size_t i = 0; i < rig.machine_inputs().size; ++i) {
+    const MachineInputView& in = rig.machine_inputs()[i];
+    out << (i ? ", " : ": ") << kTypes[int(in.type)] << " '" << Name(in.name) << "'";
+    if (in.type == MachineInputType::kBool) out << " = " << (in.default_x != 0 ? "true" : "false");
+    if (in.type == MachineInputType::kNumber) out << " = " << in.default_x;
+    if (in.type == MachineInputType::kPoint) out << " = (" << in.default_x << ", " << in.default_y << ")";
+  }
+  out << "\n";
+  for (std::size_t l = 0; l < rig.machine_layers().size; ++l) {
+    const MachineLayerView& layer = rig.machine_layers()[l];
+    const Rig& channel = *rig.channel_rig(layer.channel);
+    out << "    layer " << l << " (channel " << layer.channel;
+    if (rig.channel_name(layer.channel).size) out << " '" << Name(rig.channel_name(layer.channel)) << "'";
+    out << "), starts in '" << Name(rig.machine_states()[layer.initial].name) << "'\n";
+    for (std::size_t k = 0; k < layer.any.size; ++k) PrintTransition(rig, layer.any[k], "      from any state ", out);
+    for (std::uint32_t i = layer.first_state; i < layer.first_state + layer.state_count; ++i) {
+      const MachineStateView& st = rig.machine_states()[i];
+      out << "      state '" << Name(st.name) << "': ";
+      switch (st.kind) {
+        case MachineStateKind::kStop:
+          out << "stops at the channel's pose 0";
+          break;
+        case MachineStateKind::kPlay:
+          out << "plays '" << Name(channel.path(st.path).name) << "'"
+              << (st.loop < 0 ? ""
+                  : st.loop   ? " looped"
+                              : " once")
+              << " at speed " << st.speed;
+          break;
+        case MachineStateKind::kPad:
+          out << "follows point input '" << Name(rig.machine_inputs()[st.input].name) << "'";
+          break;
+        case MachineStateKind::kBlend:
+          out << "along '" << Name(channel.path(st.path).name) << "' by number input '"
+              << Name(rig.machine_inputs()[st.input].name) << "' (0..1)";
+          break;
+      }
+      out << "\n";
+      for (std::size_t k = 0; k < st.transitions.size; ++k) PrintTransition(rig, st.transitions[k], "        ", out);
+    }
+  }
+}
+
 }  // namespace
 
 int InfoCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
@@ -261,6 +329,7 @@ int InfoCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   PrintInbetweens(args.positional, rig, out);
   PrintGhosting(args.positional, rig, args.Get("--images"), out);
   PrintPosesAndPaths(rig, out);
+  PrintStateMachine(rig, out);
   return 0;
 }
 

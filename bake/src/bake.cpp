@@ -18,6 +18,7 @@
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/grid_resolution.h"
 #include "posemorph/bake/join_parts.h"
+#include "posemorph/bake/machine_section.h"
 #include "posemorph/bake/map_drawings.h"
 #include "posemorph/bake/mapping/outline_image.h"
 #include "posemorph/bake/mesh_quality.h"
@@ -28,6 +29,8 @@
 #include "posemorph/bake/serialise_rig.h"
 #include "posemorph/bake/stage.h"
 #include "posemorph/bake/validate_rig.h"
+#include "posemorph/rig_format.h"
+#include "runtime_oracle.h"
 
 namespace posemorph::bake {
 namespace {
@@ -329,7 +332,15 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt
 
 std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport* report) {
   if (description.channels.size() > 1) return BakeCharacter(description, report);
-  return BakeOne(description, report).bytes;
+  if (description.state_machine.layers.empty()) return BakeOne(description, report).bytes;
+  // The state machine joins the verified sections; the runtime checks it
+  // (and the paths it names) as it loads the file once more.
+  BakedRig baked = BakeOne(description, report);
+  baked.sections.Add(format::kMachine, MachineSection(description.state_machine));
+  std::vector<unsigned char> bytes = WriteRig(baked.sections);
+  LoadWithRuntime(bytes, description.file, "the rig written with its state machine does not load in the runtime");
+  if (report) report->bytes = bytes.size();
+  return bytes;
 }
 
 BakedRig BakeOne(const RigDescription& description, BakeReport* report) {

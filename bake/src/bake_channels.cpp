@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/machine_section.h"
 #include "posemorph/bake/reproduction_check.h"
 #include "posemorph/jobs.h"
 #include "posemorph/rig.h"
@@ -297,7 +298,9 @@ std::vector<unsigned char> BakeCharacter(const RigDescription& d, BakeReport* re
   // its poses back, and each attachment sits at its joint in every pose of
   // its channel. (Each pose space's bake loaded its own bytes before, to
   // check its in-betweens for folds; what is reported is measured here.)
-  std::vector<unsigned char> bytes = WriteRig(Compose(std::move(body_baked.sections), names, attachments));
+  RigSections whole_sections = Compose(std::move(body_baked.sections), names, attachments);
+  if (!d.state_machine.layers.empty()) whole_sections.Add(fmt::kMachine, MachineSection(d.state_machine));
+  std::vector<unsigned char> bytes = WriteRig(whole_sections);
   const Rig whole = LoadWithRuntime(bytes, d.file, "the rig written does not load in the runtime");
   if (whole.attachment_count() != attached.size())
     throw BakeError(d.file, "internal error: the rig written holds " + std::to_string(whole.attachment_count()) +

@@ -24,10 +24,10 @@ void WarnUnknownKeys(const json& object, const std::string& where, std::initiali
 }  // namespace
 
 void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std::string>* warnings) {
-  WarnUnknownKeys(
-      root, "",
-      {"posemorph", "name", "filter", "poses", "triangles", "parts", "glue", "mapping", "bake", "paths", "channels"},
-      file, warnings);
+  WarnUnknownKeys(root, "",
+                  {"posemorph", "name", "filter", "poses", "triangles", "parts", "glue", "mapping", "bake", "paths",
+                   "channels", "state_machine"},
+                  file, warnings);
   if (root.contains("parts") && root["parts"].is_array())
     for (std::size_t p = 0; p < root["parts"].size(); ++p) {
       const json& part = root["parts"][p];
@@ -54,6 +54,29 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
         root["bake"], "bake",
         {"grid_resolution", "margin", "epsilon", "sigma", "precision", "max_error", "pixels_per_unit", "allow_folds"},
         file, warnings);
+  if (root.contains("state_machine") && root["state_machine"].is_object()) {
+    const json& m = root["state_machine"];
+    WarnUnknownKeys(m, "state_machine", {"inputs", "layers"}, file, warnings);
+    if (m.contains("inputs") && m["inputs"].is_array())
+      for (std::size_t i = 0; i < m["inputs"].size(); ++i)
+        WarnUnknownKeys(m["inputs"][i], "state_machine.inputs[" + std::to_string(i) + "]", {"name", "type", "default"},
+                        file, warnings);
+    if (m.contains("layers") && m["layers"].is_array())
+      for (std::size_t l = 0; l < m["layers"].size(); ++l) {
+        const json& layer = m["layers"][l];
+        const std::string w = "state_machine.layers[" + std::to_string(l) + "]";
+        WarnUnknownKeys(layer, w, {"channel", "initial", "states", "transitions"}, file, warnings);
+        if (!layer.is_object()) continue;
+        if (layer.contains("states") && layer["states"].is_array())
+          for (std::size_t i = 0; i < layer["states"].size(); ++i)
+            WarnUnknownKeys(layer["states"][i], w + ".states[" + std::to_string(i) + "]",
+                            {"name", "play", "loop", "speed", "pad", "blend", "by", "stop"}, file, warnings);
+        if (layer.contains("transitions") && layer["transitions"].is_array())
+          for (std::size_t i = 0; i < layer["transitions"].size(); ++i)
+            WarnUnknownKeys(layer["transitions"][i], w + ".transitions[" + std::to_string(i) + "]",
+                            {"from", "to", "when", "mix", "exit_time"}, file, warnings);
+      }
+  }
   if (root.contains("channels") && root["channels"].is_array())
     for (std::size_t c = 0; c < root["channels"].size(); ++c) {
       const json& channel = root["channels"][c];

@@ -109,4 +109,8 @@ void ParseBakeParameters(const Reader& r, const json& b, BakeParameters* paramet
 PathDescription ParsePath(const Reader& r, const json& jp, std::size_t i, const std::vector<PathDescription>& earlier,
                           const std::string& prefix = "");
 
+// "state_machine" (description_state_machine.cpp), read after the poses,
+// channels and paths it names.
+StateMachineDescription ParseStateMachine(const Reader& r, const json& j, const RigDescription& rig);
+
 }  // namespace posemorph::bake::description

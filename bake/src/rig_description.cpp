@@ -154,6 +154,7 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
   } else {
     rig.channels.clear();
   }
+  if (root.contains("state_machine")) rig.state_machine = ParseStateMachine(r, root["state_machine"], rig);
   WarnUnknownKeys(root, file, &rig.warnings);
   return rig;
 }

@@ -41,6 +41,9 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   part_strings_ = std::exchange(other.part_strings_, {});
   paths_ = std::exchange(other.paths_, {});
   events_ = std::exchange(other.events_, {});
+  machine_inputs_ = std::exchange(other.machine_inputs_, {});
+  machine_layers_ = std::exchange(other.machine_layers_, {});
+  machine_states_ = std::exchange(other.machine_states_, {});
   attachments_ = std::exchange(other.attachments_, {});
   channel_names_ = std::exchange(other.channel_names_, {});
   channel_offsets_ = std::exchange(other.channel_offsets_, {});
@@ -124,6 +127,20 @@ int Rig::FindPath(const char* name) const {
     if (paths_[i].name.size == n && std::memcmp(paths_[i].name.data, name, n) == 0) return int(i);
   return -1;
 }
+
+namespace {
+template <typename View>
+int FindNamed(Span<const View> views, const char* name) {
+  if (!name) return -1;
+  const std::size_t n = std::strlen(name);
+  for (std::size_t i = 0; i < views.size; ++i)
+    if (views[i].name.size == n && std::memcmp(views[i].name.data, name, n) == 0) return int(i);
+  return -1;
+}
+}  // namespace
+
+int Rig::FindMachineInput(const char* name) const { return FindNamed(machine_inputs_, name); }
+int Rig::FindMachineState(const char* name) const { return FindNamed(machine_states_, name); }
 
 StringView Rig::channel_name(std::uint32_t channel) const {
   return channel < channel_names_.size ? channel_names_[channel] : StringView{};

@@ -8,7 +8,8 @@
 // not checked here, so that mutations reach the nested rigs' parsers too),
 // and a crowd's draw lists (DrawListJob: finite positions, drawing weights
 // that are finite and sum to 1, finite transforms, for the body and each
-// attachment); anything else aborts (a finding).
+// attachment), and its state machine's steps (finite weights on every
+// channel); anything else aborts (a finding).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -16,10 +17,12 @@
 #include <cstring>
 #include <vector>
 
+#include "posemorph/animator.h"
 #include "posemorph/draw_list.h"
 #include "posemorph/jobs.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
+#include "posemorph/state_machine.h"
 
 namespace {
 
@@ -94,6 +97,36 @@ void DrawLists(const Rig& rig) {
   for (std::size_t k = 0; k < job.attached_output.size; ++k) RequireDrawable(job.attached_output[k]);
 }
 
+// A rig's state machine (format 1.9): its inputs each set, steps with
+// animator updates in between; every channel's weights stay finite.
+void Machine(const Rig& rig) {
+  if (rig.machine_layers().empty()) return;
+  const std::size_t C = rig.channel_count(), N = rig.pose_count(), A = rig.attached_weight_count();
+  std::vector<AnimatorTrack> tracks(C);
+  MachineInstance m;
+  if (!AnimatorReset(rig, MakeSpan(tracks)) || !MachineReset(rig, &m)) std::abort();
+  std::vector<double> raw(N), limited(N), ar(A), al(A);
+  for (int step = 0; step < 6; ++step) {
+    for (std::uint32_t i = 0; i < rig.machine_inputs().size; ++i) {
+      MachineFire(rig, &m, i);
+      MachineSetBool(rig, &m, i, (step + i) % 2 == 0);
+      MachineSetNumber(rig, &m, i, step * 0.3 - 0.2);
+      MachineSetPoint(rig, &m, i, step - 2.0, 0.5);
+    }
+    MachineStepJob job;
+    job.rig = &rig, job.machines = {&m, 1}, job.tracks = MakeSpan(tracks);
+    if (!job.Run()) std::abort();
+    AnimatorUpdateJob update;
+    update.rig = &rig, update.dt = step == 3 ? 1e9 : 0.35;
+    update.tracks = MakeSpan(tracks);
+    update.weights = MakeSpan(raw), update.limited_weights = MakeSpan(limited);
+    update.attached_weights = MakeSpan(ar), update.attached_limited_weights = MakeSpan(al);
+    if (!update.Run()) std::abort();
+    RequireFinite(raw.data(), raw.size()), RequireFinite(limited.data(), limited.size());
+    RequireFinite(ar.data(), ar.size()), RequireFinite(al.data(), al.size());
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -156,5 +189,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (!std::isfinite(uv.data[k])) std::abort();
   }
   DrawLists(rig);
+  Machine(rig);
   return 0;
 }

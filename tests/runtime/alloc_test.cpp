@@ -9,6 +9,7 @@
 #include <string>
 
 #include "posemorph/animator.h"
+#include "posemorph/state_machine.h"
 #include "posemorph/path.h"
 #include "posemorph/posemorph.h"
 #include "posemorph/quantize.h"
@@ -225,6 +226,42 @@ TEST_CASE("the C API evaluates frames without allocating either") {
   CHECK(status == PM_OK);
   CHECK(g_allocations.load() == 0);
   pm_rig_free(rig);
+}
+
+TEST_CASE("state machine steps allocate nothing: inputs, transitions, pads, blends") {
+  const Rig rig = LoadTestRig("pell-face");
+  const std::size_t count = 8;
+  Crowd crowd(rig, count, 16);
+  std::vector<MachineInstance> machines(count);
+  for (MachineInstance& m : machines) REQUIRE(MachineReset(rig, &m));
+  std::vector<MachineChange> changes(4);
+  std::size_t written = 0;
+  std::uint64_t missed = 0;
+  const std::uint32_t wave = std::uint32_t(rig.FindMachineInput("wave")),
+                      sway = std::uint32_t(rig.FindMachineInput("sway")),
+                      looking = std::uint32_t(rig.FindMachineInput("looking")),
+                      gaze = std::uint32_t(rig.FindMachineInput("gaze"));
+  bool ok = true;
+  g_allocations = 0;
+  g_counting = true;
+  for (int f = 0; f < 300; ++f) {
+    for (std::size_t i = 0; i < count; ++i) {
+      MachineInstance& m = machines[i];
+      if ((f + int(i)) % 50 == 0) ok &= MachineFire(rig, &m, wave);
+      if ((f + int(i)) % 70 == 20) ok &= MachineSetNumber(rig, &m, sway, ((f / 70) % 2) * 0.6);
+      if ((f + int(i)) % 40 == 10) ok &= MachineSetBool(rig, &m, looking, (f / 40) % 2 == 0);
+      ok &= MachineSetPoint(rig, &m, gaze, 0.01 * (f % 50), 0.3);
+    }
+    MachineStepJob step;
+    step.rig = &rig, step.count = count;
+    step.machines = MakeSpan(machines), step.tracks = MakeSpan(crowd.tracks);
+    step.changes = MakeSpan(changes), step.change_count = &written, step.changes_missed = &missed;
+    ok &= step.Run();
+    ok &= crowd.Job(1.0 / 60).Run();
+  }
+  g_counting = false;
+  CHECK(ok);
+  CHECK(g_allocations.load() == 0);
 }
 
 TEST_CASE("the C API animates a crowd without allocating: commands, behaviours, updates, events, states") {

@@ -497,40 +497,22 @@ TEST_CASE("an update job refuses spans that are too short and does nothing") {
 
 TEST_CASE("a rig whose events are hostile is refused at load, naming the event and the problem") {
   const std::vector<unsigned char> bytes = TestRigBytes("pell-face");
-  RigSection sections[format::kMaxSections];
-  std::uint32_t count = 0;
-  REQUIRE(ReadRigSections(bytes.data(), bytes.size(), sections, format::kMaxSections, &count));
-  std::uint64_t evnt = 0, meta = 0;
-  for (std::uint32_t i = 0; i < count; ++i) {
-    if (sections[i].tag == format::kEvents) evnt = sections[i].offset;
-    if (sections[i].tag == format::kMeta) meta = sections[i].offset;
-  }
+  const std::uint64_t evnt = SectionOffset(bytes, format::kEvents), meta = SectionOffset(bytes, format::kMeta);
   REQUIRE(evnt != 0);
   auto expect = [&](const std::function<void(unsigned char*)>& mutate, const std::string& problem) {
-    std::vector<unsigned char> b = bytes;
-    mutate(b.data());
-    LoadOptions options;
-    options.verify_checksum = false;
-    Rig rig;
-    Error err;
-    CHECK_FALSE(LoadRig(b.data(), b.size(), &rig, &err, options));
-    CAPTURE(err.message);
-    CHECK(std::string(err.message).find(problem) != std::string::npos);
-    CHECK_FALSE(rig.loaded());
+    ExpectRefused(bytes, mutate, problem);
   };
-  auto put_u32 = [](unsigned char* at, std::uint32_t v) { std::memcpy(at, &v, 4); };
-  auto put_f64 = [](unsigned char* at, double v) { std::memcpy(at, &v, 8); };
-  expect([&](unsigned char* b) { put_u32(b + evnt + 8, 5); }, "event 0 names path 5; the rig has 1");
-  expect([&](unsigned char* b) { put_f64(b + evnt, std::nan("")); }, "event 0 at time nan, outside its path 0's keys");
-  expect([&](unsigned char* b) { put_f64(b + evnt + 16, 9.0); },
+  expect([&](unsigned char* b) { PutU32(b + evnt + 8, 5); }, "event 0 names path 5; the rig has 1");
+  expect([&](unsigned char* b) { PutF64(b + evnt, std::nan("")); }, "event 0 at time nan, outside its path 0's keys");
+  expect([&](unsigned char* b) { PutF64(b + evnt + 16, 9.0); },
          "event 1 at time 9, outside its path 0's keys [0, 4.8]");
-  expect([&](unsigned char* b) { put_f64(b + evnt + 16, 0.1); }, "event 1 is out of order");
-  expect([&](unsigned char* b) { put_u32(b + evnt + 12, 1); }, "event 0: reserved field is not zero");
+  expect([&](unsigned char* b) { PutF64(b + evnt + 16, 0.1); }, "event 1 is out of order");
+  expect([&](unsigned char* b) { PutU32(b + evnt + 12, 1); }, "event 0: reserved field is not zero");
   expect(
       [&](unsigned char* b) {
         std::uint32_t flags;
         std::memcpy(&flags, b + meta + 28, 4);
-        put_u32(b + meta + 28, flags & ~format::kMetaFlagEvents);
+        PutU32(b + meta + 28, flags & ~format::kMetaFlagEvents);
       },
       "EVNT section present but META says the paths have no events");
 }

@@ -22,23 +22,6 @@ using namespace posemorph::test;
 
 namespace {
 
-// Offset of section `tag` in a rig's bytes (0 if absent).
-std::size_t SectionOffset(const std::vector<unsigned char>& bytes, std::uint32_t tag) {
-  std::uint32_t sections = 0;
-  std::memcpy(&sections, bytes.data() + format::kOffSectionCount, 4);
-  for (std::uint32_t s = 0; s < sections; ++s) {
-    const unsigned char* e = bytes.data() + format::kHeaderSize + std::size_t(s) * format::kSectionEntrySize;
-    std::uint32_t t;
-    std::memcpy(&t, e, 4);
-    if (t == tag) {
-      std::uint64_t offset;
-      std::memcpy(&offset, e + 8, 8);
-      return std::size_t(offset);
-    }
-  }
-  return 0;
-}
-
 // Writes a value at `offset` and recomputes the checksum, so that only the
 // loader's checks stand between the value and the jobs.
 template <typename T>

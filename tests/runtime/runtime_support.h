@@ -10,11 +10,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <string>
 #include <vector>
 
 #include "posemorph/jobs.h"
 #include "posemorph/rig.h"
+#include "posemorph/rig_format.h"
 
 namespace posemorph::test {
 
@@ -104,6 +106,45 @@ inline double MinAreaRatio(const Rig& rig, const std::vector<double>& x) {
     worst = std::min(worst, area(x.data(), a, b, c) / area(r, a, b, c));
   }
   return worst;
+}
+
+// The offset of the first section with `tag` in a rig file's table (0
+// when none), read directly: it works on bytes a test has mutated.
+inline std::size_t SectionOffset(const std::vector<unsigned char>& bytes, std::uint32_t tag) {
+  std::uint32_t sections = 0;
+  std::memcpy(&sections, bytes.data() + format::kOffSectionCount, 4);
+  for (std::uint32_t s = 0; s < sections; ++s) {
+    const unsigned char* e = bytes.data() + format::kHeaderSize + std::size_t(s) * format::kSectionEntrySize;
+    std::uint32_t t;
+    std::memcpy(&t, e, 4);
+    if (t == tag) {
+      std::uint64_t offset;
+      std::memcpy(&offset, e + 8, 8);
+      return std::size_t(offset);
+    }
+  }
+  return 0;
+}
+
+inline void PutU32(unsigned char* at, std::uint32_t v) { std::memcpy(at, &v, 4); }
+inline void PutF64(unsigned char* at, double v) { std::memcpy(at, &v, 8); }
+
+// A copy of `bytes` changed by `mutate` is refused at load (checksum not
+// verified, so that the change reaches the section's checks) with a
+// message that contains `problem`.
+template <typename Mutate>
+void ExpectRefused(const std::vector<unsigned char>& bytes, Mutate mutate, const std::string& problem) {
+  std::vector<unsigned char> b = bytes;
+  mutate(b.data());
+  LoadOptions options;
+  options.verify_checksum = false;
+  Rig rig;
+  Error err;
+  CAPTURE(problem);
+  CHECK_FALSE(LoadRig(b.data(), b.size(), &rig, &err, options));
+  CAPTURE(err.message);
+  CHECK(std::string(err.message).find(problem) != std::string::npos);
+  CHECK_FALSE(rig.loaded());
 }
 
 }  // namespace posemorph::test

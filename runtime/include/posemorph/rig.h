@@ -35,6 +35,59 @@ struct EventView {
   double time = 0;         // on the path's clock: within its first and last key times
 };
 
+// A state machine (format 1.9; RIG_DESCRIPTION.md, "state_machine";
+// posemorph/state_machine.h runs it): named inputs; per channel a layer of
+// states, each playing a path, following a point input (a pad), blending
+// along a path by a number input, or stopped; transitions between a
+// layer's states on conditions, with a crossfade and an optional exit time.
+enum class MachineInputType : std::uint32_t { kBool = 0, kNumber = 1, kTrigger = 2, kPoint = 3 };
+struct MachineInputView {
+  StringView name;
+  MachineInputType type = MachineInputType::kBool;
+  double default_x = 0, default_y = 0;  // bool 0/1, number, point x and y
+};
+// kIsTrue / kIsFalse: a bool's value, or whether a trigger fired since the
+// last step; the comparisons: a number's value against `value`.
+enum class MachineOp : std::uint32_t {
+  kIsTrue = 0,
+  kIsFalse = 1,
+  kEqual = 2,
+  kNotEqual = 3,
+  kLess = 4,
+  kLessEqual = 5,
+  kGreater = 6,
+  kGreaterEqual = 7,
+};
+struct MachineConditionView {
+  std::uint32_t input = 0;
+  MachineOp op = MachineOp::kIsTrue;
+  double value = 0;
+};
+struct MachineTransitionView {
+  std::uint32_t to = 0;                         // a state of the same layer
+  Span<const MachineConditionView> conditions;  // all hold
+  double mix = 0;                               // seconds of crossfade
+  bool has_exit_time = false;
+  double exit_time = 0;  // the state's path has played this share of its cycle (or ended)
+};
+enum class MachineStateKind : std::uint32_t { kStop = 0, kPlay = 1, kPad = 2, kBlend = 3 };
+struct MachineStateView {
+  StringView name;
+  std::uint32_t layer = 0;
+  MachineStateKind kind = MachineStateKind::kStop;
+  std::uint32_t path = 0;                         // play, blend: in the layer's channel's rig
+  std::uint32_t input = 0;                        // pad: a point input; blend: a number input (0..1 along the path)
+  int loop = -1;                                  // play: -1 as the path says, 0 once, 1 looped
+  double speed = 1;                               // play
+  Span<const MachineTransitionView> transitions;  // in priority order
+};
+struct MachineLayerView {
+  std::uint32_t channel = 0;
+  std::uint32_t first_state = 0, state_count = 0;
+  std::uint32_t initial = 0;              // a state index in the machine
+  Span<const MachineTransitionView> any;  // from any of its states, tried first
+};
+
 // A pose-space animation path: keys (time, x, y), times strictly increasing.
 struct PathView {
   StringView name;
@@ -261,6 +314,14 @@ class PM_API Rig {
   EventView event(std::uint32_t index) const;  // an empty view beyond the count
   Span<const EventView> events() const { return events_; }
 
+  // The state machine (format 1.9): empty spans when the rig has none.
+  Span<const MachineInputView> machine_inputs() const { return machine_inputs_; }
+  Span<const MachineLayerView> machine_layers() const { return machine_layers_; }
+  Span<const MachineStateView> machine_states() const { return machine_states_; }
+  // Index of the input, or of the state, with this name; -1 when none has it.
+  int FindMachineInput(const char* name) const;
+  int FindMachineState(const char* name) const;
+
   const PoseSpaceGrid& grid() const { return grid_; }
   const Factor& factor() const { return solve_; }
   double default_sigma() const { return default_sigma_; }
@@ -316,7 +377,10 @@ class PM_API Rig {
   Span<const std::uint32_t> part_pose_orders_;  // N x M i32 (PORD), or empty
   Span<const StringView> part_strings_;         // M names, then M x N images, or empty
   Span<const PathView> paths_;
-  Span<const EventView> events_;  // format 1.8, or empty
+  Span<const EventView> events_;                 // format 1.8, or empty
+  Span<const MachineInputView> machine_inputs_;  // format 1.9 (MACH), or empty
+  Span<const MachineLayerView> machine_layers_;
+  Span<const MachineStateView> machine_states_;
   // Format 1.7: the attachments (each a Rig in the arena, loaded in place)
   // and the channel names; empty for a rig with one channel.
   Span<const AttachmentView> attachments_;

@@ -21,9 +21,9 @@ constexpr std::uint16_t kVersionMajor = 1;
 // (kMetaFlagDrawingFolder); 1.6 parts drawn in order (kMetaFlagParts, PART),
 // optionally an order per pose (kMetaFlagPartPoseOrders, PORD); 1.7 control
 // channels (CHAN: attachments, each a nested rig driven by its own channel);
-// 1.8 named events on paths (kMetaFlagEvents, EVNT). Older files load
-// unchanged.
-constexpr std::uint16_t kVersionMinor = 8;
+// 1.8 named events on paths (kMetaFlagEvents, EVNT); 1.9 a state machine
+// (MACH, in the top-level rig only). Older files load unchanged.
+constexpr std::uint16_t kVersionMinor = 9;
 constexpr std::uint32_t kHeaderSize = FileHeader::kSize;
 constexpr std::uint32_t kSectionEntrySize = SectionEntry::kSize;
 constexpr std::uint32_t kSectionAlignment = 16;
@@ -130,6 +130,18 @@ constexpr std::uint32_t kMetaFlagEvents = 128u;
 constexpr std::uint32_t kEvents = Tag('E', 'V', 'N', 'T');
 constexpr std::uint32_t kEventEntrySize = EventEntry::kSize;
 constexpr std::uint32_t kMaxEvents = 1u << 16;
+// MACH section (1.9): a state machine of inputs, layers (one per channel
+// at most), states and transitions with conditions (records.h,
+// MachineHeader). Names: after the entries, each input's then each state's
+// name, u32 length (1..kMaxMachineName) + bytes; the section ends there.
+constexpr std::uint32_t kMachine = Tag('M', 'A', 'C', 'H');
+constexpr std::uint32_t kMaxMachineInputs = 64;
+constexpr std::uint32_t kMaxMachineStates = 1024;
+constexpr std::uint32_t kMaxMachineTransitions = 4096;
+constexpr std::uint32_t kMaxMachineConditions = 16384;
+constexpr std::uint32_t kMaxMachineName = 64;
+constexpr std::uint32_t kMachineStateLoopGiven = 1u, kMachineStateLoop = 2u;
+constexpr std::uint32_t kMachineTransitionExitTime = 1u;
 // A joint's barycentric weights are at most this far outside [0, 1].
 constexpr double kMaxJointWeightOutside = 1e-3;
 

@@ -72,6 +72,8 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
     return Fail(err, ErrorCode::kTooLarge, "%u attachments, above the limit of %u (LoadLimits::max_attachments)",
                 channels.A, limits.max_attachments);
   if (channels.A && !CheckCharacterLimits(c, limits, channels, err)) return false;
+  Machine machine;
+  if (!ReadMachine(bytes, parser, source.nested, channels.C, &machine, err)) return false;
 
   // Two passes over one layout: size the arena, then fill it.
   Rig rig;
@@ -85,6 +87,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
     LayoutArena(arena, c, s, options, &rig, &scratch);
     if (pass == 0 && !CheckArenaSize(arena, c, h.file_size, err)) return false;
     LayoutChannels(arena, channels, &rig, &nested, nested_memory);
+    LayoutMachine(arena, machine, &rig);
     if (pass == 0) {
       if (arena.used > std::uint64_t(SIZE_MAX / 2))
         return Fail(err, ErrorCode::kTooLarge, "the rig needs %llu bytes in memory, more than this target addresses",
@@ -110,6 +113,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   if (!CheckNumbers(rig, err) || (options.bound_solve && !CheckSolveBound(c, scratch, rig, err))) return false;
   Finish(h, c, kernels, &rig);
   if (channels.A && !LoadAttachments(channels, options, nested, nested_memory, &rig, err)) return false;
+  if (machine.present && !CheckMachinePaths(rig, err)) return false;
   *out = std::move(rig);
   return true;
 }

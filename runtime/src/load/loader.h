@@ -11,6 +11,7 @@
 //   section_table.cpp  ReadHeader, ReadSectionTable (and ReadSections)
 //   counts.cpp         ReadCounts (META, bounded), FindSections (sizes implied by the counts)
 //   channels.cpp       ReadChannels (CHAN, before the arena), LayoutChannels, LoadAttachments
+//   machine.cpp        ReadMachine (MACH, before the arena), LayoutMachine, CheckMachinePaths (after)
 //   arena_layout.cpp   PlaceArena, CheckArenaSize, LayoutArena (twice: sizing, then filling)
 //   value_checks.cpp   ReadStrings, ReadPaths, ReadEvents, CheckIndices, CheckFactor, ReadParts, CheckNumbers
 //   kernel_data.cpp    BuildSolveRows, BuildBlendBlocks, Finish (what the kernels read)
@@ -206,6 +207,16 @@ struct Channels {
   std::uint64_t vertices = 0, nonzeros = 0;  // the attachments' together
 };
 
+// MACH (format 1.9), read before the arena is laid out: its header and
+// where its entries and names lie.
+struct Machine {
+  bool present = false;
+  fmt::MachineHeader h{};
+  const unsigned char *inputs = nullptr, *layers = nullptr, *states = nullptr, *transitions = nullptr,
+                      *conditions = nullptr, *names = nullptr;
+  std::uint64_t name_bytes = 0;  // without their lengths
+};
+
 }  // namespace detail::load
 
 // The one loader (a friend of Rig): its steps are the static members below,
@@ -216,6 +227,7 @@ struct RigLoader {
   using Channels = detail::load::Channels;
   using Counts = detail::load::Counts;
   using Header = detail::load::Header;
+  using Machine = detail::load::Machine;
   using Parser = detail::load::Parser;
   using Scratch = detail::load::Scratch;
   using Sources = detail::load::Sources;
@@ -256,6 +268,10 @@ struct RigLoader {
   static bool LoadAttachments(const Channels& ch, const LoadOptions& options, Rig* nested, unsigned char* const* memory,
                               Rig* rig, Error* err);
   static void Finish(const Header& h, const Counts& c, const detail::KernelTable* kernels, Rig* rig);
+  static bool ReadMachine(const unsigned char* bytes, const Parser& parser, bool nested, std::uint32_t channel_count,
+                          Machine* m, Error* err);
+  static void LayoutMachine(ArenaLayout& arena, const Machine& m, Rig* rig);
+  static bool CheckMachinePaths(const Rig& rig, Error* err);
 };
 
 }  // namespace posemorph

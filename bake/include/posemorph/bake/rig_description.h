@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "posemorph/rig.h"
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -178,6 +180,46 @@ struct ChannelDescription {
   std::vector<PathDescription> paths;
 };
 
+// A state machine (bake/RIG_DESCRIPTION.md, "state_machine"; the runtime's
+// posemorph/state_machine.h): names resolved and checked at parse.
+struct MachineInputDescription {
+  std::string name;
+  MachineInputType type = MachineInputType::kBool;
+  double default_x = 0, default_y = 0;
+};
+struct MachineConditionDescription {
+  std::uint32_t input = 0;
+  MachineOp op = MachineOp::kIsTrue;
+  double value = 0;
+};
+struct MachineTransitionDescription {
+  bool any = false;        // "from": "*"
+  std::uint32_t from = 0;  // a state of the layer (index in the layer)
+  std::uint32_t to = 0;
+  std::vector<MachineConditionDescription> when;
+  double mix = 0.2;
+  bool has_exit_time = false;
+  double exit_time = 0;
+};
+struct MachineStateDescription {
+  std::string name;
+  MachineStateKind kind = MachineStateKind::kStop;
+  std::uint32_t path = 0;   // play, blend: in the layer's channel
+  std::uint32_t input = 0;  // pad, blend
+  int loop = -1;
+  double speed = 1;
+};
+struct MachineLayerDescription {
+  std::uint32_t channel = 0;
+  std::uint32_t initial = 0;  // in `states`
+  std::vector<MachineStateDescription> states;
+  std::vector<MachineTransitionDescription> transitions;  // in the description's order (priority)
+};
+struct StateMachineDescription {
+  std::vector<MachineInputDescription> inputs;
+  std::vector<MachineLayerDescription> layers;  // empty: no state machine
+};
+
 struct RigDescription {
   std::string file;  // where it came from, for messages
   // Where the rig will be written, if known (the CLI's -o): the rig then
@@ -196,6 +238,7 @@ struct RigDescription {
   BakeParameters parameters;
   MappingParameters mapping;
   std::vector<PathDescription> paths;
+  StateMachineDescription state_machine;
   std::vector<std::string> warnings;  // from reading it: keys this bake does not know (a misspelt option)
 };
 

@@ -194,6 +194,85 @@ struct EventEntry {
   }
 };
 
+// MACH (1.9): a state machine (rig_format.h, kMachine): this header, then
+// the inputs', layers', states', transitions' and conditions' entries, then
+// the inputs' and the states' names. Ranges are implied: a layer's states
+// follow the previous layer's; the transitions are, layer by layer, the
+// layer's any-state transitions then each of its states' in order; a
+// transition's conditions follow the previous transition's.
+struct MachineHeader {
+  static constexpr std::uint32_t kSize = 24;
+  std::uint32_t input_count;
+  std::uint32_t layer_count;
+  std::uint32_t state_count;
+  std::uint32_t transition_count;
+  std::uint32_t condition_count;
+  std::uint32_t reserved;
+  template <typename Self, typename F>
+  static constexpr void Fields(Self& r, F& f) {
+    f(r.input_count), f(r.layer_count), f(r.state_count), f(r.transition_count), f(r.condition_count), f(r.reserved);
+  }
+};
+struct MachineInputEntry {
+  static constexpr std::uint32_t kSize = 24;
+  std::uint32_t type;  // MachineInputType (rig.h)
+  std::uint32_t reserved;
+  double default_x;  // bool: 0 or 1; number: its value; point: x
+  double default_y;  // point: y; otherwise 0
+  template <typename Self, typename F>
+  static constexpr void Fields(Self& r, F& f) {
+    f(r.type), f(r.reserved), f(r.default_x), f(r.default_y);
+  }
+};
+struct MachineLayerEntry {
+  static constexpr std::uint32_t kSize = 16;
+  std::uint32_t channel;
+  std::uint32_t state_count;  // 1 or more
+  std::uint32_t initial;      // within the layer's states
+  std::uint32_t any_count;    // transitions from any state of the layer
+  template <typename Self, typename F>
+  static constexpr void Fields(Self& r, F& f) {
+    f(r.channel), f(r.state_count), f(r.initial), f(r.any_count);
+  }
+};
+struct MachineStateEntry {
+  static constexpr std::uint32_t kSize = 32;
+  std::uint32_t kind;   // MachineStateKind (rig.h)
+  std::uint32_t path;   // play, blend: in the layer's channel; otherwise 0
+  std::uint32_t input;  // pad: a point input; blend: a number input; otherwise 0
+  std::uint32_t flags;  // play: bit 0 loop given, bit 1 loop
+  double speed;         // play: path seconds per second; otherwise 1
+  std::uint32_t transition_count;
+  std::uint32_t reserved;
+  template <typename Self, typename F>
+  static constexpr void Fields(Self& r, F& f) {
+    f(r.kind), f(r.path), f(r.input), f(r.flags), f(r.speed), f(r.transition_count), f(r.reserved);
+  }
+};
+struct MachineTransitionEntry {
+  static constexpr std::uint32_t kSize = 32;
+  std::uint32_t to;  // a state of the same layer (its index in the machine)
+  std::uint32_t condition_count;
+  std::uint32_t flags;  // bit 0: exit_time holds
+  std::uint32_t reserved;
+  double mix;        // seconds of crossfade
+  double exit_time;  // of the state's path, 0..1 (bit 0)
+  template <typename Self, typename F>
+  static constexpr void Fields(Self& r, F& f) {
+    f(r.to), f(r.condition_count), f(r.flags), f(r.reserved), f(r.mix), f(r.exit_time);
+  }
+};
+struct MachineConditionEntry {
+  static constexpr std::uint32_t kSize = 16;
+  std::uint32_t input;
+  std::uint32_t op;  // MachineOp (rig.h)
+  double value;
+  template <typename Self, typename F>
+  static constexpr void Fields(Self& r, F& f) {
+    f(r.input), f(r.op), f(r.value);
+  }
+};
+
 // PART (1.6): one entry per part; the parts tile the triangles in order.
 struct PartEntry {
   static constexpr std::uint32_t kSize = 16;
@@ -374,6 +453,20 @@ PM_FORMAT_FIELD(PathEntry, flags, 4);
 PM_FORMAT_RECORD(EventEntry);
 PM_FORMAT_FIELD(EventEntry, path, 8);
 PM_FORMAT_FIELD(EventEntry, reserved, 12);
+PM_FORMAT_RECORD(MachineHeader);
+PM_FORMAT_FIELD(MachineHeader, reserved, 20);
+PM_FORMAT_RECORD(MachineInputEntry);
+PM_FORMAT_FIELD(MachineInputEntry, default_x, 8);
+PM_FORMAT_RECORD(MachineLayerEntry);
+PM_FORMAT_FIELD(MachineLayerEntry, any_count, 12);
+PM_FORMAT_RECORD(MachineStateEntry);
+PM_FORMAT_FIELD(MachineStateEntry, speed, 16);
+PM_FORMAT_FIELD(MachineStateEntry, reserved, 28);
+PM_FORMAT_RECORD(MachineTransitionEntry);
+PM_FORMAT_FIELD(MachineTransitionEntry, mix, 16);
+PM_FORMAT_FIELD(MachineTransitionEntry, exit_time, 24);
+PM_FORMAT_RECORD(MachineConditionEntry);
+PM_FORMAT_FIELD(MachineConditionEntry, value, 8);
 PM_FORMAT_RECORD(PartEntry);
 PM_FORMAT_FIELD(PartEntry, triangle_count, 4);
 PM_FORMAT_FIELD(PartEntry, draw_order, 8);
