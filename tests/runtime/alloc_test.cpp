@@ -264,7 +264,7 @@ TEST_CASE("state machine steps allocate nothing: inputs, transitions, pads, blen
   CHECK(g_allocations.load() == 0);
 }
 
-TEST_CASE("the C API animates a crowd without allocating: commands, behaviours, updates, events, states") {
+TEST_CASE("the C API animates a crowd without allocating: commands, behaviours, machines, updates, states") {
   const std::vector<unsigned char> bytes = TestRigBytes("pell-face");
   pm_rig* rig = nullptr;
   pm_error err;
@@ -282,15 +282,21 @@ TEST_CASE("the C API animates a crowd without allocating: commands, behaviours, 
   pm_behaviours b;
   pm_behaviours_default(&b);
   b.blink_enabled = b.breath_enabled = b.look_at_enabled = b.spring_enabled = 1;
+  const std::size_t msize = pm_machine_size(rig, count);
+  std::vector<double> machines((msize + sizeof(double) - 1) / sizeof(double));
+  const std::uint32_t wave = std::uint32_t(pm_machine_find_input(rig, "wave"));
   g_allocations = 0;
   g_counting = true;
-  int status = pm_animator_reset(rig, tracks.data(), size, count);
+  int status =
+      pm_animator_reset(rig, tracks.data(), size, count) | pm_machine_reset(rig, machines.data(), msize, count);
   for (int f = 0; f < 120; ++f) {
     for (std::size_t i = 0; i < count; ++i) {
       if (f == 0) status |= pm_animator_set_behaviours(rig, tracks.data(), size, i, 1, &b);
       if ((f + int(i)) % 30 == 0) status |= pm_animator_play(rig, tracks.data(), size, i, 0, 0, nullptr);
       if ((f + int(i)) % 17 == 0) status |= pm_animator_look_at(rig, tracks.data(), size, i, 1, 0.5, 0.5);
     }
+    if (f % 25 == 0) status |= pm_machine_fire(rig, machines.data(), msize, std::size_t(f) % count, wave);
+    status |= pm_machine_step(rig, machines.data(), msize, count, tracks.data(), size);
     if (f % 10 == 0) {  // a late joiner: character 0's state into character 1
       std::size_t n = 0;
       status |= pm_animator_save(rig, tracks.data(), size, 0, state, sizeof state, &n);

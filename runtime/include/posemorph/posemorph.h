@@ -439,6 +439,31 @@ PM_API int pm_animator_save(const pm_rig* rig, const void* tracks, size_t capaci
                             unsigned char* out, size_t out_capacity, size_t* written);
 PM_API int pm_animator_load(const pm_rig* rig, const unsigned char* bytes, size_t size, void* tracks, size_t capacity,
                             size_t character);
+/* The rig's state machine (format 1.9; posemorph/state_machine.h): per
+ * character a machine of pm_machine_size bytes (aligned to
+ * PM_ANIMATOR_ALIGNMENT) in caller memory. Set inputs by index
+ * (pm_machine_find_input), then pm_machine_step before each
+ * pm_animator_update: it issues the commands that enter new states into the
+ * tracks. PM_ERROR_INVALID_ARGUMENT for a rig without a machine, an input
+ * of another type, or an index out of range. */
+PM_API size_t pm_machine_size(const pm_rig* rig, size_t count); /* 0 without a machine */
+PM_API int pm_machine_reset(const pm_rig* rig, void* machines, size_t capacity, size_t count);
+PM_API int pm_machine_find_input(const pm_rig* rig, const char* name); /* its index, or -1 */
+PM_API int pm_machine_find_state(const pm_rig* rig, const char* name);
+PM_API int pm_machine_state_name(const pm_rig* rig, uint32_t state, char* out, size_t capacity, size_t* length);
+PM_API int pm_machine_set_bool(const pm_rig* rig, void* machines, size_t capacity, size_t character, uint32_t input,
+                               int value);
+PM_API int pm_machine_set_number(const pm_rig* rig, void* machines, size_t capacity, size_t character, uint32_t input,
+                                 double value);
+PM_API int pm_machine_set_point(const pm_rig* rig, void* machines, size_t capacity, size_t character, uint32_t input,
+                                double x, double y);
+PM_API int pm_machine_fire(const pm_rig* rig, void* machines, size_t capacity, size_t character, uint32_t input);
+/* The state layer `layer` of a character is in (-1 before its first step). */
+PM_API int pm_machine_state(const pm_rig* rig, const void* machines, size_t capacity, size_t character, uint32_t layer);
+/* Steps `count` characters' machines into their tracks (pm_animator_*'s
+ * memory for the same count). */
+PM_API int pm_machine_step(const pm_rig* rig, void* machines, size_t capacity, size_t count, void* tracks,
+                           size_t tracks_capacity);
 /* A channel's path events (format 1.8): their number, the path and time of
  * one, its name. */
 PM_API uint32_t pm_channel_event_count(const pm_rig* rig, uint32_t channel); /* 0 for NULL */
