@@ -198,7 +198,7 @@ bool MachineStepJob::Run() const {
       Enter(*rig, t, m, states[taken->to], taken->mix);
       report(i, l, now, taken->to);
     }
-    m.started = true;
+    m.started = 1;
     for (std::uint8_t& f : m.fired) f = 0;
   }
   if (change_count) *change_count = written;

@@ -27,12 +27,12 @@
 namespace posemorph {
 
 // One character's machine: its inputs and each layer's state. A plain
-// value of fixed size (about 1.1 KB).
+// value of fixed size (about 1.1 KB); any bytes in it are defined.
 struct MachineInstance {
   double values[2 * format::kMaxMachineInputs] = {};   // per input: bool 0/1, number, point x and y
   std::uint8_t fired[format::kMaxMachineInputs] = {};  // triggers fired since the last step
   std::uint32_t state[format::kMaxChannels] = {};      // per layer: the state it is in (index in the machine)
-  bool started = false;                                // the layers have entered their initial states
+  std::uint8_t started = 0;  // nonzero: the layers have entered their initial states (a byte: any value reads)
 };
 
 // Inputs at their defaults, no trigger fired, not started (the next step
