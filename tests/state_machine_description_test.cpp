@@ -26,7 +26,10 @@ json WithMachine() {
   j["state_machine"] = json::parse(R"({
     "inputs": [{"name": "go", "type": "trigger"}, {"name": "speed", "type": "number", "default": 0.5},
                {"name": "held", "type": "bool", "default": true}, {"name": "aim", "type": "point", "default": [0.2, 0]}],
-    "layers": [{"initial": "rest", "states": [
+    "layers": [{"initial": "rest",
+      "behaviours": {"blink": {"pose": "b", "interval": 2, "seed": 9}, "breath": {"period": 2, "offset": [0, 0.1]},
+                     "look_at": {"target": "aim", "strength": 0.5}, "spring": {"frequency": 3}},
+      "states": [
         {"name": "rest", "stop": true}, {"name": "walking", "play": "walk", "loop": false, "speed": 2},
         {"name": "pace", "blend": "run", "by": "speed"}, {"name": "aiming", "pad": "aim"}],
       "transitions": [
@@ -79,6 +82,42 @@ TEST_CASE("a state machine bakes into the rig as the description says") {
   CHECK(pace.transitions[0].conditions[0].op == MachineOp::kIsFalse);
   CHECK(rig.machine_states()[rig.FindMachineState("aiming")].kind == MachineStateKind::kPad);
   CHECK(rig.FindMachineState("flying") == -1);
+  const MachineBehavioursView& b = layer.behaviours;
+  CHECK(b.blink);
+  CHECK(b.blink_pose == 1);
+  CHECK(b.blink_interval == 2);
+  CHECK(b.blink_seed == 9);
+  CHECK(b.blink_duration == 0.15);  // the default
+  CHECK(b.breath);
+  CHECK(b.breath_y == 0.1);
+  CHECK(b.look_at);
+  CHECK(b.look_input == 3);
+  CHECK(b.look_strength == 0.5);
+  CHECK(b.spring);
+  CHECK(b.spring_frequency == 3);
+}
+
+TEST_CASE("posemorph-bake info lists the machine: inputs, layers, behaviours, states, transitions") {
+  TempDir dir;
+  const fs::path input = dir.path / "rig.json", rig = dir.path / "rig.pmrig";
+  Write(input, WithMachine().dump());
+  REQUIRE(Run({input.string(), "-o", rig.string()}).status == 0);
+  const Result r = Run({"info", rig.string()});
+  CAPTURE(r.out);
+  REQUIRE(r.status == 0);
+  for (const char* line :
+       {"MACH ",
+        "state machine: 4 inputs: trigger 'go', number 'speed' = 0.5, bool 'held' = true, point 'aim' = (0.2, 0)",
+        "layer 0 (channel 0), starts in 'rest'",
+        "behaviour: blink toward 'b' every 2 s (jitter 0.5), 0.15 s, strength 1, seed 9 + the character's index",
+        "behaviour: look-at point input 'aim', smoothing 0.1 s, strength 0.5",
+        "from any state -> 'pace' when speed >= 0.7 and held, mix 0.3 s",
+        "state 'walking': plays 'walk' once at speed 2", "-> 'rest' at exit time 0.9, mix 0.2 s",
+        "state 'pace': along 'run' by number input 'speed' (0..1)", "-> 'aiming' when not held",
+        "state 'aiming': follows point input 'aim'"}) {
+    CAPTURE(line);
+    CHECK(r.out.find(line) != std::string::npos);
+  }
 }
 
 TEST_CASE("an inconsistent state machine fails the bake, naming the state, transition or input") {
@@ -130,6 +169,16 @@ TEST_CASE("an inconsistent state machine fails the bake, naming the state, trans
   expect([&](json& m) { m["inputs"][0]["default"] = true; },
          "state_machine.inputs[0].default: a trigger has no default");
   expect([&](json& m) { m["layers"].push_back(m["layers"][0]); }, "state_machine.layers: give 1 to 1 layers");
+  expect([&](json& m) { layer(m)["behaviours"]["blink"]["pose"] = "z"; },
+         "state_machine.layers[0].behaviours.blink.pose: unknown pose \"z\" in the layer's channel");
+  expect([&](json& m) { layer(m)["behaviours"]["blink"]["interval"] = 0.001; },
+         "state_machine.layers[0].behaviours.blink.interval: outside 0.02..1e+06");
+  expect([&](json& m) { layer(m)["behaviours"]["look_at"]["target"] = "held"; },
+         "state_machine.layers[0].behaviours.look_at.target: input \"held\" is a bool: look-at follows a point input");
+  expect([&](json& m) { layer(m)["behaviours"]["wobble"] = json::object(); },
+         "state_machine.layers[0].behaviours: unknown behaviour \"wobble\"");
+  expect([&](json& m) { layer(m)["behaviours"]["spring"]["frequency"] = 90; },
+         "state_machine.layers[0].behaviours.spring.frequency: outside 0.01..20");
   expect(
       [&](json& m) {
         for (int k = 0; k < 65; ++k) m["inputs"].push_back({{"name", "i" + std::to_string(k)}, {"type", "bool"}});

@@ -196,6 +196,8 @@ state_machine = {
     ],
     "layers": [
         {"channel": "body", "initial": "idle",
+         "behaviours": {"breath": {"period": 3.5, "offset": [0, 0.04]},
+                        "spring": {"frequency": 2.5, "damping": 0.35}},
          "states": [{"name": "idle", "stop": True},
                     {"name": "waving", "play": "greet", "loop": False},
                     {"name": "swaying", "blend": "greet", "by": "sway"}],
@@ -205,6 +207,8 @@ state_machine = {
              {"from": "*", "to": "swaying", "when": [["sway", ">", 0]], "mix": 0.4},
              {"from": "swaying", "to": "idle", "when": [["sway", "<=", 0]], "mix": 0.4}]},
         {"channel": "face", "initial": "calm",
+         "behaviours": {"blink": {"pose": "sleepy", "interval": 3.2, "jitter": 0.4, "duration": 0.16},
+                        "look_at": {"target": "gaze", "smoothing": 0.15, "strength": 0.3}},
          "states": [{"name": "calm", "stop": True},
                     {"name": "chatting", "play": "chatter"},
                     {"name": "looking-at", "pad": "gaze"}],

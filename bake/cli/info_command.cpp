@@ -288,6 +288,22 @@ void PrintStateMachine(const Rig& rig, std::ostream& out) {
     out << "    layer " << l << " (channel " << layer.channel;
     if (rig.channel_name(layer.channel).size) out << " '" << Name(rig.channel_name(layer.channel)) << "'";
     out << "), starts in '" << Name(rig.machine_states()[layer.initial].name) << "'\n";
+    const MachineBehavioursView& b = layer.behaviours;
+    if (b.blink)
+      out << "      behaviour: blink toward '" << Name(channel.pose_name(b.blink_pose)) << "' every "
+          << b.blink_interval << " s (jitter " << b.blink_jitter << "), " << b.blink_duration << " s, strength "
+          << b.blink_strength << ", seed " << b.blink_seed << " + the character's index\n";
+    if (b.breath)
+      out << "      behaviour: breath, period " << b.breath_period << " s, offset (" << b.breath_x << ", " << b.breath_y
+          << ")\n";
+    if (b.look_at)
+      out << "      behaviour: look-at"
+          << (b.look_input >= 0 ? " point input '" + Name(rig.machine_inputs()[std::size_t(b.look_input)].name) + "'"
+                                : std::string(" (target set by code)"))
+          << ", smoothing " << b.look_smoothing << " s, strength " << b.look_strength << "\n";
+    if (b.spring)
+      out << "      behaviour: spring, " << b.spring_frequency << " Hz, damping " << b.spring_damping << ", strength "
+          << b.spring_strength << "\n";
     for (std::size_t k = 0; k < layer.any.size; ++k) PrintTransition(rig, layer.any[k], "      from any state ", out);
     for (std::uint32_t i = layer.first_state; i < layer.first_state + layer.state_count; ++i) {
       const MachineStateView& st = rig.machine_states()[i];

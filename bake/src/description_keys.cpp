@@ -65,7 +65,19 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
       for (std::size_t l = 0; l < m["layers"].size(); ++l) {
         const json& layer = m["layers"][l];
         const std::string w = "state_machine.layers[" + std::to_string(l) + "]";
-        WarnUnknownKeys(layer, w, {"channel", "initial", "states", "transitions"}, file, warnings);
+        WarnUnknownKeys(layer, w, {"channel", "initial", "states", "transitions", "behaviours"}, file, warnings);
+        if (layer.is_object() && layer.contains("behaviours") && layer["behaviours"].is_object()) {
+          const json& b = layer["behaviours"];
+          const std::string wb = w + ".behaviours";
+          if (b.contains("blink"))
+            WarnUnknownKeys(b["blink"], wb + ".blink", {"pose", "interval", "jitter", "duration", "strength", "seed"},
+                            file, warnings);
+          if (b.contains("breath")) WarnUnknownKeys(b["breath"], wb + ".breath", {"period", "offset"}, file, warnings);
+          if (b.contains("look_at"))
+            WarnUnknownKeys(b["look_at"], wb + ".look_at", {"target", "smoothing", "strength"}, file, warnings);
+          if (b.contains("spring"))
+            WarnUnknownKeys(b["spring"], wb + ".spring", {"frequency", "damping", "strength"}, file, warnings);
+        }
         if (!layer.is_object()) continue;
         if (layer.contains("states") && layer["states"].is_array())
           for (std::size_t i = 0; i < layer["states"].size(); ++i)

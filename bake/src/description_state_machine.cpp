@@ -4,6 +4,7 @@
 // inconsistency fails with one line naming the layer, state, transition or
 // input: an unknown name, an input of the wrong type, a transition to
 // nowhere or one that always fires, a state no transition reaches.
+#include <cstdio>
 #include <set>
 
 #include "description_reader.h"
@@ -185,6 +186,87 @@ MachineStateDescription ParseState(const Reader& r, const StateMachineDescriptio
   return s;
 }
 
+std::string Num(double v) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", v);
+  return text;
+}
+
+// A number at `key` of `j` within [lo, hi], or `fallback` when absent.
+double Within(const Reader& r, const json& j, const char* key, double lo, double hi, double fallback,
+              const std::string& w) {
+  if (!j.contains(key)) return fallback;
+  const double v = r.Number(j[key], w + "." + key);
+  if (!(v >= lo && v <= hi))
+    r.Fail(w + "." + key, "outside " + Num(lo) + ".." + Num(hi) + " (animator.h gives the ranges)");
+  return v;
+}
+
+// "behaviours": {"blink", "breath", "look_at", "spring"}, each an object of
+// the parameters animator.h names.
+MachineBehavioursView ParseBehaviours(const Reader& r, const StateMachineDescription& m, const json& j,
+                                      const std::vector<PoseDescription>& poses, const std::string& w) {
+  MachineBehavioursView b;
+  if (!j.is_object()) r.Fail(w, "expected {\"blink\", \"breath\", \"look_at\", \"spring\"}");
+  for (const auto& item : j.items())
+    if (item.key() != "blink" && item.key() != "breath" && item.key() != "look_at" && item.key() != "spring")
+      r.Fail(w, "unknown behaviour " + Quoted(item.key()) + ": \"blink\", \"breath\", \"look_at\" or \"spring\"");
+  if (j.contains("blink")) {
+    const json& k = j["blink"];
+    const std::string wk = w + ".blink";
+    if (!k.is_object() || !k.contains("pose")) r.Fail(wk, "expected {\"pose\": the pose it closes toward, ...}");
+    const std::string pose = r.String(k["pose"], wk + ".pose");
+    bool found = false;
+    for (std::size_t i = 0; i < poses.size(); ++i)
+      if (poses[i].name == pose) b.blink_pose = std::uint32_t(i), found = true;
+    if (!found) r.Fail(wk + ".pose", "unknown pose " + Quoted(pose) + " in the layer's channel");
+    b.blink = true;
+    b.blink_interval = Within(r, k, "interval", 0.02, 1e6, b.blink_interval, wk);
+    b.blink_jitter = Within(r, k, "jitter", 0, 0.95, b.blink_jitter, wk);
+    b.blink_duration = Within(r, k, "duration", 0.001, 60, b.blink_duration, wk);
+    b.blink_strength = Within(r, k, "strength", 0, 1, b.blink_strength, wk);
+    if (k.contains("seed")) {
+      if (!k["seed"].is_number_unsigned()) r.Fail(wk + ".seed", "expected a non-negative integer");
+      b.blink_seed = k["seed"].get<std::uint64_t>();
+    }
+  }
+  if (j.contains("breath")) {
+    const json& k = j["breath"];
+    const std::string wk = w + ".breath";
+    if (!k.is_object() || !k.contains("offset")) r.Fail(wk, "expected {\"period\", \"offset\": [x, y]}");
+    b.breath = true;
+    b.breath_period = Within(r, k, "period", 0.05, 1e6, b.breath_period, wk);
+    const Eigen::Vector2d o = r.Point(k["offset"], wk + ".offset");
+    if (!(o.cwiseAbs().maxCoeff() <= 1e3)) r.Fail(wk + ".offset", "beyond +-1e3 pose-space units");
+    b.breath_x = o.x(), b.breath_y = o.y();
+  }
+  if (j.contains("look_at")) {
+    const json& k = j["look_at"];
+    const std::string wk = w + ".look_at";
+    if (!k.is_object()) r.Fail(wk, "expected {\"target\": a point input, \"smoothing\", \"strength\"}");
+    b.look_at = true;
+    if (k.contains("target")) {
+      const std::uint32_t in = FindInput(r, m.inputs, r.String(k["target"], wk + ".target"), wk + ".target");
+      if (m.inputs[in].type != MachineInputType::kPoint)
+        r.Fail(wk + ".target", "input " + Quoted(m.inputs[in].name) + " is a " + TypeName(m.inputs[in].type) +
+                                   ": look-at follows a point input");
+      b.look_input = int(in);
+    }
+    b.look_smoothing = Within(r, k, "smoothing", 0, 1e3, b.look_smoothing, wk);
+    b.look_strength = Within(r, k, "strength", 0, 1, b.look_strength, wk);
+  }
+  if (j.contains("spring")) {
+    const json& k = j["spring"];
+    const std::string wk = w + ".spring";
+    if (!k.is_object()) r.Fail(wk, "expected {\"frequency\", \"damping\", \"strength\"}");
+    b.spring = true;
+    b.spring_frequency = Within(r, k, "frequency", 0.01, 20, b.spring_frequency, wk);
+    b.spring_damping = Within(r, k, "damping", 0, 100, b.spring_damping, wk);
+    b.spring_strength = Within(r, k, "strength", 0, 4, b.spring_strength, wk);
+  }
+  return b;
+}
+
 }  // namespace
 
 StateMachineDescription ParseStateMachine(const Reader& r, const json& j, const RigDescription& rig) {
@@ -229,6 +311,10 @@ StateMachineDescription ParseStateMachine(const Reader& r, const json& j, const 
         if (layer.states[i].name == name) return std::uint32_t(i);
       r.Fail(where, "unknown state " + Quoted(name) + " in this layer");
     };
+    if (jl.contains("behaviours")) {
+      const std::vector<PoseDescription>& poses = rig.channels.empty() ? rig.poses : rig.channels[layer.channel].poses;
+      layer.behaviours = ParseBehaviours(r, m, jl["behaviours"], poses, wl + ".behaviours");
+    }
     if (!jl.contains("initial")) r.Fail(wl, "missing \"initial\": the state the layer starts in");
     layer.initial = find_state(r.String(jl["initial"], wl + ".initial"), wl + ".initial");
     const json empty = json::array();

@@ -84,6 +84,20 @@ std::vector<unsigned char> MachineSection(const StateMachineDescription& m) {
       e.value = c.op == MachineOp::kIsTrue || c.op == MachineOp::kIsFalse ? 0.0 : c.value;
       AppendRecord(out, e);
     }
+  for (const MachineLayerDescription& layer : m.layers) {
+    const MachineBehavioursView& b = layer.behaviours;
+    fmt::MachineBehavioursEntry e{};
+    e.enabled = (b.blink ? 1u : 0u) | (b.breath ? 2u : 0u) | (b.look_at ? 4u : 0u) | (b.spring ? 8u : 0u);
+    e.blink_pose = b.blink_pose;
+    e.blink_interval = b.blink_interval, e.blink_jitter = b.blink_jitter, e.blink_duration = b.blink_duration;
+    e.blink_strength = b.blink_strength, e.blink_seed = b.blink_seed;
+    e.breath_period = b.breath_period, e.breath_x = b.breath_x, e.breath_y = b.breath_y;
+    e.look_input = b.look_input < 0 ? 0xFFFFFFFFu : std::uint32_t(b.look_input);
+    e.look_smoothing = b.look_smoothing, e.look_strength = b.look_strength;
+    e.spring_frequency = b.spring_frequency, e.spring_damping = b.spring_damping;
+    e.spring_strength = b.spring_strength;
+    AppendRecord(out, e);
+  }
   for (const MachineInputDescription& in : m.inputs) AppendString(out, in.name);
   for (const MachineLayerDescription& layer : m.layers)
     for (const MachineStateDescription& s : layer.states) AppendString(out, s.name);

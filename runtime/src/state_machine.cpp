@@ -111,6 +111,23 @@ void Sustain(const Rig& rig, Span<AnimatorTrack> tracks, const MachineInstance& 
   AnimatorSetPoint(rig, tracks, channel, x, y, 0);
 }
 
+// The layer's declared behaviours, put on its channel's track.
+void StartBehaviours(const Rig& rig, Span<AnimatorTrack> tracks, const MachineLayerView& layer, std::size_t character) {
+  const MachineBehavioursView& v = layer.behaviours;
+  if (!v.blink && !v.breath && !v.look_at && !v.spring) return;
+  Behaviours b;
+  b.blink.enabled = v.blink, b.blink.pose = v.blink_pose, b.blink.interval = v.blink_interval;
+  b.blink.jitter = v.blink_jitter, b.blink.duration = v.blink_duration, b.blink.strength = v.blink_strength;
+  b.blink.seed = v.blink_seed + character;
+  b.breath.enabled = v.breath, b.breath.period = v.breath_period, b.breath.x = v.breath_x, b.breath.y = v.breath_y;
+  b.look_at.enabled = v.look_at, b.look_at.smoothing = v.look_smoothing, b.look_at.strength = v.look_strength;
+  b.spring.enabled = v.spring, b.spring.frequency = v.spring_frequency, b.spring.damping = v.spring_damping;
+  b.spring.strength = v.spring_strength;
+  const AnimatorTrack& t = tracks[layer.channel];
+  b.look_at.x = t.behaviours.look_at.x, b.look_at.y = t.behaviours.look_at.y;
+  AnimatorSetBehaviours(rig, tracks, layer.channel, b);
+}
+
 }  // namespace
 
 bool MachineReset(const Rig& rig, MachineInstance* machine) {
@@ -176,7 +193,13 @@ bool MachineStepJob::Run() const {
       const MachineLayerView& layer = layers[l];
       const std::uint32_t now = m.state[l];
       const bool inside = now >= layer.first_state && now < layer.first_state + layer.state_count;
-      if (!m.started || !inside) {
+      const bool starting = !m.started || !inside;
+      if (starting) StartBehaviours(*rig, t, layer, i);
+      if (layer.behaviours.look_at && layer.behaviours.look_input >= 0) {
+        const std::uint32_t in = std::uint32_t(layer.behaviours.look_input);
+        AnimatorLookAt(*rig, t, layer.channel, m.values[2 * in], m.values[2 * in + 1]);
+      }
+      if (starting) {
         m.state[l] = layer.initial;
         Enter(*rig, t, m, states[layer.initial], 0);
         report(i, l, layer.initial, layer.initial);

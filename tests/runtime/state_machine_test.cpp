@@ -134,6 +134,8 @@ TEST_CASE("blend and pad states follow their inputs") {
   Driven d(rig);
   const std::uint32_t sway = Input(rig, "sway"), looking = Input(rig, "looking"), gaze = Input(rig, "gaze");
   d.Step(), d.ch.Update(0);
+  // Without the layers' declared behaviours (breath, spring, blink, look-at), which move the points.
+  for (std::uint32_t c = 0; c < 2; ++c) REQUIRE(AnimatorSetBehaviours(rig, d.ch.Tracks(), c, Behaviours{}));
   REQUIRE(MachineSetNumber(rig, &d.m, sway, 0.25));
   REQUIRE(MachineSetBool(rig, &d.m, looking, true));
   REQUIRE(MachineSetPoint(rig, &d.m, gaze, 0.3, 0.7));
@@ -148,6 +150,49 @@ TEST_CASE("blend and pad states follow their inputs") {
   REQUIRE(SamplePath(rig, 0, 0.75 * 4.8, &x, &y));
   CHECK(d.ch.raw == WeightsAt(rig, x, y).raw);
   CHECK(d.ch.ChannelWeights(1) == WeightsAt(*rig.channel_rig(1), -0.4, 0.1).raw);
+}
+
+TEST_CASE("the layers' declared behaviours run from the first step, seeded per character") {
+  const Rig rig = LoadTestRig("pell-face");
+  const MachineBehavioursView& body = rig.machine_layers()[0].behaviours;
+  const MachineBehavioursView& face = rig.machine_layers()[1].behaviours;
+  CHECK(body.breath);
+  CHECK(body.spring);
+  CHECK_FALSE(body.blink);
+  CHECK(face.blink);
+  CHECK(face.blink_pose == 3);  // "sleepy"
+  CHECK(face.look_input == int(Input(rig, "gaze")));
+  const std::size_t count = 3;
+  Crowd crowd(rig, count, 64);
+  std::vector<MachineInstance> machines(count);
+  for (MachineInstance& m : machines) REQUIRE(MachineReset(rig, &m));
+  REQUIRE(MachineSetPoint(rig, &machines[1], Input(rig, "gaze"), 0.6, -0.2));
+  MachineStepJob step;
+  step.rig = &rig, step.count = count, step.machines = MakeSpan(machines), step.tracks = MakeSpan(crowd.tracks);
+  REQUIRE(step.Run());
+  for (std::size_t i = 0; i < count; ++i) {
+    const Span<AnimatorTrack> t = crowd.Tracks(i);
+    CHECK(t[0].behaviours.breath.enabled);
+    CHECK(t[0].behaviours.breath.y == 0.04);
+    CHECK(t[0].behaviours.spring.damping == 0.35);
+    CHECK(t[1].behaviours.blink.enabled);
+    CHECK(t[1].behaviours.blink.seed == face.blink_seed + i);
+  }
+  CHECK(crowd.Tracks(1)[1].behaviours.look_at.x == 0.6);  // the gaze input, each step
+  CHECK(crowd.Tracks(1)[1].behaviours.look_at.y == -0.2);
+  // Idle for 12 s: each face blinks (toward "sleepy"), at its own times.
+  std::vector<int> first_blink(count, -1);
+  for (int f = 0; f < 720; ++f) {
+    REQUIRE(step.Run());
+    REQUIRE(crowd.Job(1.0 / 60).Run());
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t n = rig.channel_rig(1)->pose_count();
+      if (first_blink[i] < 0 && crowd.attached_raw[count * rig.channel_weight_offset(1) + i * n + 3] > 0.9)
+        first_blink[i] = f;
+    }
+  }
+  for (std::size_t i = 0; i < count; ++i) CHECK(first_blink[i] >= 0);
+  CHECK((first_blink[0] != first_blink[1] || first_blink[1] != first_blink[2]));
 }
 
 TEST_CASE("inputs are typed, and any bytes in an instance step to finite weights") {
@@ -191,7 +236,8 @@ TEST_CASE("a rig whose state machine is hostile is refused at load, naming the p
   REQUIRE(mach != 0);
   // Where the entries start (Pell with a face: 5 inputs, 2 layers, 6 states, 8 transitions, 7 conditions).
   const std::uint64_t inputs = mach + 24, layers = inputs + 5 * 24, states = layers + 2 * 16,
-                      transitions = states + 6 * 32, conditions = transitions + 8 * 32;
+                      transitions = states + 6 * 32, conditions = transitions + 8 * 32,
+                      behaviours = conditions + 7 * 16, names = behaviours + 2 * 120;
   auto expect = [&](const std::function<void(unsigned char*)>& mutate, const std::string& problem) {
     ExpectRefused(bytes, mutate, problem);
   };
@@ -214,6 +260,13 @@ TEST_CASE("a rig whose state machine is hostile is refused at load, naming the p
   expect([&](unsigned char* b) { PutU32(b + conditions + 4, 0); },  // "is true" of a number
          "MACH condition 0: operator 0 does not apply to input 1's type 1");
   expect([&](unsigned char* b) { PutU32(b + conditions, 40); }, "MACH condition 0: input 40 of 5");
-  expect([&](unsigned char* b) { PutU32(b + conditions + 7 * 16, 200); }, "MACH name 0 is 200 bytes");
-  expect([&](unsigned char* b) { PutU32(b + conditions + 7 * 16, 0); }, "MACH name 0 is 0 bytes");
+  expect([&](unsigned char* b) { PutU32(b + behaviours, 16); }, "MACH layer 0's behaviours: unknown bits");
+  expect([&](unsigned char* b) { PutF64(b + behaviours + 8, std::nan("")); },
+         "MACH layer 0's behaviours: a parameter (nan) beyond 1e6");
+  expect([&](unsigned char* b) { PutU32(b + behaviours + 120 + 72, 1); },
+         "MACH layer 1's behaviours: look-at input 1 is not a point input");
+  expect([&](unsigned char* b) { PutU32(b + behaviours + 120 + 4, 9); },
+         "MACH layer 1's behaviours: blink pose 9 of channel 1, which has 4");
+  expect([&](unsigned char* b) { PutU32(b + names, 200); }, "MACH name 0 is 200 bytes");
+  expect([&](unsigned char* b) { PutU32(b + names, 0); }, "MACH name 0 is 0 bytes");
 }

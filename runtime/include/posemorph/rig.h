@@ -81,7 +81,21 @@ struct MachineStateView {
   double speed = 1;                               // play
   Span<const MachineTransitionView> transitions;  // in priority order
 };
+// The behaviours a layer's channel runs from the machine's first step
+// (animator.h: BlinkBehaviour ... SpringBehaviour; state_machine.h applies
+// them, the blink seeded with `blink_seed` plus the character's index).
+struct MachineBehavioursView {
+  bool blink = false, breath = false, look_at = false, spring = false;
+  std::uint32_t blink_pose = 0;
+  double blink_interval = 4, blink_jitter = 0.5, blink_duration = 0.15, blink_strength = 1;
+  std::uint64_t blink_seed = 1;
+  double breath_period = 3.5, breath_x = 0, breath_y = 0;
+  int look_input = -1;  // the point input the look-at target follows each step; -1: code sets it
+  double look_smoothing = 0.1, look_strength = 1;
+  double spring_frequency = 2.5, spring_damping = 0.3, spring_strength = 1;
+};
 struct MachineLayerView {
+  MachineBehavioursView behaviours;
   std::uint32_t channel = 0;
   std::uint32_t first_state = 0, state_count = 0;
   std::uint32_t initial = 0;              // a state index in the machine

@@ -8,7 +8,10 @@
 // an any-state transition never re-enters the state it leads to),
 // issues the Animator commands that enter the new state (play a path, stop,
 // follow a point input, blend along a path by a number input), keeps pads
-// and blends following their inputs, and clears the triggers. Then an
+// and blends following their inputs, points each layer's look-at at its
+// point input, and clears the triggers. A layer's declared behaviours
+// (MachineBehavioursView) are put on its channel at the first step, the
+// blink seeded with its seed plus the character's index. Then an
 // AnimatorUpdateJob advances the tracks. docs/animation.md is the guide.
 //
 // Deterministic (comparisons and the Animator's commands only), allocation

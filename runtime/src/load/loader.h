@@ -213,7 +213,7 @@ struct Machine {
   bool present = false;
   fmt::MachineHeader h{};
   const unsigned char *inputs = nullptr, *layers = nullptr, *states = nullptr, *transitions = nullptr,
-                      *conditions = nullptr, *names = nullptr;
+                      *conditions = nullptr, *behaviours = nullptr, *names = nullptr;
   std::uint64_t name_bytes = 0;  // without their lengths
 };
 

@@ -96,6 +96,7 @@ bool RigLoader::ReadMachine(const unsigned char* bytes, const Parser& parser, bo
   m->states = take(h.state_count, fmt::MachineStateEntry::kSize);
   m->transitions = take(h.transition_count, fmt::MachineTransitionEntry::kSize);
   m->conditions = take(h.condition_count, fmt::MachineConditionEntry::kSize);
+  m->behaviours = take(h.layer_count, fmt::MachineBehavioursEntry::kSize);
   if (at > size) return Fail(err, ErrorCode::kBadLayout, "MACH's entries run past the section");
   m->names = p + at;
   for (std::uint64_t k = 0; k < std::uint64_t(h.input_count) + h.state_count; ++k) {
@@ -121,6 +122,23 @@ bool RigLoader::ReadMachine(const unsigned char* bytes, const Parser& parser, bo
         (truth && !(e.default_x == 0 || (type == MachineInputType::kBool && e.default_x == 1))))
       return Fail(err, ErrorCode::kBadValue, "MACH input %u: default (%g, %g) does not suit its type", i, e.default_x,
                   e.default_y);
+  }
+  for (std::uint32_t l = 0; l < h.layer_count; ++l) {
+    const auto b = fmt::DecodeEntry<fmt::MachineBehavioursEntry>(m->behaviours, l);
+    const double values[] = {b.blink_interval, b.blink_jitter,     b.blink_duration, b.blink_strength,
+                             b.breath_period,  b.breath_x,         b.breath_y,       b.look_smoothing,
+                             b.look_strength,  b.spring_frequency, b.spring_damping, b.spring_strength};
+    for (double v : values)
+      if (!Finite(v, 1e6))
+        return Fail(err, ErrorCode::kBadValue, "MACH layer %u's behaviours: a parameter (%g) beyond 1e6", l, v);
+    if ((b.enabled & ~15u) || b.reserved)
+      return Fail(err, ErrorCode::kBadValue, "MACH layer %u's behaviours: unknown bits", l);
+    if (b.look_input != 0xFFFFFFFFu &&
+        (b.look_input >= h.input_count ||
+         MachineInputType(fmt::DecodeEntry<fmt::MachineInputEntry>(m->inputs, b.look_input).type) !=
+             MachineInputType::kPoint))
+      return Fail(err, ErrorCode::kBadValue, "MACH layer %u's behaviours: look-at input %u is not a point input", l,
+                  b.look_input);
   }
   bool has_layer[fmt::kMaxChannels] = {};
   std::uint64_t state = 0, transition = 0, condition = 0;
@@ -225,6 +243,17 @@ void RigLoader::LayoutMachine(ArenaLayout& arena, const Machine& m, Rig* rig) {
   for (std::uint32_t l = 0; l < h.layer_count; ++l) {
     const auto e = fmt::DecodeEntry<fmt::MachineLayerEntry>(m.layers, l);
     MachineLayerView& layer = layers[l];
+    const auto b = fmt::DecodeEntry<fmt::MachineBehavioursEntry>(m.behaviours, l);
+    MachineBehavioursView& bv = layer.behaviours;
+    bv.blink = (b.enabled & 1u) != 0, bv.breath = (b.enabled & 2u) != 0;
+    bv.look_at = (b.enabled & 4u) != 0, bv.spring = (b.enabled & 8u) != 0;
+    bv.blink_pose = b.blink_pose, bv.blink_interval = b.blink_interval, bv.blink_jitter = b.blink_jitter;
+    bv.blink_duration = b.blink_duration, bv.blink_strength = b.blink_strength, bv.blink_seed = b.blink_seed;
+    bv.breath_period = b.breath_period, bv.breath_x = b.breath_x, bv.breath_y = b.breath_y;
+    bv.look_input = b.look_input == 0xFFFFFFFFu ? -1 : int(b.look_input);
+    bv.look_smoothing = b.look_smoothing, bv.look_strength = b.look_strength;
+    bv.spring_frequency = b.spring_frequency, bv.spring_damping = b.spring_damping;
+    bv.spring_strength = b.spring_strength;
     layer.channel = e.channel;
     layer.first_state = state;
     layer.state_count = e.state_count;
@@ -250,6 +279,13 @@ void RigLoader::LayoutMachine(ArenaLayout& arena, const Machine& m, Rig* rig) {
 }
 
 bool RigLoader::CheckMachinePaths(const Rig& rig, Error* err) {
+  for (std::size_t l = 0; l < rig.machine_layers_.size; ++l) {
+    const MachineLayerView& layer = rig.machine_layers_[l];
+    const Rig* crig = rig.channel_rig(layer.channel);
+    if (layer.behaviours.blink && (!crig || layer.behaviours.blink_pose >= crig->pose_count()))
+      return Fail(err, ErrorCode::kBadValue, "MACH layer %u's behaviours: blink pose %u of channel %u, which has %u",
+                  unsigned(l), layer.behaviours.blink_pose, layer.channel, crig ? crig->pose_count() : 0u);
+  }
   for (std::size_t i = 0; i < rig.machine_states_.size; ++i) {
     const MachineStateView& s = rig.machine_states_[i];
     if (s.kind != MachineStateKind::kPlay && s.kind != MachineStateKind::kBlend) continue;

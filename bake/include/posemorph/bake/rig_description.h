@@ -210,6 +210,7 @@ struct MachineStateDescription {
   double speed = 1;
 };
 struct MachineLayerDescription {
+  MachineBehavioursView behaviours;  // "behaviours": what the channel runs from the first step
   std::uint32_t channel = 0;
   std::uint32_t initial = 0;  // in `states`
   std::vector<MachineStateDescription> states;

@@ -195,8 +195,8 @@ struct EventEntry {
 };
 
 // MACH (1.9): a state machine (rig_format.h, kMachine): this header, then
-// the inputs', layers', states', transitions' and conditions' entries, then
-// the inputs' and the states' names. Ranges are implied: a layer's states
+// the inputs', layers', states', transitions' and conditions' entries, the
+// layers' behaviours, then the inputs' and the states' names. Ranges are implied: a layer's states
 // follow the previous layer's; the transitions are, layer by layer, the
 // layer's any-state transitions then each of its states' in order; a
 // transition's conditions follow the previous transition's.
@@ -270,6 +270,27 @@ struct MachineConditionEntry {
   template <typename Self, typename F>
   static constexpr void Fields(Self& r, F& f) {
     f(r.input), f(r.op), f(r.value);
+  }
+};
+
+// One per layer, after the conditions: the behaviours the layer's channel
+// runs from the machine's first step (animator.h, Behaviours).
+struct MachineBehavioursEntry {
+  static constexpr std::uint32_t kSize = 120;
+  std::uint32_t enabled;  // 1 blink, 2 breath, 4 look-at, 8 spring
+  std::uint32_t blink_pose;
+  double blink_interval, blink_jitter, blink_duration, blink_strength;
+  std::uint64_t blink_seed;  // plus the character's index in its batch
+  double breath_period, breath_x, breath_y;
+  std::uint32_t look_input;  // a point input the look-at target follows, or 0xFFFFFFFF
+  std::uint32_t reserved;
+  double look_smoothing, look_strength;
+  double spring_frequency, spring_damping, spring_strength;
+  template <typename Self, typename F>
+  static constexpr void Fields(Self& r, F& f) {
+    f(r.enabled), f(r.blink_pose), f(r.blink_interval), f(r.blink_jitter), f(r.blink_duration), f(r.blink_strength),
+        f(r.blink_seed), f(r.breath_period), f(r.breath_x), f(r.breath_y), f(r.look_input), f(r.reserved),
+        f(r.look_smoothing), f(r.look_strength), f(r.spring_frequency), f(r.spring_damping), f(r.spring_strength);
   }
 };
 
@@ -467,6 +488,10 @@ PM_FORMAT_FIELD(MachineTransitionEntry, mix, 16);
 PM_FORMAT_FIELD(MachineTransitionEntry, exit_time, 24);
 PM_FORMAT_RECORD(MachineConditionEntry);
 PM_FORMAT_FIELD(MachineConditionEntry, value, 8);
+PM_FORMAT_RECORD(MachineBehavioursEntry);
+PM_FORMAT_FIELD(MachineBehavioursEntry, blink_seed, 40);
+PM_FORMAT_FIELD(MachineBehavioursEntry, look_input, 72);
+PM_FORMAT_FIELD(MachineBehavioursEntry, spring_strength, 112);
 PM_FORMAT_RECORD(PartEntry);
 PM_FORMAT_FIELD(PartEntry, triangle_count, 4);
 PM_FORMAT_FIELD(PartEntry, draw_order, 8);
