@@ -129,29 +129,37 @@ bool AnimatorReset(const Rig& rig, Span<AnimatorTrack> tracks) {
   return true;
 }
 
-bool AnimatorPlay(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel, std::uint32_t path,
-                  const PlayOptions& options) {
+namespace {
+
+// A path to play now (`queue` false: clears the queue) or when the current
+// one ends (`queue` true), into the track's pending or queued slot.
+bool SetPath(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel, std::uint32_t path,
+             const PlayOptions& options, bool queue) {
   if (!Valid(rig, tracks, channel)) return false;
   const Rig& crig = *ChannelRig(rig, channel);
   if (path >= crig.path_count()) return false;
   AnimatorTrack& t = tracks[channel];
-  t.pending = PathMotion(crig, path, options);
-  t.pending_mix = NonNegative(options.mix, kMaxAnimatorMix);
-  t.has_pending = true;
-  t.has_queued = false;
+  (queue ? t.queued : t.pending) = PathMotion(crig, path, options);
+  (queue ? t.queued_mix : t.pending_mix) = NonNegative(options.mix, kMaxAnimatorMix);
+  if (queue) {
+    t.has_queued = true;
+  } else {
+    t.has_pending = true;
+    t.has_queued = false;
+  }
   return true;
+}
+
+}  // namespace
+
+bool AnimatorPlay(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel, std::uint32_t path,
+                  const PlayOptions& options) {
+  return SetPath(rig, tracks, channel, path, options, false);
 }
 
 bool AnimatorQueue(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel, std::uint32_t path,
                    const PlayOptions& options) {
-  if (!Valid(rig, tracks, channel)) return false;
-  const Rig& crig = *ChannelRig(rig, channel);
-  if (path >= crig.path_count()) return false;
-  AnimatorTrack& t = tracks[channel];
-  t.queued = PathMotion(crig, path, options);
-  t.queued_mix = NonNegative(options.mix, kMaxAnimatorMix);
-  t.has_queued = true;
-  return true;
+  return SetPath(rig, tracks, channel, path, options, true);
 }
 
 bool AnimatorSetPoint(const Rig& rig, Span<AnimatorTrack> tracks, std::uint32_t channel, double x, double y,
