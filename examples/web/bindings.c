@@ -22,6 +22,8 @@ const size_t* pmw_layout(void) {
       sizeof(pm_grid_info),
       sizeof(pm_canvas),
       sizeof(pm_draw_options),
+      offsetof(pm_draw_list, colour),
+      offsetof(pm_draw_options, colours),
   };
   return layout;
 }

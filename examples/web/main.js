@@ -29,12 +29,14 @@ precision highp sampler2DArray;
 uniform sampler2DArray drawings;
 uniform float weights[8];
 uniform int layers[8];
+uniform vec4 tint;  // the draw list's colour, premultiplied: (r a, g a, b a, a)
 in vec2 v_uv[8];
 out vec4 colour;
 void main() {
   colour = vec4(0.0);
   for (int k = 0; k < 8; ++k)
     if (weights[k] != 0.0) colour += weights[k] * texture(drawings, vec3(v_uv[k], float(layers[k])));
+  colour *= tint;
 }`;
 
 function loadImage(url) {
@@ -121,8 +123,11 @@ async function main() {
   });
 
   const weightsAt = gl.getUniformLocation(program, 'weights'), layersAt = gl.getUniformLocation(program, 'layers');
+  const tintAt = gl.getUniformLocation(program, 'tint');
+  let tint = (query.get('tint') || '').split(',').map(Number);  // ?tint=r,g,b,a
+  if (tint.length !== 4 || !tint.every(Number.isFinite)) tint = null;
   function draw() {
-    const list = rig.drawLists(1, point)[0];
+    const list = rig.drawLists(1, point, { tint })[0];
     gl.viewport(0, 0, size, size);
     gl.clearColor(0.93, 0.94, 0.95, 1);
     gl.clear(gl.COLOR_BUFFER_BIT);
@@ -141,6 +146,9 @@ async function main() {
     }
     gl.uniform1fv(weightsAt, weights);
     gl.uniform1iv(layersAt, layers);
+    const [r, g, b, a] = list.colour;
+    gl.uniform4f(tintAt, r * a * list.partOpacity[0], g * a * list.partOpacity[0], b * a * list.partOpacity[0],
+                 a * list.partOpacity[0]);
     gl.drawElements(gl.TRIANGLES, 3 * rig.triangleCount, gl.UNSIGNED_INT, 0);
     return list;
   }

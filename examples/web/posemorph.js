@@ -4,12 +4,13 @@
 //
 //   const pm = await Posemorph.create(createPosemorphWasm);
 //   const rig = pm.loadRig(bytes, 'pip.pmrig');      // throws Error('pip.pmrig: ...') on bad bytes
-//   const lists = rig.drawLists(1, [x, y]);           // [{positions, indices, drawings: [{pose, weight, uvs}], ...}]
+//   const lists = rig.drawLists(1, [x, y]);           // [{positions, indices, drawings: [{pose, weight, uvs}], colour, ...}]
+//   rig.drawLists(1, [x, y], { tint: [r, g, b, a] }); // every character tinted (multiply) at opacity a
 //   const { raw, limited, texture } = rig.weights(x, y); // the pose-space weights alone
 //
 // Arrays returned are views into wasm memory, valid until the next call.
 
-const LAYOUT = [152, 0, 16, 20, 12, 4, 8, 140, 32, 48, 32, 24];  // wasm32 (bindings.c checks them)
+const LAYOUT = [424, 0, 16, 20, 12, 4, 8, 140, 32, 48, 32, 32, 152, 20];  // wasm32 (bindings.c checks them)
 
 export class Posemorph {
   static async create(createWasm) {
@@ -97,8 +98,9 @@ export class Rig {
     if (status !== 0) throw new Error(`pm_weights failed (${status})`);
     return { raw: all.slice(0, n), limited: all.slice(n, 2 * n), texture: all.slice(2 * n) };
   }
-  // Draw lists for `count` characters at points [x0, y0, x1, y1, ...]; maxDrawings K in 1..8.
-  drawLists(count, points, { sigma = -1, maxDrawings = 8 } = {}) {
+  // Draw lists for `count` characters at points [x0, y0, x1, y1, ...]; maxDrawings K in 1..8;
+  // tint [r, g, b, a] (each 0..1) for every character, or null: as drawn.
+  drawLists(count, points, { sigma = -1, maxDrawings = 8, tint = null } = {}) {
     const m = this.wasm;
     if (count > this.capacity) this.reserve(count);
     m.HEAPF64.set(points, this.points >> 3);
@@ -107,6 +109,9 @@ export class Rig {
     m.HEAP32[(o + 8) >> 2] = 1;  // limit_weights
     m.HEAP32[(o + 12) >> 2] = 0;  // rigid
     m.HEAPU32[(o + 16) >> 2] = maxDrawings;
+    if (tint) for (let k = 0; k < count; ++k) m.HEAPF32.set(tint, (this.colours >> 2) + 4 * k);
+    m.HEAPU32[(o + LAYOUT[13]) >> 2] = tint ? this.colours : 0;  // colours: count, or NULL
+    m.HEAPU32[(o + LAYOUT[13] + 4) >> 2] = 0;  // part_opacities: NULL
     const status = m._pm_draw_lists(this.handle, o, count, this.points, 0, this.work, this.workSize, this.positions,
                                     this.positionSize, this.lists, count);
     if (status !== 0) throw new Error(`pm_draw_lists failed (${status})`);
@@ -125,6 +130,8 @@ export class Rig {
         drawings,
         mirrored: m.HEAP32[(at + 140) >> 2] !== 0,
         parts: u.subarray(u[(at + 144) >> 2] >> 2, (u[(at + 144) >> 2] >> 2) + u[(at + 148) >> 2]),  // back to front
+        colour: Array.from(f.subarray((at + LAYOUT[12]) >> 2, ((at + LAYOUT[12]) >> 2) + 4)),  // r, g, b, a
+        partOpacity: f.subarray((at + LAYOUT[12] + 16) >> 2, ((at + LAYOUT[12] + 16) >> 2) + 64),  // by part index
       });
     }
     return lists;
@@ -141,12 +148,13 @@ export class Rig {
     this.positions = m._malloc(4 * this.positionSize);
     this.points = m._malloc(16 * count);
     this.lists = m._malloc(LAYOUT[0] * count);
-    this.options = m._malloc(24);
+    this.options = m._malloc(LAYOUT[11]);
+    this.colours = m._malloc(16 * count);
     this.capacity = count;
   }
   free() {
     if (!this.capacity) return;
-    [this.work, this.positions, this.points, this.lists, this.options].forEach((p) => this.wasm._free(p));
+    [this.work, this.positions, this.points, this.lists, this.options, this.colours].forEach((p) => this.wasm._free(p));
     this.capacity = 0;
   }
 }

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 # The web example in headless Chromium (SwiftShader WebGL2), served from
 # 127.0.0.1: the page's vertex positions equal the native runtime's bit for
-# bit, its frame matches posemorph-view's, load errors show in the page, and
+# bit, its frame matches posemorph-view's (plain and tinted), load errors show in the page, and
 # the runtime's time per frame in the browser is reported.
 # Usage: run_test.sh WASM-DIR RIG IMAGES VIEW COMPARE HASH WORK SHOTS
 set -euo pipefail
@@ -39,6 +39,14 @@ timeout 60 "${chrome[@]}" --virtual-time-budget=30000 --window-size=256,256 --sc
 echo -n "web page against posemorph-view at (0.5, 0.5): "
 "$compare" "$work/web.png" "$work/view.png" 0.01
 cp "$work/web.png" "$shots/web.png"
+# Tinted and half transparent: the page applies the draw list's colour as the viewer does.
+timeout 60 "${chrome[@]}" --virtual-time-budget=30000 --window-size=256,256 --screenshot="$work/web-tint.png" \
+  "$site/index.html?at=0.5,0.5&size=256&tint=1,0.5,0.25,0.6" 2>/dev/null
+"$view" "$rig" --images "$images" --headless --at 0.5,0.5 --size 256x256 --tint 1,0.5,0.25,0.6 \
+  -o "$work/view-tint.png" > /dev/null
+echo -n "web page against posemorph-view, tinted 1,0.5,0.25 at opacity 0.6: "
+"$compare" "$work/web-tint.png" "$work/view-tint.png" 0.01
+if "$compare" "$work/web-tint.png" "$work/web.png" 0.01 > /dev/null; then echo "FAIL: the tint changed nothing"; exit 1; fi
 
 # 3. Load errors show in the page.
 expect() {

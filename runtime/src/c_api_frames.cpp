@@ -81,6 +81,10 @@ void pm_transform_make(double x, double y, double radians, double scale_x, doubl
   *out = {t.a, t.b, t.c, t.d, t.tx, t.ty};
 }
 
+static_assert(sizeof(pm_colour) == sizeof(posemorph::Colour) && alignof(pm_colour) == alignof(posemorph::Colour),
+              "pm_colour is posemorph::Colour");
+static_assert(PM_MAX_PARTS == posemorph::format::kMaxParts, "PM_MAX_PARTS is the format's");
+
 void pm_draw_options_default(pm_draw_options* out) {
   if (!out) return;
   *out = pm_draw_options{};
@@ -107,6 +111,7 @@ int pm_draw_lists(const pm_rig* rig, const pm_draw_options* options, size_t coun
   pm_draw_options o;
   pm_draw_options_default(&o);
   if (options) o = *options;
+  if (!Aligned(o.colours) || !Aligned(o.part_opacities)) return PM_ERROR_INVALID_ARGUMENT;
   const posemorph::Rig& r = rig->rig;
   std::size_t need_workspace = 0, need_positions = 0;
   if (pm_draw_list_buffers(rig, count, &need_workspace, &need_positions) != PM_OK) return PM_ERROR_INVALID_ARGUMENT;
@@ -120,6 +125,8 @@ int pm_draw_lists(const pm_rig* rig, const pm_draw_options* options, size_t coun
   job.limit_weights = o.limit_weights != 0;
   job.interpolation = o.linear ? posemorph::Interpolation::kLinear : posemorph::Interpolation::kRigid;
   job.max_drawings = o.max_drawings;
+  if (o.colours) job.colours = {reinterpret_cast<const posemorph::Colour*>(o.colours), count};
+  if (o.part_opacities) job.part_opacities = {o.part_opacities, count * r.part_count()};
   job.workspace = {workspace, need_workspace};
   job.positions = {positions, need_positions};
   if (!posemorph::detail::ValidDrawListInputs(job)) return PM_ERROR_INVALID_ARGUMENT;
@@ -146,6 +153,8 @@ int pm_draw_lists(const pm_rig* rig, const pm_draw_options* options, size_t coun
         d.mirrored = list.mirrored ? 1 : 0;
         d.parts = list.parts.data;
         d.part_count = std::uint32_t(list.parts.size);
+        d.colour = {list.colour.r, list.colour.g, list.colour.b, list.colour.a};
+        for (std::uint32_t p = 0; p < PM_MAX_PARTS; ++p) d.part_opacity[p] = list.part_opacity[p];
       });
   return ok ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
 }

@@ -45,6 +45,11 @@ Transform2D Compose(const Transform2D& o, const Transform2D& i) {
                 double(o.a) * i.tx + double(o.c) * i.ty + o.tx, double(o.b) * i.tx + double(o.d) * i.ty + o.ty);
 }
 
+Colour ClampColour(const Colour& c) {
+  const auto unit = [](float v) { return v >= 0 ? (v <= 1 ? v : 1.0f) : (v < 0 ? 0.0f : 1.0f); };  // NaN: 1
+  return Colour{unit(c.r), unit(c.g), unit(c.b), unit(c.a)};
+}
+
 std::uint32_t PickDrawings(Span<const double> w, std::uint32_t max_drawings, Span<BlendedDrawing> out) {
   std::uint32_t K = max_drawings < kMaxBlendDrawings ? max_drawings : kMaxBlendDrawings;
   if (out.size < K) K = std::uint32_t(out.size);
@@ -151,6 +156,9 @@ bool detail::ValidDrawListInputs(const DrawListJob& job) {
   if (count > MaxDrawListCount(*rig)) return false;
   if (!job.points.data || job.points.size / 2 < count) return false;
   if (job.transforms.size != 0 && (!job.transforms.data || job.transforms.size != count)) return false;
+  if (job.colours.size != 0 && (!job.colours.data || job.colours.size != count)) return false;
+  if (job.part_opacities.size != 0 && (!job.part_opacities.data || job.part_opacities.size / rig->part_count() < count))
+    return false;
   if (job.max_drawings < 1 || job.max_drawings > kMaxBlendDrawings) return false;
   if (job.interpolation != Interpolation::kRigid && job.interpolation != Interpolation::kLinear) return false;
   if (!job.workspace.data || job.workspace.size < DrawListWorkspaceSize(*rig, count)) return false;
@@ -227,6 +235,7 @@ bool RunAttachedLists(const DrawListJob& job, double* body, double* extra_end) {
       }
       list.transform = job.output[k].transform;
       list.mirrored = job.output[k].mirrored;
+      list.colour = job.output[k].colour;
       job.attached_output[k * A + a] = list;
     }
     offset += p2;

@@ -55,6 +55,12 @@ bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emi
     }
     list.transform = transform_at(k);
     list.mirrored = list.transform.mirrors();
+    if (job.colours.size) list.colour = ClampColour(job.colours[k]);
+    if (job.part_opacities.size) {
+      const std::uint32_t parts = rig.part_count();
+      for (std::uint32_t p = 0; p < parts && p < format::kMaxParts; ++p)
+        list.part_opacity[p] = ClampColour({1, 1, 1, job.part_opacities[k * parts + p]}).a;
+    }
     emit(k, list);
   }
 

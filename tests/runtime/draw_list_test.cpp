@@ -181,6 +181,71 @@ TEST_CASE("draw lists: transforms pass through, a mirrored one is flagged") {
   for (int k = 0; k < 3; ++k) CHECK(std::memcmp(&l.out[k].transform, &t[k], sizeof(Transform2D)) == 0);
 }
 
+TEST_CASE("draw lists: colours and part opacities pass through clamped, NaN as drawn, attachments take the colour") {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  CHECK(ClampColour({0.25f, 2, -1, nan}).r == 0.25f);
+  CHECK(ClampColour({0.25f, 2, -1, nan}).g == 1);
+  CHECK(ClampColour({0.25f, 2, -1, nan}).b == 0);
+  CHECK(ClampColour({0.25f, 2, -1, nan}).a == 1);
+  CHECK(ClampColour({-inf, inf, 0.5f, 0}).r == 0);
+  CHECK(ClampColour({-inf, inf, 0.5f, 0}).g == 1);
+  CHECK(ClampColour({-inf, inf, 0.5f, 0}).a == 0);
+
+  const Rig rig = LoadTestRig("pell-face.compact");  // layered: parts and attachments
+  const std::uint32_t P = rig.part_count(), A = rig.attachment_count();
+  REQUIRE(P > 1);
+  REQUIRE(A > 0);
+  const std::size_t count = 3;
+  const std::vector<double> points = PointsOnPath(rig, count);
+  Lists plain(rig, points);
+  std::vector<DrawList> plain_attached(count * A);
+  std::vector<float> plain_attached_positions(count * 2 * rig.attached_vertex_count());
+  plain.job.attached_output = MakeSpan(plain_attached);
+  plain.job.attached_positions = MakeSpan(plain_attached_positions);
+  REQUIRE(plain.job.Run());
+  for (const DrawList& d : plain.out) {  // no colours given: as drawn
+    CHECK(d.colour.r == 1);
+    CHECK(d.colour.a == 1);
+    for (float o : d.part_opacity) CHECK(o == 1);
+  }
+
+  const Colour colours[count] = {{1, 0.5f, 0.25f, 0.75f}, {nan, 3, -2, nan}, {0, 0, 0, 0}};
+  std::vector<float> opacity(count * P);
+  for (std::size_t k = 0; k < count; ++k)
+    for (std::uint32_t p = 0; p < P; ++p) opacity[k * P + p] = float(p) / float(P) - 0.1f * float(k);
+  opacity[P + 1] = nan;
+  Lists l(rig, points);
+  std::vector<DrawList> attached(count * A);
+  std::vector<float> attached_positions(count * 2 * rig.attached_vertex_count());
+  l.job.attached_output = MakeSpan(attached);
+  l.job.attached_positions = MakeSpan(attached_positions);
+  l.job.colours = colours;
+  l.job.part_opacities = MakeSpan(opacity);
+  REQUIRE(l.job.Run());
+  CHECK(l.positions == plain.positions);  // colour never changes a position
+  CHECK(attached_positions == plain_attached_positions);
+  for (std::size_t k = 0; k < count; ++k) {
+    CAPTURE(k);
+    const Colour want = ClampColour(colours[k]);
+    CHECK(std::memcmp(&l.out[k].colour, &want, sizeof(Colour)) == 0);
+    for (std::uint32_t p = 0; p < P; ++p) {
+      const float o = opacity[k * P + p];
+      CHECK(l.out[k].part_opacity[p] == (o >= 0 ? std::min(o, 1.0f) : (o < 0 ? 0.0f : 1.0f)));
+      CHECK(PartColour(l.out[k], p).a == want.a * l.out[k].part_opacity[p]);
+      CHECK(PartColour(l.out[k], p).g == want.g);
+    }
+    for (std::uint32_t p = P; p < format::kMaxParts; ++p) CHECK(l.out[k].part_opacity[p] == 1);
+    CHECK(PartColour(l.out[k], format::kMaxParts).a == want.a);  // out of range: the character's alone
+    for (std::uint32_t a = 0; a < A; ++a) {
+      const DrawList& d = attached[k * A + a];
+      CHECK(std::memcmp(&d.colour, &want, sizeof(Colour)) == 0);
+      for (float o : d.part_opacity) CHECK(o == 1);
+    }
+  }
+  CHECK(l.out[1].part_opacity[1] == 1);  // NaN: as drawn
+  CHECK(l.out[2].colour.a == 0);         // a character faded out
+}
+
 TEST_CASE("transforms: scale, flip, rotate, move, in that order, composition") {
   const Transform2D t = Transform2D::Make(5, -3, 3.14159265358979323846 / 2, 2, 3, true);
   double x = 0, y = 0;
@@ -220,6 +285,8 @@ TEST_CASE("DrawListJob::Validate refuses each listed failure case, and Run then 
   Lists good(rig, points);
   REQUIRE(good.job.Validate());
   const Transform2D three[3];
+  const Colour colours[3];
+  const std::vector<float> opacities(4 * rig.part_count() - 1, 0.5f);
   Rig empty;
   struct Case {
     const char* what;
@@ -231,6 +298,12 @@ TEST_CASE("DrawListJob::Validate refuses each listed failure case, and Run then 
       {"count above MaxDrawListCount", [&](DrawListJob& j) { j.count = MaxDrawListCount(rig) + 1; }},
       {"too few points", [](DrawListJob& j) { j.points.size = 7; }},
       {"transforms neither empty nor count long", [&](DrawListJob& j) { j.transforms = three; }},
+      {"colours neither empty nor count long", [&](DrawListJob& j) { j.colours = colours; }},
+      {"colours with no data",
+       [](DrawListJob& j) {
+         j.colours = {nullptr, 4};
+       }},
+      {"part_opacities shorter than count x parts", [&](DrawListJob& j) { j.part_opacities = MakeSpan(opacities); }},
       {"max_drawings 0", [](DrawListJob& j) { j.max_drawings = 0; }},
       {"max_drawings 9", [](DrawListJob& j) { j.max_drawings = 9; }},
       {"short workspace", [](DrawListJob& j) { j.workspace.size -= 1; }},
@@ -319,7 +392,32 @@ TEST_CASE("C API: pm_draw_lists gives what DrawListJob gives") {
     }
     CHECK(out[k].mirrored == k % 2);
     CHECK(out[k].transform.tx == float(k * 10.0));
+    CHECK(out[k].colour.r == 1);
+    CHECK(out[k].colour.a == 1);
+    CHECK(out[k].part_opacity[0] == 1);
   }
+  // Colours and part opacities, as the C++ job clamps them.
+  const std::uint32_t P = cpp.part_count();
+  pm_colour colours[5] = {{0.5f, 0.25f, 1, 0.8f}, {2, -1, 0, 0}, {1, 1, 1, 1}, {0, 0, 0, 0.5f}, {1, 0.5f, 0.5f, 1}};
+  std::vector<float> opacity(5 * P);
+  for (std::size_t i = 0; i < opacity.size(); ++i) opacity[i] = float(i % 3) * 0.5f - 0.25f;
+  o.colours = colours;
+  o.part_opacities = opacity.data();
+  REQUIRE(pm_draw_lists(rig, &o, 5, points.data(), t, work.data(), work.size(), positions.data(), positions.size(), out,
+                        5) == PM_OK);
+  CHECK(positions == l.positions);
+  l.job.colours = {reinterpret_cast<const Colour*>(colours), 5};
+  l.job.part_opacities = MakeSpan(opacity);
+  REQUIRE(l.job.Run());
+  for (int k = 0; k < 5; ++k) {
+    CHECK(std::memcmp(&out[k].colour, &l.out[k].colour, sizeof(pm_colour)) == 0);
+    CHECK(std::memcmp(out[k].part_opacity, l.out[k].part_opacity, sizeof(out[k].part_opacity)) == 0);
+  }
+  CHECK(out[1].colour.r == 1);
+  CHECK(out[1].colour.g == 0);
+  CHECK(out[0].part_opacity[0] == 0);  // -0.25 clamps to 0
+  o.colours = nullptr;
+  o.part_opacities = nullptr;
   double tex[8] = {0.1, 0.5, 0.4};
   pm_blended_drawing picked[8];
   CHECK(pm_pick_drawings(tex, 3, 2, picked, 8) == 2);

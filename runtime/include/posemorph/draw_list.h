@@ -12,6 +12,7 @@
 #include "posemorph/export.h"
 #include "posemorph/jobs.h"
 #include "posemorph/rig.h"
+#include "posemorph/rig_format.h"
 #include "posemorph/span.h"
 
 namespace posemorph {
@@ -63,6 +64,15 @@ struct BlendedDrawing {
 PM_API std::uint32_t PickDrawings(Span<const double> texture_weights, std::uint32_t max_drawings,
                                   Span<BlendedDrawing> out);
 
+// A character's colour: a renderer multiplies each premultiplied sample by
+// (r, g, b, 1) x a, so (r, g, b) tints (multiplies the drawing's colour) and
+// a is the opacity (0 hides, 1 as drawn). Components are in [0, 1].
+struct Colour {
+  float r = 1, g = 1, b = 1, a = 1;
+};
+// c with each component clamped to [0, 1]; a NaN component counts as 1 (as drawn).
+PM_API Colour ClampColour(const Colour& c);
+
 // One character's frame, ready to draw.
 struct DrawList {
   Span<const float> positions;        // 2 x V, interleaved x, y, rig units (y up): a slice of the job's positions
@@ -78,7 +88,21 @@ struct DrawList {
   BlendedDrawing drawings[kMaxBlendDrawings];
   Transform2D transform;  // rig units -> world
   bool mirrored = false;  // transform.mirrors(): triangles are clockwise in the world
+  Colour colour;          // tint and opacity of the whole character (DrawListJob::colours)
+  // Each part's own opacity, by part index (rig.part(p)); 1 beyond
+  // rig.part_count(). Part p draws at colour.a x part_opacity[p] (PartColour).
+  float part_opacity[format::kMaxParts];
+  DrawList() {
+    for (float& o : part_opacity) o = 1;
+  }
 };
+// What part `part` of a list draws with: the list's tint, at the character's
+// opacity times the part's (the character's alone for a part out of range).
+inline Colour PartColour(const DrawList& list, std::uint32_t part) {
+  Colour c = list.colour;
+  if (part < format::kMaxParts) c.a *= list.part_opacity[part];
+  return c;
+}
 
 // Draw lists for `count` characters sharing one rig, each at its own
 // pose-space point. Rigid characters are evaluated as MorphBatchJob does (one
@@ -93,9 +117,18 @@ struct DrawList {
 // uvs) with the character's transform. CharacterDrawSteps merges a
 // character's lists into one back-to-front order.
 //
+// Colour (set by code; states of the state machine do not set it yet):
+// colours gives each character's tint and opacity (empty: as drawn) and
+// part_opacities each character's opacity of each of its parts (count x
+// rig.part_count(), part index order; empty: 1 for all); both are clamped
+// as ClampColour does (NaN: 1) into the lists. A character's attachments
+// draw with its colour and opacity; their own parts' opacities are 1.
+//
 // Validate() fails (and Run() does nothing) when: rig is null or not
 // loaded; count is 0 or above MaxDrawListCount; points holds fewer than 2 x count values;
-// transforms is neither empty nor count long; max_drawings is not in
+// transforms is neither empty nor count long; colours is neither empty nor
+// count long; part_opacities is neither empty nor at least count x
+// rig.part_count() values; max_drawings is not in
 // 1..kMaxBlendDrawings; workspace is shorter than DrawListWorkspaceSize;
 // positions holds fewer than count x 2V floats; output holds fewer than
 // count lists; attached_output is given for a rig without attachments, or
@@ -109,6 +142,8 @@ struct PM_API DrawListJob {
   std::size_t count = 1;               // characters
   Span<const double> points;           // count x (x, y), pose space
   Span<const Transform2D> transforms;  // count, or empty: identity for all
+  Span<const Colour> colours;          // count, or empty: as drawn
+  Span<const float> part_opacities;    // count x rig->part_count(), or empty: every part opaque
   double sigma = -1;                   // texture sharpening in [0, 1]; < 0 or NaN: the rig's default
   bool limit_weights = true;
   Interpolation interpolation = Interpolation::kRigid;
@@ -189,6 +224,9 @@ struct PM_API CharacterBuffers {
 //     w_k / (w_0 + ... + w_k): exact where every drawing is opaque; along
 //     silhouettes that move between drawings the first shows at full
 //     strength.
+//  4. Colour: multiply the blended premultiplied colour of part p by
+//     (r, g, b, 1) x a, with (r, g, b, a) = PartColour(list, p), before
+//     compositing it (with the sequential approximation: each draw's).
 //  docs/runtime.md "Drawing a character: draw lists" gives their measured cost on Pip.
 
 }  // namespace posemorph
