@@ -7,7 +7,9 @@
 // only_slot = s >= 0 it draws one drawing instead, at opacity
 // w_s / (w_0 + ... + w_s): drawn for s = 0, 1, ... each "over" the last,
 // this is the sequential approximation a renderer that samples one texture
-// per draw would use (exact where every drawing is opaque).
+// per draw would use (exact where every drawing is opaque). Every sample is
+// multiplied by the tint: the character's colour (r a, g a, b a, a) times
+// its part's opacity (docs/runtime.md "Drawing a character", step 4).
 #extension GL_EXT_scalar_block_layout : require
 #extension GL_GOOGLE_include_directive : require
 #include "shared_layout.h"
@@ -23,10 +25,11 @@ layout(location = 4) flat in vec4 weights0;
 layout(location = 5) flat in vec4 weights1;
 layout(location = 6) flat in ivec4 layers0;
 layout(location = 7) flat in ivec4 layers1;
+layout(location = 8) flat in vec4 tint;
 layout(location = 0) out vec4 colour;
 
 vec4 Drawing(float w, vec2 uv, int layer) {
-  return w == 0.0 ? vec4(0.0) : w * texture(drawings, vec3(uv, float(layer + pc.layer_offset)));
+  return w == 0.0 ? vec4(0.0) : w * tint * texture(drawings, vec3(uv, float(layer + pc.layer_offset)));
 }
 
 void main() {

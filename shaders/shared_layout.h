@@ -14,6 +14,7 @@ struct Instance {
   vec2 translation;  // (tx, ty)
   ivec4 layers[2];   // the drawings shown (array layers = poses)
   vec4 weights[2];   // their texture weights, renormalised; 0 for unused slots
+  vec4 tint;         // DrawList::colour premultiplied: (r a, g a, b a, a); each sample is multiplied by it
 };
 
 // Push constants of both stages.
@@ -28,4 +29,7 @@ struct PushData {
   int only_slot;     // >= 0: only this drawing slot, at weight / (sum of the weights up to it):
                      // one pass of the sequential "over" approximation (blend.frag)
   int layer_offset;  // the part drawn: its drawings are array layers part * N + pose
+  uvec2 opacities;   // buffer address: float x part_count per instance, DrawList::part_opacity
+  uint part;         // the part drawn (its opacity: opacities[instance * part_count + part])
+  uint part_count;
 };

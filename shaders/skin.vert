@@ -6,7 +6,8 @@
 // placed by each character's transform (a mirrored one turns the triangles
 // clockwise: the pipeline does not cull). It passes on each vertex's uv in
 // every drawing the character shows (up to 8, those with the largest
-// texture weights; all of them for N <= 8).
+// texture weights; all of them for N <= 8) and the colour the part draws
+// with: the character's premultiplied tint times the part's opacity.
 #extension GL_EXT_buffer_reference : require
 #extension GL_EXT_buffer_reference_uvec2 : require
 #extension GL_EXT_scalar_block_layout : require
@@ -15,6 +16,7 @@
 
 layout(buffer_reference, scalar) readonly buffer Vec2s { vec2 v[]; };
 layout(buffer_reference, scalar) readonly buffer Instances { Instance i[]; };
+layout(buffer_reference, scalar) readonly buffer Floats { float f[]; };
 layout(push_constant, scalar) uniform Push { PushData pc; };
 
 layout(location = 0) out vec4 uv01;
@@ -25,6 +27,7 @@ layout(location = 4) flat out vec4 weights0;
 layout(location = 5) flat out vec4 weights1;
 layout(location = 6) flat out ivec4 layers0;
 layout(location = 7) flat out ivec4 layers1;
+layout(location = 8) flat out vec4 tint;
 
 vec2 Uv(int layer, uint v) { return Vec2s(pc.uvs).v[uint(layer) * pc.vertex_count + v]; }
 
@@ -41,4 +44,6 @@ void main() {
   weights1 = inst.weights[1];
   layers0 = inst.layers[0];
   layers1 = inst.layers[1];
+  const float part_opacity = Floats(pc.opacities).f[uint(gl_InstanceIndex) * pc.part_count + pc.part];
+  tint = inst.tint * part_opacity;
 }

@@ -519,6 +519,56 @@ TEST_CASE("frames: a layered character's arm passes behind the body with its per
   CHECK(CountColour(many, kBodyColour) > CountColour(many, kArmColour));
 }
 
+TEST_CASE("frames: a character's tint and opacity and a part's opacity multiply what it draws") {
+  const auto arm = MakeLayeredArm(1);
+  const Camera pixels = ArmPixels();
+  Scene rest;
+  rest.sigma = 1;
+  const auto plain = RenderRig(arm->rig, arm->drawings, rest, &pixels);
+  Scene no_arm = rest;
+  no_arm.hidden_parts = 2;
+  const auto body_only = RenderRig(arm->rig, arm->drawings, no_arm, &pixels);
+  // Opacity 1 everywhere is the plain frame, bit for bit; a part at
+  // opacity 0 is that part hidden, bit for bit.
+  Scene same = rest, arm_clear = rest;
+  same.colour = {1, 1, 1, 1}, same.part_opacities = {1, 1};
+  arm_clear.part_opacities = {1, 0};
+  CHECK(RenderRig(arm->rig, arm->drawings, same, &pixels) == plain);
+  CHECK(RenderRig(arm->rig, arm->drawings, arm_clear, &pixels) == body_only);
+  // A tint multiplies each covered pixel's colour and leaves the background.
+  Scene tinted = rest;
+  tinted.colour = {0.5f, 1, 0.25f, 1};
+  const auto tint = RenderRig(arm->rig, arm->drawings, tinted, &pixels);
+  const float factor[3] = {0.5f, 1, 0.25f};
+  std::size_t covered = 0, off = 0, background = 0;
+  for (std::size_t p = 0; p < plain.size(); p += 4) {
+    const bool is_background = std::abs(plain[p] - 0.93f * 255) < 1.5f && std::abs(plain[p + 2] - 0.95f * 255) < 1.5f;
+    const bool opaque_part = CountColour({plain.begin() + long(p), plain.begin() + long(p) + 4}, kArmColour) +
+                                 CountColour({plain.begin() + long(p), plain.begin() + long(p) + 4}, kBodyColour) >
+                             0;
+    if (is_background) background += std::equal(&plain[p], &plain[p] + 4, &tint[p]);
+    if (!opaque_part) continue;
+    ++covered;
+    for (int c = 0; c < 3; ++c) off += std::abs(tint[p + c] - plain[p + c] * factor[c]) > 1.01f;
+  }
+  CHECK(covered > 3000);
+  CHECK(off == 0);
+  CHECK(background > 30000);
+  // Half opacity: where only the body covers, half body and half background.
+  Scene half = no_arm;
+  half.colour.a = 0.5f;
+  const auto faded = RenderRig(arm->rig, arm->drawings, half, &pixels);
+  std::size_t body = 0, wrong = 0;
+  for (std::size_t p = 0; p < body_only.size(); p += 4) {
+    if (CountColour({body_only.begin() + long(p), body_only.begin() + long(p) + 4}, kBodyColour) == 0) continue;
+    ++body;
+    for (int c = 0; c < 3; ++c)
+      wrong += std::abs(faded[p + c] - (0.5f * body_only[p + c] + 0.5f * kBackground[c] * 255)) > 1.01f;
+  }
+  CHECK(body > 1500);
+  CHECK(wrong == 0);
+}
+
 namespace {
 
 // Pell (assets/pell/, the layered sample): seven parts drawn on one canvas

@@ -275,3 +275,64 @@ TEST_CASE("eval --no-weight-limit blends the stretches with raw weights, and --n
   CHECK(eval("--no-shear-limit", "old-name.json") == raw);
   fs::remove_all(dir);
 }
+
+TEST_CASE("sheet --textured: the tint multiplies every frame, opacity fades it over the background, parts fade alone") {
+  Pip pip;
+  const std::vector<bake::RgbaImage> drawings = bake::ReadPoseDrawings(pip.rig, "pip.pmrig", pip.images);
+  const auto sheet_of = [&](const bake::SheetColour& colour) {
+    return bake::TexturedSheet(pip.rig, drawings, 3, 1, bake::EvalOptions{}, TextureFilter::kNearest, 80, nullptr, 0,
+                               {}, colour);
+  };
+  const bake::RgbaImage plain = sheet_of({});
+  bake::SheetColour tint, fade, clear;
+  tint.colour = {0.5f, 1, 0.25f, 1};
+  fade.colour.a = 0.5f;
+  clear.colour.a = 0;
+  const bake::RgbaImage tinted = sheet_of(tint), faded = sheet_of(fade), cleared = sheet_of(clear);
+  // Opacity 0: the background alone, every pixel.
+  std::size_t not_background = 0;
+  for (std::size_t p = 0; p < cleared.rgba.size(); p += 4)
+    not_background += cleared.rgba[p] != 237 || cleared.rgba[p + 1] != 240 || cleared.rgba[p + 2] != 242;
+  CHECK(not_background == 0);
+  // Where the plain sheet is exactly the character (its pixel is far from the
+  // background and its neighbours' too), the tint multiplies it and half
+  // opacity halves its distance from the background.
+  const double background[3] = {0.93 * 255, 0.94 * 255, 0.95 * 255}, factor[3] = {0.5, 1, 0.25};
+  std::size_t compared = 0, tint_off = 0, fade_off = 0;
+  for (std::size_t p = 0; p < plain.rgba.size(); p += 4) {
+    if (std::abs(plain.rgba[p] - background[0]) + std::abs(plain.rgba[p + 2] - background[2]) < 60) continue;
+    ++compared;
+    for (int c = 0; c < 3; ++c) {
+      const double v = plain.rgba[p + std::size_t(c)];
+      // Only on opaque pixels is the tinted value v x factor exactly; allow the edges' partial alpha 1.5 units.
+      tint_off += tinted.rgba[p + std::size_t(c)] > v + 1.01 || tinted.rgba[p + std::size_t(c)] < v * factor[c] - 1.01;
+      fade_off += std::abs(faded.rgba[p + std::size_t(c)] - (0.5 * v + 0.5 * background[c])) > 1.01;
+    }
+  }
+  MESSAGE(compared << " character pixels compared");
+  CHECK(compared > 5000);
+  CHECK(tint_off == 0);
+  CHECK(fade_off <= compared / 50);  // anti-aliased edges: the covered share is not 1
+  // A part at opacity 0 in a layered character draws as if absent: Pell's
+  // sheet without its head equals the sheet where the head is fully clear.
+  const std::string images = std::string(POSEMORPH_DRAWN_SAMPLES) + "/pell";
+  const std::vector<unsigned char> bytes = BakedRigBytes("pell");
+  Rig pell;
+  REQUIRE(LoadRig(bytes.data(), bytes.size(), &pell, nullptr));
+  const std::vector<bake::RgbaImage> parts = bake::ReadPoseDrawings(pell, "pell.pmrig", images);
+  bake::SheetColour all_opaque, one_clear;
+  all_opaque.part_opacities.assign(pell.part_count(), 1.0f);
+  one_clear.part_opacities.assign(pell.part_count(), 1.0f);
+  one_clear.part_opacities[0] = 0;
+  const auto pell_sheet = [&](const bake::SheetColour& colour) {
+    return bake::TexturedSheet(pell, parts, 3, 1, bake::EvalOptions{}, TextureFilter::kNearest, 80, nullptr, 0, {},
+                               colour)
+        .rgba;
+  };
+  const auto opaque = pell_sheet(all_opaque);
+  CHECK(opaque == pell_sheet({}));
+  const auto without = pell_sheet(one_clear);
+  std::size_t changed = 0;
+  for (std::size_t p = 0; p < opaque.size(); ++p) changed += opaque[p] != without[p];
+  CHECK(changed > 100);  // part 0 shows somewhere, and is gone
+}

@@ -16,7 +16,12 @@ foreach(case
     "--crowd;12x|--crowd wants"
     "--drawings;9|--drawings wants"
     "--blend;soft|--blend wants"
-    "--time;inf|--time wants")
+    "--time;inf|--time wants"
+    "--tint;1,1|--tint wants"
+    "--tint;1,1,2|--tint wants"
+    "--tint;1,nan,1,1|--tint wants"
+    "--part-opacity;arm|--part-opacity wants"
+    "--part-opacity;arm=1.5|--part-opacity wants")
   string(REPLACE "|" ";" parts "${case}")
   list(GET parts 0 option)
   list(GET parts 1 value)
@@ -34,7 +39,12 @@ foreach(case
   endif()
 endforeach()
 
-# --hide-part on a rig without parts: exit status 1, the rig named, no frame.
+# --hide-part and --part-opacity on a rig without parts: exit status 1, the rig named, no frame.
+execute_process(COMMAND ${VIEW} ${RIG} --headless -o ${WORK}/never.png --part-opacity arm=0.5
+                RESULT_VARIABLE status ERROR_VARIABLE err OUTPUT_VARIABLE out)
+if(NOT status EQUAL 1 OR NOT err MATCHES "pip.pmrig: has no parts \\(--part-opacity\\)" OR EXISTS ${WORK}/never.png)
+  message(FATAL_ERROR "--part-opacity arm=0.5: expected exit status 1 and 'has no parts', got '${status}' (${err})")
+endif()
 execute_process(COMMAND ${VIEW} ${RIG} --headless -o ${WORK}/never.png --hide-part arm
                 RESULT_VARIABLE status ERROR_VARIABLE err OUTPUT_VARIABLE out)
 if(NOT status EQUAL 1 OR NOT err MATCHES "pip.pmrig: has no parts, so --hide-part has nothing to hide")

@@ -34,6 +34,8 @@ const char kUsage[] =
     "        [--channel NAME]   the same frames drawn with the drawings, cross-faded by the texture weights;\n"
     "        a rig with control channels: over channel NAME's pose space (default the first), the others at\n"
     "        their first pose, the attachments drawn too (eval and the SVG sheet show the first channel's parts)\n"
+    "        [--tint R,G,B[,A]] [--part-opacity NAME=A]...   every frame tinted (multiplied) at opacity A, a\n"
+    "        layered character's part NAME at its own opacity, as DrawListJob's colours and the viewer draw them\n"
     "  posemorph-bake deform RIG.json --pose NAME -o MESH.json  write a deformation-made pose as a plain mesh file\n"
     "  posemorph-bake outline RIG.json -o DIR [--part NAME]   per drawn pose, DIR/INDEX-NAME.png: the drawing scaled "
     "up with\n"

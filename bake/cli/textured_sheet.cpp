@@ -4,6 +4,7 @@
 #include <png.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -106,10 +107,11 @@ struct SheetCanvas {
 // One part of a frame into its cell (centred at ox, oy; cell column cx, row
 // cy): each triangle rasterised, each pixel the texture-weighted mix of the
 // part's drawings (drawings[part * N + pose]), laid over what the parts
-// behind it left there (premultiplied "over").
+// behind it left there (premultiplied "over"), each sample multiplied by
+// `tint` (premultiplied: r a, g a, b a, a).
 void DrawPart(const Rig& rig, const std::vector<RgbaImage>& drawings, const Frame& f, std::uint32_t part,
               std::uint32_t cx, std::uint32_t cy, const TexturedSheetLayout& lay, TextureFilter filter,
-              SheetCanvas& canvas) {
+              const std::array<double, 4>& tint, SheetCanvas& canvas) {
   const std::uint32_t N = rig.pose_count(), cell = lay.cell;
   const PartView range = rig.part(part);
   const std::uint32_t first = rig.part_count() > 1 ? range.first_triangle : 0;
@@ -149,6 +151,7 @@ void DrawPart(const Rig& rig, const std::vector<RgbaImage>& drawings, const Fram
           Sample(drawings[std::size_t(part) * N + i], u, v, filter, c);
           for (int ch = 0; ch < 4; ++ch) colour[ch] += w * c[ch];
         }
+        for (int ch = 0; ch < 4; ++ch) colour[ch] *= tint[std::size_t(ch)];
         for (int ch = 0; ch < 4; ++ch)
           acc[at * 4 + std::size_t(ch)] = colour[ch] + (1 - colour[3]) * acc[at * 4 + std::size_t(ch)];
       }
@@ -220,7 +223,8 @@ std::uint32_t Dominant(const Rig& rig, const Frame& f) {
 // parts first), as posemorph-view draws them.
 void DrawCell(const Rig& rig, const std::vector<RgbaImage>& drawings,
               const std::vector<std::vector<RgbaImage>>& attachment_drawings, const Cell& cell, std::uint32_t cx,
-              std::uint32_t cy, const TexturedSheetLayout& lay, TextureFilter filter, SheetCanvas& canvas) {
+              std::uint32_t cy, const TexturedSheetLayout& lay, TextureFilter filter, const SheetColour& colour,
+              SheetCanvas& canvas) {
   struct Item {
     std::int32_t order;
     const Rig* rig;
@@ -239,8 +243,17 @@ void DrawCell(const Rig& rig, const std::vector<RgbaImage>& drawings,
       items.push_back({r.part_draw_order(part, d), &r, &attachment_drawings[a], &cell.attached[a], part});
   }
   std::stable_sort(items.begin(), items.end(), [](const Item& l, const Item& r) { return l.order < r.order; });
-  for (const Item& item : items)
-    DrawPart(*item.rig, *item.drawings, *item.frame, item.part, cx, cy, lay, filter, canvas);
+  const Colour c = ClampColour(colour.colour);
+  for (const Item& item : items) {
+    // The body's parts at their own opacities; the attachments' at the character's.
+    const bool body = item.rig == &rig;
+    const double part = body && item.part < colour.part_opacities.size()
+                            ? double(ClampColour({1, 1, 1, colour.part_opacities[item.part]}).a)
+                            : 1.0;
+    const double a = double(c.a) * part;
+    const std::array<double, 4> tint = {c.r * a, c.g * a, c.b * a, a};
+    DrawPart(*item.rig, *item.drawings, *item.frame, item.part, cx, cy, lay, filter, tint, canvas);
+  }
 }
 
 }  // namespace
@@ -256,7 +269,7 @@ std::vector<std::vector<RgbaImage>> ReadAttachmentDrawings(const Rig& rig, const
 RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, int columns, int rows,
                         const EvalOptions& options, TextureFilter filter, std::uint32_t cell,
                         TexturedSheetLayout* layout, std::uint32_t channel,
-                        const std::vector<std::vector<RgbaImage>>& attachment_drawings) {
+                        const std::vector<std::vector<RgbaImage>>& attachment_drawings, const SheetColour& colour) {
   const Rig& space = channel < rig.channel_count() ? *rig.channel_rig(channel) : rig;
   if (channel >= rig.channel_count()) channel = 0;
   const std::uint32_t N = space.pose_count();
@@ -300,7 +313,7 @@ RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, 
   for (std::size_t k = 0; k < frames.size(); ++k) {
     const std::uint32_t cx = k < N ? std::uint32_t(k) : std::uint32_t(k - N) % std::uint32_t(columns);
     const std::uint32_t cy = k < N ? 0 : 1 + std::uint32_t(k - N) / std::uint32_t(columns);
-    DrawCell(rig, drawings, attachment_drawings, frames[k], cx, cy, lay, filter, canvas);
+    DrawCell(rig, drawings, attachment_drawings, frames[k], cx, cy, lay, filter, colour, canvas);
   }
   // Over a light background, as the viewer's.
   const double background[3] = {0.93, 0.94, 0.95};

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "posemorph/draw_list.h"
 #include "posemorph/rig.h"
 #include "preview.h"
 
@@ -41,15 +42,25 @@ struct TexturedSheetLayout {
 std::vector<std::vector<RgbaImage>> ReadAttachmentDrawings(const Rig& rig, const std::string& rig_file,
                                                            const std::string& images);
 
+// What every frame of a sheet is drawn with, as DrawListJob's colours and
+// part opacities: the character's tint and opacity, and its parts'
+// opacities by part index (empty: all 1; the attachments' parts are 1).
+struct SheetColour {
+  Colour colour;
+  std::vector<float> part_opacities;
+};
+
 // Row 0: the base poses at their points; rows 1..: SheetPoints(columns, rows).
 // Over channel `channel`'s pose space (its rig's poses and grid), every
 // other channel at its first pose; the attachments drawn with
 // `attachment_drawings` (ReadAttachmentDrawings), merged among the body's
-// parts by draw order.
+// parts by draw order; every part multiplied by `colour` as the viewer's
+// shader does (DrawList "Drawing a DrawList", step 4).
 RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, int columns, int rows,
                         const EvalOptions& options, TextureFilter filter, std::uint32_t cell,
                         TexturedSheetLayout* layout = nullptr, std::uint32_t channel = 0,
-                        const std::vector<std::vector<RgbaImage>>& attachment_drawings = {});
+                        const std::vector<std::vector<RgbaImage>>& attachment_drawings = {},
+                        const SheetColour& colour = {});
 
 // A PNG drawing as RGBA: a regular file of at most 64 MiB and 16,777,216
 // pixels. Throws BakeError naming the file.

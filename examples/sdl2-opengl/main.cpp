@@ -4,7 +4,7 @@
 // hands over a draw list per character; this file only draws it.
 //
 //   sdl2_opengl RIG.pmrig --images DIR [--crowd K] [--filter nearest|linear]
-//               [--size WxH] [--at X,Y] [--frames N --screenshot OUT.png]
+//               [--size WxH] [--at X,Y] [--tint R,G,B,A] [--frames N --screenshot OUT.png]
 #define GL_GLEXT_PROTOTYPES 1
 #include <SDL.h>
 #include <SDL_opengl.h>
@@ -39,17 +39,21 @@ void main() {
   gl_Position = vec4(world * view_scale + view_offset, 0.0, 1.0);
   for (int k = 0; k < 8; ++k) v_uv[k] = uv[k];
 })";
-// The exact cross-fade: the weighted sum of premultiplied drawings, then "over" (blend ONE, 1 - SRC_ALPHA).
+// The exact cross-fade: the weighted sum of premultiplied drawings, times
+// the draw list's colour (premultiplied: r a, g a, b a, a), then "over"
+// (blend ONE, 1 - SRC_ALPHA).
 const char* kFragment = R"(#version 330 core
 uniform sampler2DArray drawings;
 uniform float weights[8];
 uniform int layers[8];
+uniform vec4 tint;
 in vec2 v_uv[8];
 out vec4 colour;
 void main() {
   colour = vec4(0.0);
   for (int k = 0; k < 8; ++k)
     if (weights[k] != 0.0) colour += weights[k] * texture(drawings, vec3(v_uv[k], float(layers[k])));
+  colour *= tint;
 })";
 
 int Fail(const std::string& message) {
@@ -94,6 +98,7 @@ struct Options {
   std::string rig_path, images, screenshot, filter;  // filter: empty = as the rig asks
   int crowd = 1, frames = 0, width = 640, height = 640;
   double at_x = NAN, at_y = NAN;
+  Colour tint;  // every character's (DrawListJob::colours)
 };
 
 // The command line; what is wrong with it, or "".
@@ -105,7 +110,7 @@ std::string ParseOptions(int argc, char** argv, Options& o) {
       o.rig_path = a;
     else if (!v)
       return "usage: sdl2_opengl RIG.pmrig --images DIR [--crowd K] [--filter nearest|linear] "
-             "[--size WxH] [--at X,Y] [--frames N --screenshot OUT.png]";
+             "[--size WxH] [--at X,Y] [--tint R,G,B,A] [--frames N --screenshot OUT.png]";
     else if (a == "--images")
       o.images = v, ++i;
     else if (a == "--crowd")
@@ -120,6 +125,8 @@ std::string ParseOptions(int argc, char** argv, Options& o) {
       ++i;
     else if (a == "--at" && std::sscanf(v, "%lf,%lf", &o.at_x, &o.at_y) == 2)
       ++i;
+    else if (a == "--tint" && std::sscanf(v, "%f,%f,%f,%f", &o.tint.r, &o.tint.g, &o.tint.b, &o.tint.a) == 4)
+      ++i;
     else
       return "unknown or bad option " + a;
   }
@@ -130,7 +137,7 @@ std::string ParseOptions(int argc, char** argv, Options& o) {
 // triangles, the characters' positions, and the program that draws them.
 struct GpuRig {
   GLuint texture = 0, uvs = 0, positions = 0, indices = 0, vao = 0, program = 0;
-  GLint weights_at = -1, layers_at = -1, linear_at = -1, translation_at = -1;
+  GLint weights_at = -1, layers_at = -1, linear_at = -1, translation_at = -1, tint_at = -1;
 };
 
 // 2. GPU resources, once: the drawings as a texture array, every pose's uvs, the triangles.
@@ -176,6 +183,7 @@ bool UploadRig(const Rig& rig, const Options& o, GpuRig& gpu, std::string* probl
   gpu.layers_at = glGetUniformLocation(gpu.program, "layers");
   gpu.linear_at = glGetUniformLocation(gpu.program, "linear");
   gpu.translation_at = glGetUniformLocation(gpu.program, "translation");
+  gpu.tint_at = glGetUniformLocation(gpu.program, "tint");
   return true;
 }
 
@@ -251,6 +259,8 @@ void DrawCharacters(const DrawListJob& job, std::size_t count, std::uint32_t V, 
     const float linear[4] = {d.transform.a, d.transform.b, d.transform.c, d.transform.d};
     glUniformMatrix2fv(gpu.linear_at, 1, GL_FALSE, linear);  // column-major
     glUniform2f(gpu.translation_at, d.transform.tx, d.transform.ty);
+    const Colour c = PartColour(d, 0);  // a rig without parts: one part
+    glUniform4f(gpu.tint_at, c.r * c.a, c.g * c.a, c.b * c.a, c.a);
     glDrawElements(GL_TRIANGLES, GLsizei(d.indices.size), GL_UNSIGNED_INT, nullptr);  // mirrored: no culling
   }
 }
@@ -305,8 +315,10 @@ int main(int argc, char** argv) {
   sizes.Bind(rig, block.data(), block.size() * sizeof(double), &job);
   std::vector<double> points(2 * count);
   std::vector<Transform2D> places(count);
+  const std::vector<Colour> colours(count, o.tint);
   job.points = {points.data(), points.size()};
   job.transforms = {places.data(), count};
+  job.colours = {colours.data(), count};
   job.max_drawings = K;
   PlaceCharacters(rig, o, gpu, places);
 

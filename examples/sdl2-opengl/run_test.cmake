@@ -1,7 +1,8 @@
 # SPDX-License-Identifier: MIT
 # The SDL2 + OpenGL example under Xvfb (Mesa's llvmpipe): its frame of Pip at
 # a pose-space point against posemorph-view's (lavapipe) at the same point,
-# a crowd of 200 on a path, and its messages for bad drawings.
+# the same tinted and half transparent, a crowd of 200 on a path, and its
+# messages for bad drawings.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 set(run ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${EXAMPLE} ${RIG})
@@ -20,6 +21,22 @@ if(NOT status EQUAL 0)
   message(FATAL_ERROR "the example's frame differs from the viewer's")
 endif()
 file(COPY ${WORK}/sdl2.png DESTINATION ${SHOTS})
+
+# Tinted and half transparent: both renderers apply the draw list's colour.
+execute_process(COMMAND ${run} --images ${IMAGES} --at 0.5,0.5 --size 256x256 --tint 1,0.5,0.25,0.6 --frames 3
+                        --screenshot ${WORK}/sdl2-tint.png RESULT_VARIABLE status)
+execute_process(COMMAND ${VIEW} ${RIG} --images ${IMAGES} --headless --at 0.5,0.5 --size 256x256 --tint 1,0.5,0.25,0.6
+                        -o ${WORK}/view-tint.png RESULT_VARIABLE view_status)
+execute_process(COMMAND ${COMPARE} ${WORK}/sdl2-tint.png ${WORK}/view-tint.png 0.01 RESULT_VARIABLE compared
+                OUTPUT_VARIABLE out)
+message("SDL2 + OpenGL against posemorph-view, tinted 1,0.5,0.25 at opacity 0.6: ${out}")
+if(NOT status EQUAL 0 OR NOT view_status EQUAL 0 OR NOT compared EQUAL 0)
+  message(FATAL_ERROR "the tinted frames differ (${status}, ${view_status}, ${compared})")
+endif()
+execute_process(COMMAND ${COMPARE} ${WORK}/sdl2-tint.png ${WORK}/sdl2.png 0.01 RESULT_VARIABLE same OUTPUT_VARIABLE out)
+if(same EQUAL 0)
+  message(FATAL_ERROR "the tint changed nothing: ${out}")
+endif()
 
 execute_process(COMMAND ${run} --images ${IMAGES} --crowd 200 --size 800x600 --frames 120 --screenshot ${WORK}/crowd.png
                 RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)

@@ -32,7 +32,8 @@ static_assert(offsetof(Instance, linear) == 0, "Instance.linear");
 static_assert(offsetof(Instance, translation) == 16, "Instance.translation");
 static_assert(offsetof(Instance, layers) == 24, "Instance.layers");
 static_assert(offsetof(Instance, weights) == 56, "Instance.weights");
-static_assert(sizeof(Instance) == 88 && alignof(Instance) == 4, "Instance: 88 bytes, array stride 88");
+static_assert(offsetof(Instance, tint) == 88, "Instance.tint");
+static_assert(sizeof(Instance) == 104 && alignof(Instance) == 4, "Instance: 104 bytes, array stride 104");
 static_assert(offsetof(PushData, positions) == 0, "PushData.positions");
 static_assert(offsetof(PushData, uvs) == 8, "PushData.uvs");
 static_assert(offsetof(PushData, instances) == 16, "PushData.instances");
@@ -42,7 +43,10 @@ static_assert(offsetof(PushData, vertex_count) == 40, "PushData.vertex_count");
 static_assert(offsetof(PushData, flat_colour) == 44, "PushData.flat_colour");
 static_assert(offsetof(PushData, only_slot) == 48, "PushData.only_slot");
 static_assert(offsetof(PushData, layer_offset) == 52, "PushData.layer_offset");
-static_assert(sizeof(PushData) == 56, "PushData: 56 bytes (push constants: at most 128)");
+static_assert(offsetof(PushData, opacities) == 56, "PushData.opacities");
+static_assert(offsetof(PushData, part) == 64, "PushData.part");
+static_assert(offsetof(PushData, part_count) == 68, "PushData.part_count");
+static_assert(sizeof(PushData) == 72, "PushData: 72 bytes (push constants: at most 128)");
 
 // A buffer device address as the shaders' uvec2 (low, high).
 inline uvec2 Address(std::uint64_t a) { return uvec2(std::uint32_t(a), std::uint32_t(a >> 32)); }

@@ -2,6 +2,7 @@
 // posemorph-view: preview a baked rig. With --headless it renders offscreen
 // (no window system needed) and writes PNG frames; otherwise it opens a
 // window (when built with GLFW and a display is there).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -35,6 +36,7 @@ const char* kUsage =
     "         [--camera X,Y,ZOOM | --camera 1:1] [--transform T] [--seed S] [--drawings K] [--blend B]\n"
     "         [--filter linear|nearest] [--hide-part NAME]... [--joints] [--smoke-test SHOT.png [--frames K]]\n"
     "         [--description RIG.json] [--channel NAME=X,Y | --channel NAME=PATH]...\n"
+    "         [--tint R,G,B[,A]] [--part-opacity NAME=A]...\n"
     "  --images DIR  where the rig's drawings are (default: where the bake found them, recorded in the rig\n"
     "                relative to its file; else the rig's folder)\n"
     "  --frames K    with --path: K frames over the path's duration, OUT-000.png ...\n"
@@ -49,6 +51,8 @@ const char* kUsage =
     "  --filter F    sample the drawings linear or nearest (pixel art); default: as the rig asks\n"
     "  --blend B     exact (one pass, weighted sum; default) or over (sequential passes, approximate)\n"
     "  --hide-part NAME  a layered character: do not draw this part (repeatable)\n"
+    "  --tint        multiply every character's colour by R,G,B and its opacity by A (each 0..1)\n"
+    "  --part-opacity NAME=A  a layered character: draw this part at opacity A (0..1; repeatable)\n"
     "  --joints      window: mark a layered character's joints over the frame\n"
     "  --channel     a rig with control channels: channel NAME (after the first, which --at and --path\n"
     "                drive) at the point X,Y of its pose space, or along its path PATH (repeatable)\n"
@@ -150,8 +154,9 @@ struct Options {
   enum class CameraMode { kFit, kOneToOne, kGiven } camera_mode = CameraMode::kFit;
   Camera given_camera;
   Blend blend = Blend::kExact;
-  std::vector<std::string> hidden_parts;  // --hide-part, resolved once the rig is loaded
-  std::vector<std::string> channels;      // --channel NAME=X,Y or NAME=PATH, resolved likewise
+  std::vector<std::string> hidden_parts;    // --hide-part, resolved once the rig is loaded
+  std::vector<std::string> channels;        // --channel NAME=X,Y or NAME=PATH, resolved likewise
+  std::vector<std::string> part_opacities;  // --part-opacity NAME=A, resolved likewise
 };
 using CameraMode = Options::CameraMode;
 
@@ -225,6 +230,8 @@ int ParseOptions(int argc, char** argv, Options& o) {
       o.hidden_parts.push_back(v);
     else if (a == "--channel" && (v = value()))
       o.channels.push_back(v);
+    else if (a == "--part-opacity" && (v = value()))
+      o.part_opacities.push_back(v);
     else if (a == "--images" && (v = value()))
       o.images = v;
     else if (a == "--path" && (v = value()))
@@ -262,6 +269,12 @@ int ParseOptions(int argc, char** argv, Options& o) {
       if (!ParseCamera(v, o)) return Usage("--camera wants X,Y,ZOOM (ZOOM pixels per world unit, 1/256..256) or 1:1");
     } else if (a == "--size" && (v = value())) {
       if (!ParseSize(v, o)) return Usage("--size wants WxH, each 1..8192");
+    } else if (a == "--tint" && (v = value())) {
+      const auto n = bake::ParseNumbers(v, ',');
+      if (!n || n->size() < 3 || n->size() > 4 ||
+          std::any_of(n->begin(), n->end(), [](double c) { return !(c >= 0 && c <= 1); }))
+        return Usage("--tint wants R,G,B or R,G,B,A, each in 0..1");
+      o.scene.colour = {float((*n)[0]), float((*n)[1]), float((*n)[2]), n->size() == 4 ? float((*n)[3]) : 1.0f};
     } else if (a == "--at" && (v = value())) {
       const auto n = bake::ParseNumbers(v, ',');
       if (!n || n->size() != 2) return Usage("--at wants X,Y");
@@ -378,6 +391,21 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
       return Fail(o.rig_path + ": " +
                   (rig.part_count() > 1 ? "has no part '" + name + "' (" + names + ")"
                                         : std::string("has no parts, so --hide-part has nothing to hide")));
+  }
+  for (const std::string& entry : o.part_opacities) {
+    const std::size_t eq = entry.find('=');
+    double opacity = 0;
+    if (eq == std::string::npos || !ParseNumber(entry.c_str() + eq + 1, 0, 1, &opacity))
+      return Usage("--part-opacity wants NAME=A, A in 0..1");
+    int p = -1;
+    for (std::uint32_t q = 0; q < rig.part_count() && rig.part_count() > 1; ++q)
+      if (std::string(rig.part(q).name.data, rig.part(q).name.size) == entry.substr(0, eq)) p = int(q);
+    if (p < 0)
+      return Fail(o.rig_path + ": " +
+                  (rig.part_count() > 1 ? "has no part '" + entry.substr(0, eq) + "'"
+                                        : std::string("has no parts (--part-opacity)")));
+    o.scene.part_opacities.resize(rig.part_count(), 1.0f);
+    o.scene.part_opacities[std::size_t(p)] = float(opacity);
   }
   for (const std::string& entry : o.channels) {
     const std::size_t eq = entry.find('=');

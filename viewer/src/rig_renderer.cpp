@@ -23,6 +23,8 @@ Instance ToInstance(const DrawList& list) {
     inst.layers[k / 4][int(k % 4)] = layer;
     inst.weights[k / 4][int(k % 4)] = used ? list.drawings[k].weight : 0.0f;
   }
+  const Colour c = list.colour;  // premultiplied: the sample times (r, g, b, 1) x a
+  inst.tint = gpu::vec4(c.r * c.a, c.g * c.a, c.b * c.a, c.a);
   return inst;
 }
 
@@ -64,6 +66,8 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   rig_ = &rig;
   positions_ = gpu.CreateBuffer(8ull * V * max_instances, storage);
   instances_ = gpu.CreateBuffer(sizeof(Instance) * max_instances, storage);
+  opacities_ = gpu.CreateBuffer(4ull * parts_.size() * max_instances, storage);
+  std::fill_n(static_cast<float*>(opacities_.mapped), parts_.size() * max_instances, 1.0f);
   UploadDrawings(drawings, N);
   CreateDescriptors(filter);
   if (!CreatePipelines(target_format, error)) return false;
@@ -224,11 +228,13 @@ RigRenderer::~RigRenderer() {
   if (set_layout_) vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
   if (sampler_) vkDestroySampler(dev, sampler_, nullptr);
   gpu_->Destroy(drawings_);
-  for (Buffer* b : {&indices_, &uvs_, &positions_, &instances_}) gpu_->Destroy(*b);
+  for (Buffer* b : {&indices_, &uvs_, &positions_, &instances_, &opacities_}) gpu_->Destroy(*b);
 }
 
 void RigRenderer::SetCharacter(std::uint32_t k, const DrawList& list) {
   instances()[k] = ToInstance(list);
+  float* opacity = static_cast<float*>(opacities_.mapped) + std::size_t(k) * parts_.size();
+  for (std::size_t p = 0; p < parts_.size(); ++p) opacity[p] = p < format::kMaxParts ? list.part_opacity[p] : 1.0f;
   if (k < sequences_.size() && list.parts.size == parts_.size()) sequences_[k] = list.parts.data;
   if (k < lists_.size()) lists_[k] = list;
 }
@@ -240,6 +246,9 @@ void RigRenderer::DrawPart(VkCommandBuffer cmd, std::uint32_t k, std::uint32_t p
   push.instances = gpu::Address(instances_.address);
   push.vertex_count = vertex_count_;
   push.layer_offset = std::int32_t(p * pose_count_);
+  push.opacities = gpu::Address(opacities_.address);
+  push.part = p;
+  push.part_count = std::uint32_t(parts_.size());
   const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
@@ -265,6 +274,8 @@ void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const Camera&
   ClipTransform(camera, width, height, &push.view_scale, &push.view_offset);
   push.vertex_count = vertex_count_;
   push.only_slot = -1;
+  push.opacities = gpu::Address(opacities_.address);
+  push.part_count = std::uint32_t(parts_.size());
   const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);
@@ -313,9 +324,11 @@ void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const Camera&
         const std::uint32_t p = sequences_[k][s];
         if (p >= parts_.size() || (p < 64 && (hidden_parts_ >> p) & 1)) continue;
         push.layer_offset = std::int32_t(p * pose_count_);
+        push.part = p;
         draw(parts_[p].first_index, parts_[p].index_count, k, 1);
       }
     push.layer_offset = 0;
+    push.part = 0;
   }
   push.only_slot = -1;
   if (wireframe && lines_) {
@@ -336,6 +349,9 @@ void RigRenderer::RecordLines(VkCommandBuffer cmd, std::uint32_t count, gpu::Pus
   push.instances = gpu::Address(instances_.address);
   push.vertex_count = vertex_count_;
   push.layer_offset = 0;
+  push.opacities = gpu::Address(opacities_.address);
+  push.part = 0;
+  push.part_count = std::uint32_t(parts_.size());
   const VkShaderStageFlags stages = VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT;
   vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout_, 0, 1, &set_, 0, nullptr);
   vkCmdBindIndexBuffer(cmd, indices_.buffer, 0, VK_INDEX_TYPE_UINT32);

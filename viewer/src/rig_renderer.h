@@ -23,8 +23,8 @@ namespace posemorph::viewer {
 
 constexpr std::uint32_t kDrawingsPerCharacter = kMaxBlendDrawings;
 using gpu::Instance;
-// The GPU form of a character's draw list: its transform and drawings
-// (unused slots repeat the first drawing at weight 0).
+// The GPU form of a character's draw list: its transform, drawings (unused
+// slots repeat the first drawing at weight 0) and premultiplied colour.
 Instance ToInstance(const DrawList& list);
 
 // How the drawings of a character are combined (docs/runtime.md "Drawing a character").
@@ -46,8 +46,9 @@ class RigRenderer {
   // Written by the caller before Record: instance-major float x, y per vertex.
   float* positions() { return static_cast<float*>(positions_.mapped); }
   Instance* instances() { return static_cast<Instance*>(instances_.mapped); }
-  // Character k's drawings and, for a layered character, the order its
-  // parts are drawn in (list.parts, which points into the rig).
+  // Character k's drawings, colour and parts' opacities and, for a layered
+  // character, the order its parts are drawn in (list.parts, which points
+  // into the rig).
   void SetCharacter(std::uint32_t k, const DrawList& list);
   // A character with control channels: attachment a's renderer (its own
   // positions, instances and drawings; PrepareScene fills them), or null.
@@ -92,6 +93,7 @@ class RigRenderer {
   std::vector<std::unique_ptr<RigRenderer>> attachments_;
   std::uint64_t hidden_parts_ = 0;
   Buffer indices_, uvs_, positions_, instances_;
+  Buffer opacities_;  // per character: each part's opacity (DrawList::part_opacity)
   Image drawings_;
   VkSampler sampler_ = VK_NULL_HANDLE;
   VkDescriptorSetLayout set_layout_ = VK_NULL_HANDLE;

@@ -176,12 +176,20 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
   scratch.lists.resize(K);
   scratch.attached_positions.resize(std::size_t(K) * 2 * rig.attached_vertex_count());
   scratch.attachment_lists.resize(std::size_t(K) * A);
+  scratch.colours.assign(K, scene.colour);
+  const std::size_t P = rig.part_count();
+  const bool opacities = scene.part_opacities.size() == P;
+  scratch.part_opacities.resize(opacities ? K * P : 0);
+  for (std::uint32_t k = 0; opacities && k < K; ++k)
+    std::copy(scene.part_opacities.begin(), scene.part_opacities.end(), scratch.part_opacities.begin() + k * P);
   const auto run = [&](std::uint32_t first, std::uint32_t n, Interpolation interpolation) {
     DrawListJob job;
     job.rig = &rig;
     job.count = n;
     job.points = {scratch.points.data() + 2 * std::size_t(first), 2 * std::size_t(n)};
     job.transforms = {scratch.transforms.data() + first, n};
+    job.colours = {scratch.colours.data() + first, n};
+    if (opacities) job.part_opacities = {scratch.part_opacities.data() + first * P, n * P};
     job.sigma = scene.sigma;
     job.limit_weights = scene.limit_weights;
     job.interpolation = interpolation;

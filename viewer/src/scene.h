@@ -30,10 +30,12 @@ struct Scene {
   Transform2D transform;    // a single character's place in the world
   std::uint32_t max_drawings = kDrawingsPerCharacter;  // K drawings blended per character
   bool wireframe = false;
-  bool compare_linear = false;     // two characters: rigid (left) and linear (right) at the same point
-  bool show_bases = false;         // the N base poses in a row, each exactly at its point
-  int filter = -1;                 // drawings sampled: 0 linear, 1 nearest, -1 as the rig asks (its "filter")
-  std::uint64_t hidden_parts = 0;  // a layered character's parts not drawn: bit p hides part p
+  bool compare_linear = false;        // two characters: rigid (left) and linear (right) at the same point
+  bool show_bases = false;            // the N base poses in a row, each exactly at its point
+  int filter = -1;                    // drawings sampled: 0 linear, 1 nearest, -1 as the rig asks (its "filter")
+  std::uint64_t hidden_parts = 0;     // a layered character's parts not drawn: bit p hides part p
+  Colour colour;                      // every character's tint and opacity (DrawListJob::colours)
+  std::vector<float> part_opacities;  // by part index, rig.part_count() of them, or empty: all 1
   // Channels 1 .. C-1 of a rig with control channels, in order; a missing
   // entry puts its channel at its first pose's point.
   std::vector<ChannelInput> channels;
@@ -50,6 +52,8 @@ struct SceneScratch {
   std::vector<Transform2D> transforms;
   std::vector<double> phases;  // crowd: each drawn character's share of the path
   std::vector<DrawList> lists;
+  std::vector<Colour> colours;        // the scene's colour, once per character
+  std::vector<float> part_opacities;  // the scene's part opacities, once per character
   // A character with channels: the later channels' points, the
   // attachments' positions and lists (DrawListJob's).
   std::vector<double> channel_points;
