@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The C API's per-frame calls: pose points, weights, morphs (one character
 // and batches), draw lists, paths and quantised points.
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <new>
@@ -81,8 +82,9 @@ void pm_transform_make(double x, double y, double radians, double scale_x, doubl
   *out = {t.a, t.b, t.c, t.d, t.tx, t.ty};
 }
 
-static_assert(sizeof(pm_colour) == sizeof(posemorph::Colour) && alignof(pm_colour) == alignof(posemorph::Colour),
-              "pm_colour is posemorph::Colour");
+static_assert(sizeof(pm_colour) == 4 * sizeof(float) && sizeof(posemorph::Colour) == 4 * sizeof(float) &&
+                  offsetof(pm_colour, a) == offsetof(posemorph::Colour, a),
+              "pm_colour is posemorph::Colour: four floats r, g, b, a");
 static_assert(PM_MAX_PARTS == posemorph::format::kMaxParts, "PM_MAX_PARTS is the format's");
 
 void pm_draw_options_default(pm_draw_options* out) {
