@@ -243,12 +243,12 @@ void DrawCell(const Rig& rig, const std::vector<RgbaImage>& drawings,
       items.push_back({r.part_draw_order(part, d), &r, &attachment_drawings[a], &cell.attached[a], part});
   }
   std::stable_sort(items.begin(), items.end(), [](const Item& l, const Item& r) { return l.order < r.order; });
-  const Colour c = ClampColour(colour.colour);
+  const posemorph::Colour c = posemorph::ClampColour(colour.colour);
   for (const Item& item : items) {
     // The body's parts at their own opacities; the attachments' at the character's.
     const bool body = item.rig == &rig;
     const double part = body && item.part < colour.part_opacities.size()
-                            ? double(ClampColour({1, 1, 1, colour.part_opacities[item.part]}).a)
+                            ? double(posemorph::ClampColour({1, 1, 1, colour.part_opacities[item.part]}).a)
                             : 1.0;
     const double a = double(c.a) * part;
     const std::array<double, 4> tint = {c.r * a, c.g * a, c.b * a, a};

@@ -46,7 +46,7 @@ std::vector<std::vector<RgbaImage>> ReadAttachmentDrawings(const Rig& rig, const
 // part opacities: the character's tint and opacity, and its parts'
 // opacities by part index (empty: all 1; the attachments' parts are 1).
 struct SheetColour {
-  Colour colour;
+  posemorph::Colour colour;
   std::vector<float> part_opacities;
 };
 
