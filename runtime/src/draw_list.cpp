@@ -147,6 +147,17 @@ std::uint32_t CharacterDrawSteps(const Rig& rig, const DrawList& body, const Dra
   return total;
 }
 
+namespace {
+
+// The first `n` weights are finite and within what the morph jobs take.
+bool FiniteWeights(Span<const double> w, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i)
+    if (!(std::fabs(w[i]) <= kMaxJobWeight)) return false;
+  return true;
+}
+
+}  // namespace
+
 bool DrawListJob::Validate() const { return detail::ValidDrawListInputs(*this) && output.data && output.size >= count; }
 
 bool detail::ValidDrawListInputs(const DrawListJob& job) {
@@ -154,7 +165,16 @@ bool detail::ValidDrawListInputs(const DrawListJob& job) {
   const std::size_t count = job.count;
   if (!rig || !rig->loaded() || count == 0) return false;
   if (count > MaxDrawListCount(*rig)) return false;
-  if (!job.points.data || job.points.size / 2 < count) return false;
+  const std::size_t N = rig->pose_count();
+  if (job.weights.size == 0) {
+    if (!job.points.data || job.points.size / 2 < count) return false;
+    if (job.limited_weights.size || job.texture_weights.size) return false;
+  } else {
+    if (job.points.size != 0) return false;
+    for (const Span<const double>& w : {job.weights, job.limited_weights, job.texture_weights})
+      if (!w.data || w.size / N < count) return false;
+    if (!FiniteWeights(job.weights, count * N) || !FiniteWeights(job.limited_weights, count * N)) return false;
+  }
   if (job.transforms.size != 0 && (!job.transforms.data || job.transforms.size != count)) return false;
   if (job.colours.size != 0 && (!job.colours.data || job.colours.size != count)) return false;
   if (job.part_opacities.size != 0 && (!job.part_opacities.data || job.part_opacities.size / rig->part_count() < count))
@@ -163,10 +183,21 @@ bool detail::ValidDrawListInputs(const DrawListJob& job) {
   if (job.interpolation != Interpolation::kRigid && job.interpolation != Interpolation::kLinear) return false;
   if (!job.workspace.data || job.workspace.size < DrawListWorkspaceSize(*rig, count)) return false;
   if (!job.positions.data || job.positions.size / (2 * std::size_t(rig->vertex_count())) < count) return false;
-  if (job.attached_output.size == 0) return job.attached_positions.size == 0;
+  const bool attached_given =
+      job.attached_weights.size || job.attached_limited_weights.size || job.attached_texture_weights.size;
+  if (job.attached_output.size == 0) return job.attached_positions.size == 0 && !attached_given;
   const std::size_t A = rig->attachment_count(), a2 = 2 * std::size_t(rig->attached_vertex_count());
   if (A == 0 || !job.attached_output.data || job.attached_output.size / A < count) return false;
   if (!job.attached_positions.data || job.attached_positions.size / a2 < count) return false;
+  if (job.weights.size != 0) {  // weights given: the attachments' too, and no channel points
+    const std::size_t NW = rig->attached_weight_count();
+    if (job.channel_points.size != 0) return false;
+    for (const Span<const double>& w :
+         {job.attached_weights, job.attached_limited_weights, job.attached_texture_weights})
+      if (!w.data || w.size / NW < count) return false;
+    return FiniteWeights(job.attached_weights, count * NW) && FiniteWeights(job.attached_limited_weights, count * NW);
+  }
+  if (attached_given) return false;
   const std::size_t c2 = 2 * std::size_t(rig->channel_count() - 1);
   if (job.channel_points.size != 0 && (!job.channel_points.data || job.channel_points.size / c2 < count)) return false;
   return true;
@@ -187,7 +218,11 @@ bool RunAttachedLists(const DrawListJob& job, double* body, double* extra_end) {
   double* texture = limited + count * NW;
   double* attached = texture + count * NW;
   double* work = attached + count * a2;
-  for (std::uint32_t c = 1; c < C; ++c) {
+  const bool given = job.attached_weights.size != 0;  // an animator's, in the same layout
+  const double* raw_in = given ? job.attached_weights.data : raw;
+  const double* limited_in = given ? job.attached_limited_weights.data : limited;
+  const double* texture_in = given ? job.attached_texture_weights.data : texture;
+  for (std::uint32_t c = 1; c < C && !given; ++c) {
     const Rig& channel = *rig.channel_rig(c);
     const std::size_t n = channel.pose_count(), at = count * rig.channel_weight_offset(c);
     const double sigma = job.sigma >= 0 ? job.sigma : channel.default_sigma();
@@ -209,8 +244,8 @@ bool RunAttachedLists(const DrawListJob& job, double* body, double* extra_end) {
   aj.rig = &rig;
   aj.count = count;
   aj.body_positions = {body, count * v2};
-  aj.weights = {raw, count * NW};
-  aj.limited_weights = {limited, count * NW};
+  aj.weights = {raw_in, count * NW};
+  aj.limited_weights = {limited_in, count * NW};
   aj.interpolation = job.interpolation;
   aj.workspace = {work, std::size_t(extra_end - work)};
   aj.positions = {attached, count * a2};
@@ -227,7 +262,7 @@ bool RunAttachedLists(const DrawListJob& job, double* body, double* extra_end) {
       list.positions = {job.attached_positions.data + offset * count + k * p2, p2};
       list.indices = part.triangles();
       list.drawing_count =
-          PickDrawings({texture + at + k * n, n}, job.max_drawings, {list.drawings, kMaxBlendDrawings});
+          PickDrawings({texture_in + at + k * n, n}, job.max_drawings, {list.drawings, kMaxBlendDrawings});
       list.parts = part.draw_sequence(list.drawing_count ? list.drawings[0].pose : 0);
       for (std::uint32_t d = 0; d < list.drawing_count; ++d) {
         const Span<const float> uv = part.uvs(list.drawings[d].pose);

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The draw-list evaluation shared by DrawListJob (C++) and pm_draw_lists
-// (C): weights per character, positions for all (one batch for rigid
+// (C): weights per character (or the given ones), positions for all (one batch for rigid
 // characters), then each character's list handed to `emit` (the C++ job
 // stores a DrawList, the C API converts it to its own struct).
 #pragma once
@@ -33,20 +33,27 @@ bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emi
       body_doubles ? std::size_t(body_doubles - rest) : job.workspace.size - (2 * count * n + n);
   const double sigma = job.sigma >= 0 ? job.sigma : rig.default_sigma();  // NaN: the default too
 
+  // Given weights (an animator's) are read where they are.
+  const bool given = job.weights.size != 0;
+  const double* raw_in = given ? job.weights.data : raw;
+  const double* limited_in = given ? job.limited_weights.data : limited;
   for (std::size_t k = 0; k < count; ++k) {
-    WeightsJob wj;
-    wj.rig = &rig;
-    wj.x = job.points[2 * k], wj.y = job.points[2 * k + 1];
-    wj.sigma = sigma;
-    wj.limit_weights = job.limit_weights;
-    wj.raw = {raw + k * n, n};
-    wj.limited = {limited + k * n, n};
-    wj.texture = {texture, n};
-    if (!wj.Run()) return false;
+    if (!given) {
+      WeightsJob wj;
+      wj.rig = &rig;
+      wj.x = job.points[2 * k], wj.y = job.points[2 * k + 1];
+      wj.sigma = sigma;
+      wj.limit_weights = job.limit_weights;
+      wj.raw = {raw + k * n, n};
+      wj.limited = {limited + k * n, n};
+      wj.texture = {texture, n};
+      if (!wj.Run()) return false;
+    }
+    const Span<const double> texture_k = given ? job.texture_weights.subspan(k * n, n) : Span<const double>{texture, n};
     DrawList list;
     list.positions = job.positions.subspan(k * v2, v2);
     list.indices = rig.triangles();
-    list.drawing_count = PickDrawings({texture, n}, job.max_drawings, {list.drawings, kMaxBlendDrawings});
+    list.drawing_count = PickDrawings(texture_k, job.max_drawings, {list.drawings, kMaxBlendDrawings});
     // The dominant drawing's pose decides the draw order (when it changes with the pose).
     list.parts = rig.draw_sequence(list.drawing_count ? list.drawings[0].pose : 0);
     for (std::uint32_t d = 0; d < list.drawing_count; ++d) {
@@ -68,8 +75,8 @@ bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emi
     MorphBatchJob bj;
     bj.rig = &rig;
     bj.count = count;
-    bj.weights = {raw, count * n};
-    bj.limited_weights = {limited, count * n};
+    bj.weights = {raw_in, count * n};
+    bj.limited_weights = {limited_in, count * n};
     bj.workspace = {rest, rest_size};
     bj.positions_f32 = {job.positions.data, count * v2};
     if (body_doubles) bj.positions = {body_doubles, count * v2};
@@ -78,8 +85,8 @@ bool RunDrawLists(const DrawListJob& job, TransformAt&& transform_at, Emit&& emi
   for (std::size_t k = 0; k < count; ++k) {
     MorphJob mj;
     mj.rig = &rig;
-    mj.weights = {raw + k * n, n};
-    mj.limited_weights = {limited + k * n, n};
+    mj.weights = {raw_in + k * n, n};
+    mj.limited_weights = {limited_in + k * n, n};
     mj.interpolation = job.interpolation;
     mj.workspace = {rest, rig.morph_workspace_size()};
     mj.positions =

@@ -117,6 +117,15 @@ inline Colour PartColour(const DrawList& list, std::uint32_t part) {
 // uvs) with the character's transform. CharacterDrawSteps merges a
 // character's lists into one back-to-front order.
 //
+// An animator's characters (animator.h): give weights, limited_weights and
+// texture_weights as AnimatorUpdateJob wrote them (count x N each; points
+// empty) instead of points, and for a rig with attachments its
+// attached_weights, attached_limited_weights and attached_texture_weights
+// (AnimatorUpdateJob's layout; channel_points empty). The lists and
+// positions are then what the points would give had WeightsJob written
+// those weights: the same bits as MorphBatchJob (MorphJob) and AttachJob
+// on them.
+//
 // Colour (set by code; states of the state machine do not set it yet):
 // colours gives each character's tint and opacity (empty: as drawn) and
 // part_opacities each character's opacity of each of its parts (count x
@@ -125,7 +134,12 @@ inline Colour PartColour(const DrawList& list, std::uint32_t part) {
 // draw with its colour and opacity; their own parts' opacities are 1.
 //
 // Validate() fails (and Run() does nothing) when: rig is null or not
-// loaded; count is 0 or above MaxDrawListCount; points holds fewer than 2 x count values;
+// loaded; count is 0 or above MaxDrawListCount; points holds fewer than 2 x count values
+// (weights not given); weights are given and points too, or one of the
+// three holds fewer than count x N values, or a raw or limited weight is
+// not finite or above kMaxJobWeight in magnitude (the attachments' alike,
+// count x attached_weight_count, required with attached_output and
+// weights; refused without weights);
 // transforms is neither empty nor count long; colours is neither empty nor
 // count long; part_opacities is neither empty nor at least count x
 // rig.part_count() values; max_drawings is not in
@@ -139,8 +153,11 @@ inline Colour PartColour(const DrawList& list, std::uint32_t part) {
 // replaced), so any values give a finite frame.
 struct PM_API DrawListJob {
   const Rig* rig = nullptr;
-  std::size_t count = 1;               // characters
-  Span<const double> points;           // count x (x, y), pose space
+  std::size_t count = 1;       // characters
+  Span<const double> points;   // count x (x, y), pose space; or empty, with weights:
+  Span<const double> weights;  // count x N each, an animator's (above), or all three empty
+  Span<const double> limited_weights;
+  Span<const double> texture_weights;
   Span<const Transform2D> transforms;  // count, or empty: identity for all
   Span<const Colour> colours;          // count, or empty: as drawn
   Span<const float> part_opacities;    // count x rig->part_count(), or empty: every part opaque
@@ -159,6 +176,9 @@ struct PM_API DrawListJob {
   Span<float> attached_positions;
   // Character after character, its attachments in order: count x rig->attachment_count().
   Span<DrawList> attached_output;
+  // With weights: the later channels' (AnimatorUpdateJob's layout), count x
+  // rig->attached_weight_count() each.
+  Span<const double> attached_weights, attached_limited_weights, attached_texture_weights;
 
   bool Validate() const;
   bool Run() const;
