@@ -50,6 +50,7 @@ TEST_CASE("a state machine bakes into the rig as the description says") {
   Error err;
   REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
   REQUIRE(rig.machine_inputs().size == 4);
+  CHECK(rig.format_minor() == 10);
   CHECK(rig.machine_inputs()[1].type == MachineInputType::kNumber);
   CHECK(rig.machine_inputs()[1].default_x == 0.5);
   CHECK(rig.machine_inputs()[2].default_x == 1);
@@ -95,6 +96,27 @@ TEST_CASE("a state machine bakes into the rig as the description says") {
   CHECK(b.look_strength == 0.5);
   CHECK(b.spring);
   CHECK(b.spring_frequency == 3);
+}
+
+TEST_CASE("a state's colour, opacity and parts bake into the rig (format 1.10)") {
+  json j = WithMachine();
+  j["state_machine"]["layers"][0]["states"][1]["colour"] = {0.5, 0.75, 1};
+  j["state_machine"]["layers"][0]["states"][1]["opacity"] = 0.5;
+  j["state_machine"]["layers"][0]["states"][2]["colour"] = {1, 1, 1, 0.25};
+  bake::RigDescription d = bake::ParseRigDescription(j.dump(), "rig.json", ".");
+  const std::vector<unsigned char> bytes = bake::BakeRig(d);
+  Rig rig;
+  Error err;
+  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
+  const float walking[4] = {0.5f, 0.75f, 1.0f, 0.5f}, pace[4] = {1, 1, 1, 0.25f}, rest[4] = {1, 1, 1, 1};
+  for (int c = 0; c < 4; ++c) {
+    CHECK(rig.machine_states()[1].colour[c] == walking[c]);
+    CHECK(rig.machine_states()[2].colour[c] == pace[c]);
+    CHECK(rig.machine_states()[0].colour[c] == rest[c]);
+  }
+  // Unchanged without colours: the same bytes as before but for these entries.
+  bake::RigDescription plain = bake::ParseRigDescription(WithMachine().dump(), "rig.json", ".");
+  CHECK(bake::BakeRig(plain).size() + 2 * 40 == bytes.size());
 }
 
 TEST_CASE("posemorph-bake info lists the machine: inputs, layers, behaviours, states, transitions") {
@@ -175,6 +197,23 @@ TEST_CASE("an inconsistent state machine fails the bake, naming the state, trans
          "state_machine.layers[0].behaviours.blink.interval: outside 0.02..1e+06");
   expect([&](json& m) { layer(m)["behaviours"]["look_at"]["target"] = "held"; },
          "state_machine.layers[0].behaviours.look_at.target: input \"held\" is a bool: look-at follows a point input");
+  expect(
+      [&](json& m) {
+        layer(m)["states"][1]["colour"] = {1, 0.5};
+      },
+      "state_machine.layers[0].states[1].colour: expected [r, g, b] or [r, g, b, a], each 0..1");
+  expect(
+      [&](json& m) {
+        layer(m)["states"][1]["colour"] = {1, 2, 1};
+      },
+      "state_machine.layers[0].states[1].colour[1]: outside 0..1");
+  expect([&](json& m) { layer(m)["states"][0]["opacity"] = -0.5; },
+         "state_machine.layers[0].states[0].opacity: outside 0..1");
+  expect(
+      [&](json& m) {
+        layer(m)["states"][0]["parts"] = {{"arm", 0.5}};
+      },
+      "state_machine.layers[0].states[0].parts: the character has no parts on its first channel");
   expect([&](json& m) { layer(m)["behaviours"]["wobble"] = json::object(); },
          "state_machine.layers[0].behaviours: unknown behaviour \"wobble\"");
   expect([&](json& m) { layer(m)["behaviours"]["spring"]["frequency"] = 90; },

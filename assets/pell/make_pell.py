@@ -193,6 +193,8 @@ state_machine = {
         {"name": "talking", "type": "bool"},
         {"name": "looking", "type": "bool"},
         {"name": "gaze", "type": "point", "default": [0, 0]},
+        {"name": "ghost", "type": "bool"},
+        {"name": "vanish", "type": "bool"},
     ],
     "layers": [
         {"channel": "body", "initial": "idle",
@@ -200,12 +202,21 @@ state_machine = {
                         "spring": {"frequency": 2.5, "damping": 0.35}},
          "states": [{"name": "idle", "stop": True},
                     {"name": "waving", "play": "greet", "loop": False},
-                    {"name": "swaying", "blend": "greet", "by": "sway"}],
+                    {"name": "swaying", "blend": "greet", "by": "sway"},
+                    # Colour set by states (format 1.10): a blue ghost whose
+                    # body fades under its head, and a fade out.
+                    {"name": "ghost", "stop": True, "colour": [0.7, 0.85, 1.0],
+                     "parts": {"body": 0.3, "arm-left": 0.3, "arm-right": 0.3}},
+                    {"name": "vanished", "stop": True, "opacity": 0}],
          "transitions": [
              {"from": "idle", "to": "waving", "when": ["wave"], "mix": 0.3},
              {"from": "waving", "to": "idle", "exit_time": 1.0, "mix": 0.5},
              {"from": "*", "to": "swaying", "when": [["sway", ">", 0]], "mix": 0.4},
-             {"from": "swaying", "to": "idle", "when": [["sway", "<=", 0]], "mix": 0.4}]},
+             {"from": "swaying", "to": "idle", "when": [["sway", "<=", 0]], "mix": 0.4},
+             {"from": "*", "to": "vanished", "when": ["vanish"], "mix": 1.0},
+             {"from": "vanished", "to": "idle", "when": ["!vanish"], "mix": 0.5},
+             {"from": "*", "to": "ghost", "when": ["ghost", "!vanish"], "mix": 0.6},
+             {"from": "ghost", "to": "idle", "when": ["!ghost"], "mix": 0.6}]},
         {"channel": "face", "initial": "calm",
          "behaviours": {"blink": {"pose": "sleepy", "interval": 3.2, "jitter": 0.4, "duration": 0.16},
                         "look_at": {"target": "gaze", "smoothing": 0.15, "strength": 0.3}},

@@ -327,6 +327,11 @@ void PrintStateMachine(const Rig& rig, std::ostream& out) {
               << Name(rig.machine_inputs()[st.input].name) << "' (0..1)";
           break;
       }
+      if (st.colour[0] != 1 || st.colour[1] != 1 || st.colour[2] != 1)
+        out << ", tint (" << st.colour[0] << ", " << st.colour[1] << ", " << st.colour[2] << ")";
+      if (st.colour[3] != 1) out << ", opacity " << st.colour[3];
+      for (const MachinePartOpacityView& o : st.part_opacities)
+        out << ", part '" << Name(rig.part(o.part).name) << "' at opacity " << o.opacity;
       out << "\n";
       for (std::size_t k = 0; k < st.transitions.size; ++k) PrintTransition(rig, st.transitions[k], "        ", out);
     }

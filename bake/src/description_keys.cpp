@@ -81,8 +81,10 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
         if (!layer.is_object()) continue;
         if (layer.contains("states") && layer["states"].is_array())
           for (std::size_t i = 0; i < layer["states"].size(); ++i)
-            WarnUnknownKeys(layer["states"][i], w + ".states[" + std::to_string(i) + "]",
-                            {"name", "play", "loop", "speed", "pad", "blend", "by", "stop"}, file, warnings);
+            WarnUnknownKeys(
+                layer["states"][i], w + ".states[" + std::to_string(i) + "]",
+                {"name", "play", "loop", "speed", "pad", "blend", "by", "stop", "colour", "opacity", "parts"}, file,
+                warnings);
         if (layer.contains("transitions") && layer["transitions"].is_array())
           for (std::size_t i = 0; i < layer["transitions"].size(); ++i)
             WarnUnknownKeys(layer["transitions"][i], w + ".transitions[" + std::to_string(i) + "]",

@@ -4,6 +4,7 @@
 // inconsistency fails with one line naming the layer, state, transition or
 // input: an unknown name, an input of the wrong type, a transition to
 // nowhere or one that always fires, a state no transition reaches.
+#include <algorithm>
 #include <cstdio>
 #include <set>
 
@@ -141,9 +142,46 @@ std::uint32_t FindPath(const Reader& r, const std::vector<PathDescription>& path
   r.Fail(where, "unknown path " + Quoted(name) + (channel.empty() ? "" : " in channel " + Quoted(channel)));
 }
 
+// A component of a colour in [0, 1].
+double Unit(const Reader& r, const json& j, const std::string& w) {
+  const double v = r.Number(j, w);
+  if (!(v >= 0 && v <= 1)) r.Fail(w, "outside 0..1");
+  return v;
+}
+
+// A state's "colour", "opacity" and "parts" (format 1.10). `body_parts`:
+// the names of the parts the first channel drives, in the body's order.
+void ParseStateColour(const Reader& r, const json& j, const std::vector<std::string>& body_parts,
+                      MachineStateDescription* s, const std::string& w) {
+  if (j.contains("colour")) {
+    const json& c = j["colour"];
+    if (!c.is_array() || c.size() < 3 || c.size() > 4)
+      r.Fail(w + ".colour", "expected [r, g, b] or [r, g, b, a], each 0..1 (a tint: the drawing's colour times it)");
+    for (std::size_t k = 0; k < c.size(); ++k) s->colour[k] = Unit(r, c[k], w + ".colour[" + std::to_string(k) + "]");
+  }
+  if (j.contains("opacity")) s->colour[3] *= Unit(r, j["opacity"], w + ".opacity");
+  if (!j.contains("parts")) return;
+  const json& parts = j["parts"];
+  if (!parts.is_object()) r.Fail(w + ".parts", "expected {\"part\": opacity, ...}");
+  if (body_parts.size() < 2)
+    r.Fail(w + ".parts", "the character has no parts on its first channel (a state sets body parts' opacities)");
+  for (auto it = parts.begin(); it != parts.end(); ++it) {
+    const std::string wp = w + ".parts." + it.key();
+    std::uint32_t index = 0;
+    while (index < body_parts.size() && body_parts[index] != it.key()) ++index;
+    if (index == body_parts.size()) {
+      std::string names;
+      for (const std::string& n : body_parts) names += (names.empty() ? "" : ", ") + Quoted(n);
+      r.Fail(wp, "no body part " + Quoted(it.key()) + " (the first channel's parts: " + names + ")");
+    }
+    s->part_opacities.emplace_back(index, Unit(r, it.value(), wp));
+  }
+  std::sort(s->part_opacities.begin(), s->part_opacities.end());
+}
+
 MachineStateDescription ParseState(const Reader& r, const StateMachineDescription& m, const json& j,
                                    const std::vector<PathDescription>& paths, const std::string& channel,
-                                   const std::string& w) {
+                                   const std::vector<std::string>& body_parts, const std::string& w) {
   if (!j.is_object()) r.Fail(w, "expected {\"name\", and one of \"play\", \"pad\", \"blend\", \"stop\"}");
   MachineStateDescription s;
   if (!j.contains("name")) r.Fail(w, "missing \"name\"");
@@ -183,6 +221,7 @@ MachineStateDescription ParseState(const Reader& r, const StateMachineDescriptio
   }
   if (s.kind != MachineStateKind::kPlay && (j.contains("loop") || j.contains("speed")))
     r.Fail(w, "state " + Quoted(s.name) + ": \"loop\" and \"speed\" belong to a state that plays a path");
+  ParseStateColour(r, j, body_parts, &s, w);
   return s;
 }
 
@@ -280,6 +319,9 @@ StateMachineDescription ParseStateMachine(const Reader& r, const json& j, const 
   std::set<std::string> state_names;
   std::vector<bool> has_layer(channels, false);
   std::size_t states_total = 0, transitions_total = 0, conditions_total = 0;
+  std::vector<std::string> body_parts;  // the parts the first channel drives, in the body's order
+  for (const PartDescription& part : rig.parts)
+    if (part.channel == 0) body_parts.push_back(part.name);
   for (std::size_t l = 0; l < layers.size(); ++l) {
     const std::string wl = "state_machine.layers[" + std::to_string(l) + "]";
     const json& jl = layers[l];
@@ -302,7 +344,7 @@ StateMachineDescription ParseStateMachine(const Reader& r, const json& j, const 
     if (states.empty()) r.Fail(wl + ".states", "a layer has at least one state");
     for (std::size_t i = 0; i < states.size(); ++i) {
       const std::string ws = wl + ".states[" + std::to_string(i) + "]";
-      layer.states.push_back(ParseState(r, m, states[i], paths, channel_name, ws));
+      layer.states.push_back(ParseState(r, m, states[i], paths, channel_name, body_parts, ws));
       if (!state_names.insert(layer.states.back().name).second)
         r.Fail(ws, "state " + Quoted(layer.states.back().name) + " is declared twice (state names are unique)");
     }

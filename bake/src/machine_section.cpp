@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 #include "posemorph/bake/machine_section.h"
 
+#include <array>
+
 #include "posemorph/rig_format.h"
 #include "rig_writer.h"
 
@@ -20,6 +22,9 @@ std::vector<unsigned char> MachineSection(const StateMachineDescription& m) {
     for (const MachineTransitionDescription& t : layer.transitions)
       header.condition_count += std::uint32_t(t.when.size());
   }
+  for (const MachineLayerDescription& layer : m.layers)
+    for (const MachineStateDescription& s : layer.states)
+      header.colour_count += std::uint32_t(s.part_opacities.size()) + (s.colour != std::array<double, 4>{1, 1, 1, 1});
   AppendRecord(out, header);
   for (const MachineInputDescription& in : m.inputs) {
     fmt::MachineInputEntry e{};
@@ -98,6 +103,23 @@ std::vector<unsigned char> MachineSection(const StateMachineDescription& m) {
     e.spring_strength = b.spring_strength;
     AppendRecord(out, e);
   }
+  // The states' colours (1.10), by state, then part (the character's last).
+  std::uint32_t state = 0;
+  for (const MachineLayerDescription& layer : m.layers)
+    for (const MachineStateDescription& s : layer.states) {
+      for (const auto& [part, opacity] : s.part_opacities) {
+        fmt::MachineColourEntry e{};
+        e.state = state, e.part = part, e.r = e.g = e.b = 1, e.a = opacity;
+        AppendRecord(out, e);
+      }
+      if (s.colour != std::array<double, 4>{1, 1, 1, 1}) {
+        fmt::MachineColourEntry e{};
+        e.state = state, e.part = fmt::MachineColourEntry::kCharacter;
+        e.r = s.colour[0], e.g = s.colour[1], e.b = s.colour[2], e.a = s.colour[3];
+        AppendRecord(out, e);
+      }
+      ++state;
+    }
   for (const MachineInputDescription& in : m.inputs) AppendString(out, in.name);
   for (const MachineLayerDescription& layer : m.layers)
     for (const MachineStateDescription& s : layer.states) AppendString(out, s.name);

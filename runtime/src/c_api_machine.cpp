@@ -99,4 +99,20 @@ int pm_machine_step(const pm_rig* rig, void* machines, size_t capacity, size_t c
   return Result(job.Run());
 }
 
+int pm_machine_colours(const pm_rig* rig, void* machines, size_t capacity, size_t count, double dt, pm_colour* colours,
+                       float* part_opacities, size_t part_opacities_capacity) {
+  if (!HasMachine(rig) || !machines || count > posemorph::kMaxAnimatorBatch) return PM_ERROR_INVALID_ARGUMENT;
+  if (!Aligned(static_cast<MachineInstance*>(machines))) return PM_ERROR_INVALID_ARGUMENT;
+  if (part_opacities && rig->rig.part_count() < 2) return PM_ERROR_INVALID_ARGUMENT;
+  if (capacity / sizeof(MachineInstance) < count ||
+      (part_opacities && part_opacities_capacity / rig->rig.part_count() < count))
+    return PM_ERROR_BUFFER_TOO_SMALL;
+  posemorph::MachineColourJob job;
+  job.rig = &rig->rig, job.count = count, job.dt = dt;
+  job.machines = {static_cast<MachineInstance*>(machines), count};
+  if (colours) job.colours = {reinterpret_cast<posemorph::Colour*>(colours), count};
+  if (part_opacities) job.part_opacities = {part_opacities, count * rig->rig.part_count()};
+  return Result(job.Run());
+}
+
 }  // extern "C"

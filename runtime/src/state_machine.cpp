@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "machine_colour.h"
 #include "posemorph/path.h"
 
 namespace posemorph {
@@ -133,6 +134,7 @@ void StartBehaviours(const Rig& rig, Span<AnimatorTrack> tracks, const MachineLa
 bool MachineReset(const Rig& rig, MachineInstance* machine) {
   if (!HasMachine(rig) || !machine) return false;
   *machine = MachineInstance{};
+  for (float& p : machine->part_from) p = 1;
   for (std::size_t i = 0; i < rig.machine_inputs().size; ++i) {
     machine->values[2 * i] = rig.machine_inputs()[i].default_x;
     machine->values[2 * i + 1] = rig.machine_inputs()[i].default_y;
@@ -189,6 +191,7 @@ bool MachineStepJob::Run() const {
   for (std::size_t i = 0; i < count; ++i) {
     MachineInstance& m = machines[i];
     const Span<AnimatorTrack> t{tracks.data + i * C, C};
+    bool faded = false, started = false;  // a colour fade began this step; a layer entered its initial state
     for (std::uint32_t l = 0; l < layers.size; ++l) {
       const MachineLayerView& layer = layers[l];
       const std::uint32_t now = m.state[l];
@@ -201,6 +204,7 @@ bool MachineStepJob::Run() const {
       }
       if (starting) {
         m.state[l] = layer.initial;
+        started = true;
         Enter(*rig, t, m, states[layer.initial], 0);
         report(i, l, layer.initial, layer.initial);
         continue;
@@ -217,10 +221,13 @@ bool MachineStepJob::Run() const {
         Sustain(*rig, t, m, s);
         continue;
       }
+      detail::StartFade(*rig, m, taken->mix, !faded);  // from the colour shown before the change
+      faded = true;
       m.state[l] = taken->to;
       Enter(*rig, t, m, states[taken->to], taken->mix);
       report(i, l, now, taken->to);
     }
+    if (started && !faded) detail::SettleFade(*rig, m);  // a start shows its states' colour at once
     m.started = 1;
     for (std::uint8_t& f : m.fired) f = 0;
   }

@@ -98,7 +98,8 @@ void DrawLists(const Rig& rig) {
 }
 
 // A rig's state machine (format 1.9): its inputs each set, steps with
-// animator updates in between; every channel's weights stay finite.
+// animator updates in between; every channel's weights stay finite and the
+// colours its states set (1.10) stay in [0, 1].
 void Machine(const Rig& rig) {
   if (rig.machine_layers().empty()) return;
   const std::size_t C = rig.channel_count(), N = rig.pose_count(), A = rig.attached_weight_count();
@@ -124,6 +125,17 @@ void Machine(const Rig& rig) {
     if (!update.Run()) std::abort();
     RequireFinite(raw.data(), raw.size()), RequireFinite(limited.data(), limited.size());
     RequireFinite(ar.data(), ar.size()), RequireFinite(al.data(), al.size());
+    // The colours its states set (format 1.10): each in [0, 1].
+    Colour colour;
+    std::vector<float> parts(rig.part_count() > 1 ? rig.part_count() : 0);
+    MachineColourJob colours;
+    colours.rig = &rig, colours.dt = update.dt, colours.machines = {&m, 1}, colours.colours = {&colour, 1};
+    if (!parts.empty()) colours.part_opacities = MakeSpan(parts);
+    if (!colours.Run()) std::abort();
+    for (float v : {colour.r, colour.g, colour.b, colour.a})
+      if (!(v >= 0 && v <= 1)) std::abort();
+    for (float v : parts)
+      if (!(v >= 0 && v <= 1)) std::abort();
   }
 }
 

@@ -234,32 +234,48 @@ TEST_CASE("a rig whose state machine is hostile is refused at load, naming the p
   const std::vector<unsigned char> bytes = TestRigBytes("pell-face");
   const std::uint64_t mach = SectionOffset(bytes, format::kMachine);
   REQUIRE(mach != 0);
-  // Where the entries start (Pell with a face: 5 inputs, 2 layers, 6 states, 8 transitions, 7 conditions).
-  const std::uint64_t inputs = mach + 24, layers = inputs + 5 * 24, states = layers + 2 * 16,
-                      transitions = states + 6 * 32, conditions = transitions + 8 * 32,
-                      behaviours = conditions + 7 * 16, names = behaviours + 2 * 120;
+  // Where the entries start, from the header's counts (Pell with a face: 7
+  // inputs, 2 layers, 8 states, 12 transitions, 12 conditions, 5 colours).
+  const auto h = format::DecodeRecord<format::MachineHeader>(bytes.data() + mach);
+  REQUIRE(h.input_count == 7);
+  REQUIRE(h.colour_count == 5);
+  const std::uint64_t inputs = mach + 24, layers = inputs + h.input_count * 24, states = layers + 2 * 16,
+                      transitions = states + h.state_count * 32, conditions = transitions + h.transition_count * 32,
+                      behaviours = conditions + h.condition_count * 16, colours = behaviours + 2 * 120,
+                      names = colours + h.colour_count * 40;
   auto expect = [&](const std::function<void(unsigned char*)>& mutate, const std::string& problem) {
     ExpectRefused(bytes, mutate, problem);
   };
   expect([&](unsigned char* b) { PutU32(b + mach, 65); }, "MACH counts outside their limits: 65 inputs");
   expect([&](unsigned char* b) { PutU32(b + mach + 4, 3); }, "MACH counts outside their limits");
-  expect([&](unsigned char* b) { PutU32(b + mach + 20, 1); }, "MACH's reserved header field is not zero");
+  expect([&](unsigned char* b) { PutU32(b + mach + 20, 65 * h.state_count + 1); },
+         "colours for 8 states, above one per state and part");
+  // The colours (format 1.10): the ghost's three parts and its tint, then the fade out.
+  expect([&](unsigned char* b) { PutU32(b + colours, 8); }, "MACH colour 0: state 8 of 8");
+  expect([&](unsigned char* b) { PutU32(b + colours + 4, 64); }, "MACH colour 0: state 3 of 8, part 64");
+  expect([&](unsigned char* b) { PutF64(b + colours + 32, 1.5); }, "MACH colour 0: a component (1.5) outside 0..1");
+  expect([&](unsigned char* b) { PutF64(b + colours + 3 * 40 + 8, std::nan("")); },
+         "MACH colour 3: a component (nan) outside 0..1");
+  expect([&](unsigned char* b) { PutF64(b + colours + 8, 0.5); }, "MACH colour 0: a part's tint is not 1, 1, 1");
+  expect([&](unsigned char* b) { PutU32(b + colours + 40 + 4, 0); }, "MACH colour 1: not after colour 0");
+  expect([&](unsigned char* b) { PutU32(b + colours + 2 * 40 + 4, 9); },
+         "MACH state 3: an opacity for part 9 of a rig with 4");
   expect([&](unsigned char* b) { PutU32(b + inputs, 7); }, "MACH input 0: type 7");
   expect([&](unsigned char* b) { PutF64(b + inputs + 24 + 8, std::nan("")); }, "MACH input 1: default (nan");
   expect([&](unsigned char* b) { PutU32(b + layers + 16, 0); }, "MACH layer 1: channel 0 is not one of 2");
-  expect([&](unsigned char* b) { PutU32(b + layers + 8, 3); }, "MACH layer 0: 3 states (initial 3)");
+  expect([&](unsigned char* b) { PutU32(b + layers + 8, 5); }, "MACH layer 0: 5 states (initial 5)");
   expect([&](unsigned char* b) { PutU32(b + states + 32, 9); }, "MACH state 1: kind 9");
   expect([&](unsigned char* b) { PutU32(b + states + 2 * 32 + 8, 2); }, "MACH state 2: input 2 is not a number input");
   expect([&](unsigned char* b) { PutF64(b + states + 32 + 16, -1); }, "MACH state 1: speed -1");
   expect([&](unsigned char* b) { PutU32(b + states + 32 + 4, 7); }, "MACH state 1: path 7 of channel 0, which has 1");
-  expect([&](unsigned char* b) { PutU32(b + transitions, 4); },
-         "MACH transition 0: target state 4 is not in its layer");
+  expect([&](unsigned char* b) { PutU32(b + transitions, 5); },
+         "MACH transition 0: target state 5 is not in its layer");
   expect([&](unsigned char* b) { PutF64(b + transitions + 16, std::nan("")); }, "MACH transition 0: mix nan");
   expect([&](unsigned char* b) { PutU32(b + transitions + 8, 1); },
          "MACH transition 0: an exit time on a state that plays no path");
   expect([&](unsigned char* b) { PutU32(b + conditions + 4, 0); },  // "is true" of a number
          "MACH condition 0: operator 0 does not apply to input 1's type 1");
-  expect([&](unsigned char* b) { PutU32(b + conditions, 40); }, "MACH condition 0: input 40 of 5");
+  expect([&](unsigned char* b) { PutU32(b + conditions, 40); }, "MACH condition 0: input 40 of 7");
   expect([&](unsigned char* b) { PutU32(b + behaviours, 16); }, "MACH layer 0's behaviours: unknown bits");
   expect([&](unsigned char* b) { PutF64(b + behaviours + 8, std::nan("")); },
          "MACH layer 0's behaviours: a parameter (nan) beyond 1e6");

@@ -115,6 +115,13 @@ PM_API int pm_machine_state(const pm_rig* rig, const void* machines, size_t capa
  * memory for the same count). */
 PM_API int pm_machine_step(const pm_rig* rig, void* machines, size_t capacity, size_t count, void* tracks,
                            size_t tracks_capacity);
+/* The colour the characters' states set (format 1.10; MachineColourJob):
+ * after pm_machine_step, with the update's dt, advances each character's
+ * fade and writes `count` colours (NULL: none written) and, for a rig with
+ * parts, count x pm_rig_part_count body part opacities (NULL: none), as
+ * pm_draw_options' colours and part_opacities take them. */
+PM_API int pm_machine_colours(const pm_rig* rig, void* machines, size_t capacity, size_t count, double dt,
+                              pm_colour* colours, float* part_opacities, size_t part_opacities_capacity);
 /* A channel's path events (format 1.8): their number, the path and time of
  * one, its name. */
 PM_API uint32_t pm_channel_event_count(const pm_rig* rig, uint32_t channel); /* 0 for NULL */

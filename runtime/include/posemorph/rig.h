@@ -71,6 +71,11 @@ struct MachineTransitionView {
   double exit_time = 0;  // the state's path has played this share of its cycle (or ended)
 };
 enum class MachineStateKind : std::uint32_t { kStop = 0, kPlay = 1, kPad = 2, kBlend = 3 };
+// A body part's opacity while a state holds (format 1.10).
+struct MachinePartOpacityView {
+  std::uint32_t part = 0;  // Rig::part
+  float opacity = 1;       // [0, 1]
+};
 struct MachineStateView {
   StringView name;
   std::uint32_t layer = 0;
@@ -80,6 +85,12 @@ struct MachineStateView {
   int loop = -1;                                  // play: -1 as the path says, 0 once, 1 looped
   double speed = 1;                               // play
   Span<const MachineTransitionView> transitions;  // in priority order
+  // Format 1.10: what the state sets while its layer is in it (each
+  // layer's multiply; MachineColourJob fades between them): the
+  // character's tint and opacity (r, g, b, a; all 1: as drawn) and body
+  // parts' opacities (by part, ascending; a part not listed: 1).
+  float colour[4] = {1, 1, 1, 1};
+  Span<const MachinePartOpacityView> part_opacities;
 };
 // The behaviours a layer's channel runs from the machine's first step
 // (animator.h: BlinkBehaviour ... SpringBehaviour; state_machine.h applies

@@ -22,8 +22,9 @@ constexpr std::uint16_t kVersionMajor = 1;
 // optionally an order per pose (kMetaFlagPartPoseOrders, PORD); 1.7 control
 // channels (CHAN: attachments, each a nested rig driven by its own channel);
 // 1.8 named events on paths (kMetaFlagEvents, EVNT); 1.9 a state machine
-// (MACH, in the top-level rig only). Older files load unchanged.
-constexpr std::uint16_t kVersionMinor = 9;
+// (MACH, in the top-level rig only); 1.10 colours set by states (MACH's
+// colour entries). Older files load unchanged.
+constexpr std::uint16_t kVersionMinor = 10;
 constexpr std::uint32_t kHeaderSize = FileHeader::kSize;
 constexpr std::uint32_t kSectionEntrySize = SectionEntry::kSize;
 constexpr std::uint32_t kSectionAlignment = 16;

@@ -23,6 +23,7 @@
 #include <cstdint>
 
 #include "posemorph/animator.h"
+#include "posemorph/draw_list.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
 #include "posemorph/span.h"
@@ -30,12 +31,18 @@
 namespace posemorph {
 
 // One character's machine: its inputs and each layer's state. A plain
-// value of fixed size (about 1.1 KB); any bytes in it are defined.
+// value of fixed size (about 1.4 KB); any bytes in it are defined.
 struct MachineInstance {
   double values[2 * format::kMaxMachineInputs] = {};   // per input: bool 0/1, number, point x and y
   std::uint8_t fired[format::kMaxMachineInputs] = {};  // triggers fired since the last step
   std::uint32_t state[format::kMaxChannels] = {};      // per layer: the state it is in (index in the machine)
   std::uint8_t started = 0;  // nonzero: the layers have entered their initial states (a byte: any value reads)
+  // The colour fade (format 1.10, MachineColourJob): the colour and body
+  // parts' opacities shown when the last change of state began, and how
+  // far the fade to the states' own has come.
+  float colour_from[4] = {1, 1, 1, 1};
+  float part_from[format::kMaxParts] = {};
+  double fade_elapsed = 0, fade_duration = 0;
 };
 
 // Inputs at their defaults, no trigger fired, not started (the next step
@@ -63,6 +70,9 @@ struct MachineChange {
 // has no machine; count is above kMaxAnimatorBatch; machines holds fewer
 // than count or tracks fewer than count x C; change_count or
 // changes_missed is null while `changes` is given.
+// A step that changes a layer's state starts a fade of the character's
+// colour (see MachineColourJob) over the transition's mix (the longest, when
+// several layers change in one step) from the colour shown then.
 struct PM_API MachineStepJob {
   const Rig* rig = nullptr;
   std::size_t count = 1;
@@ -71,6 +81,38 @@ struct PM_API MachineStepJob {
   Span<MachineChange> changes;              // optional
   std::size_t* change_count = nullptr;      // written: changes written
   std::uint64_t* changes_missed = nullptr;  // written: changes that did not fit
+
+  bool Validate() const;
+  bool Run() const;
+};
+
+// The colour the machines' states set (format 1.10: a state's "colour",
+// "opacity" and "parts"): the target of a character is the product over its
+// layers of each one's state colour (tint and opacity) and, per body part,
+// of their part opacities (1 where a state gives none). A change of state
+// fades linearly from the colour shown at that moment to the new target
+// over the transition's mix; a change mid-fade starts from where the fade
+// was, so the colour never jumps (a mix of 0 cuts). Run it after the step,
+// with the update's dt: it advances each fade by dt and writes each
+// character's colour (DrawListJob::colours) and, for a rig with parts, its
+// body parts' opacities (DrawListJob::part_opacities, count x
+// rig.part_count()). Multiply them with a colour of the game's own as it
+// likes. Deterministic, allocation free, and defined for any bytes in a
+// MachineInstance (a non-finite or out-of-range component reads as 1, a
+// non-finite fade as finished). dt as AnimatorUpdateJob takes it.
+//
+// Validate() fails (and Run() does nothing) when: rig is null, not loaded
+// or has no machine; count is above kMaxAnimatorBatch; machines holds
+// fewer than count; colours is given but shorter than count;
+// part_opacities is given but shorter than count x rig.part_count() or the
+// rig has no parts.
+struct PM_API MachineColourJob {
+  const Rig* rig = nullptr;
+  std::size_t count = 1;
+  double dt = 0;
+  Span<MachineInstance> machines;
+  Span<Colour> colours;        // optional: count
+  Span<float> part_opacities;  // optional: count x rig->part_count()
 
   bool Validate() const;
   bool Run() const;

@@ -213,8 +213,9 @@ struct Machine {
   bool present = false;
   fmt::MachineHeader h{};
   const unsigned char *inputs = nullptr, *layers = nullptr, *states = nullptr, *transitions = nullptr,
-                      *conditions = nullptr, *behaviours = nullptr, *names = nullptr;
-  std::uint64_t name_bytes = 0;  // without their lengths
+                      *conditions = nullptr, *behaviours = nullptr, *colours = nullptr, *names = nullptr;
+  std::uint64_t name_bytes = 0;    // without their lengths
+  std::uint32_t part_colours = 0;  // colour entries for a part (the rest are a state's character colour)
 };
 
 }  // namespace detail::load

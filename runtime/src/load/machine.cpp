@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 
 namespace posemorph {
 
@@ -75,7 +76,6 @@ bool RigLoader::ReadMachine(const unsigned char* bytes, const Parser& parser, bo
                 (unsigned long long)size);
   m->h = fmt::DecodeRecord<fmt::MachineHeader>(p);
   const fmt::MachineHeader& h = m->h;
-  if (h.reserved) return Fail(err, ErrorCode::kBadLayout, "MACH's reserved header field is not zero");
   if (h.input_count > fmt::kMaxMachineInputs || h.layer_count < 1 || h.layer_count > channel_count ||
       h.state_count < h.layer_count || h.state_count > fmt::kMaxMachineStates ||
       h.transition_count > fmt::kMaxMachineTransitions || h.condition_count > fmt::kMaxMachineConditions)
@@ -85,6 +85,9 @@ bool RigLoader::ReadMachine(const unsigned char* bytes, const Parser& parser, bo
         "%u transitions (..%u), %u conditions (..%u)",
         h.input_count, fmt::kMaxMachineInputs, h.layer_count, channel_count, h.state_count, fmt::kMaxMachineStates,
         h.transition_count, fmt::kMaxMachineTransitions, h.condition_count, fmt::kMaxMachineConditions);
+  if (h.colour_count > h.state_count * (fmt::kMaxParts + 1))
+    return Fail(err, ErrorCode::kBadValue, "MACH: %u colours for %u states, above one per state and part",
+                h.colour_count, h.state_count);
   std::uint64_t at = fmt::MachineHeader::kSize;
   auto take = [&](std::uint64_t count, std::uint32_t entry) {
     const unsigned char* q = p + at;
@@ -97,6 +100,7 @@ bool RigLoader::ReadMachine(const unsigned char* bytes, const Parser& parser, bo
   m->transitions = take(h.transition_count, fmt::MachineTransitionEntry::kSize);
   m->conditions = take(h.condition_count, fmt::MachineConditionEntry::kSize);
   m->behaviours = take(h.layer_count, fmt::MachineBehavioursEntry::kSize);
+  m->colours = take(h.colour_count, fmt::MachineColourEntry::kSize);
   if (at > size) return Fail(err, ErrorCode::kBadLayout, "MACH's entries run past the section");
   m->names = p + at;
   for (std::uint64_t k = 0; k < std::uint64_t(h.input_count) + h.state_count; ++k) {
@@ -139,6 +143,25 @@ bool RigLoader::ReadMachine(const unsigned char* bytes, const Parser& parser, bo
              MachineInputType::kPoint))
       return Fail(err, ErrorCode::kBadValue, "MACH layer %u's behaviours: look-at input %u is not a point input", l,
                   b.look_input);
+  }
+  for (std::uint32_t k = 0; k < h.colour_count; ++k) {
+    const auto c = fmt::DecodeEntry<fmt::MachineColourEntry>(m->colours, k);
+    const bool part = c.part != fmt::MachineColourEntry::kCharacter;
+    if (c.state >= h.state_count || (part && c.part >= fmt::kMaxParts))
+      return Fail(err, ErrorCode::kBadValue, "MACH colour %u: state %u of %u, part %u", k, c.state, h.state_count,
+                  c.part);
+    for (double v : {c.r, c.g, c.b, c.a})
+      if (!(v >= 0 && v <= 1))
+        return Fail(err, ErrorCode::kBadValue, "MACH colour %u: a component (%g) outside 0..1", k, v);
+    if (part && !(c.r == 1 && c.g == 1 && c.b == 1))
+      return Fail(err, ErrorCode::kBadValue, "MACH colour %u: a part's tint is not 1, 1, 1 (parts set opacity)", k);
+    if (k > 0) {
+      const auto before = fmt::DecodeEntry<fmt::MachineColourEntry>(m->colours, k - 1);
+      if (!(before.state < c.state || (before.state == c.state && before.part < c.part)))
+        return Fail(err, ErrorCode::kBadLayout, "MACH colour %u: not after colour %u (by state, then part, once each)",
+                    k, k - 1);
+    }
+    m->part_colours += part ? 1 : 0;
   }
   bool has_layer[fmt::kMaxChannels] = {};
   std::uint64_t state = 0, transition = 0, condition = 0;
@@ -208,6 +231,7 @@ void RigLoader::LayoutMachine(ArenaLayout& arena, const Machine& m, Rig* rig) {
   auto* states = arena.Take<MachineStateView>(h.state_count);
   auto* transitions = arena.Take<MachineTransitionView>(h.transition_count);
   auto* conditions = arena.Take<MachineConditionView>(h.condition_count);
+  auto* opacities = arena.Take<MachinePartOpacityView>(m.part_colours);
   char* chars = arena.Take<char>(m.name_bytes);
   if (!layers) return;  // the sizing pass
   const unsigned char* name = m.names;
@@ -271,7 +295,20 @@ void RigLoader::LayoutMachine(ArenaLayout& arena, const Machine& m, Rig* rig) {
       v.speed = s.speed;
       v.transitions = {transitions + transition, s.transition_count};
       transition += s.transition_count;
+      for (float& c : v.colour) c = 1;  // as drawn, unless a colour entry below says otherwise
+      v.part_opacities = {};
     }
+  }
+  for (std::uint32_t k = 0, part = 0; k < h.colour_count; ++k) {  // sorted by state: each state's parts in a run
+    const auto c = fmt::DecodeEntry<fmt::MachineColourEntry>(m.colours, k);
+    MachineStateView& s = states[c.state];
+    if (c.part == fmt::MachineColourEntry::kCharacter) {
+      s.colour[0] = float(c.r), s.colour[1] = float(c.g), s.colour[2] = float(c.b), s.colour[3] = float(c.a);
+      continue;
+    }
+    if (s.part_opacities.size == 0) s.part_opacities.data = opacities + part;
+    opacities[part++] = MachinePartOpacityView{c.part, float(c.a)};
+    ++s.part_opacities.size;
   }
   rig->machine_inputs_ = {inputs, h.input_count};
   rig->machine_layers_ = {layers, h.layer_count};
@@ -279,6 +316,11 @@ void RigLoader::LayoutMachine(ArenaLayout& arena, const Machine& m, Rig* rig) {
 }
 
 bool RigLoader::CheckMachinePaths(const Rig& rig, Error* err) {
+  for (std::size_t i = 0; i < rig.machine_states_.size; ++i)
+    for (const MachinePartOpacityView& p : rig.machine_states_[i].part_opacities)
+      if (p.part >= rig.part_count() || rig.part_count() < 2)
+        return Fail(err, ErrorCode::kBadValue, "MACH state %u: an opacity for part %u of a rig with %u part(s)",
+                    unsigned(i), p.part, rig.part_count() < 2 ? 0u : rig.part_count());
   for (std::size_t l = 0; l < rig.machine_layers_.size; ++l) {
     const MachineLayerView& layer = rig.machine_layers_[l];
     const Rig* crig = rig.channel_rig(layer.channel);

@@ -208,6 +208,12 @@ struct MachineStateDescription {
   std::uint32_t input = 0;  // pad, blend
   int loop = -1;
   double speed = 1;
+  // "colour" [r, g, b] or [r, g, b, a] and "opacity" a (multiplied into a):
+  // the character's while the layer is in this state (format 1.10).
+  std::array<double, 4> colour{1, 1, 1, 1};
+  // "parts": {"name": opacity}: body parts' opacities, by the part's index
+  // in the body (the parts of the first channel, in the description's order).
+  std::vector<std::pair<std::uint32_t, double>> part_opacities;
 };
 struct MachineLayerDescription {
   MachineBehavioursView behaviours;  // "behaviours": what the channel runs from the first step

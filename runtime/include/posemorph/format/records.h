@@ -14,102 +14,10 @@
 #include <cstdint>
 #include <cstring>
 
+#include "posemorph/format/machine_records.h"
+#include "posemorph/format/record_codec.h"
+
 namespace posemorph::format {
-
-// ---- encoding ---------------------------------------------------------------
-
-// Writes each field little-endian, one after another.
-struct FieldEncoder {
-  unsigned char* at;
-  void Put(std::uint64_t v, int bytes) {
-    for (int i = 0; i < bytes; ++i) *at++ = static_cast<unsigned char>(v >> (8 * i));
-  }
-  void operator()(const std::uint8_t& v) { Put(v, 1); }
-  void operator()(const std::uint16_t& v) { Put(v, 2); }
-  void operator()(const std::uint32_t& v) { Put(v, 4); }
-  void operator()(const std::int32_t& v) { Put(static_cast<std::uint32_t>(v), 4); }
-  void operator()(const std::uint64_t& v) { Put(v, 8); }
-  void operator()(const double& v) {
-    std::uint64_t bits;
-    std::memcpy(&bits, &v, 8);
-    Put(bits, 8);
-  }
-  template <typename T, std::size_t K>
-  void operator()(const T (&values)[K]) {
-    for (const T& v : values) (*this)(v);
-  }
-};
-
-// Reads each field little-endian, one after another.
-struct FieldDecoder {
-  const unsigned char* at;
-  std::uint64_t Get(int bytes) {
-    std::uint64_t v = 0;
-    for (int i = 0; i < bytes; ++i) v |= std::uint64_t(*at++) << (8 * i);
-    return v;
-  }
-  void operator()(std::uint8_t& v) { v = static_cast<std::uint8_t>(Get(1)); }
-  void operator()(std::uint16_t& v) { v = static_cast<std::uint16_t>(Get(2)); }
-  void operator()(std::uint32_t& v) { v = static_cast<std::uint32_t>(Get(4)); }
-  void operator()(std::int32_t& v) { v = static_cast<std::int32_t>(static_cast<std::uint32_t>(Get(4))); }
-  void operator()(std::uint64_t& v) { v = Get(8); }
-  void operator()(double& v) {
-    const std::uint64_t bits = Get(8);
-    std::memcpy(&v, &bits, 8);
-  }
-  template <typename T, std::size_t K>
-  void operator()(T (&values)[K]) {
-    for (T& v : values) (*this)(v);
-  }
-};
-
-// Counts the bytes the fields take in the file (compile time).
-struct FieldSizer {
-  std::size_t size = 0;
-  template <typename T>
-  constexpr void operator()(const T&) {
-    size += sizeof(T);
-  }
-};
-
-template <typename R>
-constexpr std::size_t EncodedSize() {
-  R r{};
-  FieldSizer s;
-  R::Fields(r, s);
-  return s.size;
-}
-
-// The record's kSize bytes at `out`.
-template <typename R>
-void EncodeRecord(const R& r, unsigned char* out) {
-  FieldEncoder e{out};
-  R::Fields(r, e);
-}
-
-// The record at `in` (kSize readable bytes).
-template <typename R>
-R DecodeRecord(const unsigned char* in) {
-  R r{};
-  FieldDecoder d{in};
-  R::Fields(r, d);
-  return r;
-}
-
-// The record at `offset` of `size` bytes at `data`; false, writing nothing,
-// when it does not lie wholly inside them.
-template <typename R>
-bool ReadRecord(const unsigned char* data, std::uint64_t size, std::uint64_t offset, R* out) {
-  if (offset > size || size - offset < R::kSize) return false;
-  *out = DecodeRecord<R>(data + offset);
-  return true;
-}
-
-// Record i of a table of records starting at `data` (bounds checked by the caller).
-template <typename R>
-R DecodeEntry(const unsigned char* data, std::uint64_t i) {
-  return DecodeRecord<R>(data + i * R::kSize);
-}
 
 // ---- the records ------------------------------------------------------------
 
@@ -191,106 +99,6 @@ struct EventEntry {
   template <typename Self, typename F>
   static constexpr void Fields(Self& r, F& f) {
     f(r.time), f(r.path), f(r.reserved);
-  }
-};
-
-// MACH (1.9): a state machine (rig_format.h, kMachine): this header, then
-// the inputs', layers', states', transitions' and conditions' entries, the
-// layers' behaviours, then the inputs' and the states' names. Ranges are implied: a layer's states
-// follow the previous layer's; the transitions are, layer by layer, the
-// layer's any-state transitions then each of its states' in order; a
-// transition's conditions follow the previous transition's.
-struct MachineHeader {
-  static constexpr std::uint32_t kSize = 24;
-  std::uint32_t input_count;
-  std::uint32_t layer_count;
-  std::uint32_t state_count;
-  std::uint32_t transition_count;
-  std::uint32_t condition_count;
-  std::uint32_t reserved;
-  template <typename Self, typename F>
-  static constexpr void Fields(Self& r, F& f) {
-    f(r.input_count), f(r.layer_count), f(r.state_count), f(r.transition_count), f(r.condition_count), f(r.reserved);
-  }
-};
-struct MachineInputEntry {
-  static constexpr std::uint32_t kSize = 24;
-  std::uint32_t type;  // MachineInputType (rig.h)
-  std::uint32_t reserved;
-  double default_x;  // bool: 0 or 1; number: its value; point: x
-  double default_y;  // point: y; otherwise 0
-  template <typename Self, typename F>
-  static constexpr void Fields(Self& r, F& f) {
-    f(r.type), f(r.reserved), f(r.default_x), f(r.default_y);
-  }
-};
-struct MachineLayerEntry {
-  static constexpr std::uint32_t kSize = 16;
-  std::uint32_t channel;
-  std::uint32_t state_count;  // 1 or more
-  std::uint32_t initial;      // within the layer's states
-  std::uint32_t any_count;    // transitions from any state of the layer
-  template <typename Self, typename F>
-  static constexpr void Fields(Self& r, F& f) {
-    f(r.channel), f(r.state_count), f(r.initial), f(r.any_count);
-  }
-};
-struct MachineStateEntry {
-  static constexpr std::uint32_t kSize = 32;
-  std::uint32_t kind;   // MachineStateKind (rig.h)
-  std::uint32_t path;   // play, blend: in the layer's channel; otherwise 0
-  std::uint32_t input;  // pad: a point input; blend: a number input; otherwise 0
-  std::uint32_t flags;  // play: bit 0 loop given, bit 1 loop
-  double speed;         // play: path seconds per second; otherwise 1
-  std::uint32_t transition_count;
-  std::uint32_t reserved;
-  template <typename Self, typename F>
-  static constexpr void Fields(Self& r, F& f) {
-    f(r.kind), f(r.path), f(r.input), f(r.flags), f(r.speed), f(r.transition_count), f(r.reserved);
-  }
-};
-struct MachineTransitionEntry {
-  static constexpr std::uint32_t kSize = 32;
-  std::uint32_t to;  // a state of the same layer (its index in the machine)
-  std::uint32_t condition_count;
-  std::uint32_t flags;  // bit 0: exit_time holds
-  std::uint32_t reserved;
-  double mix;        // seconds of crossfade
-  double exit_time;  // of the state's path, 0..1 (bit 0)
-  template <typename Self, typename F>
-  static constexpr void Fields(Self& r, F& f) {
-    f(r.to), f(r.condition_count), f(r.flags), f(r.reserved), f(r.mix), f(r.exit_time);
-  }
-};
-struct MachineConditionEntry {
-  static constexpr std::uint32_t kSize = 16;
-  std::uint32_t input;
-  std::uint32_t op;  // MachineOp (rig.h)
-  double value;
-  template <typename Self, typename F>
-  static constexpr void Fields(Self& r, F& f) {
-    f(r.input), f(r.op), f(r.value);
-  }
-};
-
-// One per layer, after the conditions: the behaviours the layer's channel
-// runs from the machine's first step (animator.h, Behaviours).
-struct MachineBehavioursEntry {
-  static constexpr std::uint32_t kSize = 120;
-  std::uint32_t enabled;  // 1 blink, 2 breath, 4 look-at, 8 spring
-  std::uint32_t blink_pose;
-  double blink_interval, blink_jitter, blink_duration, blink_strength;
-  std::uint64_t blink_seed;  // plus the character's index in its batch
-  double breath_period, breath_x, breath_y;
-  std::uint32_t look_input;  // a point input the look-at target follows, or 0xFFFFFFFF
-  std::uint32_t reserved;
-  double look_smoothing, look_strength;
-  double spring_frequency, spring_damping, spring_strength;
-  template <typename Self, typename F>
-  static constexpr void Fields(Self& r, F& f) {
-    f(r.enabled), f(r.blink_pose), f(r.blink_interval), f(r.blink_jitter), f(r.blink_duration), f(r.blink_strength),
-        f(r.blink_seed), f(r.breath_period), f(r.breath_x), f(r.breath_y), f(r.look_input), f(r.reserved),
-        f(r.look_smoothing), f(r.look_strength), f(r.spring_frequency), f(r.spring_damping), f(r.spring_strength);
   }
 };
 
@@ -446,12 +254,6 @@ struct CompactInfo {
   }
 };
 
-// Each record's size, field list and C++ layout agree: the fields are
-// listed in declaration order with no padding, at these offsets.
-#define PM_FORMAT_RECORD(R)                                                         \
-  static_assert(sizeof(R) == R::kSize, #R ": the struct is not its record's size"); \
-  static_assert(EncodedSize<R>() == R::kSize, #R ": the field list is not the record's size")
-#define PM_FORMAT_FIELD(R, field, at) static_assert(offsetof(R, field) == (at), #R "::" #field " is not at byte " #at)
 PM_FORMAT_RECORD(FileHeader);
 PM_FORMAT_FIELD(FileHeader, version_major, 8);
 PM_FORMAT_FIELD(FileHeader, version_minor, 10);
@@ -474,24 +276,6 @@ PM_FORMAT_FIELD(PathEntry, flags, 4);
 PM_FORMAT_RECORD(EventEntry);
 PM_FORMAT_FIELD(EventEntry, path, 8);
 PM_FORMAT_FIELD(EventEntry, reserved, 12);
-PM_FORMAT_RECORD(MachineHeader);
-PM_FORMAT_FIELD(MachineHeader, reserved, 20);
-PM_FORMAT_RECORD(MachineInputEntry);
-PM_FORMAT_FIELD(MachineInputEntry, default_x, 8);
-PM_FORMAT_RECORD(MachineLayerEntry);
-PM_FORMAT_FIELD(MachineLayerEntry, any_count, 12);
-PM_FORMAT_RECORD(MachineStateEntry);
-PM_FORMAT_FIELD(MachineStateEntry, speed, 16);
-PM_FORMAT_FIELD(MachineStateEntry, reserved, 28);
-PM_FORMAT_RECORD(MachineTransitionEntry);
-PM_FORMAT_FIELD(MachineTransitionEntry, mix, 16);
-PM_FORMAT_FIELD(MachineTransitionEntry, exit_time, 24);
-PM_FORMAT_RECORD(MachineConditionEntry);
-PM_FORMAT_FIELD(MachineConditionEntry, value, 8);
-PM_FORMAT_RECORD(MachineBehavioursEntry);
-PM_FORMAT_FIELD(MachineBehavioursEntry, blink_seed, 40);
-PM_FORMAT_FIELD(MachineBehavioursEntry, look_input, 72);
-PM_FORMAT_FIELD(MachineBehavioursEntry, spring_strength, 112);
 PM_FORMAT_RECORD(PartEntry);
 PM_FORMAT_FIELD(PartEntry, triangle_count, 4);
 PM_FORMAT_FIELD(PartEntry, draw_order, 8);
@@ -529,7 +313,5 @@ PM_FORMAT_FIELD(AffineUvEntry, reserved, 4);
 PM_FORMAT_FIELD(AffineUvEntry, map, 8);
 PM_FORMAT_RECORD(CompactInfo);
 PM_FORMAT_FIELD(CompactInfo, pixels_per_unit, 24);
-#undef PM_FORMAT_RECORD
-#undef PM_FORMAT_FIELD
 
 }  // namespace posemorph::format
