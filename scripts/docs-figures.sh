@@ -94,6 +94,44 @@ bake assets/gingerbread/gingerbread.json -o "$work/gingerbread.pmrig"
 bake sheet "$work/gingerbread.pmrig" -o "$work/gingerbread-sheet.svg"
 rsvg-convert "$work/gingerbread-sheet.svg" -o "$out/gingerbread-sheet.png" && wrote gingerbread-sheet.png
 
+# Pell with a face driven by its state machine (posemorph-view --inputs):
+# six frames of one input timeline, each labelled with its time and the
+# states the viewer's log says each layer is in then.
+timeline="0.4:wave;1:talking;3:!talking;3.2:ghost;4.6:!ghost;4.6:vanish"
+mkdir -p "$work/states"
+"$bin/posemorph-view" "$work/pell-face.pmrig" --images "$drawn/pell" --headless --size 280x300 --inputs "$timeline" \
+  --fps 10 --frames 56 -o "$work/states/f.png" > "$work/states/log.txt"
+python3 - "$work/states" "$timeline" > "$work/states/strip.svg" <<'EOF'
+import re, sys
+folder, timeline = sys.argv[1], sys.argv[2]
+changes = []  # (time, layer, state), from the log's lines "T s  LAYER: FROM -> TO"
+for line in open(folder + "/log.txt"):
+    m = re.match(r"\s*([0-9.]+) s  (\w+): .* -> (\S+)$", line)
+    if m:
+        changes.append((float(m.group(1)), m.group(2), m.group(3)))
+frames = [0, 9, 16, 31, 40, 52]
+w, h = 280, 300
+print(f'<svg xmlns="http://www.w3.org/2000/svg" xmlns:xlink="http://www.w3.org/1999/xlink" '
+      f'width="{w * len(frames)}" height="{h + 78}">')
+print(f'<rect width="{w * len(frames)}" height="{h + 78}" fill="#f6f6f6"/>')
+for i, f in enumerate(frames):
+    t = f / 10
+    state = {}
+    for time, layer, to in changes:
+        if time <= t + 1e-9:
+            state[layer] = to
+    x = i * w
+    print(f'<image x="{x}" y="0" width="{w}" height="{h}" xlink:href="f-{f:03d}.png"/>')
+    label = " \u00b7 ".join(state[k] for k in ("body", "face") if k in state)
+    for row, text in enumerate([f"{t:.1f} s", label]):
+        print(f'<text x="{x + w / 2}" y="{h + 22 + 22 * row}" font-family="DejaVu Sans, sans-serif" font-size="16" '
+              f'fill="#333" text-anchor="middle">{text}</text>')
+print(f'<text x="8" y="{h + 72}" font-family="DejaVu Sans Mono, monospace" font-size="12" fill="#777">'
+      f'posemorph-view pell-face.pmrig --inputs "{timeline}"</text>')
+print("</svg>")
+EOF
+rsvg-convert "$work/states/strip.svg" -o "$out/pell-face-states.png" && wrote pell-face-states.png
+
 # The window under Xvfb: the smoke test's own screenshot (it drags the pad,
 # records a gesture and, on a copy of Pip's description, edits a pose).
 mkdir -p "$work/pip-authoring"

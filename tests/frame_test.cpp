@@ -20,6 +20,7 @@
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/rig_description.h"
 #include "posemorph/rig.h"
+#include "machine_driver.h"
 #include "scene.h"
 
 using namespace posemorph;
@@ -714,6 +715,47 @@ TEST_CASE("frames: Pell with a face, both channels on their paths, alone and in 
   for (std::size_t k = 0; k < with.size(); k += 4) changed += with[k] != without[k];
   MESSAGE(changed << " pixels change when the face's three parts hide");
   CHECK(changed > 200);
+}
+
+TEST_CASE("frames: Pell with a face driven by its state machine: the start is the rest frame, colours by state") {
+  DrawnSample& pell = SharedPellFace();
+  const Rig& rig = pell.rig;
+  auto driven = [&](const std::string& timeline, int frames) {
+    std::vector<InputCommand> commands;
+    std::string problem;
+    REQUIRE_MESSAGE(ParseInputTimeline(rig, timeline, &commands, &problem), problem);
+    MachineDriver driver;
+    REQUIRE_MESSAGE(driver.Init(rig, 1, &problem), problem);
+    for (int f = 0; f < frames; ++f) REQUIRE(driver.Advance(f == 0 ? 0 : 1.0 / 30, commands));
+    Scene s;
+    s.machine = &driver;
+    return RenderRig(rig, pell.drawings, s);
+  };
+  // The first step enters idle and calm: the frame at the channels' first
+  // poses, as a point-driven scene draws it.
+  Scene rest;
+  rest.x = rig.pose_points()[0], rest.y = rig.pose_points()[1];
+  const auto plain = RenderRig(rig, pell.drawings, rest), start = driven("", 1);
+  const Difference d = Compare(start, plain);
+  CAPTURE(d.differing);
+  CHECK(d.differing == 0);
+  // Vanished (opacity 0 after its 1 s mix): nothing but the background.
+  const auto gone = driven("0:vanish", 40);
+  std::size_t drawn = 0;
+  for (std::size_t k = 0; k < gone.size(); k += 4) drawn += !std::equal(&gone[k], &gone[k] + 4, &plain[0]);
+  CHECK(drawn == 0);
+  // The ghost: the same motion (breath and spring run in both), its colour
+  // and the translucent body change what covers the character, nothing else.
+  const auto idle = driven("0:talking", 40), ghost = driven("0:talking;0:ghost", 40);
+  std::size_t changed = 0, background_changed = 0;
+  for (std::size_t k = 0; k < idle.size(); k += 4) {
+    const bool same = std::equal(&idle[k], &idle[k] + 4, &ghost[k]);
+    changed += !same;
+    background_changed += !same && std::equal(&idle[k], &idle[k] + 4, &plain[0]);
+  }
+  MESSAGE(changed << " pixels change when Pell turns into a ghost");
+  CHECK(changed > 2000);
+  CHECK(background_changed == 0);
 }
 
 TEST_CASE("camera: fit, zoom about the cursor, pan, pixel-exact") {

@@ -21,7 +21,8 @@ foreach(case
     "--tint;1,1,2|--tint wants"
     "--tint;1,nan,1,1|--tint wants"
     "--part-opacity;arm|--part-opacity wants"
-    "--part-opacity;arm=1.5|--part-opacity wants")
+    "--part-opacity;arm=1.5|--part-opacity wants"
+    "--fps;0|--fps wants")
   string(REPLACE "|" ";" parts "${case}")
   list(GET parts 0 option)
   list(GET parts 1 value)

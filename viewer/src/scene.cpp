@@ -8,6 +8,7 @@
 #include "posemorph/draw_list.h"
 #include "posemorph/jobs.h"
 #include "posemorph/path.h"
+#include "machine_driver.h"
 
 namespace posemorph::viewer {
 
@@ -133,8 +134,13 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
              std::to_string(renderer.max_instances()) + ")";
     return false;
   }
+  if (scene.machine && (scene.machine->count() != K || scene.show_bases || scene.compare_linear)) {
+    *error = "the state machine drives " + std::to_string(scene.machine->count()) +
+             " character(s): not the base poses, the rigid | linear comparison or another crowd";
+    return false;
+  }
   int path = -1;
-  if (!scene.path.empty()) {
+  if (!scene.path.empty() && !scene.machine) {
     path = rig.FindPath(scene.path.c_str());
     if (path < 0) {
       *error = "the rig has no path \"" + scene.path + "\"";
@@ -171,17 +177,26 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
   // positions straight into the renderer's buffer; a character with
   // channels gets its attachments' lists too.
   const std::uint32_t A = rig.attachment_count();
-  if (A > 0 && !ChannelPoints(rig, scene, scratch, K, error)) return false;
+  if (A > 0 && !scene.machine && !ChannelPoints(rig, scene, scratch, K, error)) return false;
   scratch.workspace.resize(DrawListWorkspaceSize(rig, K));
   scratch.lists.resize(K);
   scratch.attached_positions.resize(std::size_t(K) * 2 * rig.attached_vertex_count());
   scratch.attachment_lists.resize(std::size_t(K) * A);
   scratch.colours.assign(K, scene.colour);
   const std::size_t P = rig.part_count();
-  const bool opacities = scene.part_opacities.size() == P;
-  scratch.part_opacities.resize(opacities ? K * P : 0);
-  for (std::uint32_t k = 0; opacities && k < K; ++k)
-    std::copy(scene.part_opacities.begin(), scene.part_opacities.end(), scratch.part_opacities.begin() + k * P);
+  const bool machine_parts = scene.machine && scene.machine->part_count() == P;
+  const bool opacities = scene.part_opacities.size() == P || machine_parts;
+  scratch.part_opacities.assign(opacities ? K * P : 0, 1.0f);
+  for (std::uint32_t k = 0; opacities && k < K; ++k) {
+    float* to = scratch.part_opacities.data() + k * P;
+    if (scene.part_opacities.size() == P) std::copy(scene.part_opacities.begin(), scene.part_opacities.end(), to);
+    for (std::size_t p = 0; machine_parts && p < P; ++p) to[p] *= scene.machine->part_opacities(k)[p];
+  }
+  for (std::uint32_t k = 0; scene.machine && k < K; ++k) {  // the states' colour times the scene's own
+    const Colour& c = scene.machine->colour(k);
+    Colour& to = scratch.colours[k];
+    to.r *= c.r, to.g *= c.g, to.b *= c.b, to.a *= c.a;
+  }
   const auto run = [&](std::uint32_t first, std::uint32_t n, Interpolation interpolation) {
     DrawListJob job;
     job.rig = &rig;
@@ -204,6 +219,7 @@ bool PrepareScene(const Rig& rig, const Scene& scene, RigRenderer& renderer, Sce
       job.attached_positions = {scratch.attached_positions.data() + first * a2, n * a2};
       job.attached_output = {scratch.attachment_lists.data() + std::size_t(first) * A, std::size_t(n) * A};
     }
+    if (scene.machine) scene.machine->Bind(&job);  // all K characters (checked above)
     return job.Run();
   };
   const bool ok = scene.compare_linear ? run(0, 1, Interpolation::kRigid) && run(1, 1, Interpolation::kLinear)

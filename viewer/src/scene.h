@@ -11,6 +11,8 @@
 
 namespace posemorph::viewer {
 
+class MachineDriver;
+
 // A control channel after the first (format 1.7): its point, or a path of
 // its own rig that its characters follow (at the scene's time and phases).
 struct ChannelInput {
@@ -39,6 +41,11 @@ struct Scene {
   // Channels 1 .. C-1 of a rig with control channels, in order; a missing
   // entry puts its channel at its first pose's point.
   std::vector<ChannelInput> channels;
+  // A rig's state machine drives the characters (--inputs, the window's
+  // panel): their weights are its animators' (x, y, path and channels are
+  // not read); as many characters as it runs, and neither bases nor the
+  // rigid | linear comparison.
+  const MachineDriver* machine = nullptr;
 };
 
 // How many characters the scene draws.

@@ -20,6 +20,7 @@ int Viewer::Run() {
   Parts& w = parts_;
   if (!w.presenter.Open(w.options, w.rig, w.drawings, SceneFilter(w.rig, w.scene))) return 1;
   w.pad.Build(w.rig, &w.scene);
+  w.machine.Build(w.rig, w.options.timeline, w.options.machine);
   std::optional<SmokeDriver> smoke;
   if (!w.options.smoke_test.empty()) smoke.emplace(w);
   int status = 0;
@@ -33,7 +34,8 @@ int Viewer::Run() {
       continue;
     }
     const auto now = std::chrono::steady_clock::now();
-    w.clock += smoke ? 1.0 / 60 : std::chrono::duration<double>(now - last).count();
+    const double dt = smoke ? 1.0 / 60 : std::chrono::duration<double>(now - last).count();
+    w.clock += dt;
     last = now;
     ImGui_ImplVulkan_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -55,6 +57,7 @@ int Viewer::Run() {
     const bool drawing = w.presenter.Acquire(&index);
     if (drawing) {
       shown = w.pad.Shown(w.rig, &w.scene, w.clock);
+      w.machine.Frame(w.rig, dt, &shown, &w.status);
       count = PrepareCharacters(shown);
     }
     JointOverlay(drawing ? count : 0);

@@ -4,6 +4,9 @@
 #include <cstdint>
 #include <string>
 
+#include <vector>
+
+#include "machine_driver.h"
 #include "scene.h"
 
 namespace posemorph::viewer {
@@ -15,6 +18,10 @@ struct WindowOptions {
   std::uint32_t smoke_frames = 60;
   std::string description;   // rig description to save recorded gestures into
   bool show_joints = false;  // a layered character's joints marked over the frame
+  // A rig with a state machine: --inputs was given (the machine drives the
+  // characters from the first frame), and its timeline.
+  bool machine = false;
+  std::vector<InputCommand> timeline;
 };
 
 // True when this build has edit mode and saving into the description

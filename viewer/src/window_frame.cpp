@@ -18,6 +18,7 @@ void Viewer::BuildUi() {
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth, float(w.presenter.extent().height)));
   ImGui::Begin("posemorph", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   if (w.pad.Ui(rig, &scene, &w.clock)) w.editor.SaveGesture(w.pad.gesture(), &w.status);
+  w.machine.Ui(rig);
 
   ImGui::Separator();
   ImGui::TextUnformatted("Drawing");

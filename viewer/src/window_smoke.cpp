@@ -99,6 +99,17 @@ int SmokeDriver::WriteShot() {
   const Camera& camera = w_.view.camera();
   std::printf("camera: zoom %.4g pixels per unit at (%.2f, %.2f), %s\n", camera.zoom, camera.centre.x, camera.centre.y,
               w_.view.fit() == ViewCamera::Fit::kNone ? "zoomed and panned by the user" : "fitted");
+  if (w_.machine.on()) {  // the state machine drove the frames: its log and each layer's state
+    const MachineDriver& d = w_.machine.driver();
+    for (const std::string& line : d.log()) std::printf("%s\n", line.c_str());
+    std::string states;
+    for (std::size_t l = 0; l < w_.rig.machine_layers().size; ++l) {
+      const std::uint32_t s = d.machine(0).state[l];
+      states +=
+          (l ? ", " : "") + std::string(w_.rig.machine_states()[s].name.data, w_.rig.machine_states()[s].name.size);
+    }
+    std::printf("state machine: %zu log line(s) in %.3f s, states %s\n", d.log().size(), d.clock(), states.c_str());
+  }
   if (!w_.show_joints) return 0;
   // Each joint marker of the last frame, found again in the shot: its
   // centre pixel is the marker's fill (magenta: no sample draws it).

@@ -6,6 +6,7 @@
 //   Editor      (window_editor.h)    edit mode and saving into the description
 //                                    (the one component that links the bake);
 //   ViewCamera  (window_camera.h)    fit, zoom and pan;
+//   MachinePanel (window_machine.h)  the state machine: states, inputs, log;
 //   SmokeDriver (window_smoke.h)     the scripted session of --smoke-test,
 //                                    driving the parts from outside the viewer.
 // The panel and the frame's characters are window_frame.cpp.
@@ -19,6 +20,7 @@
 #include "window_camera.h"
 #include "window_common.h"
 #include "window_editor.h"
+#include "window_machine.h"
 #include "window_pad.h"
 #include "window_presenter.h"
 
@@ -42,6 +44,7 @@ struct Parts {
   const WindowOptions options;
   Presenter presenter;
   PosePad pad;
+  MachinePanel machine;
   Editor editor;
   ViewCamera view;
   SceneScratch scratch;
