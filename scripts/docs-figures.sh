@@ -142,6 +142,9 @@ window "$work/pell.pmrig" --images "$drawn/pell" --size 1300x920 --joints --fram
   --smoke-test "$out/pell-window.png" && wrote pell-window.png
 window "$work/pell-face.pmrig" --images "$drawn/pell" --size 1300x920 --joints --channel face=chatter --frames 20 \
   --smoke-test "$out/pell-face-window.png" && wrote pell-face-window.png
+# The state machine's panel: each layer's state, the inputs, the log (--inputs on the window's clock).
+window "$work/pell-face.pmrig" --images "$drawn/pell" --size 1300x920 --inputs "0.2:wave;0.3:talking" --frames 40 \
+  --smoke-test "$out/pell-face-machine-window.png" && wrote pell-face-machine-window.png
 
 # The examples: the pictures their tests took after comparing them with
 # posemorph-view's frames (examples/CMakeLists.txt). Shots newer than every

@@ -228,7 +228,7 @@ TEST_CASE("the C API evaluates frames without allocating either") {
   pm_rig_free(rig);
 }
 
-TEST_CASE("state machine steps allocate nothing: inputs, transitions, pads, blends") {
+TEST_CASE("state machine steps allocate nothing: inputs, transitions, pads, blends, colour fades") {
   const Rig rig = LoadTestRig("pell-face");
   const std::size_t count = 8;
   Crowd crowd(rig, count, 16);
@@ -240,7 +240,10 @@ TEST_CASE("state machine steps allocate nothing: inputs, transitions, pads, blen
   const std::uint32_t wave = std::uint32_t(rig.FindMachineInput("wave")),
                       sway = std::uint32_t(rig.FindMachineInput("sway")),
                       looking = std::uint32_t(rig.FindMachineInput("looking")),
-                      gaze = std::uint32_t(rig.FindMachineInput("gaze"));
+                      gaze = std::uint32_t(rig.FindMachineInput("gaze")),
+                      ghost = std::uint32_t(rig.FindMachineInput("ghost"));
+  std::vector<Colour> colours(count);
+  std::vector<float> part_opacities(count * rig.part_count());
   bool ok = true;
   g_allocations = 0;
   g_counting = true;
@@ -251,6 +254,7 @@ TEST_CASE("state machine steps allocate nothing: inputs, transitions, pads, blen
       if ((f + int(i)) % 70 == 20) ok &= MachineSetNumber(rig, &m, sway, ((f / 70) % 2) * 0.6);
       if ((f + int(i)) % 40 == 10) ok &= MachineSetBool(rig, &m, looking, (f / 40) % 2 == 0);
       ok &= MachineSetPoint(rig, &m, gaze, 0.01 * (f % 50), 0.3);
+      if ((f + int(i)) % 60 == 30) ok &= MachineSetBool(rig, &m, ghost, (f / 60) % 2 == 0);
     }
     MachineStepJob step;
     step.rig = &rig, step.count = count;
@@ -258,13 +262,17 @@ TEST_CASE("state machine steps allocate nothing: inputs, transitions, pads, blen
     step.changes = MakeSpan(changes), step.change_count = &written, step.changes_missed = &missed;
     ok &= step.Run();
     ok &= crowd.Job(1.0 / 60).Run();
+    MachineColourJob colour;
+    colour.rig = &rig, colour.count = count, colour.dt = 1.0 / 60, colour.machines = MakeSpan(machines);
+    colour.colours = MakeSpan(colours), colour.part_opacities = MakeSpan(part_opacities);
+    ok &= colour.Run();
   }
   g_counting = false;
   CHECK(ok);
   CHECK(g_allocations.load() == 0);
 }
 
-TEST_CASE("the C API animates a crowd without allocating: commands, behaviours, machines, updates, states") {
+TEST_CASE("the C API animates a crowd without allocating: commands, behaviours, machines, colours, updates, states") {
   const std::vector<unsigned char> bytes = TestRigBytes("pell-face");
   pm_rig* rig = nullptr;
   pm_error err;
@@ -285,6 +293,8 @@ TEST_CASE("the C API animates a crowd without allocating: commands, behaviours, 
   const std::size_t msize = pm_machine_size(rig, count);
   std::vector<double> machines((msize + sizeof(double) - 1) / sizeof(double));
   const std::uint32_t wave = std::uint32_t(pm_machine_find_input(rig, "wave"));
+  std::vector<pm_colour> colours(count);
+  std::vector<float> parts(count * pm_rig_part_count(rig));
   g_allocations = 0;
   g_counting = true;
   int status =
@@ -306,6 +316,8 @@ TEST_CASE("the C API animates a crowd without allocating: commands, behaviours, 
                                  limited.data(), nullptr, raw.size(), ar.data(), al.data(), nullptr, ar.size(),
                                  events.data(), events.size(), &written, &missed);
     most_missed = std::max(most_missed, missed);
+    status |=
+        pm_machine_colours(rig, machines.data(), msize, count, 1.0 / 60, colours.data(), parts.data(), parts.size());
   }
   g_counting = false;
   CHECK(status == PM_OK);

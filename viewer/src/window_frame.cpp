@@ -17,8 +17,10 @@ void Viewer::BuildUi() {
   ImGui::SetNextWindowPos(ImVec2(0, 0));
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth, float(w.presenter.extent().height)));
   ImGui::Begin("posemorph", nullptr, ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  // A rig with a state machine: its section first (while it drives the
+  // characters, the pads below do not).
+  if (w.machine.Ui(rig)) ImGui::Separator();
   if (w.pad.Ui(rig, &scene, &w.clock)) w.editor.SaveGesture(w.pad.gesture(), &w.status);
-  w.machine.Ui(rig);
 
   ImGui::Separator();
   ImGui::TextUnformatted("Drawing");

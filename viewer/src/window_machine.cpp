@@ -16,11 +16,10 @@ void MachinePanel::Build(const Rig& rig, std::vector<InputCommand> timeline, boo
   on_ = on && rig.machine_layers().size > 0;
 }
 
-void MachinePanel::Ui(const Rig& rig) {
-  if (rig.machine_layers().size == 0) return;
-  ImGui::Separator();
+bool MachinePanel::Ui(const Rig& rig) {
+  if (rig.machine_layers().size == 0) return false;
   if (ImGui::Checkbox("state machine drives the characters", &on_) && on_) driver_ = MachineDriver{};
-  if (!on_ || !driver_.active()) return;
+  if (!on_ || !driver_.active()) return true;
   const MachineInstance& m = driver_.machine(0);
   // Each layer's state (character 0's).
   for (std::size_t l = 0; l < rig.machine_layers().size; ++l) {
@@ -71,6 +70,8 @@ void MachinePanel::Ui(const Rig& rig) {
     ImGui::TextUnformatted(log[k].c_str());
   if (log.size() != shown_log_) ImGui::SetScrollHereY(1.0f), shown_log_ = log.size();
   ImGui::EndChild();
+  ImGui::TextWrapped("(the pads below do not drive the characters while the machine does)");
+  return true;
 }
 
 void MachinePanel::Frame(const Rig& rig, double dt, Scene* shown, std::string* status) {

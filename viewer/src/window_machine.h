@@ -19,8 +19,8 @@ class MachinePanel {
   // `timeline` (--inputs) plays from the window's first frame; `on` starts
   // with the machine driving the characters.
   void Build(const Rig& rig, std::vector<InputCommand> timeline, bool on);
-  // The panel's section (nothing for a rig without a machine).
-  void Ui(const Rig& rig);
+  // The panel's section (nothing for a rig without a machine: false).
+  bool Ui(const Rig& rig);
   // Before a frame is evaluated: steps the machines by dt (started again
   // for a crowd of another size) and hands them to the frame's scene.
   void Frame(const Rig& rig, double dt, Scene* shown, std::string* status);
