@@ -71,7 +71,8 @@ void UpdateTrack(const Rig& crig, std::uint32_t channel, AnimatorTrack* t, doubl
   detail::SanitiseTrack(crig, t);
   BehaviourState& st = t->behaviour_state;
   const Behaviours& b = t->behaviours;
-  Freeze f{detail::Adjustment(b, st, true), detail::Adjustment(b, st, false), t->snapshot};
+  const BehaviourState start = st;  // what a hand-over that interrupts a mix freezes with
+  const Freeze f{&b, &start, t->snapshot};
   Playhead p = detail::LoadPlayhead(*t);
   if (t->has_pending) {
     t->has_pending = false;
@@ -102,7 +103,7 @@ void UpdateTrack(const Rig& crig, std::uint32_t channel, AnimatorTrack* t, doubl
     const double e = i == b.blink.pose ? blink : 0.0;
     out->raw[i] = (1 - blink) * out->raw[i] + e;
     out->limited[i] = (1 - blink) * out->limited[i] + e;
-    out->texture[i] = (1 - blink) * out->texture[i] + e;
+    if (s.texture) out->texture[i] = (1 - blink) * out->texture[i] + e;
   }
 }
 
@@ -243,7 +244,8 @@ bool AnimatorUpdateJob::Run() const {
     for (std::uint32_t c = 0; c < C; ++c) {
       const Rig& crig = *rig->channel_rig(c);
       const std::size_t n = crig.pose_count();
-      const WeightSettings s{sigma >= 0 ? detail::ClampTo(sigma, 0, 1) : crig.default_sigma(), limit_weights};
+      const bool wanted = c == 0 ? !texture_weights.empty() : !attached_texture_weights.empty();
+      const WeightSettings s{sigma >= 0 ? detail::ClampTo(sigma, 0, 1) : crig.default_sigma(), limit_weights, wanted};
       UpdateTrack(crig, c, &tracks[i * C + c], step, s, &streams, &w);
       double *raw, *limited, *texture;
       if (c == 0) {

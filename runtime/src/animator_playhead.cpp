@@ -25,7 +25,7 @@ void MotionWeights(const Rig& crig, const Motion& m, const WeightSettings& s, co
   job.limit_weights = s.limit;
   job.raw = {w->raw, n};
   job.limited = {w->limited, n};
-  job.texture = {w->texture, n};
+  if (s.texture) job.texture = {w->texture, n};  // else not computed: nobody reads them
   job.Run();
 }
 
@@ -180,8 +180,9 @@ void PlayheadWeights(const Rig& crig, const Playhead& p, const double* snapshot,
   for (std::size_t i = 0; i < n; ++i) {
     out->raw[i] = b * from.raw[i] + a * out->raw[i];
     out->limited[i] = b * from.limited[i] + a * out->limited[i];
-    out->texture[i] = b * from.texture[i] + a * out->texture[i];
   }
+  if (!s.texture) return;
+  for (std::size_t i = 0; i < n; ++i) out->texture[i] = b * from.texture[i] + a * out->texture[i];
 }
 
 void HandOver(const Rig& crig, Playhead* p, const Motion& m, double mix, const WeightSettings& s, const Freeze& f) {
@@ -194,11 +195,13 @@ void HandOver(const Rig& crig, Playhead* p, const Motion& m, double mix, const W
   if (p->mixing) {
     Motion frozen;
     frozen.kind = MotionKind::kSnapshot;
-    PlayheadPoint(crig, *p, f.look, &frozen.x, &frozen.y);
+    PlayheadPoint(crig, *p, f.Look(), &frozen.x, &frozen.y);
     if (f.snapshot) {
       const std::size_t n = crig.pose_count();
       ChannelWeights now;
-      PlayheadWeights(crig, *p, f.snapshot, s, f.full, &now);
+      WeightSettings all = s;  // a later update may read the frozen texture weights
+      all.texture = true;
+      PlayheadWeights(crig, *p, f.snapshot, all, f.Full(), &now);
       std::memcpy(f.snapshot, now.raw, n * sizeof(double));
       std::memcpy(f.snapshot + n, now.limited, n * sizeof(double));
       std::memcpy(f.snapshot + 2 * n, now.texture, n * sizeof(double));

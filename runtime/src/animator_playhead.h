@@ -31,15 +31,21 @@ struct ChannelWeights {
 struct WeightSettings {
   double sigma;
   bool limit;
+  bool texture = true;  // the texture weights are wanted (the update's caller reads them)
 };
 
 // What a hand-over that interrupts a mix freezes: the blend's weights into
-// `snapshot` (3 x N; null: none, for a copy that only needs the point) and
-// the point the spring followed, each with the behaviours' adjustments of
-// the update's start.
+// `snapshot` (3 x N, the texture weights too, whatever the update's
+// caller reads; null: none, for a copy that only needs the point) and the
+// point the spring followed, each with the behaviours' adjustments of the
+// update's start (`start`: a copy of their state then), computed only when
+// a hand-over interrupts a mix.
 struct Freeze {
-  PointAdjustment full, look;
+  const Behaviours* behaviours = nullptr;
+  const BehaviourState* start = nullptr;
   double* snapshot = nullptr;
+  PointAdjustment Full() const { return Adjustment(*behaviours, *start, true); }
+  PointAdjustment Look() const { return Adjustment(*behaviours, *start, false); }
 };
 
 // Clamps to [lo, hi]; NaN to lo.
