@@ -8,6 +8,12 @@
 
 namespace posemorph {
 
+// A string in a rig's arena (not NUL-terminated).
+struct StringView {
+  const char* data = nullptr;
+  std::size_t size = 0;
+};
+
 template <typename T>
 struct Span {
   T* data = nullptr;
