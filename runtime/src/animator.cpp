@@ -49,7 +49,7 @@ void StepBehaviours(const Rig& crig, std::uint32_t channel, const Playhead& p, c
   }
   for (int k = 0; k <= kMaxBehaviourSteps && st->since_step + (dt - done) >= kBehaviourStep - kBehaviourStepSnap; ++k) {
     const double to = kBehaviourStep - st->since_step;
-    detail::RunTime(crig, channel, &probe, to, s, f, nullptr);
+    if (b.spring.enabled) detail::RunTime(crig, channel, &probe, to, s, f, nullptr);  // only the spring reads it
     done += to;
     st->since_step = 0;
     if (b.look_at.enabled) detail::LookStep(b, st);
