@@ -15,7 +15,8 @@
 # when a document differs from what the scripts print now (CI checks
 # `examples`, whose figures depend only on the sources). bench
 # (scripts/bench.sh 5), paths (scripts/bench-paths.sh 5) and bakes
-# (scripts/bench-bake.py: Pip at 256-4096 px, a 90,000-vertex mesh) run the
+# (scripts/bench-bake.py: Pip at 256-4096 px, a 90,000-vertex mesh) and
+# animator (scripts/bench-animator.sh 5: the update beside the frame) run the
 # benchmarks: minutes each, on a quiet machine, so they are never in the
 # default set; name them.
 import glob
@@ -33,6 +34,7 @@ TABLES = {
     'bench': ['scripts/bench.sh', '5'],
     'paths': ['scripts/bench-paths.sh', '5'],
     'bakes': ['scripts/bench-bake.py', 'build/release'],
+    'animator': ['scripts/bench-animator.sh', '5'],
 }
 
 
