@@ -150,8 +150,25 @@ static void Machine(const pm_rig* rig) {
          strcmp(name, "waving") == 0);
   EXPECT(pm_machine_state(rig, machines, msize, 1, 1) == pm_machine_find_state(rig, "chatting"));
   EXPECT(pm_machine_step(rig, machines, msize, kCount, tracks, size - 1) == PM_ERROR_BUFFER_TOO_SMALL);
-  printf("c_api_animator_test: machine: character 1 waving and chatting after its inputs\n");
-  free(raw), free(limited), free(w), free(wl), free(tracks), free(machines);
+  /* Colour set by states (format 1.10): character 0 turns into the ghost,
+   * fading over its 0.6 s mix; character 1 stays as drawn. */
+  const int ghost = pm_machine_find_input(rig, "ghost");
+  const size_t P = pm_rig_part_count(rig);
+  EXPECT(ghost >= 0 && P == 4);
+  EXPECT(pm_machine_set_bool(rig, machines, msize, 0, (uint32_t)ghost, 1) == PM_OK);
+  pm_colour colours[kCount];
+  float* parts = calloc(kCount * P, sizeof(float));
+  for (int f = 0; f < 18; ++f) { /* 0.3 s: half way */
+    EXPECT(pm_machine_step(rig, machines, msize, kCount, tracks, size) == PM_OK);
+    EXPECT(pm_machine_colours(rig, machines, msize, kCount, 1.0 / 60, colours, parts, kCount * P) == PM_OK);
+  }
+  EXPECT(fabsf(colours[0].r - 0.85f) < 1e-4f && fabsf(colours[0].g - 0.925f) < 1e-4f && colours[0].b == 1);
+  EXPECT(fabsf(parts[0] - 0.65f) < 1e-4f && parts[3] == 1); /* the body half way to 0.3, the head whole */
+  EXPECT(colours[1].r == 1 && colours[1].a == 1 && parts[P] == 1);
+  EXPECT(pm_machine_colours(rig, machines, msize, kCount, 0, colours, parts, kCount * P - 1) ==
+         PM_ERROR_BUFFER_TOO_SMALL);
+  printf("c_api_animator_test: machine: character 1 waving and chatting after its inputs, character 0 a ghost\n");
+  free(parts), free(raw), free(limited), free(w), free(wl), free(tracks), free(machines);
 }
 
 int main(int argc, char** argv) {
