@@ -6,7 +6,7 @@ foreach(case
     "${FACE}|0:jump|the rig's state machine has no input \"jump\" \\(wave, sway, talking, looking, gaze, ghost, vanish\\)"
     "${FACE}|x:wave|--inputs entry \"x:wave\": wants TIME:NAME\\[=VALUE\\]"
     "${FACE}|-1:wave|--inputs entry \"-1:wave\": wants TIME:NAME"
-    "${FACE}|1:wave=true|\"wave\" is a trigger: NAME alone"
+    "${FACE}|1:wave=false|\"wave\" is a trigger: NAME \\(or NAME=true\\) fires it"
     "${FACE}|1:talking=maybe|\"talking\" is a bool: NAME, !NAME or NAME=true"
     "${FACE}|1:sway|\"sway\" is a number: NAME=VALUE"
     "${FACE}|1:gaze=1|\"gaze\" is a point: NAME=X,Y"

@@ -19,7 +19,7 @@ const char* TypeName(MachineInputType t) {
     case MachineInputType::kNumber:
       return "a number: NAME=VALUE";
     case MachineInputType::kTrigger:
-      return "a trigger: NAME alone";
+      return "a trigger: NAME (or NAME=true) fires it";
     case MachineInputType::kPoint:
       return "a point: NAME=X,Y";
   }
@@ -54,7 +54,7 @@ bool ParseEntry(const Rig& rig, const std::string& entry, InputCommand* c, std::
     ok = negated ? value.empty() : (value.empty() || value == "true" || value == "false");
     c->x = negated || value == "false" ? 0 : 1;
   } else if (type == MachineInputType::kTrigger) {
-    ok = !negated && value.empty();
+    ok = !negated && (value.empty() || value == "true");  // NAME=true fires it too
   } else if (!negated) {
     const std::optional<std::vector<double>> v = bake::ParseNumbers(value, ',');
     const std::size_t want = type == MachineInputType::kPoint ? 2 : 1;

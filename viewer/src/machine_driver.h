@@ -26,7 +26,7 @@ struct InputCommand {
 // Parses "T:NAME[=VALUE];T:NAME=VALUE;..." (docs/viewer.md): T seconds >= 0,
 // NAME an input of the rig's machine; VALUE true/false for a bool (NAME
 // alone: true, !NAME: false), a number for a number, X,Y for a point, none
-// for a trigger (fired). Sorted by time, ties in the order given. False
+// or true for a trigger (fired). Sorted by time, ties in the order given. False
 // with a message naming the entry and what it wants.
 bool ParseInputTimeline(const Rig& rig, const std::string& text, std::vector<InputCommand>* out, std::string* error);
 

@@ -49,7 +49,8 @@ const char* kUsage =
     "  --description window: the rig description that recorded gestures are saved into\n"
     "  --inputs T    a rig with a state machine: it drives the characters, its inputs set at times,\n"
     "                \"TIME:NAME[=VALUE];...\" (a bool: NAME, !NAME or NAME=true|false; a number: NAME=V;\n"
-    "                a point: NAME=X,Y; a trigger: NAME), e.g. \"0:talking;1:wave;2.5:sway=0.4\"; headless,\n"
+    "                a point: NAME=X,Y; a trigger: NAME or NAME=true), e.g. \"0:talking;1:wave;2.5:sway=0.4\"; "
+    "headless,\n"
     "                --frames K frames (default 1) at --fps F (default 30), the states and events logged\n";
 
 // "move=X:Y,rotate=DEG,scale=S|SX:SY,flip" -> a transform. False on anything else.
