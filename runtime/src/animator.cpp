@@ -246,7 +246,7 @@ bool AnimatorUpdateJob::Run() const {
       const std::size_t n = crig.pose_count();
       const bool wanted = c == 0 ? !texture_weights.empty() : !attached_texture_weights.empty();
       const WeightSettings s{sigma >= 0 ? detail::ClampTo(sigma, 0, 1) : crig.default_sigma(), limit_weights, wanted};
-      UpdateTrack(crig, c, &tracks[i * C + c], step, s, &streams, &w);
+      UpdateTrack(crig, c, &tracks[i * C + c], step, s, events.empty() ? nullptr : &streams, &w);
       double *raw, *limited, *texture;
       if (c == 0) {
         raw = weights.data + i * n;

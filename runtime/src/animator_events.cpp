@@ -15,7 +15,8 @@ void EmitEvents(EventStreams* streams, std::uint32_t character, double dt, const
       const double f = s.FireTime();
       if (best < 0 || f < best_time) best = k, best_time = f;
     }
-    if (best < 0 || *written >= events.size) break;
+    if (best < 0) return;  // every crossing written: none missed
+    if (*written >= events.size) break;
     EventStream& s = streams->s[best];
     AnimatorEvent& e = events.data[(*written)++];
     e.character = character;
@@ -26,7 +27,7 @@ void EmitEvents(EventStreams* streams, std::uint32_t character, double dt, const
     ++s.emitted;
     s.Next();
   }
-  for (int k = 0; k < streams->count; ++k) {
+  for (int k = 0; k < streams->count; ++k) {  // the buffer is full: count what did not fit
     const EventStream& s = streams->s[k];
     const double rest = s.Total() - double(s.emitted);
     if (rest > 0) *missed += rest;
