@@ -30,7 +30,6 @@
 #include "posemorph/bake/stage.h"
 #include "posemorph/bake/validate_rig.h"
 #include "posemorph/rig_format.h"
-#include "runtime_oracle.h"
 
 namespace posemorph::bake {
 namespace {
@@ -183,6 +182,10 @@ Attempt BakeOnce(const RigDescription& description) {
   a.exact_bytes = RigFileSize(exact);
   a.sections =
       description.parameters.compact ? CompactRig(exact, a.compact_settings, file, &a.compact) : std::move(exact);
+  // A state machine joins the file before its one verification: the
+  // runtime checks it (and the paths it names) in the load below.
+  if (!description.state_machine.layers.empty())
+    a.sections.Add(format::kMachine, MachineSection(description.state_machine));
   a.bytes = WriteRig(a.sections);
   a.is_compact = description.parameters.compact && !a.compact.fell_back;
   BakeStage check_stage("checking the baked rig");
@@ -332,15 +335,7 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt
 
 std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport* report) {
   if (description.channels.size() > 1) return BakeCharacter(description, report);
-  if (description.state_machine.layers.empty()) return BakeOne(description, report).bytes;
-  // The state machine joins the verified sections; the runtime checks it
-  // (and the paths it names) as it loads the file once more.
-  BakedRig baked = BakeOne(description, report);
-  baked.sections.Add(format::kMachine, MachineSection(description.state_machine));
-  std::vector<unsigned char> bytes = WriteRig(baked.sections);
-  LoadWithRuntime(bytes, description.file, "the rig written with its state machine does not load in the runtime");
-  if (report) report->bytes = bytes.size();
-  return bytes;
+  return BakeOne(description, report).bytes;  // with its state machine, if any, verified in the one load
 }
 
 BakedRig BakeOne(const RigDescription& description, BakeReport* report) {

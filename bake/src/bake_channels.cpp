@@ -182,6 +182,7 @@ std::vector<double> PlacedErrors(const Rig& rig) {
 RigDescription ChannelBodyDescription(const RigDescription& description) {
   RigDescription body = description;
   body.channels.clear();
+  body.state_machine = {};  // the whole character's, written once with the file (BakeCharacter)
   body.parts.clear();
   body.glue.clear();
   std::vector<std::size_t> index(description.parts.size(), SIZE_MAX);
@@ -206,6 +207,7 @@ RigDescription AttachmentDescription(const RigDescription& description, std::siz
   RigDescription sub = description;
   sub.file = description.file + ": part '" + p.name + "'";
   sub.channels.clear();
+  sub.state_machine = {};  // an attachment's rig has none of its own
   sub.glue.clear();
   sub.warnings.clear();
   sub.poses = channel.poses;
