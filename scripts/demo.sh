@@ -44,10 +44,12 @@ view=$bin/posemorph-view
 if [ ! -x $view ]; then
   echo "posemorph-view was not built (see the cmake warnings); skipping the viewer"
 elif [ -n "${DISPLAY:-}${WAYLAND_DISPLAY:-}" ]; then
-  echo "opening the viewer on out/pip.pmrig, then on out/pell.pmrig, then on out/pell-face.pmrig (close each window to go on)"
+  echo "opening the viewer on out/pip.pmrig, then on out/pell.pmrig, then on out/pell-face.pmrig, twice (close each window to go on)"
   $view out/pip.pmrig --description $drawn/pip/pip.json
   $view out/pell.pmrig
   $view out/pell-face.pmrig --channel face=chatter
+  echo "and on out/pell-face.pmrig driven by its state machine (the panel's inputs and log)"
+  $view out/pell-face.pmrig --inputs "0.4:wave;1:talking;3:!talking"
 else
   mkdir -p out/frames
   $view out/pip.pmrig --headless --size 480x480 --path hello --frames 24 -o out/frames/pip-hello.png
@@ -58,4 +60,7 @@ else
   $view out/pell-face.pmrig --headless --size 1280x720 --crowd 12 --path greet --channel face=chatter --frames 24 \
     -o out/frames/pell-face-crowd.png
   $view out/sprout.pmrig --headless --size 480x480 --path breeze --frames 24 -o out/frames/sprout-breeze.png
+  # Pell with a face driven by its state machine: its log of states and events, 60 frames at 10 per second.
+  $view out/pell-face.pmrig --headless --size 480x480 --fps 10 --frames 60 -o out/frames/pell-face-states.png \
+    --inputs "0.4:wave;1:talking;3:!talking;3.2:ghost;4.6:!ghost;4.6:vanish"
 fi
