@@ -37,12 +37,18 @@ write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/posemorph-config-ve
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/posemorph-config.cmake ${CMAKE_CURRENT_BINARY_DIR}/posemorph-config-version.cmake
   DESTINATION ${posemorph_cmake_dir})
 
-# pkg-config: a C or C++ program links -lposemorph; a static library also
-# needs the C++ runtime, which `pkg-config --libs --static` adds.
+# pkg-config: a C or C++ program links -lposemorph. The static library
+# also needs the C++ runtime: it is in Libs, so that plain `pkg-config
+# --libs` links a C program (a shared library brings its own, so there it
+# is only in Libs.private).
 get_target_property(posemorph_runtime_type posemorph_runtime TYPE)
 set(POSEMORPH_PC_CFLAGS "")
+set(POSEMORPH_PC_LIBS "-lposemorph -lstdc++ -lm")
+set(POSEMORPH_PC_LIBS_PRIVATE "")
 if(posemorph_runtime_type STREQUAL "SHARED_LIBRARY")
   set(POSEMORPH_PC_CFLAGS "-DPOSEMORPH_SHARED")
+  set(POSEMORPH_PC_LIBS "-lposemorph")
+  set(POSEMORPH_PC_LIBS_PRIVATE "-lstdc++ -lm")
 endif()
 # Relocatable: the prefix is found from the .pc file's own folder, so
 # `cmake --install --prefix DIR` works without reconfiguring.

@@ -3,7 +3,7 @@
 # Uses posemorph the ways a game would, after a native release build (it
 # installs that build and reads the rigs it baked):
 #   1. cmake --install, then a separate CMake project with find_package
-#   2. a C99 program built with pkg-config --static against the same install
+#   2. a C99 program built with plain pkg-config --libs against the same install
 #   3. a project that add_subdirectory()s the source tree with Eigen out of
 #      reach (-DCMAKE_DISABLE_FIND_PACKAGE_Eigen3=ON) and no build type, and
 #      one that fetches the last commit with FetchContent
@@ -40,10 +40,10 @@ quiet cmake -S tests/consumers/find-package -B "$work/find-package" -DCMAKE_PREF
 quiet cmake --build "$work/find-package" -j"$jobs"
 check_frame find_package "$work/find-package/frame"
 
-echo "== C99 with pkg-config --static"
+echo "== C99 with plain pkg-config --libs (the static library names the C++ runtime in Libs)"
 export PKG_CONFIG_PATH=$work/prefix/lib/pkgconfig
 cc -std=c99 -Wall -Wextra -pedantic -Werror $(pkg-config --cflags posemorph-runtime) tests/consumers/c/frame.c \
-  -o "$work/c-frame" $(pkg-config --libs --static posemorph-runtime)
+  -o "$work/c-frame" $(pkg-config --libs posemorph-runtime)
 check_frame "C99 (pkg-config)" "$work/c-frame"
 
 echo "== add_subdirectory, Eigen disabled, no build type"

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "posemorph/draw_list.h"
@@ -225,4 +226,21 @@ TEST_CASE("MorphBatchJob: a valid job runs, and each failure case of its header 
     for (double v : b.positions) REQUIRE(v == kSentinel);
     for (float v : b.f32) REQUIRE(v == float(kSentinel));
   });
+}
+
+TEST_CASE("MakeSpan takes containers and C arrays, keeping their constness") {
+  double plain[5] = {};
+  const float fixed[3] = {1, 2, 3};
+  std::vector<std::uint32_t> v(7);
+  const Span<double> a = MakeSpan(plain);
+  const Span<const float> b = MakeSpan(fixed);
+  const Span<std::uint32_t> c = MakeSpan(v);
+  CHECK(a.data == plain);
+  CHECK(a.size == 5);
+  CHECK(b.data == fixed);
+  CHECK(b.size == 3);
+  CHECK(b[2] == 3.0f);
+  CHECK(c.data == v.data());
+  CHECK(c.size == 7);
+  static_assert(std::is_same<decltype(MakeSpan(fixed)), Span<const float>>::value, "a const array gives a const span");
 }

@@ -39,9 +39,15 @@ struct Span {
   }
 };
 
+// A span over a container with data() and size() (std::vector, std::array),
+// or over a C array.
 template <typename Container>
 auto MakeSpan(Container& c) -> Span<typename std::remove_reference<decltype(*c.data())>::type> {
   return {c.data(), c.size()};
+}
+template <typename T, std::size_t N>
+constexpr Span<T> MakeSpan(T (&a)[N]) {
+  return {a, N};
 }
 
 }  // namespace posemorph
