@@ -9,6 +9,9 @@ namespace posemorph {
 namespace detail {
 namespace {
 
+// The body parts a state can set (a rig without parts has none).
+std::uint32_t BodyParts(const Rig& rig) { return rig.part_count() > 1 ? rig.part_count() : 0; }
+
 // A component read from caller bytes: in [0, 1], else 1 (as drawn).
 float Component(float v) { return v >= 0 && v <= 1 ? v : 1.0f; }
 
@@ -23,7 +26,7 @@ const MachineStateView& StateOf(const Rig& rig, const MachineInstance& m, std::s
 
 // The product over the layers of their states' colours and part opacities.
 void Target(const Rig& rig, const MachineInstance& m, float colour[4], float* parts) {
-  const std::uint32_t P = rig.part_count() > 1 ? rig.part_count() : 0;
+  const std::uint32_t P = BodyParts(rig);
   for (int c = 0; c < 4; ++c) colour[c] = 1;
   for (std::uint32_t p = 0; p < P; ++p) parts[p] = 1;
   for (std::size_t l = 0; l < rig.machine_layers().size; ++l) {
@@ -44,7 +47,7 @@ float Progress(const MachineInstance& m) {
 }  // namespace
 
 void ShownColour(const Rig& rig, const MachineInstance& m, float colour[4], float* parts) {
-  const std::uint32_t P = rig.part_count() > 1 ? rig.part_count() : 0;
+  const std::uint32_t P = BodyParts(rig);
   Target(rig, m, colour, parts);
   const float a = Progress(m);
   if (a >= 1) return;
@@ -62,7 +65,7 @@ void StartFade(const Rig& rig, MachineInstance& m, double mix, bool first_change
   if (first_change_of_step) {
     float colour[4], parts[format::kMaxParts];  // apart from m: the fade reads m.colour_from
     ShownColour(rig, m, colour, parts);
-    const std::uint32_t P = rig.part_count() > 1 ? rig.part_count() : 0;
+    const std::uint32_t P = BodyParts(rig);
     for (int c = 0; c < 4; ++c) m.colour_from[c] = colour[c];
     for (std::uint32_t p = 0; p < P; ++p) m.part_from[p] = parts[p];
     m.fade_elapsed = 0, m.fade_duration = 0;
@@ -73,7 +76,7 @@ void StartFade(const Rig& rig, MachineInstance& m, double mix, bool first_change
 void SettleFade(const Rig& rig, MachineInstance& m) {
   float parts[format::kMaxParts];
   Target(rig, m, m.colour_from, parts);
-  const std::uint32_t P = rig.part_count() > 1 ? rig.part_count() : 0;
+  const std::uint32_t P = BodyParts(rig);
   for (std::uint32_t p = 0; p < format::kMaxParts; ++p) m.part_from[p] = p < P ? parts[p] : 1.0f;
   m.fade_elapsed = 0, m.fade_duration = 0;
 }
@@ -94,7 +97,7 @@ bool MachineColourJob::Run() const {
   if (!Validate()) return false;
   // dt as the animator takes it: NaN or negative 0, beyond the bound the bound.
   const double step = dt > 0 ? (dt < kMaxAnimatorStep ? dt : kMaxAnimatorStep) : 0.0;
-  const std::uint32_t P = rig->part_count() > 1 ? rig->part_count() : 0;
+  const std::uint32_t P = detail::BodyParts(*rig);
   for (std::size_t i = 0; i < count; ++i) {
     MachineInstance& m = machines[i];
     if (std::isfinite(m.fade_elapsed) && m.fade_elapsed < m.fade_duration) m.fade_elapsed += step;

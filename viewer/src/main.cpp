@@ -92,10 +92,9 @@ int RunHeadless(const Rig& rig, const Drawings& drawings, Options& o) {
   if (o.frames > 0 && !o.has_inputs && (o.scene.path.empty() || rig.FindPath(o.scene.path.c_str()) < 0))
     return Fail("--frames needs a --path the rig has (or --inputs)");
   MachineDriver machine;
-  std::vector<InputCommand> timeline;
+  const std::vector<InputCommand>& timeline = o.window.timeline;  // parsed once, in Run
   std::string problem;
-  if (o.has_inputs) {
-    if (!ParseInputTimeline(rig, o.inputs, &timeline, &problem)) return Fail(o.rig_path + ": " + problem);
+  if (o.window.machine) {
     if (!machine.Init(rig, SceneCharacters(rig, o.scene), &problem)) return Fail(o.rig_path + ": " + problem);
     o.scene.machine = &machine;
   }
@@ -164,6 +163,11 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
     return Usage("--frames needs --path NAME (or --inputs)");
   if (o.has_inputs && (o.scene.show_bases || o.scene.compare_linear || !o.scene.path.empty() || !o.channels.empty()))
     return Usage("--inputs drives the characters: not with --path, --channel, --bases or --compare");
+  if (o.has_inputs) {  // the timeline, for the headless frames and the window alike
+    std::string problem;
+    if (!ParseInputTimeline(rig, o.inputs, &o.window.timeline, &problem)) return Fail(o.rig_path + ": " + problem);
+    o.window.machine = true;
+  }
   if (!EditModeBuilt() && !o.window.description.empty())
     return Usage("--description needs a posemorph-view built with edit mode (POSEMORPH_VIEWER_EDIT=ON)");
   for (const std::string& name : o.hidden_parts) {
@@ -231,10 +235,6 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
   o.window.validation = o.validation;
   if (o.width != 640 || o.height != 640) o.window.width = o.width, o.window.height = o.height;
   if (o.frames > 0) o.window.smoke_frames = o.frames;
-  if (o.has_inputs) {
-    if (!ParseInputTimeline(rig, o.inputs, &o.window.timeline, &problem)) return Fail(o.rig_path + ": " + problem);
-    o.window.machine = true;
-  }
   return RunWindow(rig, drawings, o.scene, o.window);
 }
 
