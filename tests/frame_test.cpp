@@ -15,6 +15,8 @@
 #include <iterator>
 #include <memory>
 
+#include <unistd.h>
+
 #include <nlohmann/json.hpp>
 
 #include "posemorph/bake/bake.h"
@@ -372,7 +374,10 @@ std::unique_ptr<LayeredArm> MakeLayeredArm(const nlohmann::json& arm_order) {
   nlohmann::json d = nlohmann::json::parse(in);
   d["parts"][1]["order"] = arm_order;
   d["bake"]["precision"] = "exact";
-  const std::string dir = std::string(POSEMORPH_FRAME_OUTPUT) + "/layered-arm";
+  // A folder of this process's own: ctest runs the test cases that make
+  // the arm in parallel processes, which must not read each other's
+  // half-written drawings.
+  const std::string dir = std::string(POSEMORPH_FRAME_OUTPUT) + "/layered-arm-" + std::to_string(getpid());
   fs::create_directories(dir);
   std::string problem;
   for (std::size_t p = 0; p < 2; ++p) {
