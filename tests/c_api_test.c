@@ -157,6 +157,118 @@ static void Channels(const char* path) {
   free(bytes);
 }
 
+/* Pell with a face drawn from pm_character_draw_lists alone: the body's and
+ * the attachments' positions are pm_morph_batch's and pm_attach's floats bit
+ * for bit, every step names a part with its drawings, and the steps draw
+ * every triangle of the character once, back to front. */
+static void DrawCharacter(const char* path) {
+  long size = 0;
+  unsigned char* bytes = ReadFile(path, &size);
+  pm_rig* rig = NULL;
+  pm_error err;
+  EXPECT(bytes && pm_rig_load(bytes, (size_t)size, &rig, &err) == PM_OK);
+  if (!rig) return;
+  enum { kCount = 4 };
+  pm_character_buffer_sizes sizes;
+  EXPECT(pm_character_buffers(rig, kCount, &sizes) == PM_OK);
+  double* work = calloc(sizes.workspace_doubles, sizeof(double));
+  float* positions = calloc(sizes.position_floats, sizeof(float));
+  float* attached_positions = calloc(sizes.attached_position_floats, sizeof(float));
+  pm_draw_list* lists = calloc(kCount, sizeof(pm_draw_list));
+  pm_draw_list* attached = calloc(sizes.attached_lists, sizeof(pm_draw_list));
+  double points[2 * kCount], face_points[2 * kCount];
+  pm_transform places[kCount];
+  for (int k = 0; k < kCount; ++k) {
+    EXPECT(pm_path_sample(rig, 0, 0.5 * k, &points[2 * k], &points[2 * k + 1]) == PM_OK);
+    EXPECT(pm_channel_path_sample(rig, 1, 0, 0.3 * k, &face_points[2 * k], &face_points[2 * k + 1]) == PM_OK);
+    pm_transform_make(60.0 * k, 0, 0, 1, 1, k % 2, &places[k]);
+  }
+  pm_character_inputs in;
+  memset(&in, 0, sizeof in);
+  in.points = points;
+  in.channel_points = face_points;
+  in.transforms = places;
+  EXPECT(pm_character_draw_lists(rig, NULL, kCount, &in, work, sizes.workspace_doubles, positions,
+                                 sizes.position_floats, attached_positions, sizes.attached_position_floats, lists,
+                                 kCount, attached, sizes.attached_lists) == PM_OK);
+  /* The same characters from the morph and attach calls. */
+  pm_rig_info info;
+  pm_rig_get_info(rig, &info);
+  const size_t N = info.pose_count, NW = pm_rig_attached_weight_count(rig), A = pm_rig_attachment_count(rig);
+  const size_t v2 = 2 * (size_t)info.vertex_count, a2 = 2 * (size_t)pm_rig_attached_vertex_count(rig);
+  double* raw = calloc(kCount * N, sizeof(double));
+  double* limited = calloc(kCount * N, sizeof(double));
+  double* w = calloc(kCount * NW, sizeof(double));
+  double* wl = calloc(kCount * NW, sizeof(double));
+  double* body = calloc(kCount * v2, sizeof(double));
+  float* body_f32 = calloc(kCount * v2, sizeof(float));
+  double* parts = calloc(kCount * a2, sizeof(double));
+  float* parts_f32 = calloc(kCount * a2, sizeof(float));
+  const size_t work_size = pm_batch_workspace_size(rig) > pm_attach_workspace_size(rig) ? pm_batch_workspace_size(rig)
+                                                                                        : pm_attach_workspace_size(rig);
+  double* work2 = calloc(work_size, sizeof(double));
+  double sigma = -1, face_sigma = -1;
+  EXPECT(pm_channel_default_sigma(rig, 0, &sigma) == PM_OK && sigma == info.default_sigma);
+  EXPECT(pm_channel_default_sigma(rig, 1, &face_sigma) == PM_OK);
+  for (int k = 0; k < kCount; ++k) {
+    EXPECT(pm_weights(rig, points[2 * k], points[2 * k + 1], sigma, 1, raw + k * N, limited + k * N, NULL, N) == PM_OK);
+    EXPECT(pm_channel_weights(rig, 1, face_points[2 * k], face_points[2 * k + 1], face_sigma, 1, w + k * NW,
+                              wl + k * NW, NULL, NW) == PM_OK);
+  }
+  EXPECT(pm_morph_batch(rig, kCount, raw, limited, work2, work_size, body, body_f32, kCount * v2) == PM_OK);
+  EXPECT(pm_attach(rig, kCount, body, kCount * v2, w, wl, kCount * NW, 0, work2, work_size, parts, parts_f32,
+                   kCount * a2) == PM_OK);
+  EXPECT(memcmp(positions, body_f32, kCount * v2 * sizeof(float)) == 0);
+  EXPECT(memcmp(attached_positions, parts_f32, kCount * a2 * sizeof(float)) == 0);
+  /* Draw: each step's triangles with its part's drawings, back to front. */
+  uint32_t triangles_of_character = info.triangle_count;
+  for (uint32_t a = 0; a < A; ++a) {
+    pm_attachment at;
+    pm_rig_attachment(rig, a, &at);
+    triangles_of_character += at.triangle_count;
+  }
+  EXPECT(pm_character_list_count(rig) == 1 + A);
+  for (int k = 0; k < kCount; ++k) {
+    pm_draw_step steps[16];
+    const uint32_t n = pm_character_draw_steps(rig, &lists[k], &attached[k * A], steps, 16);
+    EXPECT(n == 7);
+    uint32_t drawn = 0;
+    int32_t last_order = -1000000;
+    for (uint32_t s = 0; s < n && s < 16; ++s) {
+      const pm_draw_list* l = steps[s].list == 0 ? &lists[k] : &attached[k * A + steps[s].list - 1];
+      pm_part part;
+      EXPECT(pm_character_part(rig, steps[s].list, steps[s].part, &part) == PM_OK);
+      drawn += part.triangle_count;
+      EXPECT(part.first_triangle + part.triangle_count <= l->index_count / 3);
+      int32_t order = 0;
+      if (steps[s].list == 0)
+        EXPECT(pm_rig_part_draw_order(rig, steps[s].part, l->drawings[0].pose, &order) == PM_OK);
+      else
+        EXPECT(pm_rig_attachment_draw_order(rig, steps[s].list - 1, l->drawings[0].pose, &order) == PM_OK);
+      EXPECT(order >= last_order);
+      last_order = order;
+      for (uint32_t d = 0; d < l->drawing_count; ++d) {
+        char image[256];
+        size_t length = 0;
+        pm_canvas canvas;
+        EXPECT(pm_character_part_image(rig, steps[s].list, steps[s].part, l->drawings[d].pose, image, sizeof image,
+                                       &length) == PM_OK &&
+               length > 0);
+        EXPECT(pm_character_canvas(rig, steps[s].list, l->drawings[d].pose, &canvas) == PM_OK && canvas.width > 0);
+        EXPECT(l->drawings[d].uvs != NULL);
+      }
+      EXPECT(l->transform.tx == places[k].tx && l->mirrored == k % 2);
+    }
+    EXPECT(drawn == triangles_of_character);
+  }
+  printf("c_api_test: %s: %d characters drawn from pm_character_draw_lists, %u triangles each\n", path, kCount,
+         triangles_of_character);
+  free(work), free(positions), free(attached_positions), free(lists), free(attached);
+  free(raw), free(limited), free(w), free(wl), free(body), free(body_f32), free(parts), free(parts_f32), free(work2);
+  pm_rig_free(rig);
+  free(bytes);
+}
+
 int main(int argc, char** argv) {
   if (argc != 2 && argc != 3) return 2;
   long size = 0;
@@ -294,7 +406,7 @@ int main(int argc, char** argv) {
   pm_rig_free(rig);
   Limits(bytes, (size_t)size);
   free(bytes), free(raw), free(limited), free(tex), free(work), free(x), free(xf);
-  if (argc == 3) Channels(argv[2]);
+  if (argc == 3) Channels(argv[2]), DrawCharacter(argv[2]);
   printf("c_api_test: %s\n", failures ? "FAILED" : "ok");
   return failures ? 1 : 0;
 }

@@ -2,7 +2,8 @@
 // What the C API's files share (c_api.cpp: loading and what a rig holds;
 // c_api_frames.cpp: weights, morphs, paths, quantised points, draw lists;
 // c_api_channels.cpp: control channels and attachments; c_api_animator.cpp:
-// the animator; c_api_machine.cpp: the state machine): the handle and the
+// the animator; c_api_machine.cpp: the state machine; c_api_character.cpp:
+// the whole character): the handle and the
 // helpers that check the caller's buffers and fill the error.
 #pragma once
 #include <cstdint>

@@ -93,15 +93,14 @@ std::size_t AttachedDoubles(const Rig& rig) {
          2 * std::size_t(rig.attached_vertex_count());
 }
 
-// The workspace before the attachments' part.
-std::size_t BodyWorkspace(const Rig& rig, std::size_t count) {
+}  // namespace
+
+std::size_t detail::DrawListBodyWorkspace(const Rig& rig, std::size_t count) {
   const std::size_t n = rig.pose_count(), v2 = 2 * std::size_t(rig.vertex_count());
   const std::size_t single = rig.morph_workspace_size() + v2;  // MorphJob's workspace and double positions
   const std::size_t batch = count > 1 ? rig.batch_workspace_size() : 0;
   return 2 * count * n + n + (batch > single ? batch : single);
 }
-
-}  // namespace
 
 std::size_t MaxDrawListCount(const Rig& rig) {
   if (!rig.loaded()) return 0;
@@ -116,35 +115,22 @@ std::size_t MaxDrawListCount(const Rig& rig) {
 std::size_t DrawListWorkspaceSize(const Rig& rig, std::size_t count) {
   if (!rig.loaded() || count == 0 || count > MaxDrawListCount(rig)) return 0;
   const std::size_t extra = rig.attachment_count() ? count * AttachedDoubles(rig) + rig.attach_workspace_size() : 0;
-  return BodyWorkspace(rig, count) + extra;
+  return detail::DrawListBodyWorkspace(rig, count) + extra;
 }
 
 std::uint32_t CharacterDrawSteps(const Rig& rig, const DrawList& body, const DrawList* attached, Span<DrawStep> out) {
-  // Each list's parts are back to front already (its rig's draw sequence in
-  // its dominant pose): merge them, taking at each step the list whose next
-  // part has the lowest order (ties: the lower list).
   const std::uint32_t lists = 1 + (attached ? rig.attachment_count() : 0);
-  std::uint32_t cursor[1 + format::kMaxAttachments] = {};
   auto list_of = [&](std::uint32_t i) -> const DrawList& { return i == 0 ? body : attached[i - 1]; };
   auto rig_of = [&](std::uint32_t i) -> const Rig& { return i == 0 ? rig : *rig.attachment(i - 1).rig; };
-  auto order_of = [&](std::uint32_t i) {
-    const DrawList& l = list_of(i);
-    return rig_of(i).part_draw_order(l.parts[cursor[i]], l.drawing_count ? l.drawings[0].pose : 0);
-  };
-  std::uint32_t total = 0;
-  for (std::uint32_t i = 0; i < lists; ++i) total += std::uint32_t(list_of(i).parts.size);
-  for (std::uint32_t k = 0; k < total; ++k) {
-    std::uint32_t best = lists;
-    std::int32_t best_order = 0;
-    for (std::uint32_t i = 0; i < lists; ++i) {
-      if (cursor[i] >= list_of(i).parts.size) continue;
-      const std::int32_t order = order_of(i);
-      if (best == lists || order < best_order) best = i, best_order = order;
-    }
-    if (k < out.size) out[k] = DrawStep{best, list_of(best).parts[cursor[best]]};
-    ++cursor[best];
-  }
-  return total;
+  return detail::MergeDrawSteps(
+      lists, [&](std::uint32_t i) { return list_of(i).parts; },
+      [&](std::uint32_t i, std::uint32_t part) {
+        const DrawList& l = list_of(i);
+        return rig_of(i).part_draw_order(part, l.drawing_count ? l.drawings[0].pose : 0);
+      },
+      [&](std::uint32_t k, std::uint32_t list, std::uint32_t part) {
+        if (k < out.size) out[k] = DrawStep{list, part};
+      });
 }
 
 namespace {
@@ -160,7 +146,7 @@ bool FiniteWeights(Span<const double> w, std::size_t n) {
 
 bool DrawListJob::Validate() const { return detail::ValidDrawListInputs(*this) && output.data && output.size >= count; }
 
-bool detail::ValidDrawListInputs(const DrawListJob& job) {
+bool detail::ValidDrawListInputs(const DrawListJob& job, bool attached_lists_elsewhere) {
   const Rig* rig = job.rig;
   const std::size_t count = job.count;
   if (!rig || !rig->loaded() || count == 0) return false;
@@ -185,9 +171,11 @@ bool detail::ValidDrawListInputs(const DrawListJob& job) {
   if (!job.positions.data || job.positions.size / (2 * std::size_t(rig->vertex_count())) < count) return false;
   const bool attached_given =
       job.attached_weights.size || job.attached_limited_weights.size || job.attached_texture_weights.size;
-  if (job.attached_output.size == 0) return job.attached_positions.size == 0 && !attached_given;
+  if (job.attached_output.size == 0 && !attached_lists_elsewhere)
+    return job.attached_positions.size == 0 && !attached_given;
   const std::size_t A = rig->attachment_count(), a2 = 2 * std::size_t(rig->attached_vertex_count());
-  if (A == 0 || !job.attached_output.data || job.attached_output.size / A < count) return false;
+  if (A == 0) return false;
+  if (!attached_lists_elsewhere && (!job.attached_output.data || job.attached_output.size / A < count)) return false;
   if (!job.attached_positions.data || job.attached_positions.size / a2 < count) return false;
   if (job.weights.size != 0) {  // weights given: the attachments' too, and no channel points
     const std::size_t NW = rig->attached_weight_count();
@@ -203,91 +191,22 @@ bool detail::ValidDrawListInputs(const DrawListJob& job) {
   return true;
 }
 
-namespace {
-
-// The attachments of a job's characters (their bodies' positions in
-// `body`, doubles): each later channel's weights at the character's point,
-// one AttachJob for all, then each attachment's list.
-bool RunAttachedLists(const DrawListJob& job, double* body, double* extra_end) {
-  const Rig& rig = *job.rig;
-  const std::size_t count = job.count, NW = rig.attached_weight_count(), v2 = 2 * std::size_t(rig.vertex_count());
-  const std::size_t a2 = 2 * std::size_t(rig.attached_vertex_count()), A = rig.attachment_count();
-  const std::uint32_t C = rig.channel_count();
-  double* raw = body + count * v2;
-  double* limited = raw + count * NW;
-  double* texture = limited + count * NW;
-  double* attached = texture + count * NW;
-  double* work = attached + count * a2;
-  const bool given = job.attached_weights.size != 0;  // an animator's, in the same layout
-  const double* raw_in = given ? job.attached_weights.data : raw;
-  const double* limited_in = given ? job.attached_limited_weights.data : limited;
-  const double* texture_in = given ? job.attached_texture_weights.data : texture;
-  for (std::uint32_t c = 1; c < C && !given; ++c) {
-    const Rig& channel = *rig.channel_rig(c);
-    const std::size_t n = channel.pose_count(), at = count * rig.channel_weight_offset(c);
-    const double sigma = job.sigma >= 0 ? job.sigma : channel.default_sigma();
-    for (std::size_t k = 0; k < count; ++k) {
-      WeightsJob wj;
-      wj.rig = &channel;
-      const std::size_t p = k * 2 * std::size_t(C - 1) + 2 * std::size_t(c - 1);
-      wj.x = job.channel_points.size ? job.channel_points[p] : channel.pose_points()[0];
-      wj.y = job.channel_points.size ? job.channel_points[p + 1] : channel.pose_points()[1];
-      wj.sigma = sigma;
-      wj.limit_weights = job.limit_weights;
-      wj.raw = {raw + at + k * n, n};
-      wj.limited = {limited + at + k * n, n};
-      wj.texture = {texture + at + k * n, n};
-      if (!wj.Run()) return false;
-    }
-  }
-  AttachJob aj;
-  aj.rig = &rig;
-  aj.count = count;
-  aj.body_positions = {body, count * v2};
-  aj.weights = {raw_in, count * NW};
-  aj.limited_weights = {limited_in, count * NW};
-  aj.interpolation = job.interpolation;
-  aj.workspace = {work, std::size_t(extra_end - work)};
-  aj.positions = {attached, count * a2};
-  aj.positions_f32 = {job.attached_positions.data, count * a2};
-  if (!aj.Run()) return false;
-  std::size_t offset = 0;  // floats of the attachments before this one, per character
-  for (std::uint32_t a = 0; a < A; ++a) {
-    const AttachmentView view = rig.attachment(a);
-    const Rig& part = *view.rig;
-    const std::size_t p2 = 2 * std::size_t(part.vertex_count()), n = part.pose_count();
-    const std::size_t at = count * rig.channel_weight_offset(view.channel);
-    for (std::size_t k = 0; k < count; ++k) {
-      DrawList list;
-      list.positions = {job.attached_positions.data + offset * count + k * p2, p2};
-      list.indices = part.triangles();
-      list.drawing_count =
-          PickDrawings({texture_in + at + k * n, n}, job.max_drawings, {list.drawings, kMaxBlendDrawings});
-      list.parts = part.draw_sequence(list.drawing_count ? list.drawings[0].pose : 0);
-      for (std::uint32_t d = 0; d < list.drawing_count; ++d) {
-        const Span<const float> uv = part.uvs(list.drawings[d].pose);
-        list.drawings[d].uvs = uv.size ? uv.data : nullptr;
-      }
-      list.transform = job.output[k].transform;
-      list.mirrored = job.output[k].mirrored;
-      list.colour = job.output[k].colour;
-      job.attached_output[k * A + a] = list;
-    }
-    offset += p2;
-  }
-  return true;
-}
-
-}  // namespace
-
 bool DrawListJob::Run() const {
   if (!Validate()) return false;
-  double* body = attached_output.size ? workspace.data + BodyWorkspace(*rig, count) : nullptr;
+  double* body = attached_output.size ? workspace.data + detail::DrawListBodyWorkspace(*rig, count) : nullptr;
   if (!detail::RunDrawLists(
           *this, [this](std::size_t k) { return transforms.size ? transforms[k] : Transform2D(); },
           [this](std::size_t k, const DrawList& list) { output[k] = list; }, body))
     return false;
-  return !body || RunAttachedLists(*this, body, workspace.data + DrawListWorkspaceSize(*rig, count));
+  if (!body) return true;
+  const std::size_t A = rig->attachment_count();
+  return detail::RunAttachedLists(
+      *this, body, workspace.data + DrawListWorkspaceSize(*rig, count),
+      [this](std::size_t k) {
+        const DrawList& b = output[k];
+        return detail::ListPlacement{b.transform, b.mirrored, b.colour};
+      },
+      [this, A](std::size_t k, std::uint32_t a, const DrawList& list) { attached_output[k * A + a] = list; });
 }
 
 CharacterBuffers CharacterBuffers::For(const Rig& rig, std::size_t count) {

@@ -206,6 +206,42 @@ TEST_CASE("draw lists for a crowd allocate nothing, in C++ and through the C API
   pm_rig_free(crig);
 }
 
+TEST_CASE("the C API draws a whole character without allocating: every channel, the attachments, the steps") {
+  const std::vector<unsigned char> bytes = TestRigBytes("pell-face.compact");
+  pm_rig* rig = nullptr;
+  pm_error err;
+  REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &rig, &err) == PM_OK);
+  constexpr std::size_t kCount = 6;
+  pm_character_buffer_sizes sizes;
+  REQUIRE(pm_character_buffers(rig, kCount, &sizes) == PM_OK);
+  std::vector<double> work(sizes.workspace_doubles), points(2 * kCount), face(2 * kCount);
+  std::vector<float> positions(sizes.position_floats), attached_positions(sizes.attached_position_floats);
+  std::vector<pm_draw_list> lists(kCount), attached(sizes.attached_lists);
+  pm_character_inputs in{};
+  in.points = points.data();
+  in.channel_points = face.data();
+  const std::size_t A = pm_rig_attachment_count(rig);
+  pm_draw_step steps[16];
+  g_allocations = 0;
+  g_counting = true;
+  bool ok = true;
+  for (int frame = 0; frame < 40; ++frame) {
+    for (std::size_t k = 0; k < kCount; ++k) {
+      points[2 * k] = -0.5 + 0.02 * double(frame + k), points[2 * k + 1] = 0.2;
+      face[2 * k] = 0.3, face[2 * k + 1] = -0.4 + 0.01 * double(frame);
+    }
+    ok &= pm_character_draw_lists(rig, nullptr, kCount, &in, work.data(), work.size(), positions.data(),
+                                  positions.size(), attached_positions.data(), attached_positions.size(), lists.data(),
+                                  lists.size(), attached.data(), attached.size()) == PM_OK;
+    for (std::size_t k = 0; k < kCount; ++k)
+      ok &= pm_character_draw_steps(rig, &lists[k], &attached[k * A], steps, 16) == 7;
+  }
+  g_counting = false;
+  CHECK(ok);
+  CHECK(g_allocations.load() == 0);
+  pm_rig_free(rig);
+}
+
 TEST_CASE("the C API evaluates frames without allocating either") {
   const std::vector<unsigned char> bytes = TestRigBytes("worm-line");
   pm_rig* rig = nullptr;

@@ -381,5 +381,7 @@ PM_API void pm_channel_dequantize_point(const pm_rig* rig, uint32_t channel, uin
 
 /* The animation layer's functions: the animator, the state machine, events. */
 #include "posemorph/posemorph_animation.h"
+/* The whole character: every channel's draw lists, attachments merged back to front. */
+#include "posemorph/posemorph_character.h"
 
 #endif /* POSEMORPH_H */
