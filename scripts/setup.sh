@@ -31,6 +31,7 @@ packages=(
   g++-aarch64-linux-gnu qemu-user   # tests: the runtime for aarch64, run under qemu
   g++-mingw-w64-x86-64 wine64       # tests: the runtime for Windows, run under wine
   emscripten node-acorn nodejs      # tests: the runtime for WebAssembly, run under node (emcc needs acorn)
+  mono-mcs mono-runtime             # integrations/csharp: the C# binding, compiled with mcs, run with mono
 )
 
 missing=()
