@@ -146,15 +146,16 @@ window "$work/pell-face.pmrig" --images "$drawn/pell" --size 1300x920 --joints -
 window "$work/pell-face.pmrig" --images "$drawn/pell" --size 1300x920 --inputs "0.2:wave;0.3:talking" --frames 40 \
   --smoke-test "$out/pell-face-machine-window.png" && wrote pell-face-machine-window.png
 
-# The examples: the pictures their tests took after comparing them with
-# posemorph-view's frames (examples/CMakeLists.txt). Shots newer than every
-# program that made them come from this build's test run (CI's release step
-# has just run both tests) and are taken as they are; otherwise the two
-# tests run again here.
+# The examples and the LÖVE integration: the pictures their tests took after
+# comparing them with posemorph-view's frames (examples/CMakeLists.txt,
+# integrations/love/tests/run.sh). Shots newer than every program that made
+# them come from this build's test run (CI's release step has just run the
+# three tests) and are taken as they are; otherwise the three run again here.
 shots=("$build/example-shots/sdl2-opengl/sdl2.png" "$build/example-shots/sdl2-opengl/crowd.png"
-       "$build/example-shots/web/web.png")
+       "$build/example-shots/web/web.png" "$build/example-shots/love/love-crowd.png")
 makers=("$bin/posemorph-view" "$bin/posemorph-example-sdl2" "$build/examples/web-wasm/posemorph_wasm.wasm"
-        "$build/rigs/pip.pmrig")
+        "$build/rigs/pip.pmrig" "$build/rigs/pell-face.compact.pmrig" "$build/bindings/libposemorph.so"
+        integrations/love/posemorph.lua integrations/love/example/main.lua)
 fresh=1
 for shot in "${shots[@]}"; do
   [ -f "$shot" ] || { fresh=0; break; }
@@ -165,12 +166,14 @@ done
 if [ "$fresh" = 1 ]; then
   echo "docs-figures: the example shots in $build/example-shots are newer than their programs: taken as they are"
 else
-  ctest --test-dir "$build" -R '^example\.(sdl2_opengl|web)$' --output-on-failure > "$work/examples.log" ||
+  ctest --test-dir "$build" -R '^(example\.(sdl2_opengl|web)|integration\.love)$' --output-on-failure \
+    > "$work/examples.log" ||
     { cat "$work/examples.log" >&2; exit 1; }
 fi
 cp "$build/example-shots/sdl2-opengl/sdl2.png" "$out/examples/sdl2-opengl.png" && wrote examples/sdl2-opengl.png
 cp "$build/example-shots/sdl2-opengl/crowd.png" "$out/examples/sdl2-opengl-crowd.png" && wrote examples/sdl2-opengl-crowd.png
 cp "$build/example-shots/web/web.png" "$out/examples/web.png" && wrote examples/web.png
+cp "$build/example-shots/love/love-crowd.png" "$out/examples/love-crowd.png" && wrote examples/love-crowd.png
 
 # Every picture under docs/ has a recipe above, and every picture a Markdown
 # file shows exists.

@@ -32,6 +32,7 @@ packages=(
   g++-mingw-w64-x86-64 wine64       # tests: the runtime for Windows, run under wine
   emscripten node-acorn nodejs      # tests: the runtime for WebAssembly, run under node (emcc needs acorn)
   mono-mcs mono-runtime             # integrations/csharp: the C# binding, compiled with mcs, run with mono
+  love                              # integrations/love: LÖVE 11 (LuaJIT), the FFI module and its example game
 )
 
 missing=()
