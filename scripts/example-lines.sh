@@ -3,12 +3,13 @@
 # docs/runtime.md's table of examples: lines of code per example (not blank, not
 # only a comment) and, of those, lines of posemorph glue (lines that name a
 # posemorph function, type or field: pm_*, posemorph::, the draw-list and
-# rig accessors).
+# rig accessors), then the same for each integration (integrations/: the
+# binding or renderer, and its example; comments in C#, Lua and C++ alike).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 glue='pm_|posemorph|DrawList|Transform2D|CharacterBuffers|BlendedDrawing|LoadRig|SamplePath|PathView|PoseSpaceGrid|Quantize|PackPoint|DequantizePoint|drawLists|loadRig|\brig[.>]|\.drawings|\.positions|\.indices|\.transform|drawing_count|job\.'
-count() { grep -hvE '^\s*(//|/\*|\*|#|<!--|$)' "$@" | wc -l; }
-glue_count() { grep -hvE '^\s*(//|/\*|\*|#|<!--|$)' "$@" | grep -cE "$glue"; }
+count() { grep -hvE '^\s*(//|/\*|\*|#|<!--|--|$)' "$@" | wc -l; }
+glue_count() { grep -hvE '^\s*(//|/\*|\*|#|<!--|--|$)' "$@" | grep -cE "$glue"; }
 echo "| example | files | lines of code | of which posemorph glue |"
 echo "|---|---|---|---|"
 for e in c avatar-udp sdl2-opengl web; do
@@ -19,4 +20,12 @@ for e in c avatar-udp sdl2-opengl web; do
     web) files=(examples/web/main.js examples/web/posemorph.js examples/web/bindings.c examples/web/index.html) ;;
   esac
   echo "| \`examples/$e\` | $(printf '%s ' "${files[@]##*/}")| $(count "${files[@]}") | $(glue_count "${files[@]}") |"
+done
+for i in opengl csharp love; do
+  case $i in
+    opengl) files=(integrations/opengl/posemorph_gl.h integrations/opengl/posemorph_gl.cpp) ;;
+    csharp) files=(integrations/csharp/Posemorph.cs integrations/csharp/example/Example.cs) ;;
+    love) files=(integrations/love/posemorph.lua integrations/love/example/main.lua) ;;
+  esac
+  echo "| \`integrations/$i\` | $(printf '%s ' "${files[@]#integrations/$i/}")| $(count "${files[@]}") | $(glue_count "${files[@]}") |"
 done

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: MIT
 // posemorph in an SDL2 + OpenGL 3.3 game: one character follows the mouse
 // through pose space, or a crowd walks one of the rig's paths. The runtime
-// hands over a draw list per character; this file only draws it.
+// hands over the draw lists of every character (the body and its
+// attachments); integrations/opengl (posemorph_gl.h) draws them. What is
+// left here is the game's own: the window, the PNG decoding, where the
+// characters stand and which pose-space points they take.
 //
 //   sdl2_opengl RIG.pmrig --images DIR [--crowd K] [--filter nearest|linear]
 //               [--size WxH] [--at X,Y] [--tint R,G,B,A] [--frames N --screenshot OUT.png]
@@ -21,76 +24,30 @@
 
 #include "posemorph/draw_list.h"
 #include "posemorph/path.h"
+#include "posemorph_gl.h"
 
 using namespace posemorph;
 
 namespace {
-
-constexpr int K = 8;  // drawings blended per character (the shader has 8 uv inputs)
-
-const char* kVertex = R"(#version 330 core
-layout(location = 0) in vec2 position;      // rig units, from the draw list
-layout(location = 1) in vec2 uv[8];         // each picked drawing's own uvs (locations 1..8)
-uniform mat2 linear;                        // the character's Transform2D
-uniform vec2 translation, view_scale, view_offset;
-out vec2 v_uv[8];
-void main() {
-  vec2 world = linear * position + translation;
-  gl_Position = vec4(world * view_scale + view_offset, 0.0, 1.0);
-  for (int k = 0; k < 8; ++k) v_uv[k] = uv[k];
-})";
-// The exact cross-fade: the weighted sum of premultiplied drawings, times
-// the draw list's colour (premultiplied: r a, g a, b a, a), then "over"
-// (blend ONE, 1 - SRC_ALPHA).
-const char* kFragment = R"(#version 330 core
-uniform sampler2DArray drawings;
-uniform float weights[8];
-uniform int layers[8];
-uniform vec4 tint;
-in vec2 v_uv[8];
-out vec4 colour;
-void main() {
-  colour = vec4(0.0);
-  for (int k = 0; k < 8; ++k)
-    if (weights[k] != 0.0) colour += weights[k] * texture(drawings, vec3(v_uv[k], float(layers[k])));
-  colour *= tint;
-})";
 
 int Fail(const std::string& message) {
   std::fprintf(stderr, "sdl2_opengl: %s\n", message.c_str());
   return 1;
 }
 
-GLuint Compile(GLenum stage, const char* source) {
-  const GLuint s = glCreateShader(stage);
-  glShaderSource(s, 1, &source, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[1024];
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    std::fprintf(stderr, "sdl2_opengl: shader: %s\n", log);
-  }
-  return s;
-}
-
-// A drawing as premultiplied RGBA8, the way the cross-fade wants it.
-bool ReadDrawing(const std::string& path, std::uint32_t width, std::uint32_t height, std::vector<unsigned char>* out,
-                 std::string* error) {
+// A drawing as premultiplied RGBA8, the way the cross-fade wants it (the renderer's ImageReader).
+bool ReadDrawing(const std::string& path, gl::Pixels* out, std::string* error) {
   png_image image{};
   image.version = PNG_IMAGE_VERSION;
+  out->source = path;
   if (!png_image_begin_read_from_file(&image, path.c_str())) return *error = path + ": cannot read the PNG", false;
-  if (image.width != width || image.height != height) {
-    *error = path + ": the drawing is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-             ", the rig was baked from " + std::to_string(width) + "x" + std::to_string(height);
-    return png_image_free(&image), false;
-  }
   image.format = PNG_FORMAT_RGBA;
-  out->resize(PNG_IMAGE_SIZE(image));
-  if (!png_image_finish_read(&image, nullptr, out->data(), 0, nullptr)) return *error = path + ": bad PNG", false;
-  for (std::size_t p = 0; p < out->size(); p += 4)
-    for (int c = 0; c < 3; ++c) (*out)[p + c] = (unsigned char)(((*out)[p + c] * (*out)[p + 3] + 127) / 255);
+  out->width = image.width, out->height = image.height;
+  out->rgba.resize(PNG_IMAGE_SIZE(image));
+  if (!png_image_finish_read(&image, nullptr, out->rgba.data(), 0, nullptr)) return *error = path + ": bad PNG", false;
+  std::vector<unsigned char>& p = out->rgba;
+  for (std::size_t i = 0; i < p.size(); i += 4)
+    for (int c = 0; c < 3; ++c) p[i + c] = (unsigned char)((p[i + c] * p[i + 3] + 127) / 255);
   return true;
 }
 
@@ -133,63 +90,9 @@ std::string ParseOptions(int argc, char** argv, Options& o) {
   return "";
 }
 
-// What the GPU holds for one rig: its drawings, every pose's uvs, the
-// triangles, the characters' positions, and the program that draws them.
-struct GpuRig {
-  GLuint texture = 0, uvs = 0, positions = 0, indices = 0, vao = 0, program = 0;
-  GLint weights_at = -1, layers_at = -1, linear_at = -1, translation_at = -1, tint_at = -1;
-};
-
-// 2. GPU resources, once: the drawings as a texture array, every pose's uvs, the triangles.
-bool UploadRig(const Rig& rig, const Options& o, GpuRig& gpu, std::string* problem) {
-  const std::uint32_t N = rig.pose_count(), V = rig.vertex_count();
-  const DrawingCanvas canvas = rig.pose_canvas(0);
-  const auto w = std::uint32_t(canvas.width), h = std::uint32_t(canvas.height);
-  glGenTextures(1, &gpu.texture);
-  glBindTexture(GL_TEXTURE_2D_ARRAY, gpu.texture);
-  glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, GLsizei(w), GLsizei(h), GLsizei(N), 0, GL_RGBA, GL_UNSIGNED_BYTE,
-               nullptr);
-  for (std::uint32_t i = 0; i < N; ++i) {
-    const StringView name = rig.pose_image(i);
-    std::vector<unsigned char> rgba;
-    if (!ReadDrawing(o.images + "/" + std::string(name.data, name.size), w, h, &rgba, problem)) return false;
-    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, GLint(i), GLsizei(w), GLsizei(h), 1, GL_RGBA, GL_UNSIGNED_BYTE,
-                    rgba.data());
-  }
-  // Nearest for pixel art: --filter, else the rig's hint (its description's "filter").
-  const bool nearest = o.filter.empty() ? rig.texture_filter() == TextureFilter::kNearest : o.filter == "nearest";
-  const GLint f = nearest ? GL_NEAREST : GL_LINEAR;
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, f);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, f);
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);  // outside a drawing: nothing
-  glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
-  glGenVertexArrays(1, &gpu.vao);
-  glBindVertexArray(gpu.vao);
-  glGenBuffers(1, &gpu.uvs);
-  glBindBuffer(GL_ARRAY_BUFFER, gpu.uvs);
-  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(N) * V * 8, nullptr, GL_STATIC_DRAW);
-  for (std::uint32_t i = 0; i < N; ++i) glBufferSubData(GL_ARRAY_BUFFER, GLintptr(i) * V * 8, V * 8, rig.uvs(i).data);
-  glGenBuffers(1, &gpu.indices);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.indices);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(rig.triangles().size * 4), rig.triangles().data, GL_STATIC_DRAW);
-  glGenBuffers(1, &gpu.positions);
-  gpu.program = glCreateProgram();
-  glAttachShader(gpu.program, Compile(GL_VERTEX_SHADER, kVertex));
-  glAttachShader(gpu.program, Compile(GL_FRAGMENT_SHADER, kFragment));
-  glLinkProgram(gpu.program);
-  glUseProgram(gpu.program);
-  for (int a = 0; a <= K; ++a) glEnableVertexAttribArray(GLuint(a));
-  gpu.weights_at = glGetUniformLocation(gpu.program, "weights");
-  gpu.layers_at = glGetUniformLocation(gpu.program, "layers");
-  gpu.linear_at = glGetUniformLocation(gpu.program, "linear");
-  gpu.translation_at = glGetUniformLocation(gpu.program, "translation");
-  gpu.tint_at = glGetUniformLocation(gpu.program, "tint");
-  return true;
-}
-
-// 3. Where each character stands: a grid, alternate ones facing left, all
+// 2. Where each character stands: a grid, alternate ones facing left, all
 // of it fitted to the window (as posemorph-view frames one character).
-void PlaceCharacters(const Rig& rig, const Options& o, const GpuRig& gpu, std::vector<Transform2D>& places) {
+gl::View PlaceCharacters(const Rig& rig, const Options& o, std::vector<Transform2D>& places) {
   const std::size_t count = places.size();
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;  // one character's bounds over its poses
   for (std::uint32_t i = 0; i < rig.pose_count(); ++i)
@@ -205,12 +108,10 @@ void PlaceCharacters(const Rig& rig, const Options& o, const GpuRig& gpu, std::v
   const int rows = int((count + columns - 1) / columns);
   const double zoom = std::min(o.width / (cw * columns), o.height / (ch * rows));
   const double centre_x = cw * (columns - 1) / 2, centre_y = -ch * (rows - 1) / 2;
-  glUniform2f(glGetUniformLocation(gpu.program, "view_scale"), float(2 * zoom / o.width), float(2 * zoom / o.height));
-  glUniform2f(glGetUniformLocation(gpu.program, "view_offset"), float(-centre_x * 2 * zoom / o.width),
-              float(-centre_y * 2 * zoom / o.height));
+  return gl::View::Fit(o.width, o.height, centre_x, centre_y, zoom);
 }
 
-// 4. Pose-space points: the mouse over the window maps onto the weight grid; a crowd walks a path.
+// 3. Pose-space points: the mouse over the window maps onto the weight grid; a crowd walks a path.
 void PosePoints(const Rig& rig, const Options& o, int frame, std::vector<double>& points) {
   const std::size_t count = points.size() / 2;
   const int path = rig.path_count() > 0 ? 0 : -1;
@@ -232,40 +133,7 @@ void PosePoints(const Rig& rig, const Options& o, int frame, std::vector<double>
   }
 }
 
-// 6. Draw: positions up once, then one draw per character with its drawings' uvs bound.
-void DrawCharacters(const DrawListJob& job, std::size_t count, std::uint32_t V, const GpuRig& gpu, const Options& o) {
-  glViewport(0, 0, o.width, o.height);
-  glClearColor(0.93f, 0.94f, 0.95f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT);
-  glEnable(GL_BLEND);
-  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);  // premultiplied "over"
-  glBindBuffer(GL_ARRAY_BUFFER, gpu.positions);
-  glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(job.positions.size * 4), job.positions.data, GL_STREAM_DRAW);
-  for (std::size_t k = 0; k < count; ++k) {
-    const DrawList& d = job.output[k];
-    glBindBuffer(GL_ARRAY_BUFFER, gpu.positions);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, reinterpret_cast<void*>(k * V * 8));
-    glBindBuffer(GL_ARRAY_BUFFER, gpu.uvs);
-    float weights[K] = {};
-    GLint layers[K] = {};
-    for (std::uint32_t s = 0; s < K; ++s) {
-      const std::uint32_t pose = d.drawings[s < d.drawing_count ? s : 0].pose;
-      weights[s] = s < d.drawing_count ? d.drawings[s].weight : 0.0f;
-      layers[s] = GLint(pose);
-      glVertexAttribPointer(1 + s, 2, GL_FLOAT, GL_FALSE, 0, reinterpret_cast<void*>(std::size_t(pose) * V * 8));
-    }
-    glUniform1fv(gpu.weights_at, K, weights);
-    glUniform1iv(gpu.layers_at, K, layers);
-    const float linear[4] = {d.transform.a, d.transform.b, d.transform.c, d.transform.d};
-    glUniformMatrix2fv(gpu.linear_at, 1, GL_FALSE, linear);  // column-major
-    glUniform2f(gpu.translation_at, d.transform.tx, d.transform.ty);
-    const Colour c = PartColour(d, 0);  // a rig without parts: one part
-    glUniform4f(gpu.tint_at, c.r * c.a, c.g * c.a, c.b * c.a, c.a);
-    glDrawElements(GL_TRIANGLES, GLsizei(d.indices.size), GL_UNSIGNED_INT, nullptr);  // mirrored: no culling
-  }
-}
-
-// 7. The test's frame, read back into a PNG.
+// 5. The test's frame, read back into a PNG.
 bool WriteScreenshot(const std::string& path, int width, int height) {
   std::vector<unsigned char> rgba(std::size_t(width) * height * 4), rows_down(rgba.size());
   glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
@@ -290,11 +158,10 @@ int main(int argc, char** argv) {
   Error err;
   if (!in.good() && bytes.empty()) return Fail(o.rig_path + ": cannot read the file");
   if (!LoadRig(bytes.data(), bytes.size(), &rig, &err)) return Fail(o.rig_path + ": " + err.message);
-  const std::uint32_t N = rig.pose_count(), V = rig.vertex_count();
-  if (N > K)
-    std::printf("%s has %u poses: each character blends its %d most weighted drawings\n", o.rig_path.c_str(), N, K);
-  if (rig.pose_canvas(0).width <= 0 || rig.uvs(0).size == 0)
-    return Fail(o.rig_path + ": the rig was not baked from drawings");
+  const std::uint32_t N = rig.pose_count();
+  if (N > kMaxBlendDrawings)
+    std::printf("%s has %u poses: each character blends its %u most weighted drawings\n", o.rig_path.c_str(), N,
+                kMaxBlendDrawings);
 
   SDL_Init(SDL_INIT_VIDEO);
   SDL_GL_SetAttribute(SDL_GL_CONTEXT_MAJOR_VERSION, 3);
@@ -303,11 +170,17 @@ int main(int argc, char** argv) {
   SDL_Window* window = SDL_CreateWindow("posemorph + SDL2", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, o.width,
                                         o.height, SDL_WINDOW_OPENGL);
   if (!window || !SDL_GL_CreateContext(window)) return Fail(std::string("no OpenGL 3.3 window: ") + SDL_GetError());
-  GpuRig gpu;
+  // The renderer: every drawing of every list, the uvs, the triangles, the program.
+  gl::Renderer renderer;
+  gl::Settings settings;
+  if (!o.filter.empty()) settings.filter = o.filter == "nearest" ? 1 : 0;  // else the rig's hint
   std::string problem;
-  if (!UploadRig(rig, o, gpu, &problem)) return Fail(problem);
+  const auto read = [&o](const std::string& name, gl::Pixels* out, std::string* error) {
+    return ReadDrawing(o.images + "/" + name, out, error);
+  };
+  if (!renderer.Init(rig, read, settings, &problem)) return Fail(o.rig_path + ": " + problem);
 
-  // 3. Per-character buffers, sized by the rig in one place; where each character stands.
+  // Per-character buffers (the attachments' too), sized by the rig in one place; where each character stands.
   const auto count = std::size_t(o.crowd);
   const CharacterBuffers sizes = CharacterBuffers::For(rig, count);
   std::vector<double> block(sizes.bytes / sizeof(double) + 1);
@@ -319,26 +192,31 @@ int main(int argc, char** argv) {
   job.points = {points.data(), points.size()};
   job.transforms = {places.data(), count};
   job.colours = {colours.data(), count};
-  job.max_drawings = K;
-  PlaceCharacters(rig, o, gpu, places);
+  const gl::View view = PlaceCharacters(rig, o, places);
 
   double eval_seconds = 0;
   int frame = 0;
   for (bool running = true; running && (o.frames == 0 || frame < o.frames); ++frame) {
     for (SDL_Event e; SDL_PollEvent(&e);) running &= e.type != SDL_QUIT;
     PosePoints(rig, o, frame, points);
-    // 5. The runtime: every character's draw list (no allocation).
+    // 4. The runtime: every character's draw lists (no allocation), then the renderer draws them.
     const Uint64 start = SDL_GetPerformanceCounter();
     job.Run();
     eval_seconds += double(SDL_GetPerformanceCounter() - start) / double(SDL_GetPerformanceFrequency());
-    DrawCharacters(job, count, V, gpu, o);
+    glViewport(0, 0, o.width, o.height);
+    glClearColor(0.93f, 0.94f, 0.95f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    renderer.Draw(job, view);
     if (o.frames > 0 && frame + 1 == o.frames && !o.screenshot.empty() &&
         !WriteScreenshot(o.screenshot, o.width, o.height))
       return Fail(o.screenshot + ": cannot write the PNG");
     SDL_GL_SwapWindow(window);
   }
-  std::printf("%d frames of %zu character(s) on %s; the runtime took %.3f ms per frame for all of them\n", frame, count,
-              reinterpret_cast<const char*>(glGetString(GL_RENDERER)), 1e3 * eval_seconds / std::max(frame, 1));
+  std::printf(
+      "%d frames of %zu character(s) on %s; the runtime took %.3f ms per frame for all of them; %u draw calls "
+      "a frame (%u per character)\n",
+      frame, count, reinterpret_cast<const char*>(glGetString(GL_RENDERER)), 1e3 * eval_seconds / std::max(frame, 1),
+      renderer.draw_calls(), renderer.draw_calls() / std::uint32_t(count));
   SDL_Quit();
   return glGetError() == GL_NO_ERROR ? 0 : Fail("OpenGL reported an error");
 }

@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: MIT
 # The SDL2 + OpenGL example under Xvfb (Mesa's llvmpipe): its frame of Pip at
 # a pose-space point against posemorph-view's (lavapipe) at the same point,
-# the same tinted and half transparent, a crowd of 200 on a path, and its
-# messages for bad drawings.
+# the same tinted and half transparent, Pell with a face (parts and
+# attachments, drawn by integrations/opengl step by step) against the
+# viewer's, a crowd of 200 on a path, and its messages for bad drawings.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 set(run ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${EXAMPLE} ${RIG})
@@ -36,6 +37,19 @@ endif()
 execute_process(COMMAND ${COMPARE} ${WORK}/sdl2-tint.png ${WORK}/sdl2.png 0.01 RESULT_VARIABLE same OUTPUT_VARIABLE out)
 if(same EQUAL 0)
   message(FATAL_ERROR "the tint changed nothing: ${out}")
+endif()
+
+# A layered character with attachments: 7 draw calls (4 body parts, 3 face parts), the viewer's picture.
+execute_process(COMMAND ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${EXAMPLE} ${FACE_RIG} --images ${FACE_IMAGES}
+                        --at 0.3,0.2 --size 256x256 --frames 3 --screenshot ${WORK}/sdl2-face.png
+                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+execute_process(COMMAND ${VIEW} ${FACE_RIG} --images ${FACE_IMAGES} --headless --at 0.3,0.2 --size 256x256
+                        -o ${WORK}/view-face.png RESULT_VARIABLE view_status)
+execute_process(COMMAND ${COMPARE} ${WORK}/sdl2-face.png ${WORK}/view-face.png 0.01 RESULT_VARIABLE compared
+                OUTPUT_VARIABLE compare_out)
+message("SDL2 + OpenGL against posemorph-view, Pell with a face at (0.3, 0.2): ${compare_out}${out}${err}")
+if(NOT status EQUAL 0 OR NOT view_status EQUAL 0 OR NOT compared EQUAL 0 OR NOT out MATCHES "7 draw calls a frame")
+  message(FATAL_ERROR "Pell with a face differs or draws otherwise (${status}, ${view_status}, ${compared})")
 endif()
 
 execute_process(COMMAND ${run} --images ${IMAGES} --crowd 200 --size 800x600 --frames 120 --screenshot ${WORK}/crowd.png
