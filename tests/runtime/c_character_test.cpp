@@ -201,7 +201,7 @@ TEST_CASE("C API: Pell with a face from pm_character_draw_lists alone, DrawListJ
   CHECK(positions == l.positions);
 }
 
-TEST_CASE("C API: every list's parts, drawings, canvases and filter; every channel's names and sigma") {
+TEST_CASE("C API: every list's parts, drawings, canvases and filter, every channel's names and sigma") {
   const Rig rig = LoadTestRig("pell-face.compact");
   const CRig c("pell-face.compact");
   REQUIRE(pm_character_list_count(c.rig) == 4);
