@@ -17,6 +17,7 @@
 #include "posemorph/posemorph.h"
 #include "posemorph/bake/validate_rig.h"
 #include "posemorph/bake/stage.h"
+#include "posemorph/rig_format.h"
 #include "bad_input_support.h"
 #include "test_support.h"
 
@@ -515,7 +516,7 @@ TEST_CASE("a rig baked to a file records its drawings' folder relative to it (fo
     Rig rig;
     Error err;
     REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
-    CHECK(rig.format_minor() == 10);
+    CHECK(rig.format_minor() == format::kVersionMinor);
     const std::string recorded(rig.drawing_folder().data, rig.drawing_folder().size);
     pm_rig* handle = nullptr;
     REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &handle, nullptr) == PM_OK);
@@ -553,7 +554,7 @@ TEST_CASE("a description's \"filter\" reaches the rig, exact and compact, and th
     Rig rig;
     REQUIRE(LoadRig(bytes.data(), bytes.size(), &rig, nullptr));
     CHECK(rig.texture_filter() == TextureFilter::kNearest);
-    CHECK(rig.format_minor() == 10);
+    CHECK(rig.format_minor() == format::kVersionMinor);
     pm_rig* handle = nullptr;
     REQUIRE(pm_rig_load(bytes.data(), bytes.size(), &handle, nullptr) == PM_OK);
     CHECK(pm_rig_texture_filter(handle) == PM_FILTER_NEAREST);

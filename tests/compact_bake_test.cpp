@@ -42,7 +42,7 @@ TEST_CASE("a 1035-vertex, 8-pose rig bakes compact within 100 KB and within the 
   Rig rig;
   Error err;
   REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
-  CHECK(rig.format_minor() == 10);
+  CHECK(rig.format_minor() == format::kVersionMinor);
 }
 
 TEST_CASE("frames evaluated in batches, as the compact search and the fold check do, are EvaluateFrame's bits") {

@@ -11,6 +11,7 @@
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/rig_description.h"
 #include "posemorph/rig.h"
+#include "posemorph/rig_format.h"
 
 using namespace posemorph;
 using namespace posemorph::test;
@@ -50,7 +51,7 @@ TEST_CASE("a state machine bakes into the rig as the description says") {
   Error err;
   REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
   REQUIRE(rig.machine_inputs().size == 4);
-  CHECK(rig.format_minor() == 10);
+  CHECK(rig.format_minor() == format::kVersionMinor);
   CHECK(rig.machine_inputs()[1].type == MachineInputType::kNumber);
   CHECK(rig.machine_inputs()[1].default_x == 0.5);
   CHECK(rig.machine_inputs()[2].default_x == 1);

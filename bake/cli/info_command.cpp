@@ -125,6 +125,10 @@ void PrintSummary(const std::string& file, const std::vector<unsigned char>& byt
       << " (fill " << double(l_strict + V - 1) / double(k_lower) << "x)\n"
       << "  weight grid: " << g.cells_x << " x " << g.cells_y << " cells of " << g.cell << ", origin (" << g.origin_x
       << ", " << g.origin_y << ")\n"
+      << "  stands at (" << rig.anchor_x() << ", " << rig.anchor_y() << ") in rig units"
+      << (rig.anchor_given() ? " (its description's anchor)" : " (the bottom centre of pose 0)") << ", faces "
+      << (rig.facing_left() ? "left" : "right") << "; pad range x " << rig.pad_range().min_x << " .. "
+      << rig.pad_range().max_x << ", y " << rig.pad_range().min_y << " .. " << rig.pad_range().max_y << "\n"
       << "  rig size " << rig.bounding_box_diagonal() << ", default sigma " << rig.default_sigma()
       << ", drawings sampled " << (rig.texture_filter() == TextureFilter::kNearest ? "nearest (pixel art)" : "linear");
   if (rig.drawing_folder().size)

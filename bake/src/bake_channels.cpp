@@ -207,7 +207,8 @@ RigDescription AttachmentDescription(const RigDescription& description, std::siz
   RigDescription sub = description;
   sub.file = description.file + ": part '" + p.name + "'";
   sub.channels.clear();
-  sub.state_machine = {};  // an attachment's rig has none of its own
+  sub.state_machine = {};                      // an attachment's rig has none of its own
+  sub.anchor_given = sub.facing_left = false;  // the character's placement is the body's
   sub.glue.clear();
   sub.warnings.clear();
   sub.poses = channel.poses;

@@ -301,8 +301,8 @@ RigSections Encoder::Encode(double position_step, double weight_step, CompactRep
     }
     if (report) report->affine_uvs = affine;
   }
-  for (std::uint32_t tag : {fmt::kPosePoints, fmt::kStrings, fmt::kPaths, fmt::kPathKeys, fmt::kCanvases, fmt::kParts,
-                            fmt::kPartPoseOrders, fmt::kEvents}) {
+  for (std::uint32_t tag : {fmt::kPosePoints, fmt::kStrings, fmt::kPaths, fmt::kPathKeys, fmt::kCanvases,
+                            fmt::kPlacement, fmt::kParts, fmt::kPartPoseOrders, fmt::kEvents}) {
     const std::vector<unsigned char>* bytes = raw.Find(tag);
     if (!bytes) continue;
     w.Add(tag, *bytes);

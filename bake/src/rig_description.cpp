@@ -109,6 +109,16 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
     if (f != "linear" && f != "nearest") r.Fail("filter", "expected \"linear\" or \"nearest\" (pixel art)");
     rig.nearest_filter = f == "nearest";
   }
+  if (root.contains("anchor")) {
+    rig.anchor = r.Point(root["anchor"], "anchor");
+    if (!(rig.anchor.cwiseAbs().maxCoeff() <= 1e9)) r.Fail("anchor", "expected a point within +-1e9");
+    rig.anchor_given = true;
+  }
+  if (root.contains("facing")) {
+    const std::string f = r.String(root["facing"], "facing");
+    if (f != "left" && f != "right") r.Fail("facing", "expected \"left\" or \"right\" (the way the drawings face)");
+    rig.facing_left = f == "left";
+  }
   bool have_triangles = root.contains("triangles");
   if (root.contains("channels")) ParseChannels(r, root, &rig);
   if (root.contains("parts")) {

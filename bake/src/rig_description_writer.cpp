@@ -130,6 +130,8 @@ std::string RigDescriptionText(const RigDescription& rig) {
   root["posemorph"] = 1;
   root["name"] = rig.name;
   if (rig.nearest_filter) root["filter"] = "nearest";
+  if (rig.anchor_given) root["anchor"] = {rig.anchor.x(), rig.anchor.y()};
+  if (rig.facing_left) root["facing"] = "left";
   const bool any_drawn = std::any_of(rig.poses.begin(), rig.poses.end(), [](const auto& p) { return p.drawn; });
   if (!any_drawn) root["triangles"] = rig.triangles;
   json poses = json::array();

@@ -198,6 +198,28 @@ RigSections SerialiseRig(const RigDescription& description, const PoseMeshes& me
   w.AddArray(fmt::kPathKeys, names.keys);
   if (!names.events.empty()) w.Add(fmt::kEvents, names.events);
   if (has_uvs) w.AddArray(fmt::kUVs, poses.uvs);
+  if (description.anchor_given || description.facing_left) {
+    // The anchor in rig units: given in the first pose's drawing pixels when it is drawn.
+    fmt::PlacementRecord placement{};
+    const PoseMesh& first = meshes.poses[0];
+    const bool drawn = first.canvas_size.x() > 0;
+    Eigen::Vector2d anchor(0, 0);
+    if (description.anchor_given)
+      anchor = drawn ? Eigen::Vector2d(description.anchor.x() - first.canvas_pivot.x(),
+                                       first.canvas_pivot.y() - description.anchor.y())
+                     : description.anchor;
+    else {  // facing given alone: the default anchor, the bottom centre of pose 0
+      const auto& v = first.vertices;
+      double x0 = v[0].x(), x1 = v[0].x(), y0 = v[0].y();
+      for (const Eigen::Vector2d& p : v) x0 = std::min(x0, p.x()), x1 = std::max(x1, p.x()), y0 = std::min(y0, p.y());
+      anchor = {(x0 + x1) / 2, y0};
+    }
+    placement.anchor_x = anchor.x(), placement.anchor_y = anchor.y();
+    placement.flags = description.facing_left ? fmt::kPlacementFacingLeft : 0;
+    std::vector<unsigned char> bytes;
+    AppendRecord(bytes, placement);
+    w.Add(fmt::kPlacement, bytes);
+  }
   if (HasCanvases(meshes)) {
     std::vector<double> canvases;
     for (const PoseMesh& p : meshes.poses)

@@ -42,6 +42,14 @@ public struct Transform {
     Native.pm_transform_make(x, y, radians, scaleX, scaleY, flipX ? 1 : 0, out t);
     return t;
   }
+  // The rig's anchor (the point it stands on) at world (x, y), turned and
+  // scaled about it, facing left or right (pm_transform_place).
+  public static Transform Place(Rig rig, double x, double y, double radians = 0, double scale = 1,
+                                bool faceLeft = false) {
+    Transform t;
+    Native.pm_transform_place(rig.H, x, y, radians, scale, faceLeft ? 1 : 0, out t);
+    return t;
+  }
   // outer after inner (pm_transform_compose).
   public static Transform Compose(Transform outer, Transform inner) {
     Transform t;
@@ -59,6 +67,11 @@ public struct Colour {
 public struct Part {
   public uint FirstTriangle, TriangleCount;
   public int DrawOrder;
+}
+
+[StructLayout(LayoutKind.Sequential)]
+public struct Bounds {
+  public double MinX, MinY, MaxX, MaxY;
 }
 
 [StructLayout(LayoutKind.Sequential)]
@@ -203,6 +216,10 @@ internal static class Native {
   [DllImport(Lib)] public static extern void pm_transform_make(double x, double y, double r, double sx, double sy,
                                                                int flip, out Transform t);
   [DllImport(Lib)] public static extern void pm_transform_compose(ref Transform o, ref Transform i, out Transform t);
+  [DllImport(Lib)] public static extern void pm_transform_place(IntPtr rig, double x, double y, double r, double s,
+                                                                int face_left, out Transform t);
+  [DllImport(Lib)] public static extern int pm_rig_placement(IntPtr rig, out double x, out double y, out int left);
+  [DllImport(Lib)] public static extern int pm_channel_pad_range(IntPtr rig, uint c, out Bounds b);
   [DllImport(Lib)] public static extern void pm_draw_options_default(out DrawOptions o);
   [DllImport(Lib)] public static extern int pm_character_buffers(IntPtr rig, UIntPtr count, out BufferSizes s);
   [DllImport(Lib)] public static extern int pm_character_draw_lists(
@@ -364,6 +381,18 @@ public sealed class Rig : IDisposable {
     if (Native.pm_character_canvas(H, list, pose, out c) != 0)
       throw new PosemorphException(1, File + ": no pose " + pose + " in list " + list);
     return c;
+  }
+  // Where the character stands (rig units) and whether its drawings face left.
+  public void Placement(out double anchorX, out double anchorY, out bool facingLeft) {
+    int left;
+    Native.pm_rig_placement(H, out anchorX, out anchorY, out left);
+    facingLeft = left != 0;
+  }
+  // Channel c's useful pad range: the box a pad or joystick maps to.
+  public Bounds PadRange(uint c) {
+    Bounds b;
+    if (Native.pm_channel_pad_range(H, c, out b) != 0) throw new PosemorphException(1, File + ": no channel " + c);
+    return b;
   }
   public bool NearestFilter(uint list) { return Native.pm_character_texture_filter(H, list) == 1; }
 

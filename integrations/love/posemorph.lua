@@ -62,6 +62,8 @@ const uint32_t* pm_rig_attachment_triangles(const pm_rig* rig, uint32_t attachme
 void pm_draw_options_default(pm_draw_options* out);
 void pm_transform_make(double x, double y, double radians, double scale_x, double scale_y, int flip_x, pm_transform* out);
 void pm_transform_compose(const pm_transform* outer, const pm_transform* inner, pm_transform* out);
+void pm_transform_place(const pm_rig* rig, double x, double y, double radians, double scale, int face_left, pm_transform* out);
+int pm_rig_placement(const pm_rig* rig, double* anchor_x, double* anchor_y, int* facing_left);
 int pm_character_buffers(const pm_rig* rig, size_t count, pm_character_buffer_sizes* out);
 int pm_character_draw_lists(const pm_rig* rig, const pm_draw_options* options, size_t count, const pm_character_inputs* inputs,
   double* workspace, size_t workspace_capacity, float* positions, size_t positions_capacity, float* attached_positions,
@@ -161,6 +163,19 @@ function M.transform(x, y, radians, sx, sy, flip)
   return t
 end
 
+-- The rig's anchor (the point it stands on) at world (x, y), turned and
+-- scaled about it, facing left when face_left (pm_transform_place).
+function Rig:place(x, y, radians, scale, face_left)
+  local t = ffi.new("pm_transform")
+  C.pm_transform_place(self.handle, x, y, radians or 0, scale or 1, face_left and 1 or 0, t)
+  return t
+end
+-- Where the character stands (rig units) and whether its drawings face left.
+function Rig:placement()
+  local x, y, left = ffi.new("double[1]"), ffi.new("double[1]"), ffi.new("int[1]")
+  C.pm_rig_placement(self.handle, x, y, left)
+  return x[0], y[0], left[0] ~= 0
+end
 -- outer after inner (pm_transform_compose).
 function M.compose(outer, inner)
   local t = ffi.new("pm_transform")

@@ -128,6 +128,28 @@ int pm_channel_default_sigma(const pm_rig* rig, uint32_t channel, double* out) {
   return PM_OK;
 }
 
+int pm_rig_placement(const pm_rig* rig, double* anchor_x, double* anchor_y, int* facing_left) {
+  if (!rig || !rig->rig.loaded() || !anchor_x || !anchor_y || !facing_left) return PM_ERROR_INVALID_ARGUMENT;
+  *anchor_x = rig->rig.anchor_x(), *anchor_y = rig->rig.anchor_y(), *facing_left = rig->rig.facing_left() ? 1 : 0;
+  return PM_OK;
+}
+
+void pm_transform_place(const pm_rig* rig, double x, double y, double radians, double scale, int face_left,
+                        pm_transform* out) {
+  if (!out) return;
+  posemorph::Transform2D t;
+  if (rig && rig->rig.loaded()) t = posemorph::Transform2D::Place(rig->rig, x, y, radians, scale, face_left != 0);
+  *out = {t.a, t.b, t.c, t.d, t.tx, t.ty};
+}
+
+int pm_channel_pad_range(const pm_rig* rig, uint32_t channel, pm_bounds* out) {
+  const posemorph::Rig* c = ChannelRig(rig, channel);
+  if (!c || !out) return PM_ERROR_INVALID_ARGUMENT;
+  const posemorph::PadRange r = c->pad_range();
+  *out = pm_bounds{r.min_x, r.min_y, r.max_x, r.max_y};
+  return PM_OK;
+}
+
 void pm_transform_compose(const pm_transform* outer, const pm_transform* inner, pm_transform* out) {
   if (!outer || !inner || !out) return;
   const posemorph::Transform2D t = posemorph::Compose(FromC(*outer), FromC(*inner));

@@ -39,6 +39,13 @@ Transform2D Transform2D::Make(double x, double y, double radians, double scale_x
   return Fitted(cs * fx, sn * fx, -sn * scale_y, cs * scale_y, x, y);
 }
 
+Transform2D Transform2D::Place(const Rig& rig, double x, double y, double radians, double scale, bool face_left) {
+  for (double v : {x, y, radians, scale})
+    if (!std::isfinite(v)) return Transform2D{};
+  return Compose(Make(x, y, radians, scale, scale, face_left != rig.facing_left()),
+                 Make(-rig.anchor_x(), -rig.anchor_y()));
+}
+
 Transform2D Compose(const Transform2D& o, const Transform2D& i) {
   return Fitted(double(o.a) * i.a + double(o.c) * i.b, double(o.b) * i.a + double(o.d) * i.b,
                 double(o.a) * i.c + double(o.c) * i.d, double(o.b) * i.c + double(o.d) * i.d,

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Rig's own code: moving, and the accessors over the arena the loader
 // (rig_load.cpp) filled.
+#include <cmath>
 #include <cstring>
 #include <utility>
 
@@ -54,6 +55,10 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   grid_ = std::exchange(other.grid_, {});
   solve_ = std::exchange(other.solve_, {});
   default_sigma_ = std::exchange(other.default_sigma_, 0);
+  anchor_x_ = std::exchange(other.anchor_x_, 0);
+  anchor_y_ = std::exchange(other.anchor_y_, 0);
+  facing_left_ = std::exchange(other.facing_left_, false);
+  anchor_given_ = std::exchange(other.anchor_given_, false);
   texture_filter_ = std::exchange(other.texture_filter_, TextureFilter::kLinear);
   drawing_folder_ = std::exchange(other.drawing_folder_, {});
   rig_size_ = std::exchange(other.rig_size_, 0);
@@ -63,6 +68,21 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   format_minor_ = std::exchange(other.format_minor_, 0);
   compact_encoding_ = std::exchange(other.compact_encoding_, false);
   return *this;
+}
+
+PadRange Rig::pad_range() const {
+  PadRange r;
+  if (!loaded()) return r;
+  r.min_x = r.max_x = pose_points_[0], r.min_y = r.max_y = pose_points_[1];
+  for (std::size_t i = 2; i + 1 < pose_points_.size; i += 2) {
+    r.min_x = std::fmin(r.min_x, pose_points_[i]), r.max_x = std::fmax(r.max_x, pose_points_[i]);
+    r.min_y = std::fmin(r.min_y, pose_points_[i + 1]), r.max_y = std::fmax(r.max_y, pose_points_[i + 1]);
+  }
+  const double margin = std::fmax(0.1 * std::fmax(r.max_x - r.min_x, r.max_y - r.min_y), grid_.cell);
+  const double gx1 = grid_.origin_x + grid_.cell * grid_.cells_x, gy1 = grid_.origin_y + grid_.cell * grid_.cells_y;
+  r.min_x = std::fmax(r.min_x - margin, grid_.origin_x), r.max_x = std::fmin(r.max_x + margin, gx1);
+  r.min_y = std::fmax(r.min_y - margin, grid_.origin_y), r.max_y = std::fmin(r.max_y + margin, gy1);
+  return r;
 }
 
 Isa Rig::isa() const { return kernels_ ? kernels_->isa : Isa::kAuto; }

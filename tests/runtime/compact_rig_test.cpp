@@ -141,7 +141,7 @@ TEST_CASE("compact sample rigs stay within 0.01 drawing pixels of the exact rigs
     CAPTURE(name);
     const std::vector<unsigned char> exact_bytes = TestRigBytes(name), compact_bytes = TestRigBytes(name + ".compact");
     const Rig exact = LoadTestRig(name), compact = LoadTestRig(name + ".compact");
-    CHECK(compact.format_minor() == 10);
+    CHECK(compact.format_minor() == format::kVersionMinor);
     CHECK(compact_bytes.size() <= target.max_bytes);
     CHECK(double(compact_bytes.size()) <= target.max_fraction_of_exact * double(exact_bytes.size()));
     REQUIRE(compact.vertex_count() == exact.vertex_count());

@@ -15,6 +15,7 @@
 
 #include "animator_support.h"
 #include "posemorph/posemorph.h"
+#include "posemorph/rig_format.h"
 #include "posemorph/state_machine.h"
 #include "runtime_support.h"
 
@@ -77,7 +78,7 @@ TEST_CASE("states carry the colours the description gives them") {
   CHECK(vanished.colour[3] == 0.0f);
   CHECK(vanished.part_opacities.size == 0);
   for (float c : idle.colour) CHECK(c == 1.0f);
-  CHECK(rig.format_minor() == 10);
+  CHECK(rig.format_minor() == format::kVersionMinor);
 }
 
 TEST_CASE("a change of state fades the colour over its mix, linearly, and never jumps") {

@@ -132,6 +132,13 @@ static class BindingTest {
         }
       Expect(finite, "animated frames are finite");
       Expect(crowd.List(1, 0).Mirrored && !crowd.List(0, 0).Mirrored, "a flipped transform mirrors");
+      double ax, ay;
+      bool left;
+      rig.Placement(out ax, out ay, out left);
+      Transform placed = Transform.Place(rig, 7, 9, 0, 2, !left);  // the anchor lands at (7, 9), mirrored
+      Expect(Math.Abs(placed.A * ax + placed.C * ay + placed.Tx - 7) < 1e-3 && placed.A < 0, "place the anchor");
+      Bounds pad = rig.PadRange(0);
+      Expect(pad.MinX < pad.MaxX && pad.MinY < pad.MaxY, "pad range");
       Transform both = Transform.Compose(Transform.Make(5, 0), Transform.Make(0, 0, 0, 2, 2));
       Expect(both.A == 2 && both.Tx == 5, "compose");
       bool threw = false;

@@ -36,6 +36,13 @@ struct Transform2D {
   // float, give the identity: the fields are always finite.
   static PM_API Transform2D Make(double x, double y, double radians = 0, double scale_x = 1, double scale_y = 1,
                                  bool flip_x = false);
+  // A character of `rig` standing at world (x, y): its anchor
+  // (Rig::anchor_x/_y, the point it stands on) goes there, scaled, turned
+  // counter-clockwise by `radians` about it, and facing left when face_left
+  // (mirrored about the anchor's vertical when that is not the way its
+  // drawings face: Rig::facing_left). The identity for non-finite inputs.
+  static PM_API Transform2D Place(const Rig& rig, double x, double y, double radians = 0, double scale = 1,
+                                  bool face_left = false);
   // A mirrored transform (negative determinant) turns counter-clockwise
   // triangles clockwise: a renderer that culls must cull the other face.
   bool mirrors() const { return double(a) * d - double(b) * c < 0; }

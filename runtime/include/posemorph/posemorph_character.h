@@ -52,6 +52,21 @@ PM_API int pm_channel_path_name(const pm_rig* rig, uint32_t channel, uint32_t pa
                                 size_t* length);
 PM_API int pm_channel_default_sigma(const pm_rig* rig, uint32_t channel, double* out);
 
+/* Where the character stands: its anchor in rig units (y up; the
+ * description's "anchor", by default the bottom centre of pose 0's bounds)
+ * and whether its drawings face left (the description's "facing"). */
+PM_API int pm_rig_placement(const pm_rig* rig, double* anchor_x, double* anchor_y, int* facing_left);
+/* A character standing at world (x, y): the anchor goes there, scaled,
+ * turned counter-clockwise by `radians` about it, facing left when
+ * face_left (mirrored about the anchor when its drawings face the other
+ * way). C++: Transform2D::Place. The identity for non-finite inputs. */
+PM_API void pm_transform_place(const pm_rig* rig, double x, double y, double radians, double scale, int face_left,
+                               pm_transform* out);
+/* Channel `channel`'s useful pad range: its pose points' bounds widened by a
+ * tenth of their larger extent (at least one weight-grid cell) on each
+ * side, within its weight grid. C++: Rig::pad_range. */
+PM_API int pm_channel_pad_range(const pm_rig* rig, uint32_t channel, pm_bounds* out);
+
 /* outer after inner (a camera after a character's place); the identity when
  * a field of the product would not fit a float. out may be outer or inner. */
 PM_API void pm_transform_compose(const pm_transform* outer, const pm_transform* inner, pm_transform* out);

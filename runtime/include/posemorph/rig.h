@@ -83,6 +83,11 @@ struct SolveLayout : Factor {
 };
 }  // namespace detail
 
+// A box of a pose space (Rig::pad_range): what a pad or a joystick maps to.
+struct PadRange {
+  double min_x = 0, min_y = 0, max_x = 0, max_y = 0;
+};
+
 // A pose's drawing: its canvas size and where the rig origin (0, 0) sits on
 // the canvas (x right, y down), in drawing units (pixels for a PNG). A rig
 // unit is a drawing unit, y up. All zero when the pose has no drawing or the
@@ -271,6 +276,20 @@ class PM_API Rig {
   // How the drawings want to be sampled (the description's "filter"; pixel
   // art: nearest). A hint for renderers; linear for rigs before format 1.4.
   TextureFilter texture_filter() const { return texture_filter_; }
+  // Where the character stands, in rig units (y up): the point of its
+  // drawings that Transform2D::Place puts at a world position (the
+  // description's "anchor"; by default, and for rigs before format 1.11,
+  // the bottom centre of pose 0's bounds). facing_left(): the drawings face
+  // left (the description's "facing"; by default right), so Place mirrors
+  // them to face the way the game asks.
+  double anchor_x() const { return anchor_x_; }
+  double anchor_y() const { return anchor_y_; }
+  bool facing_left() const { return facing_left_; }
+  bool anchor_given() const { return anchor_given_; }  // set in the description (PLCE), not the default
+  // The pad's useful range: the pose points' bounds widened by a tenth of
+  // their larger extent (at least one weight-grid cell) on each side,
+  // within the weight grid (points beyond it are clamped to it anyway).
+  PadRange pad_range() const;
   // Where the bake found the drawings (the description's folder), relative
   // to the folder of the rig file it wrote, '/'-separated: where a tool on
   // that machine looks for pose_image() references by default (the viewer's
@@ -334,6 +353,8 @@ class PM_API Rig {
   PoseSpaceGrid grid_;
   detail::SolveLayout solve_;
   double default_sigma_ = 0, rig_size_ = 0;
+  double anchor_x_ = 0, anchor_y_ = 0;
+  bool facing_left_ = false, anchor_given_ = false;
   TextureFilter texture_filter_ = TextureFilter::kLinear;
   StringView drawing_folder_;
   const detail::KernelTable* kernels_ = nullptr;

@@ -23,8 +23,9 @@ constexpr std::uint16_t kVersionMajor = 1;
 // channels (CHAN: attachments, each a nested rig driven by its own channel);
 // 1.8 named events on paths (kMetaFlagEvents, EVNT); 1.9 a state machine
 // (MACH, in the top-level rig only); 1.10 colours set by states (MACH's
-// colour entries). Older files load unchanged.
-constexpr std::uint16_t kVersionMinor = 10;
+// colour entries); 1.11 where the character stands and which way it faces
+// (PLCE, optional). Older files load unchanged.
+constexpr std::uint16_t kVersionMinor = 11;
 constexpr std::uint32_t kHeaderSize = FileHeader::kSize;
 constexpr std::uint32_t kSectionEntrySize = SectionEntry::kSize;
 constexpr std::uint32_t kSectionAlignment = 16;
@@ -136,6 +137,12 @@ constexpr std::uint32_t kMaxEvents = 1u << 16;
 // MachineHeader). Names: after the entries, each input's then each state's
 // name, u32 length (1..kMaxMachineName) + bytes; the section ends there.
 constexpr std::uint32_t kMachine = Tag('M', 'A', 'C', 'H');
+// PLCE section (1.11, optional, the top-level rig only): where the character
+// stands and which way it faces, one PlacementRecord (records.h). Without
+// it the anchor is the bottom centre of pose 0's bounds, facing right.
+constexpr std::uint32_t kPlacement = Tag('P', 'L', 'C', 'E');
+constexpr std::uint32_t kPlacementFacingLeft = 1u;
+constexpr double kMaxAnchor = 1e9;  // |anchor| in rig units
 constexpr std::uint32_t kMaxMachineInputs = 64;
 constexpr std::uint32_t kMaxMachineStates = 1024;
 constexpr std::uint32_t kMaxMachineTransitions = 4096;

@@ -125,6 +125,8 @@ bool RigLoader::FindSections(const unsigned char* bytes, const Header& h, Parser
   }
   if (c.has_uvs && !s->affine_uvs && !parser.Get(fmt::kUVs, N * V * 8, &s->uvs)) return false;
   if (parser.table.Find(fmt::kCanvases) && !parser.Get(fmt::kCanvases, N * 32, &s->canvases)) return false;
+  if (parser.table.Find(fmt::kPlacement) && !parser.Get(fmt::kPlacement, fmt::PlacementRecord::kSize, &s->placement))
+    return false;
   if (c.parts && !parser.Get(fmt::kParts, c.parts * fmt::kPartEntrySize, &s->parts)) return false;
   if (c.part_pose_orders && !parser.Get(fmt::kPartPoseOrders, N * c.parts * 4, &s->pose_orders)) return false;
   if (c.events && !parser.Get(fmt::kEvents, c.events * fmt::kEventEntrySize, &s->events)) return false;

@@ -112,6 +112,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   BuildBlendBlocks(c, scratch, &rig);
   if (!CheckNumbers(rig, err) || (options.bound_solve && !CheckSolveBound(c, scratch, rig, err))) return false;
   Finish(h, c, kernels, &rig);
+  if (!ReadPlacement(s, source.nested, &rig, err)) return false;
   if (channels.A && !LoadAttachments(channels, options, nested, nested_memory, &rig, err)) return false;
   if (machine.present && !CheckMachinePaths(rig, err)) return false;
   *out = std::move(rig);

@@ -16,6 +16,7 @@
 //   value_checks.cpp   ReadStrings, ReadPaths, ReadEvents, CheckIndices, CheckFactor, ReadParts, CheckNumbers
 //   kernel_data.cpp    BuildSolveRows, BuildBlendBlocks, Finish (what the kernels read)
 //   solve_bound.cpp    CheckSolveBound (what the solve can give for any weights the jobs take)
+//   placement.cpp      ReadPlacement (PLCE, or the default anchor; after Finish)
 // The records read are defined once, with the bake's writer, in
 // posemorph/format/records.h.
 #pragma once
@@ -163,7 +164,7 @@ struct Sources {
                       *grads = nullptr, *angles = nullptr, *stretches = nullptr, *perm = nullptr, *lcol = nullptr,
                       *lrow = nullptr, *lval = nullptr, *dinv = nullptr, *wgrid = nullptr, *uvs = nullptr,
                       *paths = nullptr, *strs = nullptr, *pkeys = nullptr, *canvases = nullptr, *parts = nullptr,
-                      *pose_orders = nullptr, *events = nullptr;
+                      *pose_orders = nullptr, *events = nullptr, *placement = nullptr;
   std::uint64_t strings_size = 0, key_total = 0;
   detail::CompactLayout packed;
   detail::CompactCounts packed_counts{};
@@ -273,6 +274,7 @@ struct RigLoader {
                           Machine* m, Error* err);
   static void LayoutMachine(ArenaLayout& arena, const Machine& m, Rig* rig);
   static bool CheckMachinePaths(const Rig& rig, Error* err);
+  static bool ReadPlacement(const Sources& s, bool nested, Rig* rig, Error* err);
 };
 
 }  // namespace posemorph

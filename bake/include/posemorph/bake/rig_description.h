@@ -235,6 +235,14 @@ struct RigDescription {
   std::string rig_file;
   std::string name;
   bool nearest_filter = false;  // "filter": "nearest": the drawings are pixel art (a hint for renderers)
+  // "anchor": [x, y], the point the character stands on: in the first pose's
+  // drawing pixels (x right, y down) when it is drawn, else in rig units;
+  // "facing": "left" when the drawings face left. Written as PLCE (format
+  // 1.11) when either is given; the runtime's default otherwise (the bottom
+  // centre of pose 0, facing right).
+  bool anchor_given = false;
+  Eigen::Vector2d anchor = Eigen::Vector2d::Zero();
+  bool facing_left = false;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<PoseDescription> poses;  // with parts: names and points only
   std::vector<PartDescription> parts;  // empty: one shape (the poses' own meshes or drawings)

@@ -102,6 +102,19 @@ struct EventEntry {
   }
 };
 
+// PLCE (1.11): where the character stands (the anchor, rig units) and which
+// way its drawings face (flags: kPlacementFacingLeft).
+struct PlacementRecord {
+  static constexpr std::uint32_t kSize = 24;
+  double anchor_x, anchor_y;
+  std::uint32_t flags;
+  std::uint32_t reserved;
+  template <typename Self, typename F>
+  static constexpr void Fields(Self& r, F& f) {
+    f(r.anchor_x), f(r.anchor_y), f(r.flags), f(r.reserved);
+  }
+};
+
 // PART (1.6): one entry per part; the parts tile the triangles in order.
 struct PartEntry {
   static constexpr std::uint32_t kSize = 16;
@@ -276,6 +289,10 @@ PM_FORMAT_FIELD(PathEntry, flags, 4);
 PM_FORMAT_RECORD(EventEntry);
 PM_FORMAT_FIELD(EventEntry, path, 8);
 PM_FORMAT_FIELD(EventEntry, reserved, 12);
+PM_FORMAT_RECORD(PlacementRecord);
+PM_FORMAT_FIELD(PlacementRecord, anchor_y, 8);
+PM_FORMAT_FIELD(PlacementRecord, flags, 16);
+PM_FORMAT_FIELD(PlacementRecord, reserved, 20);
 PM_FORMAT_RECORD(PartEntry);
 PM_FORMAT_FIELD(PartEntry, triangle_count, 4);
 PM_FORMAT_FIELD(PartEntry, draw_order, 8);
