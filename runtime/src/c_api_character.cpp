@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <initializer_list>
 
+#include "c_api_draw.h"
 #include "c_api_internal.h"
 #include "draw_list_internal.h"
 #include "posemorph/draw_list.h"
@@ -25,30 +26,6 @@ const posemorph::Rig* ListRig(const pm_rig* rig, uint32_t list) {
 
 const posemorph::Rig* ChannelRig(const pm_rig* rig, uint32_t channel) {
   return rig ? rig->rig.channel_rig(channel) : nullptr;
-}
-
-posemorph::Transform2D FromC(const pm_transform& c) {
-  posemorph::Transform2D t;
-  t.a = c.a, t.b = c.b, t.c = c.c, t.d = c.d, t.tx = c.tx, t.ty = c.ty;
-  return t;
-}
-
-// A DrawList as the C struct; vertex_count from the list's own rig.
-void ToC(const posemorph::DrawList& list, std::uint32_t vertex_count, pm_draw_list* d) {
-  d->positions = list.positions.data;
-  d->indices = list.indices.data;
-  d->vertex_count = vertex_count;
-  d->index_count = std::uint32_t(list.indices.size);
-  d->drawing_count = list.drawing_count;
-  for (std::uint32_t i = 0; i < PM_MAX_BLEND_DRAWINGS; ++i)
-    d->drawings[i] = {list.drawings[i].pose, list.drawings[i].weight, list.drawings[i].uvs};
-  const posemorph::Transform2D& t = list.transform;
-  d->transform = {t.a, t.b, t.c, t.d, t.tx, t.ty};
-  d->mirrored = list.mirrored ? 1 : 0;
-  d->parts = list.parts.data;
-  d->part_count = std::uint32_t(list.parts.size);
-  d->colour = {list.colour.r, list.colour.g, list.colour.b, list.colour.a};
-  for (std::uint32_t p = 0; p < PM_MAX_PARTS; ++p) d->part_opacity[p] = list.part_opacity[p];
 }
 
 }  // namespace
@@ -152,7 +129,7 @@ int pm_channel_pad_range(const pm_rig* rig, uint32_t channel, pm_bounds* out) {
 
 void pm_transform_compose(const pm_transform* outer, const pm_transform* inner, pm_transform* out) {
   if (!outer || !inner || !out) return;
-  const posemorph::Transform2D t = posemorph::Compose(FromC(*outer), FromC(*inner));
+  const posemorph::Transform2D t = posemorph::Compose(TransformFromC(*outer), TransformFromC(*inner));
   *out = {t.a, t.b, t.c, t.d, t.tx, t.ty};
 }
 
@@ -206,12 +183,7 @@ int pm_character_draw_lists(const pm_rig* rig, const pm_draw_options* options, s
     job.attached_limited_weights = {in.attached_limited_weights, in.attached_limited_weights ? count * nw : 0};
     job.attached_texture_weights = {in.attached_texture_weights, in.attached_texture_weights ? count * nw : 0};
   }
-  job.sigma = o.sigma;
-  job.limit_weights = o.limit_weights != 0;
-  job.interpolation = o.linear ? posemorph::Interpolation::kLinear : posemorph::Interpolation::kRigid;
-  job.max_drawings = o.max_drawings;
-  if (o.colours) job.colours = {reinterpret_cast<const posemorph::Colour*>(o.colours), count};
-  if (o.part_opacities) job.part_opacities = {o.part_opacities, count * r.part_count()};
+  SetDrawOptions(o, count, r, &job);
   job.workspace = {workspace, need.workspace_doubles};
   job.positions = {positions, need.position_floats};
   // The attachments' lists are written as C structs (checked above).
@@ -219,22 +191,22 @@ int pm_character_draw_lists(const pm_rig* rig, const pm_draw_options* options, s
   if (!posemorph::detail::ValidDrawListInputs(job, A != 0)) return PM_ERROR_INVALID_ARGUMENT;
   double* body = A ? workspace + posemorph::detail::DrawListBodyWorkspace(r, count) : nullptr;
   const auto transform_at = [&in](std::size_t k) {
-    return in.transforms ? FromC(in.transforms[k]) : posemorph::Transform2D();
+    return in.transforms ? TransformFromC(in.transforms[k]) : posemorph::Transform2D();
   };
   const bool ok = posemorph::detail::RunDrawLists(
-      job, transform_at, [&](std::size_t k, const posemorph::DrawList& list) { ToC(list, r.vertex_count(), &out[k]); },
-      body);
+      job, transform_at,
+      [&](std::size_t k, const posemorph::DrawList& list) { DrawListToC(list, r.vertex_count(), &out[k]); }, body);
   if (!ok) return PM_ERROR_BAD_VALUE;
   if (!A) return PM_OK;
   const bool attached_ok = posemorph::detail::RunAttachedLists(
       job, body, workspace + need.workspace_doubles,
       [&](std::size_t k) {
         const pm_draw_list& b = out[k];
-        return posemorph::detail::ListPlacement{FromC(b.transform), b.mirrored != 0,
+        return posemorph::detail::ListPlacement{TransformFromC(b.transform), b.mirrored != 0,
                                                 posemorph::Colour{b.colour.r, b.colour.g, b.colour.b, b.colour.a}};
       },
       [&](std::size_t k, std::uint32_t a, const posemorph::DrawList& list) {
-        ToC(list, r.attachment(a).rig->vertex_count(), &attached_out[k * A + a]);
+        DrawListToC(list, r.attachment(a).rig->vertex_count(), &attached_out[k * A + a]);
       });
   return attached_ok ? PM_OK : PM_ERROR_BAD_VALUE;
 }

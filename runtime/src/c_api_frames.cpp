@@ -6,6 +6,7 @@
 #include <cstring>
 #include <new>
 
+#include "c_api_draw.h"
 #include "c_api_internal.h"
 #include "draw_list_internal.h"
 #include "posemorph/draw_list.h"
@@ -123,41 +124,16 @@ int pm_draw_lists(const pm_rig* rig, const pm_draw_options* options, size_t coun
   job.rig = &r;
   job.count = count;
   job.points = {points, 2 * count};
-  job.sigma = o.sigma;
-  job.limit_weights = o.limit_weights != 0;
-  job.interpolation = o.linear ? posemorph::Interpolation::kLinear : posemorph::Interpolation::kRigid;
-  job.max_drawings = o.max_drawings;
-  if (o.colours) job.colours = {reinterpret_cast<const posemorph::Colour*>(o.colours), count};
-  if (o.part_opacities) job.part_opacities = {o.part_opacities, count * r.part_count()};
+  SetDrawOptions(o, count, r, &job);
   job.workspace = {workspace, need_workspace};
   job.positions = {positions, need_positions};
   if (!posemorph::detail::ValidDrawListInputs(job)) return PM_ERROR_INVALID_ARGUMENT;
   const auto transform_at = [transforms](std::size_t k) {
-    posemorph::Transform2D t;
-    if (transforms) {
-      const pm_transform& c = transforms[k];
-      t.a = c.a, t.b = c.b, t.c = c.c, t.d = c.d, t.tx = c.tx, t.ty = c.ty;
-    }
-    return t;
+    return transforms ? TransformFromC(transforms[k]) : posemorph::Transform2D();
   };
-  const bool ok =
-      posemorph::detail::RunDrawLists(job, transform_at, [&](std::size_t k, const posemorph::DrawList& list) {
-        pm_draw_list& d = out[k];
-        d.positions = list.positions.data;
-        d.indices = list.indices.data;
-        d.vertex_count = r.vertex_count();
-        d.index_count = std::uint32_t(list.indices.size);
-        d.drawing_count = list.drawing_count;
-        for (std::uint32_t i = 0; i < PM_MAX_BLEND_DRAWINGS; ++i)
-          d.drawings[i] = {list.drawings[i].pose, list.drawings[i].weight, list.drawings[i].uvs};
-        const posemorph::Transform2D& t = list.transform;
-        d.transform = {t.a, t.b, t.c, t.d, t.tx, t.ty};
-        d.mirrored = list.mirrored ? 1 : 0;
-        d.parts = list.parts.data;
-        d.part_count = std::uint32_t(list.parts.size);
-        d.colour = {list.colour.r, list.colour.g, list.colour.b, list.colour.a};
-        for (std::uint32_t p = 0; p < PM_MAX_PARTS; ++p) d.part_opacity[p] = list.part_opacity[p];
-      });
+  const bool ok = posemorph::detail::RunDrawLists(
+      job, transform_at,
+      [&](std::size_t k, const posemorph::DrawList& list) { DrawListToC(list, r.vertex_count(), &out[k]); });
   return ok ? PM_OK : PM_ERROR_INVALID_ARGUMENT;
 }
 

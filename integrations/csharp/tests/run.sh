@@ -25,13 +25,7 @@ for rig in pip.compact pip pell-face.compact pell-face sprout.compact snake.comp
   args+=("$build/rigs/$rig.pmrig=$line")
 done
 # Hostile bytes: the first 1,000 bytes of a rig, and a rig with one byte changed.
-head -c 1000 "$build/rigs/pell-face.compact.pmrig" > "$work/truncated.pmrig"
-python3 - "$build/rigs/pell-face.compact.pmrig" "$work/corrupt.pmrig" <<'PY'
-import sys
-data = bytearray(open(sys.argv[1], 'rb').read())
-data[len(data) // 2] ^= 0x5A
-open(sys.argv[2], 'wb').write(data)
-PY
+python3 "$here/../hostile_rigs.py" "$build/rigs/pell-face.compact.pmrig" "$work"
 for bad in truncated corrupt; do
   message=$("$hash" "$work/$bad.pmrig" 0 0 2>&1 >/dev/null || true)
   args+=(--refuse "$work/$bad.pmrig" "$message")

@@ -52,13 +52,7 @@ out=$(game "$build/rigs/pell-face.compact.pmrig" --images "$build/assets/pell" -
 echo "love: $out"
 case "$out" in *"60 frames of 200 character(s)"*) cp "$work/crowd.png" "$shots/love-crowd.png" ;;
   *) failures=$((failures + 1)) ;; esac
-head -c 1000 "$build/rigs/pell-face.compact.pmrig" > "$work/truncated.pmrig"
-python3 - "$build/rigs/pell-face.compact.pmrig" "$work/corrupt.pmrig" <<'PY'
-import sys
-data = bytearray(open(sys.argv[1], 'rb').read())
-data[len(data) // 2] ^= 0x5A
-open(sys.argv[2], 'wb').write(data)
-PY
+python3 "$here/../hostile_rigs.py" "$build/rigs/pell-face.compact.pmrig" "$work"
 for bad in truncated corrupt; do
   native=$("$hash" "$work/$bad.pmrig" 0 0 2>&1 >/dev/null || true)
   status=0
