@@ -3,7 +3,7 @@
 # The C# binding's test (ctest: integration.csharp):
 #   run.sh BUILD BINDINGS POSITIONS_HASH
 # compiles the binding, its test and its example with mcs into
-# BUILD/integrations/csharp, and runs them under mono against the shared
+# BUILD/integration-tests/csharp, and runs them under mono against the shared
 # library in BINDINGS: each baked sample's character digest must be the
 # native runtime's (POSITIONS_HASH RIG --characters K), and a truncated and
 # a corrupted rig must be refused with the native loader's message.
@@ -14,7 +14,7 @@ if ! command -v mcs >/dev/null || ! command -v mono >/dev/null; then
   echo "integration.csharp: skipped: mcs and mono are not installed (scripts/setup.sh installs mono-mcs, mono-runtime)"
   exit 77
 fi
-work=$build/integrations/csharp
+work=$build/integration-tests/csharp  # not integrations/csharp: that is the CMake binary folder
 mkdir -p "$work"
 mcs -unsafe -target:library -out:"$work/Posemorph.dll" "$here/Posemorph.cs"
 mcs -r:"$work/Posemorph.dll" -out:"$work/BindingTest.exe" "$here/tests/BindingTest.cs"

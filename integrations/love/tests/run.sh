@@ -17,7 +17,7 @@ if ! command -v love >/dev/null || ! command -v xvfb-run >/dev/null; then
   echo "integration.love: skipped: love (LÖVE 11) or xvfb-run is not installed (scripts/setup.sh installs them)"
   exit 77
 fi
-work=$build/integrations/love
+work=$build/integration-tests/love  # not integrations/love: that is the CMake binary folder
 rm -rf "$work" && mkdir -p "$work" "$shots"
 export POSEMORPH_LIBRARY=$bindings/libposemorph.so
 game() {  # the example under Xvfb, without the audio device's complaints
