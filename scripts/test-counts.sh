@@ -12,6 +12,7 @@ count() {
   ctest --test-dir "$dir" -N "$@" | sed -n 's/^Total Tests: //p'
 }
 release=$(count release) isa=$(count release -L runtime) clang=$(count clang-runtime)
+integration=$(count release -L integration)
 tsan=$(count tsan)
 # The debug preset's filter (CMakePresets.json) leaves seven tests out: count as it runs.
 debug=$(ctest --preset debug -N | sed -n 's/^Total Tests: //p')
@@ -19,6 +20,7 @@ echo "| build | preset | tests | what |"
 echo "|---|---|---|---|"
 echo "| GCC 12, -O3 | \`release\` | $release | every test (examples included); then the runtime suite again with \`POSEMORPH_ISA=avx2\`, \`sse2\` and \`scalar\` ($isa each: the kernel path changes only the runtime's frame arithmetic, and the suite checks its bits on each path against the committed frame hashes; the default run takes AVX-512 where the CPU has it) |"
 echo "| Clang 14, -O3 | \`clang-runtime\` | $clang | the runtime suite, built alone and reading the rigs release baked, on the same four paths: the same bits from the other compiler (the frame hashes). The \`clang\` preset builds everything with Clang for local use; CI builds the bake and every test with Clang once, in \`debug\`, and the viewer in \`scripts/viewer-without-bake.sh\` |"
+echo "| GCC 12, -O3, label \`integration\` | \`release\` | $integration of the $release | the engine integrations (integrations/): the C# binding under mono, the LÖVE module under Xvfb, the OpenGL renderer through the SDL2 example; frames bit for bit with the native runtime (the character digest), pictures against posemorph-view's, hostile rigs refused with the loader's own messages |"
 echo "| Clang, ThreadSanitizer | \`tsan\` | $tsan | the runtime suite (threads splitting a crowd, batch = single) |"
 echo "| Clang 14, AddressSanitizer + UBSan, -O1 | \`debug\` | $debug | the runtime, the bake, the tools and every test built with Clang (warnings as errors), the viewer left out (\`POSEMORPH_BUILD_VIEWER=OFF\`: the Vulkan loader and driver are not built with the sanitisers, so its tests run in release only); every test but allocation counting (the sanitiser owns malloc), the hostile-input corpus (its 1 GiB address-space limit leaves no room for the shadow memory) and seven that re-measure figures release checks: the three ghosting figures, the permutation roundoff, the drawn samples' mapping quality, the weights against a thin-plate spline and Pip's eye centres (the code they run is run under the sanitisers by the other tests) |"
 echo "| Clang, libFuzzer + ASan + UBSan | \`fuzz\` (\`scripts/fuzz.sh\`) | 4 harnesses | 60 s each: rig loader and frames, rig description, SVG outlines, PNG tracer (\"Hostile input and fuzzing\" below) |"
