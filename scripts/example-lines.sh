@@ -4,7 +4,7 @@
 # only a comment) and, of those, lines of posemorph glue (lines that name a
 # posemorph function, type or field: pm_*, posemorph::, the draw-list and
 # rig accessors), then the same for each integration (integrations/: the
-# binding or renderer, and its example; comments in C#, Lua and C++ alike).
+# binding or renderer, and its example; comments in C#, Lua, C++ and JavaScript alike).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 glue='pm_|posemorph|DrawList|Transform2D|CharacterBuffers|BlendedDrawing|LoadRig|SamplePath|PathView|PoseSpaceGrid|Quantize|PackPoint|DequantizePoint|drawLists|loadRig|\brig[.>]|\.drawings|\.positions|\.indices|\.transform|drawing_count|job\.'
@@ -21,11 +21,13 @@ for e in c avatar-udp sdl2-opengl web; do
   esac
   echo "| \`examples/$e\` | $(printf '%s ' "${files[@]##*/}")| $(count "${files[@]}") | $(glue_count "${files[@]}") |"
 done
-for i in opengl csharp love; do
+for i in opengl csharp love web; do
   case $i in
     opengl) files=(integrations/opengl/posemorph_gl.h integrations/opengl/posemorph_gl.cpp) ;;
     csharp) files=(integrations/csharp/Posemorph.cs integrations/csharp/example/Example.cs) ;;
     love) files=(integrations/love/posemorph.lua integrations/love/example/main.lua) ;;
+    web) files=(integrations/web/src/posemorph_web.c integrations/web/posemorph.mjs integrations/web/pixi.mjs
+               integrations/web/example/main.mjs) ;;
   esac
   echo "| \`integrations/$i\` | $(printf '%s ' "${files[@]#integrations/$i/}")| $(count "${files[@]}") | $(glue_count "${files[@]}") |"
 done

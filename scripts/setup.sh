@@ -34,6 +34,9 @@ packages=(
   mono-mcs mono-runtime             # integrations/csharp: the C# binding, compiled with mcs, run with mono
   love                              # integrations/love: LÖVE 11 (LuaJIT), the FFI module and its example game
 )
+# integrations/web packs an npm package and its test installs it: npm comes
+# with some builds of nodejs (NodeSource's), else from Debian's npm package.
+command -v npm > /dev/null || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do

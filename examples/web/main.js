@@ -2,6 +2,10 @@
 // A character drawn with WebGL2, following the pointer through pose space:
 // posemorph.js gives a draw list per frame, this file draws it with the
 // exact cross-fade (the weighted sum of premultiplied drawings, then "over").
+// The smallest web example: the body channel of one rig through the C API by
+// hand. A game takes integrations/web instead, the npm package (every
+// channel, part and attachment, transforms, 4-byte points, the animator, a
+// PixiJS renderer).
 import { Posemorph } from './posemorph.js';
 
 const result = document.getElementById('result');

@@ -18,8 +18,7 @@ head -c 1000 "$rig" > "$work/site/bad.pmrig"                    # truncated
 
 python3 -m http.server 0 --bind 127.0.0.1 --directory "$work/site" > "$work/server.log" 2>&1 &
 server=$!
-browser=""
-trap 'kill $server ${browser:-} 2>/dev/null || true' EXIT
+trap 'kill $server 2>/dev/null || true' EXIT
 for _ in $(seq 50); do grep -q "port" "$work/server.log" && break; sleep 0.1; done
 port=$(grep -o 'port [0-9]*' "$work/server.log" | head -1 | cut -d' ' -f2)
 site="http://127.0.0.1:$port"
@@ -58,23 +57,7 @@ expect "index.html?rig=bad.pmrig" "error: bad.pmrig: "
 expect "resized/index.html?at=0,0" "error: rest.png: the drawing is 960x320, the rig was baked from 256x256"
 
 # 4. Real time (virtual time stops the clock): the page's title, read over the debugging port.
-"${chrome[@]}" --remote-debugging-port=0 --user-data-dir="$work/profile" "$site/index.html?at=0.5,0.5&size=256" \
-  > /dev/null 2> "$work/browser.log" &
-browser=$!
-title=$(python3 - "$work/browser.log" <<'PY'
-import json, re, sys, time, urllib.request
-for _ in range(120):
-    m = re.search(r"DevTools listening on ws://127.0.0.1:(\d+)", open(sys.argv[1]).read())
-    if m:
-        try:
-            pages = json.load(urllib.request.urlopen(f"http://127.0.0.1:{m.group(1)}/json/list", timeout=2))
-            titles = [p["title"] for p in pages if p.get("title", "").startswith(("ready", "error"))]
-            if titles:
-                print(titles[0]); break
-        except OSError:
-            pass
-    time.sleep(0.5)
-PY
-)
+title=$(python3 "$here/../../scripts/chromium-title.py" "$site/index.html?at=0.5,0.5&size=256" ready,error 60 \
+        "$work/profile" || true)
 echo "timed in real time: $title"
 case "$title" in *"us per frame"*) ;; *) echo "FAIL: no timing from the page"; exit 1;; esac

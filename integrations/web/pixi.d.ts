@@ -1,0 +1,19 @@
+// SPDX-License-Identifier: MIT
+// Types of pixi.mjs: the PixiJS v7 renderer for posemorph.
+import type { Container, Texture } from 'pixi.js';
+import type { Crowd, Rig } from './posemorph';
+
+/** Textures by list, part and pose: drawings[list][part][pose]. */
+export type Drawings = Texture[][][];
+
+/** Every drawing of the rig from `baseUrl` (premultiplied, no mipmaps, each list's filter). */
+export declare function loadDrawings(rig: Rig, baseUrl: string): Promise<Drawings>;
+
+/** One character: one mesh per draw step, cross-fading up to eight drawings. */
+export declare class CharacterView extends Container {
+  constructor(rig: Rig, drawings: Drawings);
+  /** Character k of the crowd's last frame (after Crowd.evaluate). */
+  update(crowd: Crowd, k: number): void;
+  /** Draw calls this character made in its last update (one per step). */
+  readonly drawCalls: number;
+}
