@@ -16,7 +16,8 @@
 # `examples`, whose figures depend only on the sources). bench
 # (scripts/bench.sh 5), paths (scripts/bench-paths.sh 5) and bakes
 # (scripts/bench-bake.py: Pip at 256-4096 px, a 90,000-vertex mesh) and
-# animator (scripts/bench-animator.sh 5: the update beside the frame) run the
+# animator (scripts/bench-animator.sh 5: the update beside the frame) and web
+# (scripts/bench-web.sh 7: WebAssembly in Chromium against native) run the
 # benchmarks: minutes each, on a quiet machine, so they are never in the
 # default set; name them.
 import glob
@@ -35,6 +36,7 @@ TABLES = {
     'paths': ['scripts/bench-paths.sh', '5'],
     'bakes': ['scripts/bench-bake.py', 'build/release'],
     'animator': ['scripts/bench-animator.sh', '5'],
+    'web': ['scripts/bench-web.sh', '7'],
 }
 
 
