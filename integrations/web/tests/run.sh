@@ -77,8 +77,9 @@ crowd="index.html?rig=pell-face.compact.pmrig&images=pell/&crowd=200&size=800x60
 out=$(page "$crowd")
 echo "web: $out"
 case "$out" in *"60 frames of 200 character(s), 7 draw calls per character"*) ;; *) fail "the crowd: '$out'" ;; esac
-timeout 120 "${chrome[@]}" --virtual-time-budget=60000 --window-size=800,600 --screenshot="$work/crowd.png" "$url/$crowd" \
-  2>/dev/null && cp "$work/crowd.png" "$shots/web-crowd.png"
+# The README's picture: the crowd's first frame (60 more frames under SwiftShader would add 16 s to the test).
+timeout 120 "${chrome[@]}" --virtual-time-budget=60000 --window-size=800,600 --screenshot="$work/crowd.png" \
+  "$url/${crowd%&frames=60}&frames=1" 2>/dev/null && cp "$work/crowd.png" "$shots/web-crowd.png"
 
 # 4. The API's promises.
 out=$(page "api.html")
