@@ -4,17 +4,24 @@
 
 #include <algorithm>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 #include "command_args.h"
+#include "progress_line.h"
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/input_file.h"
 #include "posemorph/bake/stage.h"
 
 namespace posemorph::bake::cli {
 
-int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out, std::ostream& err) {
-  const Args args = Args::Parse(a, from, {"-o", "--precision", "--max-error"}, {"--allow-folds", "--no-align"});
+int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& report_out, std::ostream& err) {
+  const Args args =
+      Args::Parse(a, from, {"-o", "--precision", "--max-error"}, {"--allow-folds", "--no-align", "--quiet"});
+  // --quiet: no progress line and no report; warnings and errors still go to stderr.
+  const bool quiet = args.switches.count("--quiet") > 0;
+  std::ostringstream discarded;
+  std::ostream& out = quiet ? discarded : report_out;
   if (args.positional.empty()) throw UsageError("no rig description given");
   std::string output;
   if (const std::string* o = args.Get("-o")) {
@@ -26,6 +33,8 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     output += ".pmrig";
   }
   CheckOutputPath(output, {args.positional});
+  std::optional<ProgressLine> progress;  // on a terminal, while the bake runs
+  progress.emplace("posemorph-bake", !quiet && StderrTakesProgress());
   BakeStage reading("reading the rig description");
   RigDescription rig = ReadRigDescription(args.positional);
   if (const std::string* p = args.Get("--precision")) {
@@ -52,6 +61,7 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   const std::vector<unsigned char> bytes = BakeRig(rig, &report);
   BakeStage writing("writing the output");
   WriteFileAtomic(output, bytes);
+  progress.reset();  // erased before the report
   out << "baked " << args.positional << " -> " << output << ": " << report.vertices << " vertices, " << report.triangles
       << " triangles, " << report.poses << " poses, " << report.paths << " paths, " << report.bytes << " bytes, "
       << "nnz(L) " << report.factor_nonzeros << ", grid " << report.grid_cells_x << "x" << report.grid_cells_y

@@ -20,10 +20,11 @@ namespace {
 const char kUsage[] =
     "usage:\n"
     "  posemorph-bake RIG.json [-o RIG.pmrig] [--precision compact|exact] [--max-error PX] [--allow-folds]\n"
-    "        [--no-align]\n"
+    "        [--no-align] [--quiet]\n"
     "        bake a rig description (default output: RIG.pmrig; compact within 0.01 drawing pixels;\n"
     "        an in-between where a triangle turns over fails the bake unless --allow-folds; PNG drawings\n"
-    "        align the interiors unless --no-align)\n"
+    "        align the interiors unless --no-align; on a terminal, a bake over a second shows its stage\n"
+    "        on a progress line; --quiet: no progress line and no report, only warnings and errors)\n"
     "  posemorph-bake info RIG.pmrig [--images DIR] sizes, counts, factor fill, in-betweens, ghosting, pose points,\n"
     "                                             paths (the drawings for the ghosting from DIR, or where the bake\n"
     "                                             found them)\n"

@@ -8,6 +8,7 @@
 #include "drawn_pose.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/mapping/interior_alignment.h"
+#include "posemorph/bake/stage.h"
 
 namespace posemorph::bake {
 
@@ -33,6 +34,7 @@ void AlignDrawnInteriors(const RigDescription& rig, const std::vector<DrawnPose>
   MappingReport& report = result.report;
   report.alignment_skipped = AlignmentSkipped(rig, drawn);
   if (!report.alignment_skipped.empty()) return;
+  BakeStage stage("aligning the drawings' interiors");
   // One scale for every drawing: the largest brought to kAlignmentMaxSide,
   // and no finer than the level the outlines were traced on.
   int halvings = working_halvings;

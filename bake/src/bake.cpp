@@ -180,8 +180,12 @@ Attempt BakeOnce(const RigDescription& description) {
   BakeStage write_stage("writing and encoding the rig");
   RigSections exact = SerialiseRig(description, meshes, analysis, system, grid);
   a.exact_bytes = RigFileSize(exact);
-  a.sections =
-      description.parameters.compact ? CompactRig(exact, a.compact_settings, file, &a.compact) : std::move(exact);
+  if (description.parameters.compact) {
+    BakeStage compact_stage("encoding the rig compactly");
+    a.sections = CompactRig(exact, a.compact_settings, file, &a.compact);
+  } else {
+    a.sections = std::move(exact);
+  }
   // A state machine joins the file before its one verification: the
   // runtime checks it (and the paths it names) in the load below.
   if (!description.state_machine.layers.empty())
