@@ -37,6 +37,10 @@ const char kUsage[] =
     "        their first pose, the attachments drawn too (eval and the SVG sheet show the first channel's parts)\n"
     "        [--tint R,G,B[,A]] [--part-opacity NAME=A]...   every frame tinted (multiplied) at opacity A, a\n"
     "        layered character's part NAME at its own opacity, as DrawListJob's colours and the viewer draw them\n"
+    "  posemorph-bake init DRAWING... -o RIG.json [--name NAME] [--force]\n"
+    "        a description from the drawings (PNG or SVG, one per pose, named after the files): the first pose at\n"
+    "        the pad's centre, the others on the unit circle clockwise from the top; landmarks only where the\n"
+    "        outlines alone do not bake; says whether it bakes\n"
     "  posemorph-bake deform RIG.json --pose NAME -o MESH.json  write a deformation-made pose as a plain mesh file\n"
     "  posemorph-bake outline RIG.json -o DIR [--part NAME]   per drawn pose, DIR/INDEX-NAME.png: the drawing scaled "
     "up with\n"
@@ -45,7 +49,8 @@ const char kUsage[] =
 // The file a command works on, for messages that do not name one.
 std::string InputOf(const std::vector<std::string>& a) {
   for (std::size_t i = 0; i < a.size(); ++i) {
-    if (a[i] == "info" || a[i] == "eval" || a[i] == "sheet" || a[i] == "deform" || a[i] == "outline" || a[i] == "bake")
+    if (a[i] == "info" || a[i] == "eval" || a[i] == "sheet" || a[i] == "deform" || a[i] == "outline" ||
+        a[i] == "bake" || a[i] == "init")
       continue;
     if (!a[i].empty() && a[i][0] == '-') {
       ++i;  // an option and its value
@@ -78,6 +83,7 @@ int RunBakeCommand(const std::vector<std::string>& a, std::ostream& out, std::os
     if (cmd == "sheet") return SheetCommand(a, 1, out);
     if (cmd == "deform") return DeformCommand(a, 1, out);
     if (cmd == "outline") return OutlineCommand(a, 1, out, err);
+    if (cmd == "init") return InitCommand(a, 1, out);
     if (cmd == "bake") return BakeCommand(a, 1, out, err);
     return BakeCommand(a, 0, out, err);
   } catch (const UsageError& e) {

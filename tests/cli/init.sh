@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# posemorph-bake init (ctest cli.init): for every drawn sample (the build's
+# rasterised drawings), a description written from the drawings alone bakes
+# with default settings (fold-free, compact) and says so; and the refusals:
+# each one line naming the file or the option, status 1 or 2, nothing written.
+#   init.sh BAKE ASSETS WORK
+set -euo pipefail
+bake=$1 assets=$2 work=$3
+rm -rf "$work" && mkdir -p "$work"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+for sample in pip sprout owl bobble sprites/cat sprites/chick sprites/ghost sprites/slime sprites/slime-shadow; do
+  name=$(basename "$sample")
+  drawings=("$assets/$sample/rest.png")
+  for d in "$assets/$sample"/*.png; do [ "$(basename "$d")" = rest.png ] || drawings+=("$d"); done
+  said=$("$bake" init "${drawings[@]}" -o "$work/$name.json" 2>&1) || { fail "$name: init: $said"; continue; }
+  case "$said" in *"it bakes as written"*) ;; *) fail "$name: init says: $said" ;; esac
+  if baked=$("$bake" "$work/$name.json" -o "$work/$name.pmrig" 2>&1); then
+    echo "$name: ${#drawings[@]} drawings -> $(grep -o '^baked [^;]*' <<< "$baked" | sed 's/ nnz.*//')"
+  else
+    fail "$name: the description init wrote does not bake: $(tail -1 <<< "$baked")"
+  fi
+done
+# The layout: the first pose at the centre, the others clockwise from the top.
+grep -q '"name": "rest", "point": \[0, 0\]' "$work/pip.json" || fail "pip: rest is not at the centre"
+grep -q '"point": \[0, 1\]' "$work/pip.json" && grep -q '"point": \[-1, 0\]' "$work/pip.json" ||
+  fail "pip: the other poses are not up, right, down, left"
+
+refused() {  # expected status, expected text, arguments...
+  local status=$1 text=$2 got rc=0
+  shift 2
+  got=$("$bake" init "$@" 2>&1) || rc=$?
+  if [ "$rc" = "$status" ] && [[ "$got" == *"$text"* ]]; then echo "refused ($rc): $got"
+  else fail "init $*: status $rc, '$got' (expected $status, '$text')"; fi
+}
+p=$assets/pip
+refused 2 "init needs -o RIG.json" "$p/rest.png" "$p/wave.png"
+refused 2 "init needs two drawings or more" "$p/rest.png" -o "$work/one.json"
+refused 2 "-o must name a .json file" "$p/rest.png" "$p/wave.png" -o "$work/out.txt"
+refused 1 "$work/missing.png: cannot read the drawing" "$p/rest.png" "$work/missing.png" -o "$work/missing.json"
+refused 1 "layered .ora files are not read yet" "$p/rest.png" "$work/pose.ora" -o "$work/ora.json"
+refused 1 "$work/pip.json: exists; init does not overwrite" "$p/rest.png" "$p/wave.png" -o "$work/pip.json"
+for f in one missing ora; do [ ! -e "$work/$f.json" ] || fail "$f.json was written"; done
+[ "$failures" -eq 0 ] && echo "init: ok" || exit 1
