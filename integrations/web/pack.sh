@@ -15,7 +15,7 @@ if [ "$version" != "$runtime" ]; then
   exit 1
 fi
 rm -rf "$out/package" && mkdir -p "$out/package"
-cp "$here/package.json" "$here/posemorph.mjs" "$here/posemorph.d.ts" "$here/pixi.mjs" "$here/pixi.d.ts" \
+cp "$here/package.json" "$here/posemorph.mjs" "$here/posemorph.d.mts" "$here/pixi.mjs" "$here/pixi.d.mts" \
    "$here/README.md" "$here/../../LICENSE" "$wasm/posemorph_wasm.mjs" "$wasm/posemorph_wasm.wasm" "$out/package/"
 rm -f "$out"/posemorph-*.tgz
 (cd "$out/package" && npm pack --silent --pack-destination "$out" > /dev/null)

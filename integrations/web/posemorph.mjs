@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // posemorph for the web: the whole runtime compiled to WebAssembly (SIMD128),
-// as an ES module. Types: posemorph.d.ts; the PixiJS renderer: pixi.mjs.
+// as an ES module. Types: posemorph.d.mts; the PixiJS renderer: pixi.mjs.
 //
 //   import { load } from 'posemorph';
 //   const pm = await load();                                  // instantiates posemorph_wasm.wasm

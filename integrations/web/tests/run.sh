@@ -3,8 +3,9 @@
 # The web integration's test (ctest: integration.web), in headless Chromium
 # (SwiftShader WebGL2), served from 127.0.0.1:
 #   run.sh BUILD PACKAGE.tgz POSITIONS_HASH VIEW COMPARE SHOTS
-# - a scratch project installs the package's tarball and pixi.js (pinned,
-#   from the npm registry; the example's import map resolves them);
+# - a scratch project installs the package's tarball, pixi.js and
+#   TypeScript (pinned, from the npm registry; the example's import map
+#   resolves them);
 # - each baked sample's character digest from the page equals the native
 #   runtime's (POSITIONS_HASH RIG --characters K), bit for bit;
 # - the example's frame of Pip and of Pell with a face equals posemorph-view's
@@ -14,21 +15,24 @@
 #   (its screenshot is kept in SHOTS for the README);
 # - the API's promises (tests/api.mjs): copies do not change, free is
 #   explicit and idempotent, a freed object throws, 4-byte points round-trip;
+# - the package's TypeScript types check a program that uses them
+#   (tests/types.ts, tsc --strict; typescript pinned, from the registry);
 # - a truncated and a corrupted rig are refused with a PosemorphError whose
 #   message is the native loader's.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 build=$1 package=$2 hash=$3 view=$4 compare=$5 shots=$6
 pixi_version=7.4.3  # integrations/web/README.md says why v7
+typescript_version=5.4.5  # checks the package's types
 work=$build/integration-tests/web
 rm -rf "$work" && mkdir -p "$work/site" "$shots"
 site=$work/site
 echo '{ "name": "posemorph-web-test", "private": true, "type": "module" }' > "$site/package.json"
 if ! (cd "$site" && npm install --no-audit --no-fund --cache "$build/npm-cache" --prefer-offline \
-        "$package" "pixi.js@$pixi_version" > "$work/npm.log" 2>&1); then
+        "$package" "pixi.js@$pixi_version" "typescript@$typescript_version" > "$work/npm.log" 2>&1); then
   cat "$work/npm.log"
   if grep -q "ENOTFOUND\|EAI_AGAIN\|ETIMEDOUT\|ECONNREFUSED\|ENETUNREACH" "$work/npm.log"; then
-    echo "integration.web: skipped: the npm registry cannot be reached for pixi.js@$pixi_version"
+    echo "integration.web: skipped: the npm registry cannot be reached for pixi.js@$pixi_version and typescript"
     exit 77
   fi
   exit 1
@@ -86,7 +90,16 @@ out=$(page "api.html")
 echo "web: api: $out"
 case "$out" in "ok:"*) ;; *) fail "api: $out" ;; esac
 
-# 5. Hostile rigs: the native loader's message, as a PosemorphError.
+# 5. The types: a program using both modules compiles with tsc --strict.
+cp "$here/tests/types.ts" "$site/"
+if out=$(cd "$site" && node node_modules/typescript/bin/tsc --noEmit --strict --target es2022 --module nodenext \
+           --moduleResolution nodenext --lib es2022,dom types.ts 2>&1); then
+  echo "web: tests/types.ts compiles against the package's types (tsc $typescript_version --strict)"
+else
+  fail "the package's types: $out"
+fi
+
+# 6. Hostile rigs: the native loader's message, as a PosemorphError.
 for bad in truncated corrupt; do
   native=$(cd "$site" && "$hash" "$bad.pmrig" 0 0 2>&1 >/dev/null || true)
   got=$(page "index.html?rig=$bad.pmrig&digest=1")

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // Types of pixi.mjs: the PixiJS v7 renderer for posemorph.
 import type { Container, Texture } from 'pixi.js';
-import type { Crowd, Rig } from './posemorph';
+import type { Crowd, Rig } from './posemorph.mjs';
 
 /** Textures by list, part and pose: drawings[list][part][pose]. */
 export type Drawings = Texture[][][];
