@@ -330,7 +330,10 @@ local function read_image(path, nearest)
 end
 
 function M.drawer(rig, folder)
-  local d = setmetatable({ rig = rig, images = {}, meshes = {}, bytes = {} }, Drawer)
+  local d = setmetatable({ rig = rig, images = {}, meshes = {}, bytes = {}, parts = {}, filled = {},
+    weights_a = { 0, 0, 0, 0 }, weights_b = { 0, 0, 0, 0 }, tint = { 1, 1, 1, 1 }, transform = love.math.newTransform(),
+    texture_names = { "d0", "d1", "d2", "d3", "d4", "d5", "d6", "d7" } }, Drawer)
+  local steps = 0
   d.shader = love.graphics.newShader(pixel_code, vertex_code)
   local format = { { "VertexPosition", "float", 2 } }
   for _, name in ipairs(uv_names) do format[#format + 1] = { name, "float", 2 } end
@@ -338,8 +341,11 @@ function M.drawer(rig, folder)
   for l = 0, rig.list_count - 1 do
     local info = rig:list(l)
     local nearest = C.pm_character_texture_filter(rig.handle, l) == 1
-    d.images[l] = {}
+    d.images[l], d.parts[l] = {}, {}
+    steps = steps + info.part_count
     for p = 0, info.part_count - 1 do
+      local part = rig:part(l, p)
+      d.parts[l][p] = { part.first_triangle, part.triangle_count }
       d.images[l][p] = {}
       for pose = 0, info.pose_count - 1 do
         local name = rig:part_image(l, p, pose)
@@ -356,46 +362,53 @@ function M.drawer(rig, folder)
     d.meshes[l] = mesh
     d.bytes[l] = love.data.newByteData(info.vertex_count * 72)
   end
+  d.step_capacity = math.max(steps, 1)
+  d.step_buffer = ffi.new("pm_draw_step[?]", d.step_capacity)
   return d
 end
 
--- Character k of the crowd (1-based), back to front, under LÖVE's current transform.
+-- Character k of the crowd (1-based), back to front, under LÖVE's current
+-- transform. Per frame it creates no Lua tables or FFI objects: the steps,
+-- parts, weights, tint and transform live in the drawer, made once.
 function Drawer:draw(crowd, k)
   local rig, K = self.rig, M.MAX_DRAWINGS
-  local lists_filled = {}
+  local A = rig.attachment_count
+  local n = C.pm_character_draw_steps(rig.handle, crowd.lists + (k - 1), A > 0 and crowd.attached + (k - 1) * A or nil,
+                                      self.step_buffer, self.step_capacity)
+  local filled, weights_a, weights_b, tint, m = self.filled, self.weights_a, self.weights_b, self.tint, self.transform
+  for l = 0, rig.list_count - 1 do filled[l] = false end
   love.graphics.setShader(self.shader)
   love.graphics.setBlendMode("alpha", "premultiplied")
-  for _, step in ipairs(crowd:steps(k)) do
-    local l = step.list
+  for s = 0, math.min(n, self.step_capacity) - 1 do
+    local l, p = self.step_buffer[s].list, self.step_buffer[s].part
     local list = crowd:list(k, l)
     local mesh = self.meshes[l]
-    if not lists_filled[l] then  -- positions and the picked drawings' uvs, once per list
+    if not filled[l] then  -- positions and the picked drawings' uvs, once per list
       local v = ffi.cast("float*", self.bytes[l]:getFFIPointer())
       for i = 0, list.vertex_count - 1 do
         v[18 * i], v[18 * i + 1] = list.positions[2 * i], list.positions[2 * i + 1]
-        for s = 0, K - 1 do
-          local uvs = list.drawings[s < list.drawing_count and s or 0].uvs
-          v[18 * i + 2 + 2 * s], v[18 * i + 3 + 2 * s] = uvs[2 * i], uvs[2 * i + 1]
+        for d = 0, K - 1 do
+          local uvs = list.drawings[d < list.drawing_count and d or 0].uvs
+          v[18 * i + 2 + 2 * d], v[18 * i + 3 + 2 * d] = uvs[2 * i], uvs[2 * i + 1]
         end
       end
       mesh:setVertices(self.bytes[l])
-      lists_filled[l] = true
+      filled[l] = true
     end
-    local part = rig:part(l, step.part)
-    mesh:setDrawRange(3 * part.first_triangle + 1, 3 * part.triangle_count)
-    local weights = { 0, 0, 0, 0, 0, 0, 0, 0 }
-    for s = 0, K - 1 do
-      local pick = s < list.drawing_count and s or 0
-      if s < list.drawing_count then weights[s + 1] = list.drawings[s].weight end
-      self.shader:send("d" .. s, self.images[l][step.part][list.drawings[pick].pose])
+    local part = self.parts[l][p]
+    mesh:setDrawRange(3 * part[1] + 1, 3 * part[2])
+    for d = 0, K - 1 do
+      local w = d < list.drawing_count and list.drawings[d].weight or 0
+      if d < 4 then weights_a[d + 1] = w else weights_b[d - 3] = w end
+      self.shader:send(self.texture_names[d + 1], self.images[l][p][list.drawings[d < list.drawing_count and d or 0].pose])
     end
-    self.shader:send("weights_a", { weights[1], weights[2], weights[3], weights[4] })
-    self.shader:send("weights_b", { weights[5], weights[6], weights[7], weights[8] })
+    self.shader:send("weights_a", weights_a)
+    self.shader:send("weights_b", weights_b)
     local c = list.colour
-    local a = c.a * (step.part < 64 and list.part_opacity[step.part] or 1)
-    self.shader:send("tint", { c.r * a, c.g * a, c.b * a, a })
+    local a = c.a * (p < 64 and list.part_opacity[p] or 1)
+    tint[1], tint[2], tint[3], tint[4] = c.r * a, c.g * a, c.b * a, a
+    self.shader:send("tint", tint)
     local t = list.transform
-    local m = love.math.newTransform()
     m:setMatrix(t.a, t.c, 0, t.tx, t.b, t.d, 0, t.ty, 0, 0, 1, 0, 0, 0, 0, 1)
     love.graphics.draw(mesh, m)
   end
