@@ -1,11 +1,13 @@
 // SPDX-License-Identifier: MIT
 // posemorph-bake init DRAWING... -o RIG.json: a rig description written from
 // the drawings, for the animator to edit, instead of typed from scratch.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "command_args.h"
@@ -14,6 +16,7 @@
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/input_file.h"
 #include "posemorph/bake/map_drawings.h"
+#include "posemorph/bake/mapping/outline_image.h"
 #include "posemorph/bake/rig_description.h"
 
 namespace posemorph::bake::cli {
@@ -53,20 +56,23 @@ struct Drawing {
   std::string name;       // the pose's name: the file's stem, made unique
 };
 
-// The description: pose 0 at the pad's centre, the others on the unit
+// Pose k of n on the pad: pose 0 at the centre, the others on the unit
 // circle, clockwise from the top (four others: up, right, down, left).
+std::array<double, 2> PadPoint(std::size_t k, std::size_t n) {
+  if (k == 0) return {0, 0};
+  constexpr double kPi = 3.14159265358979323846;
+  const double a = kPi / 2 - 2 * kPi * double(k - 1) / double(n - 1);
+  return {std::cos(a), std::sin(a)};
+}
+
+// The description of one drawing per pose.
 std::string Description(const std::string& name, const std::vector<Drawing>& drawings,
                         const std::vector<std::vector<std::array<double, 2>>>& landmarks) {
   std::ostringstream s;
   s << "{\n  \"posemorph\": 1,\n  \"name\": " << Quoted(name) << ",\n  \"poses\": [\n";
   const std::size_t n = drawings.size();
   for (std::size_t k = 0; k < n; ++k) {
-    double x = 0, y = 0;
-    if (k > 0) {
-      constexpr double kPi = 3.14159265358979323846;
-      const double a = kPi / 2 - 2 * kPi * double(k - 1) / double(n - 1);
-      x = std::cos(a), y = std::sin(a);
-    }
+    const auto [x, y] = PadPoint(k, n);
     s << "    {\"name\": " << Quoted(drawings[k].name) << ", \"point\": [" << Coordinate(x) << ", " << Coordinate(y)
       << "], \"drawing\": " << Quoted(drawings[k].reference);
     if (!landmarks.empty()) {
@@ -118,6 +124,198 @@ std::string TryBake(const std::string& text, const std::string& file, const std:
   }
 }
 
+// A layered character drawn as PNGs of one canvas named POSE-PART.png
+// (split at the first '-': "rest-arm-left.png" is part "arm-left" of pose
+// "rest"), every part in every pose: the poses in the order their files
+// first come, the parts likewise.
+struct Layered {
+  std::vector<std::string> poses, parts;
+  std::vector<std::vector<std::size_t>> drawing;  // [pose][part]: index into the drawings
+};
+bool AsLayered(const std::vector<Drawing>& drawings, Layered* out) {
+  std::map<std::pair<std::string, std::string>, std::size_t> cells;
+  for (std::size_t k = 0; k < drawings.size(); ++k) {
+    const std::string stem = fs::path(drawings[k].path).stem().string();
+    const std::size_t dash = stem.find('-');
+    if (Extension(drawings[k].path) != "png" || dash == std::string::npos || dash == 0 || dash + 1 == stem.size())
+      return false;
+    const std::string pose = stem.substr(0, dash), part = stem.substr(dash + 1);
+    if (std::find(out->poses.begin(), out->poses.end(), pose) == out->poses.end()) out->poses.push_back(pose);
+    if (std::find(out->parts.begin(), out->parts.end(), part) == out->parts.end()) out->parts.push_back(part);
+    if (!cells.emplace(std::make_pair(pose, part), k).second) return false;
+  }
+  if (out->poses.size() < 2 || out->parts.size() < 2 || out->parts.size() > 64 ||
+      cells.size() != out->poses.size() * out->parts.size())
+    return false;
+  for (const std::string& pose : out->poses) {
+    out->drawing.emplace_back();
+    for (const std::string& part : out->parts) out->drawing.back().push_back(cells.at({pose, part}));
+  }
+  return true;
+}
+
+struct Mask {
+  int width = 0, height = 0;
+  std::vector<char> in;  // alpha above the bake's default threshold
+  bool At(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height && in[std::size_t(y) * width + x]; }
+};
+Mask ReadMask(const std::string& path) {
+  Mask m;
+  const std::vector<unsigned char> alpha = mapping::ReadPngAlpha(path, &m.width, &m.height);
+  const RigDescription defaults;
+  for (unsigned char a : alpha) m.in.push_back(a > defaults.mapping.alpha_threshold * 255);
+  return m;
+}
+
+// Where two parts are drawn over each other: the overlap's pixel nearest its
+// centroid among those whose neighbours within 2 px overlap too (the joint
+// lies well inside both outlines), else the nearest at all; false if none.
+bool JointOf(const Mask& a, const Mask& b, std::array<double, 2>* at, std::size_t* pixels) {
+  double sx = 0, sy = 0;
+  std::vector<std::array<int, 2>> both;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x)
+      if (a.At(x, y) && b.At(x, y)) both.push_back({x, y}), sx += x, sy += y;
+  if (pixels) *pixels = both.size();
+  if (both.empty()) return false;
+  const double cx = sx / double(both.size()), cy = sy / double(both.size());
+  double best = 1e300, best_inner = 1e300;
+  std::array<int, 2> pick = both[0], pick_inner = both[0];
+  for (const auto& p : both) {
+    const double d = (p[0] - cx) * (p[0] - cx) + (p[1] - cy) * (p[1] - cy);
+    if (d < best) best = d, pick = p;
+    bool inner = true;
+    for (int dy = -2; dy <= 2 && inner; ++dy)
+      for (int dx = -2; dx <= 2 && inner; ++dx) inner = a.At(p[0] + dx, p[1] + dy) && b.At(p[0] + dx, p[1] + dy);
+    if (inner && d < best_inner) best_inner = d, pick_inner = p;
+  }
+  const auto& p = best_inner < 1e300 ? pick_inner : pick;
+  *at = {p[0] + 0.5, p[1] + 0.5};
+  return true;
+}
+
+// The outline point of a mask nearest `target`: the edge between an inside
+// pixel and an outside one, where the traced outline runs.
+std::array<double, 2> EdgeNearest(const Mask& m, std::array<double, 2> target) {
+  double best = 1e300;
+  std::array<double, 2> out = target;
+  const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
+  for (int y = 0; y < m.height; ++y)
+    for (int x = 0; x < m.width; ++x) {
+      if (!m.At(x, y)) continue;
+      for (int k = 0; k < 4; ++k) {
+        if (m.At(x + dx[k], y + dy[k])) continue;
+        const double ex = x + 0.5 + 0.5 * dx[k], ey = y + 0.5 + 0.5 * dy[k];
+        const double d = (ex - target[0]) * (ex - target[0]) + (ey - target[1]) * (ey - target[1]);
+        if (d < best) best = d, out = {ex, ey};
+      }
+    }
+  return out;
+}
+
+// The layered description: parts back to front by size (the largest part,
+// the root of the glue, behind: a smaller part drawn over a larger one is
+// usually in front of it, like eyes on a head), glued in the tree of their
+// largest overlaps in the first pose, each joint where the two are drawn
+// over each other in every pose, each part's start landmark on its outline
+// nearest its joint (the root's: its lowest point).
+std::string LayeredDescription(const std::string& name, const std::vector<Drawing>& drawings, const Layered& l) {
+  const std::size_t P = l.poses.size(), Q = l.parts.size();
+  std::vector<std::vector<Mask>> masks(P);
+  for (std::size_t i = 0; i < P; ++i)
+    for (std::size_t q = 0; q < Q; ++q) masks[i].push_back(ReadMask(drawings[l.drawing[i][q]].path));
+  std::vector<std::size_t> area(Q, 0);
+  for (std::size_t q = 0; q < Q; ++q)
+    for (char c : masks[0][q].in) area[q] += c != 0;
+  std::vector<std::size_t> by_size(Q);
+  for (std::size_t q = 0; q < Q; ++q) by_size[q] = q;
+  std::stable_sort(by_size.begin(), by_size.end(), [&](std::size_t x, std::size_t y) { return area[x] > area[y]; });
+  std::vector<int> order(Q);
+  for (std::size_t r = 0; r < Q; ++r) order[by_size[r]] = int(r);
+  // Prim's tree of the largest overlaps, from the largest part.
+  std::vector<std::vector<std::size_t>> overlap(Q, std::vector<std::size_t>(Q, 0));
+  for (std::size_t a = 0; a < Q; ++a)
+    for (std::size_t b = a + 1; b < Q; ++b) {
+      std::array<double, 2> unused;
+      JointOf(masks[0][a], masks[0][b], &unused, &overlap[a][b]);
+      overlap[b][a] = overlap[a][b];
+    }
+  const std::size_t root = by_size[0];
+  std::vector<int> parent(Q, -1);
+  std::vector<bool> joined(Q, false);
+  joined[root] = true;
+  for (std::size_t added = 1; added < Q; ++added) {
+    std::size_t best = 0, from = 0, to = 0;
+    for (std::size_t a = 0; a < Q; ++a)
+      for (std::size_t b = 0; b < Q; ++b)
+        if (joined[a] && !joined[b] && overlap[a][b] > best) best = overlap[a][b], from = a, to = b;
+    if (best == 0) {
+      for (std::size_t b = 0; b < Q; ++b)
+        if (!joined[b])
+          throw BakeError(drawings[l.drawing[0][b]].path,
+                          "part '" + l.parts[b] + "' is drawn over no other part in pose '" + l.poses[0] +
+                              "': glue needs a point where two parts are drawn over each other");
+    }
+    joined[to] = true, parent[to] = int(from);
+  }
+  std::vector<std::vector<std::array<double, 2>>> joint(Q);  // [part][pose], to its parent
+  for (std::size_t q = 0; q < Q; ++q) {
+    if (parent[q] < 0) continue;
+    for (std::size_t i = 0; i < P; ++i) {
+      std::array<double, 2> at;
+      if (!JointOf(masks[i][q], masks[i][std::size_t(parent[q])], &at, nullptr))
+        throw BakeError(drawings[l.drawing[i][q]].path, "part '" + l.parts[q] + "' is not drawn over part '" +
+                                                            l.parts[std::size_t(parent[q])] + "' in pose '" +
+                                                            l.poses[i] + "': glue needs a point over both");
+      joint[q].push_back(at);
+    }
+  }
+  std::ostringstream s;
+  s << "{\n  \"posemorph\": 1,\n  \"name\": " << Quoted(name) << ",\n  \"poses\": [\n";
+  for (std::size_t i = 0; i < P; ++i) {
+    const std::array<double, 2> point = PadPoint(i, P);
+    s << "    {\"name\": " << Quoted(l.poses[i]) << ", \"point\": [" << Coordinate(point[0]) << ", "
+      << Coordinate(point[1]) << "]}" << (i + 1 < P ? "," : "") << "\n";
+  }
+  s << "  ],\n  \"parts\": [\n";
+  for (std::size_t q = 0; q < Q; ++q) {
+    s << "    {\"name\": " << Quoted(l.parts[q]) << ", \"order\": " << order[q] << ", \"poses\": [\n";
+    for (std::size_t i = 0; i < P; ++i) {
+      const Mask& m = masks[i][q];
+      std::array<double, 2> target;
+      if (parent[q] >= 0) {
+        target = joint[q][i];
+      } else {  // the root: the middle of its lowest row
+        int bottom = -1;
+        for (int y = 0; y < m.height; ++y)
+          for (int x = 0; x < m.width; ++x)
+            if (m.At(x, y)) bottom = y;
+        double sum = 0, n = 0;
+        for (int x = 0; x < m.width; ++x)
+          if (m.At(x, bottom)) sum += x + 0.5, n += 1;
+        target = {n > 0 ? sum / n : 0, bottom + 1.0};
+      }
+      const std::array<double, 2> lm = EdgeNearest(m, target);
+      s << "      {\"drawing\": " << Quoted(drawings[l.drawing[i][q]].reference) << ", \"landmarks\": [["
+        << Coordinate(lm[0]) << ", " << Coordinate(lm[1]) << "]]}" << (i + 1 < P ? "," : "") << "\n";
+    }
+    s << "    ]}" << (q + 1 < Q ? "," : "") << "\n";
+  }
+  s << "  ],\n  \"glue\": [\n";
+  bool first = true;
+  for (std::size_t q = 0; q < Q; ++q) {
+    if (parent[q] < 0) continue;
+    s << (first ? "" : ",\n") << "    {\"part\": " << Quoted(l.parts[q])
+      << ", \"to\": " << Quoted(l.parts[std::size_t(parent[q])]) << ", \"at\": [";
+    for (std::size_t i = 0; i < P; ++i)
+      s << (i ? ", " : "") << "[" << Coordinate(joint[q][i][0]) << ", " << Coordinate(joint[q][i][1]) << "]";
+    s << "]}";
+    first = false;
+  }
+  s << "\n  ]\n}\n";
+  return s.str();
+}
+
 }  // namespace
 
 int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
@@ -139,7 +337,7 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   }
   if (output.empty()) throw UsageError("init needs -o RIG.json");
   if (drawings.size() < 2) throw UsageError("init needs two drawings or more (one per pose)");
-  if (drawings.size() > 64) throw UsageError("init takes at most 64 drawings");
+  if (drawings.size() > 4096) throw UsageError("init takes at most 4096 drawings (64 parts in 64 poses)");
   if (Extension(output) != "json") throw UsageError("init writes a rig description: -o must name a .json file");
   std::vector<std::string> inputs;
   for (const Drawing& d : drawings) inputs.push_back(d.path);
@@ -162,20 +360,30 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   }
   if (name.empty()) name = fs::path(output).stem().string();
 
-  // Every drawn pose needs a start landmark, a point every drawing shares:
-  // where the character stands, its outline's lowest point. Traced from a
-  // description whose landmarks are placeholders (the tracing reads none).
-  std::vector<std::vector<std::array<double, 2>>> landmarks(drawings.size(), {{{0.0, 0.0}}});
-  const std::string placeholder = Description(name, drawings, landmarks);
-  std::size_t k = 0;
-  for (const std::array<double, 2>& p : LowestPoints(ParseRigDescription(placeholder, output, folder.string())))
-    landmarks[k++] = {p};
-  const std::string text = Description(name, drawings, landmarks);
+  std::string text, summary;
+  Layered layered;
+  if (AsLayered(drawings, &layered)) {
+    text = LayeredDescription(name, drawings, layered);
+    summary = std::to_string(layered.poses.size()) + " poses (" + layered.poses[0] +
+              " at the pad's centre, the others around it) of " + std::to_string(layered.parts.size()) +
+              " parts (from POSE-PART.png names; the larger behind, glued where drawn over each other)";
+  } else {
+    // Every drawn pose needs a start landmark, a point every drawing shares:
+    // where the character stands, its outline's lowest point. Traced from a
+    // description whose landmarks are placeholders (the tracing reads none).
+    std::vector<std::vector<std::array<double, 2>>> landmarks(drawings.size(), {{{0.0, 0.0}}});
+    const std::string placeholder = Description(name, drawings, landmarks);
+    std::size_t k = 0;
+    for (const std::array<double, 2>& p : LowestPoints(ParseRigDescription(placeholder, output, folder.string())))
+      landmarks[k++] = {p};
+    text = Description(name, drawings, landmarks);
+    summary = std::to_string(drawings.size()) + " poses (" + drawings[0].name +
+              " at the pad's centre, the others around it); the start landmark at each drawing's lowest point "
+              "(where it stands)";
+  }
   const std::string problem = TryBake(text, output, folder.string());
-  const std::string landmarks_note = "; the start landmark at each drawing's lowest point (where it stands)";
   WriteText(output, text);
-  out << "wrote " << output << ": " << drawings.size() << " poses (" << drawings[0].name
-      << " at the pad's centre, the others around it)" << landmarks_note << "\n";
+  out << "wrote " << output << ": " << summary << "\n";
   if (problem.empty()) {
     out << "it bakes as written: posemorph-bake " << output << "\n";
   } else {
