@@ -494,6 +494,7 @@ public sealed class Crowd : IDisposable {
   readonly Rig rig;
   public readonly int Count;
   readonly uint attachments;
+  readonly int maxSteps;
   Native.BufferSizes sizes;
   Block work, positions, attachedPositions, lists, attachedLists, inputs;
   readonly int listBytes = Marshal.SizeOf(typeof(Native.DrawListC));
@@ -502,6 +503,11 @@ public sealed class Crowd : IDisposable {
     this.rig = rig;
     Count = count;
     attachments = rig.AttachmentCount;
+    for (uint l = 0; l < rig.ListCount; ++l) {
+      uint v, t, p, parts;
+      rig.ListCounts(l, out v, out t, out p, out parts);
+      maxSteps += (int)parts;
+    }
     int r = Native.pm_character_buffers(rig.H, (UIntPtr)count, out sizes);
     if (r != 0) throw new PosemorphException(r, rig.File + ": no buffers for " + count + " characters");
     work = new Block((ulong)sizes.workspace_doubles * 8);
@@ -635,6 +641,49 @@ public sealed class Crowd : IDisposable {
       Marshal.Copy((IntPtr)l->Drawing(drawing).uvs, dest, 0, n);
     }
   }
+  // Without garbage, for a game's frame loop: the list's drawings into
+  // `into` (at most 8; returns how many), its transform and colour, and a
+  // part's opacity.
+  public int CopyDrawings(int character, uint list, BlendedDrawing[] into) {
+    unsafe {
+      Native.DrawListC* l = ListPtr(character, list);
+      if (into == null || into.Length < l->drawing_count)
+        throw new PosemorphException(1, rig.File + ": " + l->drawing_count + " drawings need room");
+      for (uint i = 0; i < l->drawing_count; ++i) {
+        Native.Blended b = l->Drawing(i);
+        into[i].Pose = b.pose;
+        into[i].Weight = b.weight;
+      }
+      return (int)l->drawing_count;
+    }
+  }
+  public void Appearance(int character, uint list, out Transform transform, out Colour colour, out bool mirrored) {
+    unsafe {
+      Native.DrawListC* l = ListPtr(character, list);
+      transform = l->transform;
+      colour = l->colour;
+      mirrored = l->mirrored != 0;
+    }
+  }
+  public float PartOpacity(int character, uint list, uint part) {
+    unsafe {
+      Native.DrawListC* l = ListPtr(character, list);
+      return part < 64 ? l->part_opacity[part] : 1;
+    }
+  }
+  // The most steps a character of this rig draws (every part of every list):
+  // the size of the array CopySteps fills.
+  public int MaxSteps { get { return maxSteps; } }
+  // Character k's draw steps back to front into `into`; returns how many.
+  public int CopySteps(int character, DrawStep[] into) {
+    if (into == null || into.Length < maxSteps) throw new PosemorphException(1, rig.File + ": " + maxSteps + " steps need room");
+    unsafe {
+      IntPtr body = (IntPtr)ListPtr(character, 0);
+      IntPtr att = attachments > 0 ? (IntPtr)ListPtr(character, 1) : IntPtr.Zero;
+      return (int)Native.pm_character_draw_steps(rig.H, body, att, into, (uint)into.Length);
+    }
+  }
+
   // Character k's draw steps back to front (pm_character_draw_steps).
   public DrawStep[] Steps(int character) {
     var steps = new DrawStep[1 + 64 * (1 + (int)attachments)];

@@ -131,6 +131,30 @@ static class BindingTest {
           Expect(Math.Abs(sum - 1) < 1e-5, "drawing weights sum to 1");
         }
       Expect(finite, "animated frames are finite");
+      // The garbage-free readers give what the copying ones give.
+      var steps = new DrawStep[crowd.MaxSteps];
+      var drawings = new BlendedDrawing[8];
+      for (int k = 0; k < 3; ++k) {
+        DrawStep[] copied = crowd.Steps(k);
+        int n = crowd.CopySteps(k, steps);
+        bool same = n == copied.Length;
+        for (int i = 0; same && i < n; ++i) same = steps[i].List == copied[i].List && steps[i].Part == copied[i].Part;
+        Expect(same && n <= crowd.MaxSteps, "CopySteps is Steps");
+        for (uint l = 0; l < rig.ListCount; ++l) {
+          DrawList d = crowd.List(k, l);
+          int m = crowd.CopyDrawings(k, l, drawings);
+          bool sameDrawings = m == d.Drawings.Length;
+          for (int i = 0; sameDrawings && i < m; ++i)
+            sameDrawings = drawings[i].Pose == d.Drawings[i].Pose && drawings[i].Weight == d.Drawings[i].Weight;
+          Transform t;
+          Colour c;
+          bool mirrored;
+          crowd.Appearance(k, l, out t, out c, out mirrored);
+          Expect(sameDrawings && t.Tx == d.Transform.Tx && c.A == d.Colour.A && mirrored == d.Mirrored &&
+                     crowd.PartOpacity(k, l, 0) == d.PartOpacity[0],
+                 "CopyDrawings and Appearance are List");
+        }
+      }
       Expect(crowd.List(1, 0).Mirrored && !crowd.List(0, 0).Mirrored, "a flipped transform mirrors");
       double ax, ay;
       bool left;
