@@ -4,11 +4,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <map>
-#include <set>
 #include <sstream>
+
+#include <nlohmann/json.hpp>
 
 #include "command_args.h"
 #include "commands.h"
@@ -24,21 +24,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// A JSON string literal, escaped by nlohmann-json.
 std::string Quoted(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') {
-      out += '\\';
-      out += c;
-    } else if (static_cast<unsigned char>(c) < 0x20) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", c);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  return out + "\"";
+  return nlohmann::json(s).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 // A pose-space coordinate, short and exact enough: 4 decimals, no "-0".
@@ -170,13 +158,18 @@ Mask ReadMask(const std::string& path) {
 // Where two parts are drawn over each other: the overlap's pixel nearest its
 // centroid among those whose neighbours within 2 px overlap too (the joint
 // lies well inside both outlines), else the nearest at all; false if none.
-bool JointOf(const Mask& a, const Mask& b, std::array<double, 2>* at, std::size_t* pixels) {
+std::size_t Overlap(const Mask& a, const Mask& b) {
+  std::size_t n = 0;
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) n += a.At(x, y) && b.At(x, y);
+  return n;
+}
+bool JointOf(const Mask& a, const Mask& b, std::array<double, 2>* at) {
   double sx = 0, sy = 0;
   std::vector<std::array<int, 2>> both;
   for (int y = 0; y < a.height; ++y)
     for (int x = 0; x < a.width; ++x)
       if (a.At(x, y) && b.At(x, y)) both.push_back({x, y}), sx += x, sy += y;
-  if (pixels) *pixels = both.size();
   if (both.empty()) return false;
   const double cx = sx / double(both.size()), cy = sy / double(both.size());
   double best = 1e300, best_inner = 1e300;
@@ -235,11 +228,7 @@ std::string LayeredDescription(const std::string& name, const std::vector<Drawin
   // Prim's tree of the largest overlaps, from the largest part.
   std::vector<std::vector<std::size_t>> overlap(Q, std::vector<std::size_t>(Q, 0));
   for (std::size_t a = 0; a < Q; ++a)
-    for (std::size_t b = a + 1; b < Q; ++b) {
-      std::array<double, 2> unused;
-      JointOf(masks[0][a], masks[0][b], &unused, &overlap[a][b]);
-      overlap[b][a] = overlap[a][b];
-    }
+    for (std::size_t b = a + 1; b < Q; ++b) overlap[a][b] = overlap[b][a] = Overlap(masks[0][a], masks[0][b]);
   const std::size_t root = by_size[0];
   std::vector<int> parent(Q, -1);
   std::vector<bool> joined(Q, false);
@@ -263,7 +252,7 @@ std::string LayeredDescription(const std::string& name, const std::vector<Drawin
     if (parent[q] < 0) continue;
     for (std::size_t i = 0; i < P; ++i) {
       std::array<double, 2> at;
-      if (!JointOf(masks[i][q], masks[i][std::size_t(parent[q])], &at, nullptr))
+      if (!JointOf(masks[i][q], masks[i][std::size_t(parent[q])], &at))
         throw BakeError(drawings[l.drawing[i][q]].path, "part '" + l.parts[q] + "' is not drawn over part '" +
                                                             l.parts[std::size_t(parent[q])] + "' in pose '" +
                                                             l.poses[i] + "': glue needs a point over both");

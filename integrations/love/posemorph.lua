@@ -387,8 +387,8 @@ function Drawer:draw(crowd, k)
       local v = ffi.cast("float*", self.bytes[l]:getFFIPointer())
       for i = 0, list.vertex_count - 1 do
         v[18 * i], v[18 * i + 1] = list.positions[2 * i], list.positions[2 * i + 1]
-        for d = 0, K - 1 do
-          local uvs = list.drawings[d < list.drawing_count and d or 0].uvs
+        for d = 0, list.drawing_count - 1 do  -- a slot past them has weight 0: its uvs do not count
+          local uvs = list.drawings[d].uvs
           v[18 * i + 2 + 2 * d], v[18 * i + 3 + 2 * d] = uvs[2 * i], uvs[2 * i + 1]
         end
       end

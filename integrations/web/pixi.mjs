@@ -89,7 +89,8 @@ export class CharacterView extends PIXI.Container {
       const geometry = new PIXI.Geometry().addAttribute('aPosition', positions, 2, false, PIXI.TYPES.FLOAT);
       for (let s = 0; s < K; ++s) geometry.addAttribute(`aUv${s}`, uvs, 2, false, PIXI.TYPES.FLOAT, 4 * 2 * K, 4 * 2 * s);
       geometry.addIndex(new PIXI.Buffer(list.triangles, false, true));
-      return { positions, uvs, geometry, scratch: new Float32Array(2 * list.vertexCount), filled: false };
+      return { positions, uvs, geometry, scratch: new Float32Array(2 * list.vertexCount), matrix: new PIXI.Matrix(),
+               filled: false };
     });
     this.meshes = [];
     this.steps = 0;
@@ -119,15 +120,18 @@ export class CharacterView extends PIXI.Container {
       if (!list.filled) {  // positions and the picked drawings' uvs, once per list
         crowd.copyPositions(k, l, list.positions.data);
         list.positions.update();
+        // Only the blended drawings' uvs: a slot past them has weight 0, so what it samples does not count.
         const uvs = list.uvs.data, one = list.scratch, n = info.vertexCount;
-        for (let d = 0; d < K; ++d) {
-          crowd.copyUvs(k, l, d < frame.drawings.length ? d : 0, one);
+        for (let d = 0; d < frame.drawings.length; ++d) {
+          crowd.copyUvs(k, l, d, one);
           for (let i = 0; i < n; ++i) {
             uvs[2 * (K * i + d)] = one[2 * i];
             uvs[2 * (K * i + d) + 1] = one[2 * i + 1];
           }
         }
         list.uvs.update();
+        const t = frame.transform;
+        list.matrix.set(t[0], t[1], t[2], t[3], t[4], t[5]);
         list.filled = true;
       }
       const mesh = this.#mesh(s), u = mesh.shader.uniforms, part = info.parts[p];
@@ -141,8 +145,7 @@ export class CharacterView extends PIXI.Container {
       }
       const c = frame.colour, a = c[3] * (p < 64 ? frame.partOpacity[p] : 1);
       u.uTint.set([c[0] * a, c[1] * a, c[2] * a, a]);
-      const t = frame.transform;
-      mesh.transform.setFromMatrix(new PIXI.Matrix(t[0], t[1], t[2], t[3], t[4], t[5]));
+      mesh.transform.setFromMatrix(list.matrix);
       mesh.visible = true;
     }
     for (let s = steps.length / 2; s < this.meshes.length; ++s) this.meshes[s].visible = false;

@@ -263,12 +263,11 @@ export class Crowd {
   setPoint(k, x, y, channel = 0) {
     const m = this.wasm, h = this.#check(k);
     if (!(channel >= 0 && channel < this.rig.channelCount)) throw new PosemorphError(`${this.rig.name}: no channel ${channel}`);
-    if (channel === 0) {
-      m.HEAPF64.set([x, y], (m._pmw_crowd_points(h) >> 3) + 2 * k);
-    } else {
-      m.HEAPF64.set([x, y], (m._pmw_crowd_channel_points(h) >> 3) + 2 * (k * (this.rig.channelCount - 1) + channel - 1));
-      this.use |= kUse.channelPoints;
-    }
+    const at = channel === 0 ? (m._pmw_crowd_points(h) >> 3) + 2 * k
+                             : (m._pmw_crowd_channel_points(h) >> 3) + 2 * (k * (this.rig.channelCount - 1) + channel - 1);
+    m.HEAPF64[at] = x;  // two stores, no array per call: games set points every frame
+    m.HEAPF64[at + 1] = y;
+    if (channel > 0) this.use |= kUse.channelPoints;
   }
   // A point received as 4 bytes (Rig.quantize) for character k's channel.
   setQuantizedPoint(k, packed, channel = 0) {
