@@ -6,6 +6,7 @@
 # input taking more than 10 s, more than 2 GB of memory.
 #
 #   scripts/fuzz.sh [SECONDS] [HARNESS ...]   harnesses: rig_load description svg_outline png_outline
+#                                             layered_image
 #
 # Each starts from its committed seeds (tests/fuzz/corpus/NAME, read only) and
 # the inputs earlier runs found (build/fuzz/corpus/NAME, grows from run to
@@ -16,7 +17,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 [ $# -gt 0 ] && shift
 harnesses=("$@")
-[ ${#harnesses[@]} -gt 0 ] || harnesses=(rig_load description svg_outline png_outline)
+[ ${#harnesses[@]} -gt 0 ] || harnesses=(rig_load description svg_outline png_outline layered_image)
 jobs=$(nproc)
 
 cmake --preset fuzz -DPOSEMORPH_WERROR=ON >/dev/null

@@ -12,7 +12,8 @@ packages=(
   libbenchmark-dev          # bench: the benchmark suite
   libsuitesparse-dev        # bench: CHOLMOD, the solver the runtime is measured against
   libpng-dev                # bake: reading drawings (PNG alpha)
-  libtinyxml2-dev           # bake: reading SVG outlines (XML)
+  libtinyxml2-dev           # bake: reading SVG outlines (XML), OpenRaster's stack.xml
+  libzip-dev                # bake: reading OpenRaster drawings (a zip of PNG layers)
   librsvg2-bin              # build: drawn samples SVG -> PNG; demo: contact sheets (rsvg-convert)
   libvulkan-dev             # viewer: Vulkan headers and loader
   glslang-tools             # viewer: GLSL -> SPIR-V at build time (glslangValidator)

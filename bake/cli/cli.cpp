@@ -37,10 +37,14 @@ const char kUsage[] =
     "        their first pose, the attachments drawn too (eval and the SVG sheet show the first channel's parts)\n"
     "        [--tint R,G,B[,A]] [--part-opacity NAME=A]...   every frame tinted (multiplied) at opacity A, a\n"
     "        layered character's part NAME at its own opacity, as DrawListJob's colours and the viewer draw them\n"
-    "  posemorph-bake init DRAWING... -o RIG.json [--name NAME] [--force]\n"
+    "  posemorph-bake init DRAWING... -o RIG.json [--name NAME] [--flatten] [--force]\n"
     "        a description from the drawings (PNG or SVG, one per pose, named after the files; or POSE-PART.png,\n"
-    "        one per part and pose: parts glued where drawn over each other): the first pose at the pad's centre,\n"
-    "        the others on the unit circle clockwise from the top; says whether it bakes\n"
+    "        one per part and pose: parts glued where drawn over each other; or layered .ora/.psd files, imported\n"
+    "        beside RIG.json as by import): the first pose at the pad's centre, the others on the unit circle\n"
+    "        clockwise from the top; says whether it bakes\n"
+    "  posemorph-bake import LAYERED... -o DIR [--flatten]   OpenRaster (.ora) or Photoshop (.psd) files as PNG\n"
+    "        drawings: one file per pose (its top-level layers or groups the parts) or one file whose top-level\n"
+    "        groups are the poses; DIR/POSE-PART.png per part and pose (POSE.png with --flatten or one layer)\n"
     "  posemorph-bake deform RIG.json --pose NAME -o MESH.json  write a deformation-made pose as a plain mesh file\n"
     "  posemorph-bake outline RIG.json -o DIR [--part NAME]   per drawn pose, DIR/INDEX-NAME.png: the drawing scaled "
     "up with\n"
@@ -50,7 +54,7 @@ const char kUsage[] =
 std::string InputOf(const std::vector<std::string>& a) {
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i] == "info" || a[i] == "eval" || a[i] == "sheet" || a[i] == "deform" || a[i] == "outline" ||
-        a[i] == "bake" || a[i] == "init")
+        a[i] == "bake" || a[i] == "init" || a[i] == "import")
       continue;
     if (!a[i].empty() && a[i][0] == '-') {
       ++i;  // an option and its value
@@ -83,7 +87,8 @@ int RunBakeCommand(const std::vector<std::string>& a, std::ostream& out, std::os
     if (cmd == "sheet") return SheetCommand(a, 1, out);
     if (cmd == "deform") return DeformCommand(a, 1, out);
     if (cmd == "outline") return OutlineCommand(a, 1, out, err);
-    if (cmd == "init") return InitCommand(a, 1, out);
+    if (cmd == "init") return InitCommand(a, 1, out, err);
+    if (cmd == "import") return ImportCommand(a, 1, out, err);
     if (cmd == "bake") return BakeCommand(a, 1, out, err);
     return BakeCommand(a, 0, out, err);
   } catch (const UsageError& e) {

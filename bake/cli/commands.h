@@ -18,7 +18,8 @@ int InfoCommand(const Arguments& a, std::size_t from, std::ostream& out);
 int EvalCommand(const Arguments& a, std::size_t from, std::ostream& out);
 int SheetCommand(const Arguments& a, std::size_t from, std::ostream& out);
 int DeformCommand(const Arguments& a, std::size_t from, std::ostream& out);
-int InitCommand(const Arguments& a, std::size_t from, std::ostream& out);
+int InitCommand(const Arguments& a, std::size_t from, std::ostream& out, std::ostream& err);
+int ImportCommand(const Arguments& a, std::size_t from, std::ostream& out, std::ostream& err);
 int OutlineCommand(const Arguments& a, std::size_t from, std::ostream& out, std::ostream& err);
 
 }  // namespace posemorph::bake::cli

@@ -12,8 +12,10 @@
 
 #include "command_args.h"
 #include "commands.h"
+#include "import_command.h"
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/import/layered_image.h"
 #include "posemorph/bake/input_file.h"
 #include "posemorph/bake/map_drawings.h"
 #include "posemorph/bake/mapping/outline_image.h"
@@ -307,9 +309,9 @@ std::string LayeredDescription(const std::string& name, const std::vector<Drawin
 
 }  // namespace
 
-int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out) {
+int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out, std::ostream& err) {
   std::string output, name;
-  bool overwrite = false;
+  bool overwrite = false, flatten = false;
   std::vector<Drawing> drawings;
   for (std::size_t i = from; i < a.size(); ++i) {
     if (a[i] == "-o" || a[i] == "--name") {
@@ -318,6 +320,8 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
       ++i;
     } else if (a[i] == "--force") {
       overwrite = true;
+    } else if (a[i] == "--flatten") {
+      flatten = true;
     } else if (!a[i].empty() && a[i][0] == '-') {
       throw UsageError("unknown option " + a[i]);
     } else {
@@ -325,7 +329,13 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     }
   }
   if (output.empty()) throw UsageError("init needs -o RIG.json");
-  if (drawings.size() < 2) throw UsageError("init needs two drawings or more (one per pose)");
+  std::size_t layered_files = 0;
+  for (const Drawing& d : drawings) layered_files += import::IsLayeredImagePath(d.path);
+  if (layered_files != 0 && layered_files != drawings.size())
+    throw UsageError("init takes layered files (.ora, .psd) or flat drawings (PNG, SVG), not both");
+  if (flatten && layered_files == 0) throw UsageError("--flatten is for layered files (.ora, .psd)");
+  if (layered_files == 0 && drawings.size() < 2) throw UsageError("init needs two drawings or more (one per pose)");
+  if (drawings.empty()) throw UsageError("init needs a layered file with a group per pose, or one file per pose");
   if (drawings.size() > 4096) throw UsageError("init takes at most 4096 drawings (64 parts in 64 poses)");
   if (Extension(output) != "json") throw UsageError("init writes a rig description: -o must name a .json file");
   std::vector<std::string> inputs;
@@ -334,11 +344,26 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   if (!overwrite && fs::exists(output))
     throw BakeError(output, "exists; init does not overwrite a description (--force does)");
   const fs::path folder = fs::absolute(output).parent_path();
+  std::string imported;
+  if (layered_files != 0) {
+    // The layered files' drawings become PNGs beside the description (as
+    // `import` writes them), which it then names like any other drawings.
+    std::vector<std::string> files;
+    for (const Drawing& d : drawings) files.push_back(d.path);
+    const import::LayeredCharacter c = import::ImportLayeredCharacter(files, flatten);
+    if (c.poses.size() < 2)
+      throw BakeError(files[0],
+                      "gives one pose: init needs two poses or more (one file per pose, or one file "
+                      "whose top-level groups are the poses)");
+    drawings.clear();
+    for (const std::string& path : WriteLayeredCharacter(c, folder.string(), overwrite, err))
+      drawings.push_back({path, "", ""});
+    imported = "imported " + std::to_string(drawings.size()) + " drawings from " + std::to_string(files.size()) +
+               (files.size() == 1 ? " layered file" : " layered files") + " beside it; ";
+  }
   std::map<std::string, int> used;
   for (Drawing& d : drawings) {
     const std::string ext = Extension(d.path);
-    if (ext == "ora" || ext == "psd")
-      throw BakeError(d.path, "layered ." + ext + " files are not read yet: export each pose as PNG or SVG");
     if (ext != "png" && ext != "svg") throw BakeError(d.path, "not a drawing init reads (PNG or SVG)");
     if (!fs::is_regular_file(d.path)) throw BakeError(d.path, "cannot read the drawing (no such file)");
     d.reference = fs::absolute(d.path).lexically_relative(folder).generic_string();
@@ -372,7 +397,7 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   }
   const std::string problem = TryBake(text, output, folder.string());
   WriteText(output, text);
-  out << "wrote " << output << ": " << summary << "\n";
+  out << "wrote " << output << ": " << imported << summary << "\n";
   if (problem.empty()) {
     out << "it bakes as written: posemorph-bake " << output << "\n";
   } else {

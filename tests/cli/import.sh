@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# posemorph-bake import and init on layered files (ctest cli.import), with
+# the fixtures GIMP and Krita wrote (tests/data/import/, made by
+# scripts/make-import-fixtures.sh from the build's Pell drawings):
+#  - Pell as four PSDs (GIMP, a layer per part) and as one OpenRaster file
+#    (Krita, a group per pose) imports to drawings from which Pell's own
+#    description bakes the very rig the build's drawings give: the same
+#    bytes, so the same meshes (tolerance 0);
+#  - init on the OpenRaster file writes a description that bakes as written;
+#  - each refusal is one line naming the file, status 1 or 2, nothing written.
+#   import.sh BAKE ASSETS SOURCE WORK
+set -euo pipefail
+bake=$1 assets=$2 source=$3 work=$4
+data=$source/tests/data/import
+rm -rf "$work" && mkdir -p "$work"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# The reference: Pell baked from the build's drawings, in the same layout.
+mkdir -p "$work/reference"
+cp "$assets"/pell/{rest,wave,cross,lean}-*.png "$source/assets/pell/pell.json" "$work/reference/"
+"$bake" "$work/reference/pell.json" -o "$work/reference/pell.pmrig" --quiet
+
+for kind in psd ora; do
+  if [ $kind = psd ]; then files=("$data"/pell/{rest,wave,cross,lean}.psd); else files=("$data/pell/pell.ora"); fi
+  said=$("$bake" import "${files[@]}" -o "$work/$kind" 2>&1) || { fail "$kind: import: $said"; continue; }
+  case "$said" in *"wrote 28 drawings of 256 x 256 pixels"*"4 poses of 7 parts"*) ;; *) fail "$kind: import says: $said" ;; esac
+  if [ $kind = psd ]; then
+    # GIMP's hidden sketch layer in each pose: left out, with a note.
+    [ "$(grep -c "layer 'sketch' is hidden: not imported" <<< "$said")" = 4 ] || fail "psd: hidden layers not noted: $said"
+  fi
+  cp "$source/assets/pell/pell.json" "$work/$kind/"
+  "$bake" "$work/$kind/pell.json" -o "$work/$kind/pell.pmrig" --quiet || { fail "$kind: the imported Pell does not bake"; continue; }
+  if cmp -s "$work/reference/pell.pmrig" "$work/$kind/pell.pmrig"; then
+    echo "$kind: ${#files[@]} file(s) -> 28 drawings -> the same rig as the build's drawings ($(stat -c %s "$work/$kind/pell.pmrig") bytes, identical)"
+  else
+    fail "$kind: the rig baked from the imported drawings differs from the one baked from the build's"
+  fi
+done
+
+# init on the OpenRaster file: drawings beside the description, which bakes.
+mkdir -p "$work/init"
+said=$("$bake" init "$data/pell/pell.ora" -o "$work/init/pell.json" 2>&1) || fail "init: $said"
+case "$said" in *"imported 28 drawings from 1 layered file"*"4 poses"*"of 7 parts"*"it bakes as written"*) echo "init: $(head -1 <<< "$said")" ;;
+  *) fail "init says: $said" ;; esac
+[ -f "$work/init/wave-arm-left.png" ] || fail "init: no wave-arm-left.png beside the description"
+"$bake" "$work/init/pell.json" -o "$work/init/pell.pmrig" --quiet || fail "init: its description does not bake"
+
+# Refusals: one line, the status, nothing written.
+refuse() {  # refuse STATUS EXPECTED-TEXT CHECK-ABSENT ARGS...
+  local status=$1 text=$2 absent=$3 said rc=0
+  shift 3
+  said=$("$bake" "$@" 2>&1) || rc=$?
+  [ "$rc" = "$status" ] || fail "posemorph-bake $*: status $rc, expected $status: $said"
+  [ "$(wc -l <<< "$said")" = 1 ] || fail "posemorph-bake $*: more than one line: $said"
+  case "$said" in *"$text"*) ;; *) fail "posemorph-bake $*: says '$said', expected '$text'" ;; esac
+  [ -z "$absent" ] || [ ! -e "$absent" ] || fail "posemorph-bake $*: wrote $absent"
+}
+mkdir -p "$work/again"
+cp "$work/init/rest-body.png" "$work/again/"
+refuse 1 "$work/again/rest-body.png: exists, and the drawing of $data/pell/pell.ora: group 'rest': layer 'body' would replace it (--force does)" \
+  "$work/again/pell.json" init "$data/pell/pell.ora" -o "$work/again/pell.json"
+[ ! -e "$work/again/rest-mouth.png" ] || fail "init wrote drawings before refusing"
+head -c 3000 "$data/features.psd" > "$work/cut.psd"
+refuse 1 "$work/cut.psd: damaged or truncated: " "$work/cut" import "$work/cut.psd" -o "$work/cut"
+refuse 1 "$data/features.psd: a canvas of 64 x 48, but $data/pell/rest.psd's is 256 x 256" "$work/mixed" \
+  import "$data/pell/rest.psd" "$data/features.psd" -o "$work/mixed"
+refuse 1 "$assets/pell/rest-body.png: not a layered file import reads (.ora or .psd)" "$work/png" \
+  import "$assets/pell/rest-body.png" -o "$work/png"
+refuse 2 "init takes layered files (.ora, .psd) or flat drawings (PNG, SVG), not both" "$work/both.json" \
+  init "$data/pell/pell.ora" "$assets/pell/rest-body.png" -o "$work/both.json"
+refuse 2 "--flatten is for layered files (.ora, .psd)" "$work/flat.json" \
+  init "$assets/pell/rest-body.png" "$assets/pell/wave-body.png" --flatten -o "$work/flat.json"
+refuse 1 "$data/pell/rest.psd: gives one pose: init needs two poses or more" "$work/one.json" \
+  init "$data/pell/rest.psd" -o "$work/one.json"
+[ ! -e "$work/rest-body.png" ] || fail "init wrote drawings of a single pose before refusing"
+
+[ "$failures" = 0 ] || { echo "$failures failure(s)"; exit 1; }
+echo "import: PSD (GIMP) and OpenRaster (Krita) Pell bake to the build's rig, init bakes, 7 refusals"
