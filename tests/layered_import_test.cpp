@@ -97,11 +97,11 @@ void CheckFeatures(const LayeredImage& image, double group_opacity) {
   CHECK(Pixel(c, 64, 7, 8) == std::array<int, 4>{255, 0, 0, group_alpha});    // a alone
   CHECK(Pixel(c, 64, 20, 10) == std::array<int, 4>{255, 0, 0, group_alpha});  // a over b: a
   CHECK(Pixel(c, 64, 20, 18) == std::array<int, 4>{0, 0, 255, group_alpha});  // b alone
-  CHECK(Pixel(c, 64, 0, 0) == std::array<int, 4>{128, 128, 128, 255});         // base, its corner off the canvas
-  CHECK(Pixel(c, 64, 2, 2) == std::array<int, 4>{0, 0, 0, 0});                 // past base's box
-  CHECK(Pixel(c, 64, 3, 41) == std::array<int, 4>{0, 255, 0, 255});            // mul, drawn as normal
-  CHECK(Pixel(c, 64, 53, 33) == std::array<int, 4>{255, 255, 255, 64});        // half at 25%
-  CHECK(Pixel(c, 64, 40, 2) == std::array<int, 4>{0, 0, 0, 0});                // hidden is not drawn
+  CHECK(Pixel(c, 64, 0, 0) == std::array<int, 4>{128, 128, 128, 255});        // base, its corner off the canvas
+  CHECK(Pixel(c, 64, 2, 2) == std::array<int, 4>{0, 0, 0, 0});                // past base's box
+  CHECK(Pixel(c, 64, 3, 41) == std::array<int, 4>{0, 255, 0, 255});           // mul, drawn as normal
+  CHECK(Pixel(c, 64, 53, 33) == std::array<int, 4>{255, 255, 255, 64});       // half at 25%
+  CHECK(Pixel(c, 64, 40, 2) == std::array<int, 4>{0, 0, 0, 0});               // hidden is not drawn
 }
 
 // An OpenRaster file made here with libzip from `stack` and `entries`.
@@ -167,8 +167,8 @@ TEST_CASE("import: Krita's OpenRaster keeps names, offsets, opacity, visibility 
 }
 
 TEST_CASE("import: a character from one file per pose (GIMP) and from one file of poses (Krita)") {
-  const std::vector<std::string> expected_parts{"mouth", "eye-right", "eye-left", "head",
-                                                "arm-right", "arm-left", "body"};
+  const std::vector<std::string> expected_parts{"mouth",     "eye-right", "eye-left", "head",
+                                                "arm-right", "arm-left",  "body"};
   const LayeredCharacter psd = ImportLayeredCharacter(
       {kData + "pell/rest.psd", kData + "pell/wave.psd", kData + "pell/cross.psd", kData + "pell/lean.psd"}, false);
   const LayeredCharacter ora = ImportLayeredCharacter({kData + "pell/pell.ora"}, false);
@@ -191,14 +191,16 @@ TEST_CASE("import: a character from one file per pose (GIMP) and from one file o
 }
 
 TEST_CASE("import: files that break a convention are refused naming file and layer") {
-  CHECK(Message([] { ImportLayeredCharacter({kData + "pell/rest.psd", kData + "features.psd"}, false); }) ==
-        kData + "features.psd: a canvas of 64 x 48, but " + kData +
-            "pell/rest.psd's is 256 x 256: a character's poses share one canvas");
+  CHECK(Message([] {
+          ImportLayeredCharacter({kData + "pell/rest.psd", kData + "features.psd"}, false);
+        }) == kData + "features.psd: a canvas of 64 x 48, but " + kData +
+                  "pell/rest.psd's is 256 x 256: a character's poses share one canvas");
   // GIMP's and Krita's features files draw the same parts (half, mul, g, base).
   const std::string other = kData + "features.ora";
   CHECK(Message([&] { ImportLayeredCharacter({kData + "features.psd", other}, false); }) == "");
-  const std::string m = Message([] { ImportLayeredCharacter({kData + "pell/rest.psd", kData + "pell/wave.psd",
-                                                              kData + "pell/pell.ora"}, false); });
+  const std::string m = Message([] {
+    ImportLayeredCharacter({kData + "pell/rest.psd", kData + "pell/wave.psd", kData + "pell/pell.ora"}, false);
+  });
   CHECK(m.find("pell.ora: a canvas") == std::string::npos);
   CHECK(m.find(kData + "pell/pell.ora: group 'rest' is not a part of pose 'rest'") != std::string::npos);
 }
@@ -281,7 +283,8 @@ TEST_CASE("import: OpenRaster files that break the format or the bounds are refu
   std::string deep = "<image w=\"8\" h=\"8\"><stack>";
   for (int i = 0; i < 20; ++i) deep += "<stack name=\"s\">";
   for (int i = 0; i < 20; ++i) deep += "</stack>";
-  CHECK(ora(deep + "</stack></image>") == "t.ora: layer 's/s/s/s/s/s/s/s/s/s/s/s/s/s/s/s/s': groups nested deeper than 16");
+  CHECK(ora(deep + "</stack></image>") ==
+        "t.ora: layer 's/s/s/s/s/s/s/s/s/s/s/s/s/s/s/s/s': groups nested deeper than 16");
   std::string many = "<image w=\"8\" h=\"8\"><stack>";
   for (int i = 0; i < 1100; ++i) many += "<stack name=\"s\"/>";
   CHECK(ora(many + "</stack></image>") == "t.ora: more than 1024 layers and groups");

@@ -54,3 +54,24 @@ endif()
 if(EXISTS ${WORK}/never.png)
   message(FATAL_ERROR "--hide-part arm: a refused option still wrote a frame")
 endif()
+
+# --watch: a description, for the window; each misuse one line, exit status 2.
+foreach(case
+    "${RIG};--watch|--watch takes a rig description \\(RIG.json\\), not a baked rig"
+    "${WORK}/x.json;--watch;--headless;-o;${WORK}/never.png|--watch is for the window \\(not --headless\\)"
+    "${WORK}/x.json;--watch;--images;${WORK}|--watch reads the drawings from the description's folder"
+    "${RIG};--rebakes;2|--rebakes goes with --watch and --smoke-test"
+    "${RIG};--rebakes;0|--rebakes wants a count in 1..1000")
+  string(REPLACE "|" ";" parts "${case}")
+  list(POP_BACK parts expected)
+  execute_process(COMMAND ${VIEW} ${parts} RESULT_VARIABLE status ERROR_VARIABLE err OUTPUT_VARIABLE out)
+  if(NOT status EQUAL 2 OR NOT err MATCHES "${expected}")
+    message(FATAL_ERROR "${parts}: expected exit status 2 and '${expected}', got '${status}' (${err})")
+  endif()
+endforeach()
+# A description that does not bake: the bake's message, exit status 1, no window.
+file(WRITE ${WORK}/broken.json "{\"posemorph\": 1, \"poses\": []}")
+execute_process(COMMAND ${VIEW} ${WORK}/broken.json --watch RESULT_VARIABLE status ERROR_VARIABLE err OUTPUT_VARIABLE out)
+if(NOT status EQUAL 1 OR NOT err MATCHES "posemorph-view: error: ${WORK}/broken.json: ")
+  message(FATAL_ERROR "--watch broken.json: expected exit status 1 and the bake's message, got '${status}' (${err})")
+endif()

@@ -28,8 +28,8 @@ std::vector<std::string> WriteLayeredCharacter(const import::LayeredCharacter& c
     for (std::size_t q = 0; q < per_pose; ++q) {
       const std::string path = (fs::path(folder) / c.FileName(i, q)).string();
       if (!overwrite && fs::exists(path))
-        throw BakeError(path, "exists, and the drawing of " + c.sources[i * per_pose + q] +
-                                  " would replace it (--force does)");
+        throw BakeError(
+            path, "exists, and the drawing of " + c.sources[i * per_pose + q] + " would replace it (--force does)");
       CheckOutputPath(path, {});
       RgbaImage image{std::uint32_t(c.width), std::uint32_t(c.height), c.drawings[i * per_pose + q]};
       pngs.push_back(EncodePng(image, path));

@@ -3,6 +3,8 @@
 // rig_description.cpp, with the same keys (bake/RIG_DESCRIPTION.md).
 #include <algorithm>
 
+#include <cmath>
+
 #include <nlohmann/json.hpp>
 
 #include "description_json.h"
@@ -106,17 +108,19 @@ json MappingJson(const MappingParameters& p) {
   return j.empty() ? json() : j;
 }
 
-json& ListIn(json& root, const char* key, const std::string& file) {
-  if (!root.contains(key)) root[key] = json::array();
+template <class Json>
+Json& ListIn(Json& root, const char* key, const std::string& file) {
+  if (!root.contains(key)) root[key] = Json::array();
   if (!root[key].is_array()) throw BakeError(file, std::string(key) + ": expected an array");
   return root[key];
 }
 
 // "STEM-K" for the smallest K >= 1 that no entry of `list` is named.
-std::string FreshName(const json& list, const std::string& stem) {
+template <class Json>
+std::string FreshName(const Json& list, const std::string& stem) {
   for (long k = 1;; ++k) {
     const std::string name = stem + "-" + std::to_string(k);
-    if (std::none_of(list.begin(), list.end(), [&](const json& e) {
+    if (std::none_of(list.begin(), list.end(), [&](const Json& e) {
           return e.is_object() && e.contains("name") && e["name"].is_string() && e["name"] == name;
         }))
       return name;
@@ -150,17 +154,97 @@ std::string MeshFileText(const std::vector<Eigen::Vector2d>& vertices,
   return json{{"vertices", PointsJson(vertices)}, {"triangles", triangles}}.dump() + "\n";
 }
 
+namespace {
+
+using ordered = nlohmann::ordered_json;
+
+// An array without objects in it, written on one line: [1, 2], [[1, 2], [3, 4]].
+bool Flat(const ordered& j) {
+  if (!j.is_array()) return !j.is_object();
+  return std::all_of(j.begin(), j.end(), [](const ordered& e) { return Flat(e); });
+}
+std::string Inline(const ordered& j) {
+  if (!j.is_array()) return j.dump(-1, ' ', false, ordered::error_handler_t::replace);
+  std::string s = "[";
+  for (std::size_t i = 0; i < j.size(); ++i) s += (i ? ", " : "") + Inline(j[i]);
+  return s + "]";
+}
+// Objects one key a line, indented by two; a flat array on one line, or one
+// element a line when that line would pass 100 characters.
+void Write(const ordered& j, int indent, std::string& out) {
+  const std::string pad(std::size_t(indent) + 2, ' ');
+  if (j.is_object() && !j.empty()) {
+    out += "{\n";
+    std::size_t k = 0;
+    for (auto it = j.begin(); it != j.end(); ++it, ++k) {
+      out += pad + ordered(it.key()).dump(-1, ' ', false, ordered::error_handler_t::replace) + ": ";
+      Write(it.value(), indent + 2, out);
+      out += k + 1 < j.size() ? ",\n" : "\n";
+    }
+    out += std::string(std::size_t(indent), ' ') + "}";
+  } else if (j.is_array() && !j.empty() && !(Flat(j) && Inline(j).size() + std::size_t(indent) <= 100)) {
+    out += "[\n";
+    for (std::size_t i = 0; i < j.size(); ++i) {
+      out += pad;
+      Write(j[i], indent + 2, out);
+      out += i + 1 < j.size() ? ",\n" : "\n";
+    }
+    out += std::string(std::size_t(indent), ' ') + "]";
+  } else {
+    out += Inline(j);
+  }
+}
+
+// The description's JSON in its own key order (the text is checked by the
+// reader's parser first, for its messages).
+ordered Ordered(const std::string& text, const std::string& file) {
+  const json checked = ParseDescriptionJson(text, file);
+  if (!checked.is_object()) throw BakeError(file, "expected a JSON object at the top level");
+  return ordered::parse(text);
+}
+
+}  // namespace
+
+std::string DescriptionJsonText(const std::string& text, const std::string& file) {
+  std::string out;
+  Write(Ordered(text, file), 0, out);
+  return out + "\n";
+}
+
+std::string MovePosePoint(const std::string& text, const std::string& file, const std::string& pose, double x,
+                          double y) {
+  ordered root = Ordered(text, file);
+  ordered* home = &root;
+  if (root.contains("channels")) {
+    if (!root["channels"].is_array() || root["channels"].empty() || !root["channels"][0].is_object())
+      throw BakeError(file, "channels: expected an array of channel objects");
+    home = &root["channels"][0];
+  }
+  if (!home->contains("poses") || !(*home)["poses"].is_array())
+    throw BakeError(file, std::string(home == &root ? "" : "channels[0].") + "poses: expected an array");
+  bool found = false;
+  for (ordered& p : (*home)["poses"])
+    if (p.is_object() && p.contains("name") && p["name"] == pose) {
+      // Four decimals: the pad's resolution, and a short number to read.
+      p["point"] = ordered::array({std::round(x * 1e4) / 1e4 + 0.0, std::round(y * 1e4) / 1e4 + 0.0});
+      found = true;
+    }
+  if (!found) throw BakeError(file, "has no pose named '" + pose + "' to move");
+  std::string out;
+  Write(root, 0, out);
+  return out + "\n";
+}
+
 DescriptionAddition AddToRigDescription(const std::string& text, const std::string& file,
                                         const std::vector<PoseDescription>& poses,
                                         const std::vector<PathDescription>& paths) {
-  json root = ParseDescriptionJson(text, file);
-  if (!root.is_object()) throw BakeError(file, "expected a JSON object at the top level");
+  ordered root = Ordered(text, file);
   DescriptionAddition added;
   // A rig with control channels keeps its poses and paths in its channels:
   // a path goes to the first channel's (the body's, which the pad and the
   // gestures drive); a pose would need a drawing per part, which only the
   // description's author can give.
-  json* paths_home = &root;
+  ordered* paths_home = &root;
   if (root.contains("channels")) {
     if (!root["channels"].is_array() || root["channels"].empty() || !root["channels"][0].is_object())
       throw BakeError(file, "channels: expected an array of channel objects");
@@ -171,18 +255,19 @@ DescriptionAddition AddToRigDescription(const std::string& text, const std::stri
     paths_home = &root["channels"][0];
   }
   for (PoseDescription pose : poses) {
-    json& list = ListIn(root, "poses", file);
+    ordered& list = ListIn(root, "poses", file);
     pose.name = FreshName(list, pose.name);
     added.pose_names.push_back(pose.name);
-    list.push_back(PoseJson(pose));
+    list.push_back(ordered::parse(PoseJson(pose).dump()));
   }
   for (PathDescription path : paths) {
-    json& list = ListIn(*paths_home, "paths", file);
+    ordered& list = ListIn(*paths_home, "paths", file);
     path.name = FreshName(list, path.name);
     added.path_names.push_back(path.name);
-    list.push_back(PathJson(path));
+    list.push_back(ordered::parse(PathJson(path).dump()));
   }
-  added.text = root.dump(2) + "\n";
+  Write(root, 0, added.text);
+  added.text += "\n";
   return added;
 }
 

@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include <memory>
 #include <new>
 #include <optional>
 #include <stdexcept>
@@ -23,6 +24,7 @@
 #include "machine_driver.h"
 #include "options.h"
 #include "rig_renderer.h"
+#include "watch_bake.h"
 
 using namespace posemorph;
 using namespace posemorph::viewer;
@@ -148,15 +150,36 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
   Options o;
   if (const int status = ParseOptions(argc, argv, o); status >= 0) return status;
   *rig_path_out = o.rig_path;
-  std::vector<unsigned char> bytes;
-  try {
-    bytes = bake::ReadInputFile(o.rig_path, bake::kMaxRigFileBytes, "a rig");
-  } catch (const bake::BakeError& e) {
-    return Fail(e.what());
+  // --watch: the description is baked here, and watched from the window.
+  std::unique_ptr<BakedRig> first;
+  std::unique_ptr<WatchedBake> watch;
+  Rig loaded;
+  if (o.watch) {
+    if (o.headless) return Usage("--watch is for the window (not --headless)");
+    if (!o.images.empty()) return Usage("--watch reads the drawings from the description's folder (not --images)");
+    if (!EditModeBuilt()) return Usage("--watch needs a posemorph-view built with the bake (POSEMORPH_VIEWER_EDIT=ON)");
+    if (o.rig_path.size() < 5 || o.rig_path.compare(o.rig_path.size() - 5, 5, ".json") != 0)
+      return Usage("--watch takes a rig description (RIG.json), not a baked rig");
+    std::string problem;
+    watch = WatchDescription(o.rig_path, &first, &problem);
+    if (!watch) return Fail(problem);
+    std::printf("posemorph-view: %s; watching it and its drawings\n", Printable(first->summary, 2000).c_str());
+    std::fflush(stdout);
+    if (o.window.description.empty()) o.window.description = o.rig_path;
+    o.window.watch = watch.get();
+  } else {
+    std::vector<unsigned char> bytes;
+    try {
+      bytes = bake::ReadInputFile(o.rig_path, bake::kMaxRigFileBytes, "a rig");
+    } catch (const bake::BakeError& e) {
+      return Fail(e.what());
+    }
+    Error err;
+    if (!LoadRig(bytes.data(), bytes.size(), &loaded, &err)) return Fail(o.rig_path + ": " + err.message);
   }
-  Rig rig;
-  Error err;
-  if (!LoadRig(bytes.data(), bytes.size(), &rig, &err)) return Fail(o.rig_path + ": " + err.message);
+  if (o.window.smoke_rebakes > 0 && (!o.watch || o.window.smoke_test.empty()))
+    return Usage("--rebakes goes with --watch and --smoke-test");
+  const Rig& rig = o.watch ? first->rig : loaded;
   if (!o.scene.path.empty() && rig.FindPath(o.scene.path.c_str()) < 0)
     return Fail(o.rig_path + ": has no path named \"" + o.scene.path + "\"");
   if (o.frames > 0 && o.headless && o.scene.path.empty() && !o.has_inputs)
@@ -227,10 +250,13 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
       return Fail(o.rig_path + ": channel '" + name + "' has no path named \"" + value + "\" (give X,Y or a path)");
     }
   }
-  if (o.images.empty()) o.images = bake::DefaultDrawingFolder(o.rig_path, rig);
-  Drawings drawings;
-  std::string problem;
-  if (!LoadDrawings(rig, o.images, &drawings, &problem)) return Fail(o.rig_path + ": " + problem);
+  Drawings loaded_drawings;
+  if (!o.watch) {
+    if (o.images.empty()) o.images = bake::DefaultDrawingFolder(o.rig_path, rig);
+    std::string problem;
+    if (!LoadDrawings(rig, o.images, &loaded_drawings, &problem)) return Fail(o.rig_path + ": " + problem);
+  }
+  const Drawings& drawings = o.watch ? first->drawings : loaded_drawings;
   if (o.headless) return RunHeadless(rig, drawings, o);
   o.window.validation = o.validation;
   if (o.width != 640 || o.height != 640) o.window.width = o.width, o.window.height = o.height;

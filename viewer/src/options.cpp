@@ -16,6 +16,7 @@ namespace {
 
 const char* kUsage =
     "usage: posemorph-view RIG.pmrig [--images DIR] [--headless -o OUT.png] [--size WxH]\n"
+    "       posemorph-view --watch RIG.json [window options]\n"
     "         [--at X,Y | --path NAME [--time T] [--frames K]] [--crowd K] [--sigma S]\n"
     "         [--no-weight-limit] [--linear] [--compare] [--bases] [--wireframe] [--validation]\n"
     "         [--camera X,Y,ZOOM | --camera 1:1] [--transform T] [--seed S] [--drawings K] [--blend B]\n"
@@ -47,6 +48,11 @@ const char* kUsage =
     "  --smoke-test  window: drag the pad along a circle for K frames (default 60), resizing the window\n"
     "                half-way, save a screenshot of the last frame, exit\n"
     "  --description window: the rig description that recorded gestures are saved into\n"
+    "  --watch       window: RIG.json is a rig description: baked in memory, and baked again whenever it\n"
+    "                or a drawing it names changes on disk; each new rig is swapped in without closing the\n"
+    "                window, a failed bake's message shown in the panel (the last rig stays); recorded\n"
+    "                gestures and edited poses are saved into it (a re-bake follows)\n"
+    "  --rebakes K   with --watch and --smoke-test: end after K re-bakes (swapped in or failed), not before\n"
     "  --inputs T    a rig with a state machine: it drives the characters, its inputs set at times,\n"
     "                \"TIME:NAME[=VALUE];...\" (a bool: NAME, !NAME or NAME=true|false; a number: NAME=V;\n"
     "                a point: NAME=X,Y; a trigger: NAME or NAME=true), e.g. \"0:talking;1:wave;2.5:sway=0.4\"; "
@@ -111,6 +117,8 @@ bool ParseSwitch(const std::string& a, Options& o) {
     o.scene.show_bases = true;
   else if (a == "--joints")
     o.window.show_joints = true;
+  else if (a == "--watch")
+    o.watch = true;
   else
     return false;
   return true;
@@ -194,6 +202,8 @@ int ParseOptions(int argc, char** argv, Options& o) {
       if (!ParseNumber(v, 1, 1000, &o.fps)) return Usage("--fps wants updates per second, 1..1000");
     } else if (a == "--frames" && (v = value())) {
       if (!ParseCount(v, 1, 100000, &o.frames)) return Usage("--frames wants a count in 1..100000");
+    } else if (a == "--rebakes" && (v = value())) {
+      if (!ParseCount(v, 1, 1000, &o.window.smoke_rebakes)) return Usage("--rebakes wants a count in 1..1000");
     } else if (a == "--crowd" && (v = value())) {
       if (!ParseCount(v, 1, 100000, &o.scene.crowd)) return Usage("--crowd wants a count in 1..100000");
     } else if (a == "--seed" && (v = value())) {

@@ -29,6 +29,7 @@ struct Options {
   std::string inputs;                       // --inputs TIMELINE, resolved likewise
   bool has_inputs = false;
   double fps = 30;
+  bool watch = false;  // --watch: rig_path is a description, baked here and again on every change
 };
 
 // The options into `o`; -1 to go on, or the exit status (usage, --help).

@@ -8,6 +8,7 @@
 
 #include "machine_driver.h"
 #include "scene.h"
+#include "watch_bake.h"
 
 namespace posemorph::viewer {
 
@@ -22,6 +23,11 @@ struct WindowOptions {
   // characters from the first frame), and its timeline.
   bool machine = false;
   std::vector<InputCommand> timeline;
+  // --watch: the description's re-bakes, swapped in as they finish; the
+  // smoke test goes on past its frames until `smoke_rebakes` of them have
+  // finished (swapped in or failed), for at most 10 minutes.
+  WatchedBake* watch = nullptr;
+  std::uint32_t smoke_rebakes = 0;
 };
 
 // True when this build has edit mode and saving into the description

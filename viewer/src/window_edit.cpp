@@ -50,10 +50,10 @@ void Editor::Ui(const Scene& scene, std::string* status) {
   ImGui::TextUnformatted("Edit (drag handles on a base pose)");
   if (ImGui::Checkbox("edit mode", &edit_.on)) edit_.dragging = -1;
   if (!edit_.on) return;
-  const StringView current = rig_.pose_name(std::uint32_t(edit_.pose));
+  const StringView current = rig_->pose_name(std::uint32_t(edit_.pose));
   if (ImGui::BeginCombo("from", std::string(current.data, current.size).c_str())) {
-    for (std::uint32_t i = 0; i < rig_.pose_count(); ++i) {
-      const StringView n = rig_.pose_name(i);
+    for (std::uint32_t i = 0; i < rig_->pose_count(); ++i) {
+      const StringView n = rig_->pose_name(i);
       if (ImGui::Selectable(std::string(n.data, n.size).c_str(), int(i) == edit_.pose) && int(i) != edit_.pose) {
         edit_.pose = int(i);
         edit_.handles.clear(), edit_.targets.clear(), edit_.deformer.reset();
@@ -86,7 +86,7 @@ void Editor::Input(const ViewMap& map, bool panning) {
       // A new handle on the vertex under the click (as the description's "at" handles pick it).
       std::uint32_t vertex = 0;
       const glm::dvec2 at = map.ToRig(io.MousePos);
-      if (bake::HandleVertex(ToPoints(edit_.current), RigTriangles(rig_), Eigen::Vector2d(at.x, at.y), 6 / map.s(),
+      if (bake::HandleVertex(ToPoints(edit_.current), RigTriangles(*rig_), Eigen::Vector2d(at.x, at.y), 6 / map.s(),
                              &vertex) &&
           std::find(edit_.handles.begin(), edit_.handles.end(), vertex) == edit_.handles.end()) {
         edit_.handles.push_back(vertex);
@@ -101,14 +101,14 @@ void Editor::Input(const ViewMap& map, bool panning) {
 }
 
 bool Editor::Prepare(RigRenderer& renderer, SceneBounds* bounds, std::uint32_t* count, std::string* status) {
-  const std::uint32_t V = rig_.vertex_count();
-  const Span<const double> p = rig_.pose_positions(std::uint32_t(edit_.pose));
+  const std::uint32_t V = rig_->vertex_count();
+  const Span<const double> p = rig_->pose_positions(std::uint32_t(edit_.pose));
   edit_.rest.resize(V);
   for (std::uint32_t v = 0; v < V; ++v) edit_.rest[v] = glm::dvec2(p.data[2 * v], p.data[2 * v + 1]);
   edit_.current = edit_.rest;
   if (edit_.handles.size() >= 2) {
     try {
-      if (!edit_.deformer) edit_.deformer.reset(new EditDeformer(edit_.rest, rig_, edit_.handles));
+      if (!edit_.deformer) edit_.deformer.reset(new EditDeformer(edit_.rest, *rig_, edit_.handles));
       edit_.deformer->Deform(edit_.targets, &edit_.current);
     } catch (const bake::BakeError& e) {
       *status = e.what();
@@ -122,9 +122,9 @@ bool Editor::Prepare(RigRenderer& renderer, SceneBounds* bounds, std::uint32_t* 
   list.drawing_count = 1;
   list.drawings[0].pose = std::uint32_t(edit_.pose);
   list.drawings[0].weight = 1;
-  list.parts = rig_.draw_sequence(std::uint32_t(edit_.pose));
+  list.parts = rig_->draw_sequence(std::uint32_t(edit_.pose));
   renderer.SetCharacter(0, list);
-  bounds->all = bounds->first = CharacterBounds(rig_);
+  bounds->all = bounds->first = CharacterBounds(*rig_);
   *count = 1;
   return true;
 }

@@ -3,10 +3,17 @@
 // into the description (the component that links the bake is left out, so
 // this viewer needs the runtime, Vulkan, GLFW and Dear ImGui alone). The
 // panel says so where the controls would be.
+#include "watch_bake.h"
 #include "window_editor.h"
 
 namespace posemorph::viewer {
 bool EditModeBuilt() { return false; }
+
+// --watch needs the bake, which this viewer is built without.
+std::unique_ptr<WatchedBake> WatchDescription(const std::string&, std::unique_ptr<BakedRig>*, std::string* problem) {
+  *problem = "--watch needs a posemorph-view built with the bake (POSEMORPH_VIEWER_EDIT=ON)";
+  return nullptr;
+}
 }  // namespace posemorph::viewer
 
 namespace posemorph::viewer::window_impl {
@@ -29,6 +36,10 @@ void Editor::SaveGesture(const Gesture&, std::string* status) const {
 
 void Editor::SavePose(const Scene&, std::string* status) const {
   *status = "saving poses needs a viewer built with POSEMORPH_VIEWER_EDIT=ON";
+}
+
+void Editor::SavePosePoint(std::uint32_t, double, double, std::string* status) const {
+  *status = "moving pose points needs a viewer built with POSEMORPH_VIEWER_EDIT=ON";
 }
 
 }  // namespace posemorph::viewer::window_impl

@@ -39,7 +39,14 @@ struct Edit {
 class Editor {
  public:
   // `description`: the rig description to save into ("" refuses saving with a status line).
-  Editor(const Rig& rig, std::string description) : rig_(rig), description_(std::move(description)) {}
+  Editor(const Rig& rig, std::string description) : rig_(&rig), description_(std::move(description)) {}
+  // --watch: the description is baked again after each save (the status says so).
+  void SetWatched(bool watched) { watched_ = watched; }
+  // Another rig from now on (a --watch re-bake): edit mode ends, its handles go.
+  void Rebind(const Rig& rig) {
+    rig_ = &rig;
+    edit_ = Edit{};
+  }
 
   // The panel's edit controls; saving the pose needs the pad's point.
   void Ui(const Scene& scene, std::string* status);
@@ -54,13 +61,17 @@ class Editor {
   // atomically; `status` says what was done.
   void SaveGesture(const Gesture& gesture, std::string* status) const;
   void SavePose(const Scene& scene, std::string* status) const;
+  // Pose `pose`'s point moved to (x, y) in the description (MovePosePoint),
+  // written back atomically; `status` says what was done.
+  void SavePosePoint(std::uint32_t pose, double x, double y, std::string* status) const;
 
   Edit& state() { return edit_; }
   bool on() const { return edit_.on; }
 
  private:
-  [[maybe_unused]] const Rig& rig_;  // unused in a build without edit mode
+  [[maybe_unused]] const Rig* rig_;  // unused in a build without edit mode
   std::string description_;
+  bool watched_ = false;
   Edit edit_;
 };
 

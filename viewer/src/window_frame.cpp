@@ -3,6 +3,7 @@
 // the drawing toggles, the parts, edit mode, the camera), the characters
 // evaluated into the renderer, and the joint markers over them.
 #include <chrono>
+#include <cstdio>
 #include <string>
 
 #include "drawings.h"
@@ -12,7 +13,7 @@ namespace posemorph::viewer::window_impl {
 
 void Viewer::BuildUi() {
   Parts& w = parts_;
-  const Rig& rig = w.rig;
+  const Rig& rig = *w.rig;
   Scene& scene = w.scene;
   ImGui::SetNextWindowPos(ImVec2(0, 0));
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth, float(w.presenter.extent().height)));
@@ -21,6 +22,12 @@ void Viewer::BuildUi() {
   // characters, the pads below do not).
   if (w.machine.Ui(rig)) ImGui::Separator();
   if (w.pad.Ui(rig, &scene, &w.clock)) w.editor.SaveGesture(w.pad.gesture(), &w.status);
+  PosePad::PoseMove move{0, 0, 0};
+  if (w.pad.TakeMove(&move)) {
+    w.editor.SavePosePoint(move.pose, move.x, move.y, &w.status);
+    std::printf("%s\n", w.status.c_str());
+    std::fflush(stdout);
+  }
 
   ImGui::Separator();
   ImGui::TextUnformatted("Drawing");
@@ -71,6 +78,14 @@ void Viewer::BuildUi() {
               SceneCharacters(rig, scene));
   ImGui::TextWrapped("%s", w.presenter.device_name().c_str());
   if (!w.status.empty()) ImGui::TextWrapped("%s", w.status.c_str());
+  if (w.options.watch) {
+    // --watch: the bake under way, else the last re-bake's outcome.
+    ImGui::Separator();
+    const std::string progress = w.options.watch->Progress();
+    ImGui::TextWrapped("%s", progress.empty() ? (w.watch_line.empty() ? "watching the description and its drawings"
+                                                                      : w.watch_line.c_str())
+                                              : progress.c_str());
+  }
   ImGui::End();
 }
 
@@ -79,7 +94,7 @@ void Viewer::BuildUi() {
 // edit mode, the edited pose where it stands unmoved).
 void Viewer::JointOverlay(std::uint32_t count) {
   Parts& w = parts_;
-  const Rig& rig = w.rig;
+  const Rig& rig = *w.rig;
   const VkExtent2D extent = w.presenter.extent();
   w.joint_marks.clear();
   if (!w.show_joints || (w.joints.empty() && rig.attachment_count() == 0) || extent.width <= kPanelWidth + 8) return;
@@ -133,7 +148,7 @@ std::uint32_t Viewer::PrepareCharacters(const Scene& shown) {
   const auto t0 = std::chrono::steady_clock::now();
   RigRenderer& renderer = w.presenter.renderer();
   const bool prepared = w.editor.on() ? w.editor.Prepare(renderer, &bounds, &count, &w.status)
-                                      : PrepareScene(w.rig, shown, renderer, w.scratch, &bounds, &count, &problem);
+                                      : PrepareScene(*w.rig, shown, renderer, w.scratch, &bounds, &count, &problem);
   w.eval_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   if (!prepared) w.status = problem, count = 0;
   const VkExtent2D extent = w.presenter.extent();

@@ -63,7 +63,15 @@ void PosePad::Build(const Rig& rig, Scene* scene) {
     if (!scene->channels[c].path.empty()) play_channel_[c] = 1;
 }
 
-bool PosePad::Draw(const Rig& rig, const Field& f, const char* id, const Gesture* trail, double* px, double* py) const {
+bool PosePad::TakeMove(PoseMove* move) {
+  if (!has_move_) return false;
+  *move = moved_;
+  has_move_ = false;
+  return true;
+}
+
+bool PosePad::Draw(const Rig& rig, const Field& f, const char* id, const Gesture* trail, double* px, double* py,
+                   bool movable) {
   const PoseSpaceGrid& g = rig.grid();
   const float size = kPanelWidth - 24;
   const ImVec2 origin = ImGui::GetCursorScreenPos();
@@ -82,8 +90,32 @@ bool PosePad::Draw(const Rig& rig, const Field& f, const char* id, const Gesture
     }
   draw->AddRect(to_screen(g.origin_x, g.origin_y + g.cell * g.cells_y),
                 to_screen(g.origin_x + g.cell * g.cells_x, g.origin_y), IM_COL32(60, 60, 60, 160));
+  // "move pose points": a press within 8 px of one drags it.
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  const bool moving = movable && move_points_;
+  if (moving && ImGui::IsItemActivated()) {
+    moving_ = -1;
+    for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
+      const ImVec2 p = to_screen(rig.pose_points().data[2 * i], rig.pose_points().data[2 * i + 1]);
+      if (std::hypot(p.x - mouse.x, p.y - mouse.y) <= 8) moving_ = int(i);
+    }
+  }
+  const bool dragging_point = moving && moving_ >= 0;
+  if (dragging_point) {
+    moving_x_ = f.x0 + (mouse.x - origin.x) / size * f.span;
+    moving_y_ = f.y0 + (1 - (mouse.y - origin.y) / size) * f.span;
+    if (!active) {  // let go: saved by the viewer
+      moved_ = PoseMove{std::uint32_t(moving_), moving_x_, moving_y_};
+      has_move_ = true;
+      moving_ = -1;
+    }
+  }
   for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
-    const ImVec2 p = to_screen(rig.pose_points().data[2 * i], rig.pose_points().data[2 * i + 1]);
+    ImVec2 p = to_screen(rig.pose_points().data[2 * i], rig.pose_points().data[2 * i + 1]);
+    if (dragging_point && int(i) == moving_) {
+      draw->AddLine(p, mouse, IM_COL32(30, 30, 30, 200), 1.5f);
+      p = mouse;
+    }
     draw->AddCircleFilled(p, 6, PoseColour(i, 255));
     draw->AddCircle(p, 6, IM_COL32(30, 30, 30, 255));
     const StringView name = rig.pose_name(i);
@@ -96,7 +128,7 @@ bool PosePad::Draw(const Rig& rig, const Field& f, const char* id, const Gesture
   const ImVec2 cur = to_screen(*px, *py);
   draw->AddCircle(cur, 9, IM_COL32(255, 255, 255, 255), 0, 3);
   draw->AddCircle(cur, 11, IM_COL32(20, 20, 20, 255), 0, 1.5f);
-  if (active) {
+  if (active && !dragging_point) {
     const ImVec2 m = ImGui::GetIO().MousePos;
     *px = f.x0 + (m.x - origin.x) / size * f.span;
     *py = f.y0 + (1 - (m.y - origin.y) / size) * f.span;
@@ -113,13 +145,15 @@ bool PosePad::Ui(const Rig& rig, Scene* scene, double* clock) {
   } else {
     ImGui::TextUnformatted("Pose space (drag; beyond the points extrapolates)");
   }
-  if (Draw(rig, body_, "pad", &gesture_, &scene->x, &scene->y)) {
+  if (Draw(rig, body_, "pad", &gesture_, &scene->x, &scene->y, true) && moving_ < 0) {
     scene->path.clear();
     play_path_ = false;
     gesture_.playing = false;
     if (gesture_.recording) gesture_.keys.push_back({*clock - gesture_.start, scene->x, scene->y});
   }
   ImGui::Text("point (%.3f, %.3f)", scene->x, scene->y);
+  ImGui::SameLine();
+  ImGui::Checkbox("move pose points", &move_points_);
 
   // A pad per later channel, each with its first path's play toggle.
   for (std::uint32_t c = 1; c < rig.channel_count() && c - 1 < channels_.size(); ++c) {

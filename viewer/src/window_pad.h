@@ -34,6 +34,15 @@ class PosePad {
   Scene Shown(const Rig& rig, Scene* scene, double clock);
 
   Gesture& gesture() { return gesture_; }
+  // A pose point of the first pad dragged to a new place and let go (with
+  // "move pose points" on): which pose and where; false when none was.
+  struct PoseMove {
+    std::uint32_t pose;
+    double x, y;
+  };
+  bool TakeMove(PoseMove* move);
+  // The smoke test's way to drag one.
+  void MovePose(std::uint32_t pose, double x, double y) { moved_ = PoseMove{pose, x, y}, has_move_ = true; }
 
  private:
   // One channel's pad: its weight field as colours over its domain.
@@ -44,7 +53,10 @@ class PosePad {
   Field FieldOf(const Rig& rig) const;
   // Draws a pad of `rig`'s pose space with the point (x, y) and, if given,
   // the gesture's trail; true while it is dragged (then (x, y) follows the mouse).
-  bool Draw(const Rig& rig, const Field& field, const char* id, const Gesture* trail, double* x, double* y) const;
+  // With `movable`, and "move pose points" on, a press on a pose point
+  // drags it instead (shown where the mouse is; PoseMove when let go).
+  bool Draw(const Rig& rig, const Field& field, const char* id, const Gesture* trail, double* x, double* y,
+            bool movable = false);
 
   static constexpr int kCells = 48;  // the weight field's cells across a pad
   Field body_;
@@ -53,6 +65,11 @@ class PosePad {
   Gesture gesture_;
   bool play_path_ = false;
   int path_index_ = 0;
+  bool move_points_ = false;  // the panel's "move pose points"
+  int moving_ = -1;           // the pose point being dragged
+  double moving_x_ = 0, moving_y_ = 0;
+  PoseMove moved_{0, 0, 0};
+  bool has_move_ = false;
 };
 
 }  // namespace posemorph::viewer::window_impl

@@ -68,6 +68,14 @@ bool Presenter::Open(const WindowOptions& options, const Rig& rig, const Drawing
   return true;
 }
 
+bool Presenter::SwapRig(const Rig& rig, const Drawings& drawings, TextureFilter filter, std::string* problem) {
+  VkCheck(vkDeviceWaitIdle(gpu_.device()), "vkDeviceWaitIdle");
+  auto renderer = std::make_unique<RigRenderer>();
+  if (!renderer->Init(gpu_, rig, drawings, sc_.format, kMaxCharacters, filter, problem)) return false;
+  renderer_ = std::move(renderer);
+  return true;
+}
+
 // Dear ImGui on the window and the swapchain's render pass.
 void Presenter::InitUi() {
   IMGUI_CHECKVERSION();

@@ -26,6 +26,10 @@ class Presenter {
   bool Open(const WindowOptions& options, const Rig& rig, const Drawings& drawings, TextureFilter filter);
   // Everything Open made, in reverse; 3 when the validation layer spoke, else 0.
   int Close();
+  // Another rig to draw (a --watch re-bake): a new renderer for it, made
+  // after the device is idle; the old one stays, and false comes back with
+  // the message, when the new one cannot be made.
+  bool SwapRig(const Rig& rig, const Drawings& drawings, TextureFilter filter, std::string* problem);
 
   GLFWwindow* window() const { return window_; }
   VkExtent2D extent() const { return sc_.extent; }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "png_io.h"
@@ -13,6 +14,7 @@ namespace posemorph::viewer::window_impl {
 
 void SmokeDriver::Input() {
   const std::uint32_t frames = w_.options.smoke_frames;
+  if (frame_ >= frames) return;  // --watch: no input while waiting for re-bakes
   const VkExtent2D extent = w_.presenter.extent();
   // Drag the pad programmatically: press on it and move around a circle.
   ImGuiIO& io = ImGui::GetIO();
@@ -31,9 +33,14 @@ void SmokeDriver::Input() {
   // The drag is recorded as a gesture for the first half.
   Gesture& gesture = w_.pad.gesture();
   if (frame_ == 1) gesture = Gesture{}, gesture.recording = true, gesture.start = w_.clock;
+  // With --description, on the last scripted frame: pose 1's point dragged
+  // a quarter to the right, let go (the panel saves it this frame, as
+  // SaveAuthored saves the rest: one re-bake takes them all with --watch).
+  if (ScriptEnd() && !w_.options.description.empty() && w_.rig->pose_count() > 1)
+    w_.pad.MovePose(1, w_.rig->pose_points().data[2] + 0.25, w_.rig->pose_points().data[3]);
   if (frame_ == frames / 2) gesture.recording = false;
   Edit& edit = w_.editor.state();
-  const Rig& rig = w_.rig;
+  const Rig& rig = *w_.rig;
   if (frame_ == frames * 3 / 4 && rig.vertex_count() > 2 && EditModeBuilt()) {
     // Then edit mode: pin vertex 0, drag the vertex farthest from it.
     edit.on = true;
@@ -52,6 +59,12 @@ void SmokeDriver::Input() {
   // character again (the "fit character" button): every joint is on screen
   // for the shot to be checked against.
   if (w_.show_joints && LastFrame()) edit.on = false, w_.view.set_fit(ViewCamera::Fit::kCharacter);
+}
+
+bool SmokeDriver::WatchDone() const {
+  if (!w_.options.watch) return true;
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started_).count();
+  return w_.rebakes + w_.failed_rebakes >= w_.options.smoke_rebakes || seconds > 600;
 }
 
 void SmokeDriver::AfterPanel() {
@@ -76,7 +89,11 @@ bool SmokeDriver::AfterFrame() {
     if (frame_ > 10) fps_ = (frame_ - 10) / seconds;
     w_.presenter.Resize(int(o.width) - 100, int(o.height) - 60);
   }
-  return ++frame_ >= o.smoke_frames;
+  ++frame_;
+  // Waiting for re-bakes: a frame every 20 ms is enough, and leaves the
+  // cores to the bake.
+  if (frame_ >= o.smoke_frames && !WatchDone()) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  return frame_ >= o.smoke_frames && WatchDone();
 }
 
 int SmokeDriver::WriteShot() {
@@ -95,7 +112,7 @@ int SmokeDriver::WriteShot() {
   std::printf(
       "wrote %s (%ux%u window, %u frames, pad dragged to (%.3f, %.3f), %u character(s), %.1f fps at %ux%u, %s)\n",
       o.smoke_test.c_str(), extent.width, extent.height, frame_, w_.scene.x, w_.scene.y,
-      SceneCharacters(w_.rig, w_.scene), fps_, o.width, o.height, w_.presenter.device_name().c_str());
+      SceneCharacters(*w_.rig, w_.scene), fps_, o.width, o.height, w_.presenter.device_name().c_str());
   const Camera& camera = w_.view.camera();
   std::printf("camera: zoom %.4g pixels per unit at (%.2f, %.2f), %s\n", camera.zoom, camera.centre.x, camera.centre.y,
               w_.view.fit() == ViewCamera::Fit::kNone ? "zoomed and panned by the user" : "fitted");
@@ -103,10 +120,10 @@ int SmokeDriver::WriteShot() {
     const MachineDriver& d = w_.machine.driver();
     for (const std::string& line : d.log()) std::printf("%s\n", line.c_str());
     std::string states;
-    for (std::size_t l = 0; l < w_.rig.machine_layers().size; ++l) {
+    for (std::size_t l = 0; l < w_.rig->machine_layers().size; ++l) {
       const std::uint32_t s = d.machine(0).state[l];
       states +=
-          (l ? ", " : "") + std::string(w_.rig.machine_states()[s].name.data, w_.rig.machine_states()[s].name.size);
+          (l ? ", " : "") + std::string(w_.rig->machine_states()[s].name.data, w_.rig->machine_states()[s].name.size);
     }
     std::printf("state machine: %zu log line(s) in %.3f s, states %s\n", d.log().size(), d.clock(), states.c_str());
   }
@@ -119,7 +136,7 @@ int SmokeDriver::WriteShot() {
     seen += at + 2 < rgba.size() && rgba[at] > 200 && rgba[at + 1] < 80 && rgba[at + 2] > 200;
   }
   std::printf("joints: %zu marker(s) on screen for %zu joint(s), %zu seen in the shot\n", w_.joint_marks.size(),
-              w_.joints.size() + w_.rig.attachment_count(), seen);
+              w_.joints.size() + w_.rig->attachment_count(), seen);
   if (seen != w_.joint_marks.size() || w_.joint_marks.empty()) {
     std::fprintf(stderr, "posemorph-view: error: %zu of %zu joint markers are missing from the shot\n",
                  w_.joint_marks.size() - seen, w_.joint_marks.size());

@@ -15,14 +15,20 @@ namespace posemorph::viewer::window_impl {
 
 class SmokeDriver {
  public:
-  explicit SmokeDriver(Parts& parts) : w_(parts), timing_start_(std::chrono::steady_clock::now()) {}
+  explicit SmokeDriver(Parts& parts)
+      : w_(parts), timing_start_(std::chrono::steady_clock::now()), started_(timing_start_) {}
 
   // The scripted input of the current frame, before ImGui::NewFrame.
   void Input();
   // After the panel is built: the wheel steps of this frame, if any.
   void AfterPanel();
-  bool LastFrame() const { return frame_ + 1 >= w_.options.smoke_frames; }
-  // On the last frame, with --description: saves the gesture and the edited pose, printing what was done.
+  // The scripted frames' last; with --watch, the session then goes on
+  // (frames without input) until --rebakes re-bakes have finished.
+  bool ScriptEnd() const { return frame_ + 1 == w_.options.smoke_frames; }
+  bool LastFrame() const { return frame_ + 1 >= w_.options.smoke_frames && WatchDone(); }
+  // On the scripted frames' last, with --description: saves the gesture and
+  // the edited pose, printing what was done (Input drags pose 1's point a
+  // quarter to the right on that frame, which the panel saves).
   void SaveAuthored();
   // After the frame is presented: timing, and half-way the resize that
   // rebuilds the swapchain under validation. True when the session is over.
@@ -31,9 +37,13 @@ class SmokeDriver {
   int WriteShot();
 
  private:
+  // True without --watch; with it, once `smoke_rebakes` re-bakes finished
+  // or 10 minutes passed.
+  bool WatchDone() const;
+
   Parts& w_;
   std::uint32_t frame_ = 0;
-  std::chrono::steady_clock::time_point timing_start_;
+  std::chrono::steady_clock::time_point timing_start_, started_;
   double fps_ = 0;  // frames 10 .. half-way (before the resize)
 };
 

@@ -30,16 +30,16 @@ namespace posemorph::viewer::window_impl {
 // loop and the smoke-test driver both work on it.
 struct Parts {
   Parts(const Rig& r, const Drawings& d, Scene s, const WindowOptions& o)
-      : rig(r),
-        drawings(d),
+      : rig(&r),
+        drawings(&d),
         scene(std::move(s)),
         options(o),
         editor(r, o.description),
         joints(JointVertices(r)),
         show_joints(o.show_joints) {}
 
-  const Rig& rig;
-  const Drawings& drawings;
+  const Rig* rig;  // what is shown: main's, or the last re-bake's with --watch
+  const Drawings* drawings;
   Scene scene;  // what the user set (the pad's point, the panel's toggles)
   const WindowOptions options;
   Presenter presenter;
@@ -48,11 +48,13 @@ struct Parts {
   Editor editor;
   ViewCamera view;
   SceneScratch scratch;
-  std::string status;                 // the panel's last line: what a save did, or why a frame failed
-  double clock = 0;                   // seconds since the window opened (1/60 a frame in the smoke test)
-  double eval_ms = 0;                 // the runtime's time for the last frame's characters
-  std::vector<std::uint32_t> joints;  // a layered character's joint vertices (JointVertices)
-  bool show_joints = false;           // markers on the joints (--joints, or the panel's toggle)
+  std::string status;                             // the panel's last line: what a save did, or why a frame failed
+  std::string watch_line;                         // --watch: the last re-bake's summary, or its failure
+  std::uint32_t rebakes = 0, failed_rebakes = 0;  // --watch: re-bakes swapped in, and failed
+  double clock = 0;                               // seconds since the window opened (1/60 a frame in the smoke test)
+  double eval_ms = 0;                             // the runtime's time for the last frame's characters
+  std::vector<std::uint32_t> joints;              // a layered character's joint vertices (JointVertices)
+  bool show_joints = false;                       // markers on the joints (--joints, or the panel's toggle)
   // The last overlay's markers in window pixels (the smoke test finds them in its shot).
   std::vector<ImVec2> joint_marks;
 };
@@ -71,8 +73,14 @@ class Viewer {
   std::uint32_t PrepareCharacters(const Scene& shown);
   // A marker on every joint of the characters drawn (when show_joints is on).
   void JointOverlay(std::uint32_t count);
+  // --watch: takes a finished re-bake; a rig is swapped in (window.cpp).
+  void TakeRebake();
+  // Shows `next` from now on: the renderer, the pads, the machine, edit
+  // mode and the scene's per-rig settings follow it.
+  void Swap(std::unique_ptr<BakedRig> next);
 
   Parts parts_;
+  std::unique_ptr<BakedRig> shown_;  // the rig shown once a re-bake is swapped in
 };
 
 }  // namespace posemorph::viewer::window_impl

@@ -58,8 +58,8 @@ LayeredCharacter ImportLayeredCharacter(const std::vector<std::string>& paths, b
   }
   auto note_hidden = [&](const std::string& file, const std::vector<Layer>& entries) {
     for (const Layer& e : entries)
-      if (!e.visible) c.notes.push_back(file + ": " + (e.group ? "group '" : "layer '") + e.name +
-                                        "' is hidden: not imported");
+      if (!e.visible)
+        c.notes.push_back(file + ": " + (e.group ? "group '" : "layer '") + e.name + "' is hidden: not imported");
   };
 
   // One file whose visible top-level entries are all groups, two or more:
@@ -111,8 +111,8 @@ LayeredCharacter ImportLayeredCharacter(const std::vector<std::string>& paths, b
   for (const Layer* e : visible(*poses[0].entries)) {
     const std::string part = Safe(e->name, true);
     if (std::find(c.parts.begin(), c.parts.end(), part) != c.parts.end())
-      throw BakeError(Describe(poses[0]), "two parts are named '" + part +
-                                              "' (layer names as file names): name each part once");
+      throw BakeError(Describe(poses[0]),
+                      "two parts are named '" + part + "' (layer names as file names): name each part once");
     c.parts.push_back(part);
   }
   c.drawings.resize(poses.size() * c.parts.size());
@@ -127,11 +127,11 @@ LayeredCharacter ImportLayeredCharacter(const std::vector<std::string>& paths, b
                                                 c.poses[0] + "' (" + Describe(poses[0]) +
                                                 "): every pose draws the same parts, named alike");
       const std::size_t q = std::size_t(it - c.parts.begin());
-      if (found[q])
-        throw BakeError(Describe(poses[i]), "two parts are named '" + part + "': name each part once");
+      if (found[q]) throw BakeError(Describe(poses[i]), "two parts are named '" + part + "': name each part once");
       found[q] = true;
       c.drawings[i * c.parts.size() + q] = Composite(*e, c.width, c.height);
-      c.sources[i * c.parts.size() + q] = Describe(poses[i]) + ": " + (e->group ? "group '" : "layer '") + e->name + "'";
+      c.sources[i * c.parts.size() + q] =
+          Describe(poses[i]) + ": " + (e->group ? "group '" : "layer '") + e->name + "'";
     }
     for (std::size_t q = 0; q < c.parts.size(); ++q)
       if (!found[q])

@@ -23,7 +23,9 @@ struct Box {
   bool Empty() const { return x1 <= x0 || y1 <= y0; }
 };
 
-Box Intersect(Box a, Box b) { return {std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)}; }
+Box Intersect(Box a, Box b) {
+  return {std::max(a.x0, b.x0), std::max(a.y0, b.y0), std::min(a.x1, b.x1), std::min(a.y1, b.y1)};
+}
 
 // The box of what a visible entry draws, within `clip`.
 Box Extent(const Layer& layer, Box clip) {
@@ -37,7 +39,9 @@ Box Extent(const Layer& layer, Box clip) {
   for (const Layer& child : layer.children) {
     const Box b = Extent(child, clip);
     if (b.Empty()) continue;
-    out = out.Empty() ? b : Box{std::min(out.x0, b.x0), std::min(out.y0, b.y0), std::max(out.x1, b.x1), std::max(out.y1, b.y1)};
+    out = out.Empty()
+              ? b
+              : Box{std::min(out.x0, b.x0), std::min(out.y0, b.y0), std::max(out.x1, b.x1), std::max(out.y1, b.y1)};
   }
   return out;
 }

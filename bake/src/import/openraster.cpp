@@ -137,8 +137,7 @@ class OpenRasterReader {
         if (s.size() < 4 || (s.compare(s.size() - 4, 4, ".png") != 0 && s.compare(s.size() - 4, 4, ".PNG") != 0))
           Fail(Where(here) + "src " + s + " is not a PNG (OpenRaster layers are PNG)");
         const std::vector<unsigned char> png = Entry(s, kMaxLayeredFileBytes);
-        layer.rgba = mapping::DecodePngRgba(png, &layer.width, &layer.height,
-                                            ErrorSource(file_, Where(here) + s));
+        layer.rgba = mapping::DecodePngRgba(png, &layer.width, &layer.height, ErrorSource(file_, Where(here) + s));
         pixels_ += std::uint64_t(layer.width) * std::uint64_t(layer.height);
         if (pixels_ > kMaxLayerPixels)
           Fail(Where(here) + "the layers hold more than " + std::to_string(kMaxLayerPixels) + " pixels in all");

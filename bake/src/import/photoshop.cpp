@@ -28,8 +28,8 @@ class Bytes {
   std::size_t Left() const { return size_ - at_; }
   std::size_t Offset() const { return base_ + at_; }
   [[noreturn]] void Truncated(const std::string& what) const {
-    throw BakeError(*file_, "damaged or truncated: " + what + " runs past its end (at byte " +
-                                std::to_string(Offset()) + ")");
+    throw BakeError(*file_,
+                    "damaged or truncated: " + what + " runs past its end (at byte " + std::to_string(Offset()) + ")");
   }
   const unsigned char* Take(std::size_t n, const char* what) {
     if (n > Left()) Truncated(what);
@@ -187,8 +187,8 @@ class PhotoshopReader {
     if (depth != 8)
       Fail(std::to_string(depth) + "-bit channels are not supported: save the file with 8 bits per channel");
     if (mode != 3 && mode != 1) {
-      static const char* names[] = {"bitmap", "greyscale", "indexed", "RGB", "CMYK", "", "", "multichannel",
-                                    "duotone", "Lab"};
+      static const char* names[] = {"bitmap", "greyscale", "indexed",      "RGB",     "CMYK",
+                                    "",       "",          "multichannel", "duotone", "Lab"};
       const std::string name = mode < 10 && names[mode][0] ? names[mode] : "number " + std::to_string(mode);
       Fail("colour mode " + name + " is not supported: convert the image to RGB (or greyscale)");
     }
@@ -217,9 +217,7 @@ class PhotoshopReader {
   [[noreturn]] void FailLayer(const Record& r, const std::string& problem) const {
     Fail("layer '" + r.name + "': " + problem);
   }
-  void Note(const Record& r, const std::string& what) {
-    notes_.push_back(file_ + ": layer '" + r.name + "': " + what);
-  }
+  void Note(const Record& r, const std::string& what) { notes_.push_back(file_ + ": layer '" + r.name + "': " + what); }
 
   Record ReadRecord(Bytes& b) {
     Record r;
@@ -233,8 +231,8 @@ class PhotoshopReader {
       info.length = b.U32("a layer record");
       r.channels.push_back(info);
     }
-    if (b.Tag("a layer record") != "8BIM") Fail("a layer record's blend mode does not begin with 8BIM (at byte " +
-                                                 std::to_string(b.Offset() - 4) + ")");
+    if (b.Tag("a layer record") != "8BIM")
+      Fail("a layer record's blend mode does not begin with 8BIM (at byte " + std::to_string(b.Offset() - 4) + ")");
     r.blend = b.Tag("a layer record");
     r.opacity = b.U8("a layer record");
     r.clipping = b.U8("a layer record");

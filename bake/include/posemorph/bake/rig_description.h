@@ -280,11 +280,21 @@ std::string MeshFileText(const std::vector<Eigen::Vector2d>& vertices,
 // smallest K >= 1 that no entry of its list has. BakeError(file, ...) when
 // the text is not a JSON object or its "poses" or "paths" is not an array.
 struct DescriptionAddition {
-  std::string text;  // indented JSON and a newline
+  std::string text;  // the description laid out as DescriptionJsonText, and a newline
   std::vector<std::string> pose_names, path_names;
 };
 DescriptionAddition AddToRigDescription(const std::string& text, const std::string& file,
                                         const std::vector<PoseDescription>& poses,
                                         const std::vector<PathDescription>& paths);
+// The description with pose `pose`'s "point" set to (x, y), rounded to 4
+// decimals (the first channel's pose in a rig with channels; what the
+// viewer's pad saves when a pose point is dragged). BakeError(file, ...)
+// when the text is not a JSON object or has no such pose.
+std::string MovePosePoint(const std::string& text, const std::string& file, const std::string& pose, double x,
+                          double y);
+// How the writers lay a description out: the text's own key order, an
+// object's keys one a line, arrays without objects on one line (one
+// element a line past 100 characters), indented by two.
+std::string DescriptionJsonText(const std::string& text, const std::string& file);
 
 }  // namespace posemorph::bake

@@ -28,8 +28,8 @@
 namespace posemorph::bake::import {
 
 constexpr std::uint64_t kMaxLayeredFileBytes = std::uint64_t(256) << 20;
-constexpr std::size_t kMaxLayers = 1024;                             // layers and groups together
-constexpr int kMaxDepth = 16;                                        // groups within groups
+constexpr std::size_t kMaxLayers = 1024;                           // layers and groups together
+constexpr int kMaxDepth = 16;                                      // groups within groups
 constexpr std::uint64_t kMaxLayerPixels = std::uint64_t(1) << 27;  // all layers' boxes together
 
 // One entry of the layer tree: a raster layer or a group.

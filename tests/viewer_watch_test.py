@@ -1,0 +1,85 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: MIT
+# posemorph-view --watch (ctest viewer.window_watch), on a copy of Pip's
+# folder, under Xvfb with the validation layer: the window opens on the
+# description baked in memory; the smoke session saves a gesture and an
+# edited pose into the description, which is baked again and swapped in
+# (6 poses); a description broken on disk gives a failed re-bake whose
+# message names the file, and the window keeps the last rig; the description
+# mended is baked and swapped in again; the window then writes its shot and
+# exits 0 after those three re-bakes, without having been closed.
+#   viewer_watch_test.py VIEW XVFB_RUN PIP_FOLDER WORK
+import os, shutil, subprocess, sys, threading, time
+
+view, xvfb, pip, work = sys.argv[1:5]
+shutil.rmtree(work, ignore_errors=True)
+shutil.copytree(pip, work)
+description = os.path.join(work, "pip.json")
+shot = os.path.join(work, "watch-shot.png")
+process = subprocess.Popen(
+    [xvfb, "-a", "-s", "-screen 0 1400x900x24", view, "--watch", description, "--validation", "--size", "1024x640",
+     "--smoke-test", shot, "--frames", "20", "--rebakes", "3"],
+    stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+lines = []
+seen = threading.Condition()
+
+def read():
+    for line in process.stdout:
+        sys.stdout.write(line)
+        sys.stdout.flush()
+        with seen:
+            lines.append(line.rstrip("\n"))
+            seen.notify_all()
+    with seen:
+        lines.append(None)
+        seen.notify_all()
+
+threading.Thread(target=read, daemon=True).start()
+
+def wait_for(text, after, seconds=300):
+    # The index of the first line after `after` that holds `text`.
+    deadline = time.time() + seconds
+    with seen:
+        while True:
+            for i in range(after, len(lines)):
+                if lines[i] is None:
+                    sys.exit(f"FAIL: the viewer ended before printing '{text}'")
+                if text in lines[i]:
+                    return i
+            if time.time() > deadline:
+                process.kill()
+                sys.exit(f"FAIL: no '{text}' within {seconds} s")
+            seen.wait(1)
+
+i = wait_for("watching it and its drawings", 0)
+# The smoke session saves into the description (a gesture, an edited pose,
+# pose 1's point dragged on the pad): one re-bake with 6 poses.
+wait_for('moved pose "stretch" to (0.25, 1) in ' + description + " (baked again)", i)
+i = wait_for("saved pose", i)
+i = wait_for("swapped in", i)
+if "6 poses" not in lines[i]:
+    sys.exit(f"FAIL: the re-bake after the save is not the saved rig: {lines[i]}")
+saved = open(description).read()
+# Written in the description's own key order, points on one line.
+if not saved.startswith('{\n  "posemorph": 1,\n  "name": "pip",') or '"point": [0.25, 1.0]' not in saved:
+    sys.exit("FAIL: the saved description is not laid out as written, or lacks the moved point:\n" + saved[:400])
+# Broken on disk: the re-bake fails naming the file; the last rig stays.
+time.sleep(0.3)
+with open(description + ".tmp", "w") as f:
+    f.write(saved[: len(saved) // 2])
+os.replace(description + ".tmp", description)
+i = wait_for("the re-bake failed; still showing the last rig", i)
+if description not in lines[i]:
+    sys.exit(f"FAIL: the failure does not name the description: {lines[i]}")
+# Mended: baked and swapped in again.
+time.sleep(0.3)
+with open(description + ".tmp", "w") as f:
+    f.write(saved)
+os.replace(description + ".tmp", description)
+i = wait_for("swapped in", i)
+i = wait_for("wrote " + shot, i)
+status = process.wait(timeout=120)
+output = "\n".join(l for l in lines if l is not None)
+if status != 0 or "validation" in output or not os.path.getsize(shot):
+    sys.exit(f"FAIL: exit status {status}, or validation messages, or no shot")
+print("watch: 2 re-bakes swapped in (after the window's own save, after mending), 1 failure shown; the window stayed open")

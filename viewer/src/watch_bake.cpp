@@ -1,0 +1,219 @@
+// SPDX-License-Identifier: MIT
+// posemorph-view --watch (watch_bake.h): the bake in memory and the thread
+// that watches the description and its files.
+#include "watch_bake.h"
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+#include <new>
+#include <thread>
+#include <vector>
+
+#include "posemorph/bake/bake.h"
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/rig_description.h"
+#include "posemorph/bake/stage.h"
+
+namespace posemorph::viewer {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The files a bake read and what they were then: path, size and time of
+// the last change (a file that is missing counts as size -1).
+struct Stamp {
+  std::string path;
+  std::uintmax_t size;
+  fs::file_time_type time;
+  bool operator==(const Stamp& o) const { return path == o.path && size == o.size && time == o.time; }
+};
+using Fingerprint = std::vector<Stamp>;
+
+Stamp StampOf(const std::string& path) {
+  std::error_code ec;
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) return {path, std::uintmax_t(-1), {}};
+  const fs::file_time_type time = fs::last_write_time(path, ec);
+  return {path, size, ec ? fs::file_time_type{} : time};
+}
+
+// The description and every file it names that a bake reads or records
+// (drawings and images of poses and parts), resolved as the bake does.
+std::vector<std::string> InputsOf(const std::string& description, const bake::RigDescription* d) {
+  std::vector<std::string> paths{description};
+  if (!d) return paths;
+  const fs::path folder = fs::path(description).parent_path();
+  auto add = [&](const bake::PoseDescription& pose) {
+    if (!pose.drawing_path.empty()) paths.push_back(pose.drawing_path);
+    if (!pose.image.empty()) paths.push_back((folder / pose.image).string());
+  };
+  for (const bake::PoseDescription& pose : d->poses) add(pose);
+  for (const bake::PartDescription& part : d->parts)
+    for (const bake::PoseDescription& pose : part.poses) add(pose);
+  return paths;
+}
+
+Fingerprint FingerprintOf(const std::vector<std::string>& paths) {
+  Fingerprint f;
+  for (const std::string& p : paths) f.push_back(StampOf(p));
+  return f;
+}
+
+class DescriptionWatch final : public WatchedBake {
+ public:
+  explicit DescriptionWatch(std::string description) : description_(std::move(description)) {}
+  ~DescriptionWatch() override {
+    {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+
+  // One bake of the description as it is on disk now: the rig, or false
+  // with the message; `inputs` gets the files it read.
+  bool Bake(std::unique_ptr<BakedRig>* out, std::string* problem, std::vector<std::string>* inputs) {
+    *inputs = InputsOf(description_, nullptr);
+    try {
+      bake::RigDescription d = bake::ReadRigDescription(description_);
+      *inputs = InputsOf(description_, &d);
+      // The rig as posemorph-bake would write it beside the description, so
+      // that it records the description's folder as its drawings' folder.
+      fs::path rig_file = description_;
+      rig_file.replace_extension(".pmrig");
+      d.rig_file = rig_file.string();
+      bake::BakeReport report;
+      const std::vector<unsigned char> bytes = bake::BakeRig(d, &report);
+      auto baked = std::make_unique<BakedRig>();
+      Error err;
+      if (!LoadRig(bytes.data(), bytes.size(), &baked->rig, &err)) {
+        *problem = description_ + ": the baked rig does not load: " + err.message;
+        return false;
+      }
+      std::string folder = fs::path(description_).parent_path().string();
+      if (folder.empty()) folder = ".";
+      if (!LoadDrawings(baked->rig, folder, &baked->drawings, problem)) {
+        *problem = description_ + ": " + *problem;
+        return false;
+      }
+      char seconds[32];
+      std::snprintf(seconds, sizeof seconds, "%.1f", report.seconds);
+      baked->summary = "baked " + description_ + ": " + std::to_string(report.vertices) + " vertices, " +
+                       std::to_string(report.triangles) + " triangles, " + std::to_string(report.poses) +
+                       " poses, " + std::to_string(report.bytes) + " bytes, " + seconds + " s";
+      *out = std::move(baked);
+      return true;
+    } catch (const bake::BakeError& e) {
+      *problem = e.what();
+    } catch (const std::bad_alloc&) {
+      *problem = description_ + ": out of memory while " + bake::CurrentBakeStage();
+    } catch (const std::exception& e) {
+      *problem = description_ + ": internal error: " + e.what();
+    }
+    return false;
+  }
+
+  void Start(std::vector<std::string> inputs) {
+    inputs_ = std::move(inputs);
+    baked_ = FingerprintOf(inputs_);
+    thread_ = std::thread([this] { Loop(); });
+  }
+
+  Result Take(std::unique_ptr<BakedRig>* rig, std::string* message) override {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (ready_) {
+      *rig = std::move(ready_);
+      return Result::kBaked;
+    }
+    if (!failed_.empty()) {
+      *message = std::move(failed_);
+      failed_.clear();
+      return Result::kFailed;
+    }
+    return Result::kNone;
+  }
+
+  std::string Progress() const override {
+    if (!baking_.load()) return "";
+    const auto elapsed = std::chrono::steady_clock::now().time_since_epoch() -
+                         std::chrono::steady_clock::duration(started_.load());
+    const char* stage = bake::LatestBakeStage().stage;
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.1f", std::chrono::duration<double>(elapsed).count());
+    return "baking " + description_ + ": " + (stage && *stage ? stage : "starting") + ", " + seconds + " s";
+  }
+
+ private:
+  // Four times a second: when the inputs differ from those of the last bake
+  // and have stayed the same for one more look (an editor writing a file is
+  // not read half-way), bake again.
+  void Loop() {
+    Fingerprint seen = baked_;
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!stop_) {
+      wake_.wait_for(lock, std::chrono::milliseconds(250));
+      if (stop_) break;
+      lock.unlock();
+      const Fingerprint now = FingerprintOf(inputs_);
+      const bool settled = now == seen;
+      seen = now;
+      if (settled && !(now == baked_)) {
+        started_.store(std::chrono::steady_clock::now().time_since_epoch().count());
+        baking_.store(true);
+        std::unique_ptr<BakedRig> rig;
+        std::string problem;
+        std::vector<std::string> inputs;
+        const bool ok = Bake(&rig, &problem, &inputs);
+        baking_.store(false);
+        // What the bake read: the inputs as they were when it began (a
+        // change while it ran is baked next), or, when the description now
+        // names other files, those files as they are.
+        if (inputs == inputs_) {
+          baked_ = now;
+        } else {
+          inputs_ = inputs;
+          baked_ = FingerprintOf(inputs_);
+        }
+        seen = baked_;
+        lock.lock();
+        if (ok)
+          ready_ = std::move(rig), failed_.clear();
+        else
+          failed_ = problem;
+        continue;
+      }
+      lock.lock();
+    }
+  }
+
+  const std::string description_;
+  std::vector<std::string> inputs_;  // the watch thread's own
+  Fingerprint baked_;                // the inputs as the last bake read them
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::unique_ptr<BakedRig> ready_;  // under mutex_
+  std::string failed_;               // under mutex_
+  std::atomic<bool> baking_{false};
+  std::atomic<std::chrono::steady_clock::rep> started_{0};
+  std::thread thread_;
+};
+
+}  // namespace
+
+std::unique_ptr<WatchedBake> WatchDescription(const std::string& description, std::unique_ptr<BakedRig>* first,
+                                              std::string* problem) {
+  auto watch = std::make_unique<DescriptionWatch>(description);
+  std::fprintf(stderr, "posemorph-view: baking %s\n", Printable(description, 1000).c_str());
+  std::vector<std::string> inputs;
+  if (!watch->Bake(first, problem, &inputs)) return nullptr;
+  watch->Start(std::move(inputs));
+  return watch;
+}
+
+}  // namespace posemorph::viewer
