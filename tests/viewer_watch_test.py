@@ -4,7 +4,9 @@
 # folder, under Xvfb with the validation layer: the window opens on the
 # description baked in memory; the smoke session saves a gesture and an
 # edited pose into the description, which is baked again and swapped in
-# (6 poses); a description broken on disk gives a failed re-bake whose
+# (6 poses, pose 1 moved on the pad); a landmark placed by clicking the
+# outline in edit mode is added to every pose and baked in; a description
+# broken on disk gives a failed re-bake whose
 # message names the file, and the window keeps the last rig; the description
 # mended is baked and swapped in again; the window then writes its shot and
 # exits 0 after those three re-bakes, without having been closed.
@@ -18,7 +20,7 @@ description = os.path.join(work, "pip.json")
 shot = os.path.join(work, "watch-shot.png")
 process = subprocess.Popen(
     [xvfb, "-a", "-s", "-screen 0 1400x900x24", view, "--watch", description, "--validation", "--size", "1024x640",
-     "--smoke-test", shot, "--frames", "20", "--rebakes", "3"],
+     "--smoke-test", shot, "--frames", "20", "--rebakes", "4"],
     stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
 lines = []
 seen = threading.Condition()
@@ -63,6 +65,16 @@ saved = open(description).read()
 # Written in the description's own key order, points on one line.
 if not saved.startswith('{\n  "posemorph": 1,\n  "name": "pip",') or '"point": [0.25, 1.0]' not in saved:
     sys.exit("FAIL: the saved description is not laid out as written, or lacks the moved point:\n" + saved[:400])
+# Edit mode's landmarks: a click on the outline's upper right adds a
+# landmark to every pose, between the right side's (1) and the top's (2).
+i = wait_for("added landmark 2 to every pose in " + description + " (baked again)", i)
+i = wait_for("swapped in", i)
+saved = open(description).read()
+import json
+poses = json.loads(saved)["poses"]
+counts = [len(p.get("landmarks", [])) for p in poses if "drawing" in p]
+if counts != [5] * 5:
+    sys.exit(f"FAIL: the drawn poses' landmark counts after the click are {counts}, not 5 each")
 # Broken on disk: the re-bake fails naming the file; the last rig stays.
 time.sleep(0.3)
 with open(description + ".tmp", "w") as f:
@@ -82,4 +94,5 @@ status = process.wait(timeout=120)
 output = "\n".join(l for l in lines if l is not None)
 if status != 0 or "validation" in output or not os.path.getsize(shot):
     sys.exit(f"FAIL: exit status {status}, or validation messages, or no shot")
-print("watch: 2 re-bakes swapped in (after the window's own save, after mending), 1 failure shown; the window stayed open")
+print("watch: 3 re-bakes swapped in (after the window's saves, after a landmark placed by a click, after mending), "
+      "1 failure shown; the window stayed open")

@@ -235,6 +235,44 @@ std::string MovePosePoint(const std::string& text, const std::string& file, cons
   return out + "\n";
 }
 
+std::string SetDrawnPoints(const std::string& text, const std::string& file, const std::string& part,
+                           const std::string& key, const std::vector<std::vector<Eigen::Vector2d>>& lists) {
+  if (key != "landmarks" && key != "features") throw BakeError(file, "no list '" + key + "' to set");
+  ordered root = Ordered(text, file);
+  if (root.contains("channels"))
+    throw BakeError(file, "a rig with channels: place its landmarks and features in the description by hand");
+  ordered* poses = nullptr;
+  std::string where = "poses";
+  if (part.empty()) {
+    if (root.contains("poses") && root["poses"].is_array()) poses = &root["poses"];
+  } else if (root.contains("parts") && root["parts"].is_array()) {
+    for (std::size_t q = 0; q < root["parts"].size(); ++q) {
+      ordered& p = root["parts"][q];
+      if (p.is_object() && p.contains("name") && p["name"] == part && p.contains("poses") && p["poses"].is_array())
+        poses = &p["poses"], where = "parts[" + std::to_string(q) + "].poses";
+    }
+  }
+  if (!poses) throw BakeError(file, part.empty() ? "has no poses array" : "has no part named '" + part + "'");
+  if (poses->size() != lists.size())
+    throw BakeError(file,
+                    where + " has " + std::to_string(poses->size()) + " poses, not " + std::to_string(lists.size()));
+  for (std::size_t i = 0; i < lists.size(); ++i) {
+    ordered& pose = (*poses)[i];
+    if (!pose.is_object()) throw BakeError(file, where + "[" + std::to_string(i) + "]: expected an object");
+    ordered points = ordered::array();
+    // Three decimals: a thousandth of a drawing pixel.
+    for (const Eigen::Vector2d& p : lists[i])
+      points.push_back(ordered::array({std::round(p.x() * 1e3) / 1e3 + 0.0, std::round(p.y() * 1e3) / 1e3 + 0.0}));
+    if (points.empty() && key == "features")
+      pose.erase(key);
+    else
+      pose[key] = std::move(points);
+  }
+  std::string out;
+  Write(root, 0, out);
+  return out + "\n";
+}
+
 DescriptionAddition AddToRigDescription(const std::string& text, const std::string& file,
                                         const std::vector<PoseDescription>& poses,
                                         const std::vector<PathDescription>& paths) {

@@ -104,8 +104,8 @@ class DescriptionWatch final : public WatchedBake {
       char seconds[32];
       std::snprintf(seconds, sizeof seconds, "%.1f", report.seconds);
       baked->summary = "baked " + description_ + ": " + std::to_string(report.vertices) + " vertices, " +
-                       std::to_string(report.triangles) + " triangles, " + std::to_string(report.poses) +
-                       " poses, " + std::to_string(report.bytes) + " bytes, " + seconds + " s";
+                       std::to_string(report.triangles) + " triangles, " + std::to_string(report.poses) + " poses, " +
+                       std::to_string(report.bytes) + " bytes, " + seconds + " s";
       *out = std::move(baked);
       return true;
     } catch (const bake::BakeError& e) {
@@ -140,8 +140,8 @@ class DescriptionWatch final : public WatchedBake {
 
   std::string Progress() const override {
     if (!baking_.load()) return "";
-    const auto elapsed = std::chrono::steady_clock::now().time_since_epoch() -
-                         std::chrono::steady_clock::duration(started_.load());
+    const auto elapsed =
+        std::chrono::steady_clock::now().time_since_epoch() - std::chrono::steady_clock::duration(started_.load());
     const char* stage = bake::LatestBakeStage().stage;
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%.1f", std::chrono::duration<double>(elapsed).count());

@@ -34,9 +34,9 @@ class WatchedBake {
   virtual std::string Progress() const = 0;
 };
 
-// Bakes `description` now, on this thread (saying so on stderr), into *first, then watches it (four times a second) on a thread of
-// its own. nullptr, with the message in *problem, when the first bake fails
-// or this viewer is built without the bake.
+// Bakes `description` now, on this thread (saying so on stderr), into *first, then watches it (four times a second) on
+// a thread of its own. nullptr, with the message in *problem, when the first bake fails or this viewer is built without
+// the bake.
 std::unique_ptr<WatchedBake> WatchDescription(const std::string& description, std::unique_ptr<BakedRig>* first,
                                               std::string* problem);
 

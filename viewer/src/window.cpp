@@ -106,7 +106,8 @@ int Viewer::Run() {
       const std::int32_t x0 = std::int32_t(kPanelWidth);
       const std::uint32_t view_w = extent.width - std::uint32_t(kPanelWidth);
       w.view.Input(w.presenter.window(), x0, view_w, extent.height);
-      if (w.editor.on()) w.editor.Input(ViewMap{w.view.camera(), x0, view_w, extent.height}, w.view.panning());
+      if (w.editor.on())
+        w.editor.Input(ViewMap{w.view.camera(), x0, view_w, extent.height}, w.view.panning(), &w.status);
     }
     // The characters are evaluated before ImGui::Render, so that the
     // overlays follow this frame's characters.

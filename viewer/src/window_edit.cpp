@@ -61,13 +61,16 @@ void Editor::Ui(const Scene& scene, std::string* status) {
     }
     ImGui::EndCombo();
   }
+  PointsUi();
+  if (click_ != Click::kHandles) return;
   if (ImGui::Button("clear handles")) edit_.handles.clear(), edit_.targets.clear(), edit_.deformer.reset();
   ImGui::SameLine();
   if (ImGui::Button("save pose") && edit_.handles.size() >= 2) SavePose(scene, status);
   ImGui::Text("%zu handle(s): click the mesh to add, drag to move", edit_.handles.size());
 }
 
-void Editor::Input(const ViewMap& map, bool panning) {
+void Editor::Input(const ViewMap& map, bool panning, std::string* status) {
+  if (PointsInput(map, panning, status)) return;
   const ImGuiIO& io = ImGui::GetIO();
   ImDrawList* draw = ImGui::GetForegroundDrawList();
   for (std::size_t k = 0; k < edit_.handles.size(); ++k) {

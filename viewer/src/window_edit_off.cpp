@@ -20,13 +20,15 @@ namespace posemorph::viewer::window_impl {
 
 class EditDeformer {};
 void EditDeformerDelete::operator()(EditDeformer* d) const { delete d; }
+class DrawnPoints {};
+void DrawnPointsDelete::operator()(DrawnPoints* d) const { delete d; }
 
 void Editor::Ui(const Scene&, std::string*) {
   ImGui::Separator();
   ImGui::TextWrapped("Edit mode is not in this build (POSEMORPH_VIEWER_EDIT=OFF)");
 }
 
-void Editor::Input(const ViewMap&, bool) {}
+void Editor::Input(const ViewMap&, bool, std::string*) {}
 
 bool Editor::Prepare(RigRenderer&, SceneBounds*, std::uint32_t*, std::string*) { return false; }
 

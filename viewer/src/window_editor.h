@@ -23,6 +23,11 @@ class EditDeformer;
 struct EditDeformerDelete {
   void operator()(EditDeformer* d) const;
 };
+// The description's landmarks and features (window_points.cpp).
+class DrawnPoints;
+struct DrawnPointsDelete {
+  void operator()(DrawnPoints* d) const;
+};
 
 // Edit mode's state: the base pose, the handles (vertices) and where they
 // are dragged, the mesh as deformed.
@@ -46,12 +51,16 @@ class Editor {
   void Rebind(const Rig& rig) {
     rig_ = &rig;
     edit_ = Edit{};
+    point_drag_ = -1;
   }
 
   // The panel's edit controls; saving the pose needs the pad's point.
   void Ui(const Scene& scene, std::string* status);
-  // Handles: a click on the mesh adds one, a drag moves one (not while the camera pans).
-  void Input(const ViewMap& map, bool panning);
+  // Handles: a click on the mesh adds one, a drag moves one (not while the
+  // camera pans); or, with "click adds: landmarks" or "features", the
+  // description's points over the pose's outline, placed by clicking and
+  // saved (window_points.cpp); `status` says what was saved.
+  void Input(const ViewMap& map, bool panning, std::string* status);
   // The edited pose into the renderer's first character, standing unmoved;
   // false when this build has no edit mode.
   bool Prepare(RigRenderer& renderer, SceneBounds* bounds, std::uint32_t* count, std::string* status);
@@ -66,13 +75,23 @@ class Editor {
   void SavePosePoint(std::uint32_t pose, double x, double y, std::string* status) const;
 
   Edit& state() { return edit_; }
+  // What a click in edit mode adds: 0 handles, 1 landmarks, 2 features (the smoke test's way to choose).
+  void SetClick(int mode) { click_ = Click(mode), point_drag_ = -1; }
   bool on() const { return edit_.on; }
 
  private:
   [[maybe_unused]] const Rig* rig_;  // unused in a build without edit mode
+  // window_points.cpp: the "click adds" choice, and the points' overlay and clicks.
+  void PointsUi();
+  bool PointsInput(const ViewMap& map, bool panning, std::string* status);
+
   std::string description_;
   bool watched_ = false;
   Edit edit_;
+  enum class Click { kHandles, kLandmarks, kFeatures } click_ = Click::kHandles;
+  int point_drag_ = -1;    // the landmark or feature being dragged
+  std::string drag_part_;  // and its part's name
+  std::unique_ptr<DrawnPoints, DrawnPointsDelete> points_;
 };
 
 }  // namespace posemorph::viewer::window_impl

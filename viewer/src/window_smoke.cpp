@@ -14,7 +14,7 @@ namespace posemorph::viewer::window_impl {
 
 void SmokeDriver::Input() {
   const std::uint32_t frames = w_.options.smoke_frames;
-  if (frame_ >= frames) return;  // --watch: no input while waiting for re-bakes
+  if (frame_ >= frames) return WatchScript();  // --watch: waiting for re-bakes
   const VkExtent2D extent = w_.presenter.extent();
   // Drag the pad programmatically: press on it and move around a circle.
   ImGuiIO& io = ImGui::GetIO();
@@ -59,6 +59,35 @@ void SmokeDriver::Input() {
   // character again (the "fit character" button): every joint is on screen
   // for the shot to be checked against.
   if (w_.show_joints && LastFrame()) edit.on = false, w_.view.set_fit(ViewCamera::Fit::kCharacter);
+}
+
+void SmokeDriver::WatchScript() {
+  if (!w_.options.watch || !EditModeBuilt() || w_.options.description.empty()) return;
+  ImGuiIO& io = ImGui::GetIO();
+  Edit& edit = w_.editor.state();
+  const Rig& rig = *w_.rig;
+  if (watch_step_ == 0 && w_.rebakes >= 1) {
+    edit.on = true, edit.pose = 0;
+    w_.editor.SetClick(1);
+    ++watch_step_;
+  } else if (watch_step_ == 1 || watch_step_ == 2) {
+    // The vertex farthest up and right on pose 0, where the view draws it.
+    const Span<const double> p = rig.pose_positions(0);
+    std::uint32_t best = 0;
+    for (std::uint32_t v = 1; v < rig.vertex_count(); ++v)
+      if (p.data[2 * v] + p.data[2 * v + 1] > p.data[2 * best] + p.data[2 * best + 1]) best = v;
+    const VkExtent2D extent = w_.presenter.extent();
+    const ViewMap map{w_.view.camera(), std::int32_t(kPanelWidth), extent.width - std::uint32_t(kPanelWidth),
+                      extent.height};
+    io.MousePos = map.ToScreen(glm::dvec2(p.data[2 * best], p.data[2 * best + 1]));
+    io.MouseDown[0] = watch_step_ == 2;  // step 1 moves there, step 2 presses
+    ++watch_step_;
+  } else if (watch_step_ == 3) {
+    io.MouseDown[0] = false;
+    edit.on = false;
+    w_.editor.SetClick(0);
+    ++watch_step_;
+  }
 }
 
 bool SmokeDriver::WatchDone() const {

@@ -41,8 +41,13 @@ class SmokeDriver {
   // or 10 minutes passed.
   bool WatchDone() const;
 
+  // --watch, once the first re-bake is in: edit mode's landmarks, a click on
+  // the outline's upper right (a landmark in every pose), then out.
+  void WatchScript();
+
   Parts& w_;
   std::uint32_t frame_ = 0;
+  int watch_step_ = 0;
   std::chrono::steady_clock::time_point timing_start_, started_;
   double fps_ = 0;  // frames 10 .. half-way (before the resize)
 };

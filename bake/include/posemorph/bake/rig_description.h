@@ -292,6 +292,13 @@ DescriptionAddition AddToRigDescription(const std::string& text, const std::stri
 // when the text is not a JSON object or has no such pose.
 std::string MovePosePoint(const std::string& text, const std::string& file, const std::string& pose, double x,
                           double y);
+// The description with the "landmarks" (or "features", `key`) of every pose
+// of part `part` ("": the rig's own poses) set to lists[pose], in drawing
+// coordinates rounded to 3 decimals (what the viewer saves when landmarks
+// are placed by clicking). BakeError(file, ...) when there is no such part,
+// its pose count is not lists.size(), or the rig has channels.
+std::string SetDrawnPoints(const std::string& text, const std::string& file, const std::string& part,
+                           const std::string& key, const std::vector<std::vector<Eigen::Vector2d>>& lists);
 // How the writers lay a description out: the text's own key order, an
 // object's keys one a line, arrays without objects on one line (one
 // element a line past 100 characters), indented by two.
