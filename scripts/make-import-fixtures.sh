@@ -8,6 +8,9 @@
 #                        they draw (so each has an offset), and a hidden layer
 #   pell/pell.ora        Krita 5 (command-line export) of a GIMP file whose
 #                        four top-level groups are the poses
+#   pell/body.ora        the same without the face (Pell with a face's body
+#   pell/face.ora        channel), and its face channel: a group per
+#                        expression holding the eyes and the mouth
 #   features.psd         GIMP: a translucent group of two offset layers, a
 #                        hidden layer, a multiply layer, a layer at 25%
 #   features.ora         Krita's export of features.psd
@@ -79,6 +82,33 @@ body+=" (file-psd-save RUN-NONINTERACTIVE img (car (gimp-image-get-active-layer 
 body+=' (gimp-image-delete img))'
 gimp_batch "$add_layer $body"
 krita_export "$work/pell-poses.psd" "$out/pell/pell.ora"
+# Pell with a face as two channels (init --channels): body.ora, the four
+# poses without the face, and face.ora, a group per expression holding the
+# eyes and the mouth.
+body='(let* ((img (car (gimp-image-new 256 256 RGB))))'
+for pose in "${poses[@]}"; do
+  body+=" (let ((group (car (gimp-layer-group-new img))))
+      (gimp-image-insert-layer img group 0 (bottom img 0))
+      (gimp-item-set-name group \"$pose\")"
+  for part in head arm-right arm-left body; do body+=" (add-layer img group \"$pell/$pose-$part.png\" \"$part\")"; done
+  body+=")"
+done
+body+=" (file-psd-save RUN-NONINTERACTIVE img (car (gimp-image-get-active-layer img)) \"$work/body.psd\" \"body.psd\" 1 0)"
+body+=' (gimp-image-delete img))'
+gimp_batch "$add_layer $body"
+krita_export "$work/body.psd" "$out/pell/body.ora"
+body='(let* ((img (car (gimp-image-new 256 256 RGB))))'
+for face in calm joy surprise sleepy; do
+  body+=" (let ((group (car (gimp-layer-group-new img))))
+      (gimp-image-insert-layer img group 0 (bottom img 0))
+      (gimp-item-set-name group \"$face\")"
+  for part in mouth eye-right eye-left; do body+=" (add-layer img group \"$pell/face-$face-$part.png\" \"$part\")"; done
+  body+=")"
+done
+body+=" (file-psd-save RUN-NONINTERACTIVE img (car (gimp-image-get-active-layer img)) \"$work/face.psd\" \"face.psd\" 1 0)"
+body+=' (gimp-image-delete img))'
+gimp_batch "$add_layer $body"
+krita_export "$work/face.psd" "$out/pell/face.ora"
 
 # features: a 64 x 48 canvas, top first:
 #   half    layer at opacity 25%, white 8 x 8 at (50, 30)

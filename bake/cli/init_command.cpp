@@ -208,20 +208,42 @@ std::array<double, 2> EdgeNearest(const Mask& m, std::array<double, 2> target) {
   return out;
 }
 
-// The layered description: parts back to front by size (the largest part,
-// the root of the glue, behind: a smaller part drawn over a larger one is
-// usually in front of it, like eyes on a head), glued in the tree of their
-// largest overlaps in the first pose, each joint where the two are drawn
-// over each other in every pose, each part's start landmark on its outline
-// nearest its joint (the root's: its lowest point).
-std::string LayeredDescription(const std::string& name, const std::vector<Drawing>& drawings, const Layered& l) {
-  const std::size_t P = l.poses.size(), Q = l.parts.size();
-  std::vector<std::vector<Mask>> masks(P);
-  for (std::size_t i = 0; i < P; ++i)
-    for (std::size_t q = 0; q < Q; ++q) masks[i].push_back(ReadMask(drawings[l.drawing[i][q]].path));
+// A layered character's drawings for the description: per channel (the
+// first drives the body; a rig without channels has one, unnamed), its
+// poses and parts and each part's drawing in each pose.
+struct ChannelDrawings {
+  std::string name;  // "": a rig without channels
+  std::vector<std::string> poses, parts;
+  std::vector<std::vector<std::string>> path, reference;  // [pose][part]: to read, and as the description names it
+};
+
+// The layered description: the first channel's parts back to front by size
+// (the largest part, the root of the glue, behind: a smaller part drawn
+// over a larger one is usually in front of it, like eyes on a head), glued
+// in the tree of their largest overlaps in the first pose, each joint where
+// the two are drawn over each other in every pose, each part's start
+// landmark on its outline nearest its joint (the root's: its lowest point).
+// A later channel's parts (a face's eyes and mouth) in front of them all,
+// each glued to the first channel's part it overlaps most in both
+// channels' first poses (which share one canvas), its joint in each of its
+// drawings where it is drawn over that part's first drawing.
+std::string LayeredDescription(const std::string& name, const std::vector<ChannelDrawings>& channels) {
+  const ChannelDrawings& body = channels[0];
+  const std::size_t P = body.poses.size(), Q = body.parts.size();
+  std::vector<std::vector<std::vector<Mask>>> masks(channels.size());  // [channel][pose][part]
+  for (std::size_t c = 0; c < channels.size(); ++c)
+    for (std::size_t i = 0; i < channels[c].poses.size(); ++i) {
+      masks[c].emplace_back();
+      for (std::size_t q = 0; q < channels[c].parts.size(); ++q)
+        masks[c][i].push_back(ReadMask(channels[c].path[i][q]));
+    }
+  auto area_of = [](const Mask& m) {
+    std::size_t n = 0;
+    for (char c : m.in) n += c != 0;
+    return n;
+  };
   std::vector<std::size_t> area(Q, 0);
-  for (std::size_t q = 0; q < Q; ++q)
-    for (char c : masks[0][q].in) area[q] += c != 0;
+  for (std::size_t q = 0; q < Q; ++q) area[q] = area_of(masks[0][0][q]);
   std::vector<std::size_t> by_size(Q);
   for (std::size_t q = 0; q < Q; ++q) by_size[q] = q;
   std::stable_sort(by_size.begin(), by_size.end(), [&](std::size_t x, std::size_t y) { return area[x] > area[y]; });
@@ -230,7 +252,7 @@ std::string LayeredDescription(const std::string& name, const std::vector<Drawin
   // Prim's tree of the largest overlaps, from the largest part.
   std::vector<std::vector<std::size_t>> overlap(Q, std::vector<std::size_t>(Q, 0));
   for (std::size_t a = 0; a < Q; ++a)
-    for (std::size_t b = a + 1; b < Q; ++b) overlap[a][b] = overlap[b][a] = Overlap(masks[0][a], masks[0][b]);
+    for (std::size_t b = a + 1; b < Q; ++b) overlap[a][b] = overlap[b][a] = Overlap(masks[0][0][a], masks[0][0][b]);
   const std::size_t root = by_size[0];
   std::vector<int> parent(Q, -1);
   std::vector<bool> joined(Q, false);
@@ -243,66 +265,115 @@ std::string LayeredDescription(const std::string& name, const std::vector<Drawin
     if (best == 0) {
       for (std::size_t b = 0; b < Q; ++b)
         if (!joined[b])
-          throw BakeError(drawings[l.drawing[0][b]].path,
-                          "part '" + l.parts[b] + "' is drawn over no other part in pose '" + l.poses[0] +
-                              "': glue needs a point where two parts are drawn over each other");
+          throw BakeError(body.path[0][b], "part '" + body.parts[b] + "' is drawn over no other part in pose '" +
+                                               body.poses[0] +
+                                               "': glue needs a point where two parts are drawn over each other");
     }
     joined[to] = true, parent[to] = int(from);
   }
-  std::vector<std::vector<std::array<double, 2>>> joint(Q);  // [part][pose], to its parent
+  // The glue, per channel and part: the part it hangs from (the first
+  // channel's) and its joint in each of its channel's poses.
+  std::vector<std::vector<int>> glued_to(channels.size());
+  std::vector<std::vector<std::vector<std::array<double, 2>>>> joint(channels.size());  // [channel][part][pose]
+  glued_to[0] = parent;
+  joint[0].resize(Q);
   for (std::size_t q = 0; q < Q; ++q) {
     if (parent[q] < 0) continue;
     for (std::size_t i = 0; i < P; ++i) {
       std::array<double, 2> at;
-      if (!JointOf(masks[i][q], masks[i][std::size_t(parent[q])], &at))
-        throw BakeError(drawings[l.drawing[i][q]].path, "part '" + l.parts[q] + "' is not drawn over part '" +
-                                                            l.parts[std::size_t(parent[q])] + "' in pose '" +
-                                                            l.poses[i] + "': glue needs a point over both");
-      joint[q].push_back(at);
+      if (!JointOf(masks[0][i][q], masks[0][i][std::size_t(parent[q])], &at))
+        throw BakeError(body.path[i][q], "part '" + body.parts[q] + "' is not drawn over part '" +
+                                             body.parts[std::size_t(parent[q])] + "' in pose '" + body.poses[i] +
+                                             "': glue needs a point over both");
+      joint[0][q].push_back(at);
     }
   }
-  std::ostringstream s;
-  s << "{\n  \"posemorph\": 1,\n  \"name\": " << Quoted(name) << ",\n  \"poses\": [\n";
-  for (std::size_t i = 0; i < P; ++i) {
-    const std::array<double, 2> point = PadPoint(i, P);
-    s << "    {\"name\": " << Quoted(l.poses[i]) << ", \"point\": [" << Coordinate(point[0]) << ", "
-      << Coordinate(point[1]) << "]}" << (i + 1 < P ? "," : "") << "\n";
-  }
-  s << "  ],\n  \"parts\": [\n";
-  for (std::size_t q = 0; q < Q; ++q) {
-    s << "    {\"name\": " << Quoted(l.parts[q]) << ", \"order\": " << order[q] << ", \"poses\": [\n";
-    for (std::size_t i = 0; i < P; ++i) {
-      const Mask& m = masks[i][q];
-      std::array<double, 2> target;
-      if (parent[q] >= 0) {
-        target = joint[q][i];
-      } else {  // the root: the middle of its lowest row
-        int bottom = -1;
-        for (int y = 0; y < m.height; ++y)
-          for (int x = 0; x < m.width; ++x)
-            if (m.At(x, y)) bottom = y;
-        double sum = 0, n = 0;
-        for (int x = 0; x < m.width; ++x)
-          if (m.At(x, bottom)) sum += x + 0.5, n += 1;
-        target = {n > 0 ? sum / n : 0, bottom + 1.0};
+  for (std::size_t c = 1; c < channels.size(); ++c) {
+    const ChannelDrawings& ch = channels[c];
+    joint[c].resize(ch.parts.size());
+    for (std::size_t q = 0; q < ch.parts.size(); ++q) {
+      std::size_t best = 0;
+      int to = -1;
+      for (std::size_t b = 0; b < Q; ++b)
+        if (const std::size_t n = Overlap(masks[c][0][q], masks[0][0][b]); n > best) best = n, to = int(b);
+      if (to < 0)
+        throw BakeError(ch.path[0][q], "part '" + ch.parts[q] + "' of channel '" + ch.name +
+                                           "' is drawn over no part of channel '" + body.name + "' (pose '" +
+                                           body.poses[0] + "'): glue needs a point over both");
+      glued_to[c].push_back(to);
+      for (std::size_t i = 0; i < ch.poses.size(); ++i) {
+        std::array<double, 2> at;
+        if (!JointOf(masks[c][i][q], masks[0][0][std::size_t(to)], &at))
+          throw BakeError(ch.path[i][q], "part '" + ch.parts[q] + "' is not drawn over part '" +
+                                             body.parts[std::size_t(to)] + "' in pose '" + ch.poses[i] +
+                                             "': glue needs a point over both");
+        joint[c][q].push_back(at);
       }
-      const std::array<double, 2> lm = EdgeNearest(m, target);
-      s << "      {\"drawing\": " << Quoted(drawings[l.drawing[i][q]].reference) << ", \"landmarks\": [["
-        << Coordinate(lm[0]) << ", " << Coordinate(lm[1]) << "]]}" << (i + 1 < P ? "," : "") << "\n";
     }
-    s << "    ]}" << (q + 1 < Q ? "," : "") << "\n";
+  }
+  auto pose_list = [&](const ChannelDrawings& ch, const char* indent) {
+    std::ostringstream s;
+    for (std::size_t i = 0; i < ch.poses.size(); ++i) {
+      const std::array<double, 2> point = PadPoint(i, ch.poses.size());
+      s << indent << "{\"name\": " << Quoted(ch.poses[i]) << ", \"point\": [" << Coordinate(point[0]) << ", "
+        << Coordinate(point[1]) << "]}" << (i + 1 < ch.poses.size() ? "," : "") << "\n";
+    }
+    return s.str();
+  };
+  std::ostringstream s;
+  s << "{\n  \"posemorph\": 1,\n  \"name\": " << Quoted(name) << ",\n";
+  if (channels.size() == 1) {
+    s << "  \"poses\": [\n" << pose_list(body, "    ") << "  ],\n";
+  } else {
+    s << "  \"channels\": [\n";
+    for (std::size_t c = 0; c < channels.size(); ++c)
+      s << "    {\"name\": " << Quoted(channels[c].name) << ", \"poses\": [\n"
+        << pose_list(channels[c], "      ") << "    ]}" << (c + 1 < channels.size() ? "," : "") << "\n";
+    s << "  ],\n";
+  }
+  s << "  \"parts\": [\n";
+  int front = int(Q);
+  for (std::size_t c = 0; c < channels.size(); ++c) {
+    const ChannelDrawings& ch = channels[c];
+    for (std::size_t q = 0; q < ch.parts.size(); ++q) {
+      s << "    {\"name\": " << Quoted(ch.parts[q]);
+      if (c > 0) s << ", \"channel\": " << Quoted(ch.name);
+      s << ", \"order\": " << (c == 0 ? order[q] : front++) << ", \"poses\": [\n";
+      for (std::size_t i = 0; i < ch.poses.size(); ++i) {
+        const Mask& m = masks[c][i][q];
+        std::array<double, 2> target;
+        if (c > 0 || glued_to[0][q] >= 0) {
+          target = joint[c][q][i];
+        } else {  // the root: the middle of its lowest row
+          int bottom = -1;
+          for (int y = 0; y < m.height; ++y)
+            for (int x = 0; x < m.width; ++x)
+              if (m.At(x, y)) bottom = y;
+          double sum = 0, n = 0;
+          for (int x = 0; x < m.width; ++x)
+            if (m.At(x, bottom)) sum += x + 0.5, n += 1;
+          target = {n > 0 ? sum / n : 0, bottom + 1.0};
+        }
+        const std::array<double, 2> lm = EdgeNearest(m, target);
+        s << "      {\"drawing\": " << Quoted(ch.reference[i][q]) << ", \"landmarks\": [[" << Coordinate(lm[0]) << ", "
+          << Coordinate(lm[1]) << "]]}" << (i + 1 < ch.poses.size() ? "," : "") << "\n";
+      }
+      const bool last = c + 1 == channels.size() && q + 1 == ch.parts.size();
+      s << "    ]}" << (last ? "" : ",") << "\n";
+    }
   }
   s << "  ],\n  \"glue\": [\n";
   bool first = true;
-  for (std::size_t q = 0; q < Q; ++q) {
-    if (parent[q] < 0) continue;
-    s << (first ? "" : ",\n") << "    {\"part\": " << Quoted(l.parts[q])
-      << ", \"to\": " << Quoted(l.parts[std::size_t(parent[q])]) << ", \"at\": [";
-    for (std::size_t i = 0; i < P; ++i)
-      s << (i ? ", " : "") << "[" << Coordinate(joint[q][i][0]) << ", " << Coordinate(joint[q][i][1]) << "]";
-    s << "]}";
-    first = false;
-  }
+  for (std::size_t c = 0; c < channels.size(); ++c)
+    for (std::size_t q = 0; q < channels[c].parts.size(); ++q) {
+      if (glued_to[c][q] < 0) continue;
+      s << (first ? "" : ",\n") << "    {\"part\": " << Quoted(channels[c].parts[q])
+        << ", \"to\": " << Quoted(body.parts[std::size_t(glued_to[c][q])]) << ", \"at\": [";
+      for (std::size_t i = 0; i < joint[c][q].size(); ++i)
+        s << (i ? ", " : "") << "[" << Coordinate(joint[c][q][i][0]) << ", " << Coordinate(joint[c][q][i][1]) << "]";
+      s << "]}";
+      first = false;
+    }
   s << "\n  ]\n}\n";
   return s.str();
 }
@@ -311,7 +382,7 @@ std::string LayeredDescription(const std::string& name, const std::vector<Drawin
 
 int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& out, std::ostream& err) {
   std::string output, name;
-  bool overwrite = false, flatten = false;
+  bool overwrite = false, flatten = false, channels = false;
   std::vector<Drawing> drawings;
   for (std::size_t i = from; i < a.size(); ++i) {
     if (a[i] == "-o" || a[i] == "--name") {
@@ -322,6 +393,8 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
       overwrite = true;
     } else if (a[i] == "--flatten") {
       flatten = true;
+    } else if (a[i] == "--channels") {
+      channels = true;
     } else if (!a[i].empty() && a[i][0] == '-') {
       throw UsageError("unknown option " + a[i]);
     } else {
@@ -334,6 +407,10 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   if (layered_files != 0 && layered_files != drawings.size())
     throw UsageError("init takes layered files (.ora, .psd) or flat drawings (PNG, SVG), not both");
   if (flatten && layered_files == 0) throw UsageError("--flatten is for layered files (.ora, .psd)");
+  if (channels && (layered_files == 0 || flatten))
+    throw UsageError("--channels takes layered files (.ora, .psd), one per channel, each with a group per pose");
+  if (channels && (drawings.size() < 2 || drawings.size() > 8))
+    throw UsageError("--channels takes 2 to 8 layered files, one per channel (the first drives the body)");
   if (layered_files == 0 && drawings.size() < 2) throw UsageError("init needs two drawings or more (one per pose)");
   if (drawings.empty()) throw UsageError("init needs a layered file with a group per pose, or one file per pose");
   if (drawings.size() > 4096) throw UsageError("init takes at most 4096 drawings (64 parts in 64 poses)");
@@ -345,6 +422,71 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     throw BakeError(output, "exists; init does not overwrite a description (--force does)");
   const fs::path folder = fs::absolute(output).parent_path();
   std::string imported;
+  if (channels) {
+    // One file of poses per channel, named by the file's stem: its drawings
+    // beside the description, the first channel's parts glued into the
+    // body, the later channels' each to the body part it is drawn over.
+    std::vector<import::LayeredCharacter> imports;
+    std::vector<std::string> files;
+    for (const Drawing& d : drawings) files.push_back(d.path);
+    for (const std::string& file : files) {
+      imports.push_back(import::ImportLayeredCharacter({file}, false));
+      const import::LayeredCharacter& c = imports.back();
+      if (c.poses.size() < 2)
+        throw BakeError(file, "gives one pose: a channel's file holds two poses or more, one top-level group each");
+      if (c.parts.empty())
+        throw BakeError(file, "each pose is one layer: a channel's poses hold its parts, a layer or group each");
+      if (c.width != imports[0].width || c.height != imports[0].height)
+        throw BakeError(file, "a canvas of " + std::to_string(c.width) + " x " + std::to_string(c.height) + ", but " +
+                                  files[0] + "'s is " + std::to_string(imports[0].width) + " x " +
+                                  std::to_string(imports[0].height) + ": the channels share one canvas");
+      for (std::size_t k = 0; k + 1 < imports.size(); ++k)
+        for (const std::string& part : c.parts)
+          if (std::find(imports[k].parts.begin(), imports[k].parts.end(), part) != imports[k].parts.end())
+            throw BakeError(file, "part '" + part + "' is also a part of " + files[k] +
+                                      ": a part belongs to one channel (leave it out of, or hide it in, the other)");
+      for (std::size_t k = 0; k + 1 < imports.size(); ++k)
+        for (const std::string& pose : c.poses)
+          if (std::find(imports[k].poses.begin(), imports[k].poses.end(), pose) != imports[k].poses.end())
+            throw BakeError(file, "pose '" + pose + "' is also a pose of " + files[k] +
+                                      ": name the channels' poses apart (their drawings are POSE-PART.png)");
+    }
+    std::vector<ChannelDrawings> described;
+    std::size_t written = 0;
+    for (std::size_t k = 0; k < imports.size(); ++k) {
+      const import::LayeredCharacter& c = imports[k];
+      ChannelDrawings ch;
+      ch.name = fs::path(files[k]).stem().string();
+      ch.poses = c.poses, ch.parts = c.parts;
+      const std::vector<std::string> paths = WriteLayeredCharacter(c, folder.string(), overwrite, err);
+      written += paths.size();
+      for (std::size_t i = 0; i < c.poses.size(); ++i) {
+        ch.path.emplace_back(), ch.reference.emplace_back();
+        for (std::size_t q = 0; q < c.parts.size(); ++q) {
+          const std::string& path = paths[i * c.parts.size() + q];
+          ch.path.back().push_back(path);
+          ch.reference.back().push_back(fs::absolute(path).lexically_relative(folder).generic_string());
+        }
+      }
+      described.push_back(std::move(ch));
+    }
+    if (name.empty()) name = fs::path(output).stem().string();
+    const std::string text = LayeredDescription(name, described);
+    std::string summary = std::to_string(described.size()) + " channels (";
+    for (std::size_t k = 0; k < described.size(); ++k)
+      summary += (k ? ", " : "") + described[k].name + ": " + std::to_string(described[k].poses.size()) + " poses of " +
+                 std::to_string(described[k].parts.size()) + " parts";
+    summary += "; the later channels' parts glued where drawn over the first's)";
+    const std::string problem = TryBake(text, output, folder.string());
+    WriteText(output, text);
+    out << "wrote " << output << ": imported " << written << " drawings from " << files.size()
+        << " layered files beside it; " << summary << "\n";
+    if (problem.empty())
+      out << "it bakes as written: posemorph-bake " << output << "\n";
+    else
+      out << "it does not bake yet: " << Printable(problem) << "\n";
+    return 0;
+  }
   if (layered_files != 0) {
     // The layered files' drawings become PNGs beside the description (as
     // `import` writes them), which it then names like any other drawings.
@@ -377,7 +519,14 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   std::string text, summary;
   Layered layered;
   if (AsLayered(drawings, &layered)) {
-    text = LayeredDescription(name, drawings, layered);
+    ChannelDrawings only;
+    only.poses = layered.poses, only.parts = layered.parts;
+    for (const std::vector<std::size_t>& row : layered.drawing) {
+      only.path.emplace_back(), only.reference.emplace_back();
+      for (std::size_t k : row)
+        only.path.back().push_back(drawings[k].path), only.reference.back().push_back(drawings[k].reference);
+    }
+    text = LayeredDescription(name, {only});
     summary = std::to_string(layered.poses.size()) + " poses (" + layered.poses[0] +
               " at the pad's centre, the others around it) of " + std::to_string(layered.parts.size()) +
               " parts (from POSE-PART.png names; the larger behind, glued where drawn over each other)";

@@ -7,7 +7,9 @@
 #    (Krita, a group per pose) imports to drawings from which Pell's own
 #    description bakes the very rig the build's drawings give: the same
 #    bytes, so the same meshes (tolerance 0);
-#  - init on the OpenRaster file writes a description that bakes as written;
+#  - init on the OpenRaster file writes a description that bakes as written,
+#    and init --channels on Pell's body and face files one with two channels
+#    whose face joints are the hand-written ones within 4 px;
 #  - each refusal is one line naming the file, status 1 or 2, nothing written.
 #   import.sh BAKE ASSETS SOURCE WORK
 set -euo pipefail
@@ -47,6 +49,34 @@ case "$said" in *"imported 28 drawings from 1 layered file"*"4 poses"*"of 7 part
 [ -f "$work/init/wave-arm-left.png" ] || fail "init: no wave-arm-left.png beside the description"
 "$bake" "$work/init/pell.json" -o "$work/init/pell.pmrig" --quiet || fail "init: its description does not bake"
 
+# init --channels: Pell with a face from two Krita files, body.ora (a group
+# per pose) and face.ora (a group per expression): it bakes as written, and
+# the face's joints on the head are the hand-written ones (pell-face.json)
+# within 4 px.
+mkdir -p "$work/channels"
+said=$("$bake" init --channels "$data/pell/body.ora" "$data/pell/face.ora" -o "$work/channels/pell-face.json" 2>&1) ||
+  fail "init --channels: $said"
+case "$said" in *"2 channels (body: 4 poses of 4 parts, face: 4 poses of 3 parts"*"it bakes as written"*)
+  echo "init --channels: $(head -1 <<< "$said")" ;;
+  *) fail "init --channels says: $said" ;; esac
+worst=$(python3 - "$work/channels/pell-face.json" "$source/assets/pell/pell-face.json" <<'PY'
+import json, math, sys
+made = {g["part"]: g for g in json.load(open(sys.argv[1]))["glue"]}
+hand = {g["part"]: g for g in json.load(open(sys.argv[2]))["glue"]}
+worst = 0
+for part in ("eye-left", "eye-right", "mouth"):
+    assert made[part]["to"] == "head" == hand[part]["to"], part
+    worst = max(worst, max(math.dist(a, b) for a, b in zip(made[part]["at"], hand[part]["at"])))
+print(f"{worst:.2f}")
+PY
+) || fail "init --channels: the face's glue is not on the head"
+python3 -c "import sys; sys.exit(0 if float('$worst') <= 4 else 1)" || fail "init --channels: a face joint is $worst px from the hand-written one"
+echo "init --channels: the face's joints within $worst px of pell-face.json's"
+baked=$("$bake" "$work/channels/pell-face.json" -o "$work/channels/pell-face.pmrig" 2>&1) ||
+  fail "init --channels: its description does not bake: $(tail -1 <<< "$baked")"
+grep -q "^channels: body (the figures above: its parts), face; 3 attached part(s)" <<< "$baked" ||
+  fail "init --channels: the rig has not the face channel: $baked"
+
 # Refusals: one line, the status, nothing written.
 refuse() {  # refuse STATUS EXPECTED-TEXT CHECK-ABSENT ARGS...
   local status=$1 text=$2 absent=$3 said rc=0
@@ -75,6 +105,10 @@ refuse 2 "--flatten is for layered files (.ora, .psd)" "$work/flat.json" \
 refuse 1 "$data/pell/rest.psd: gives one pose: init needs two poses or more" "$work/one.json" \
   init "$data/pell/rest.psd" -o "$work/one.json"
 [ ! -e "$work/rest-body.png" ] || fail "init wrote drawings of a single pose before refusing"
+refuse 1 "$data/pell/face.ora: part 'mouth' is also a part of $data/pell/pell.ora" "$work/both-mouths.json" \
+  init --channels "$data/pell/pell.ora" "$data/pell/face.ora" -o "$work/both-mouths.json"
+refuse 2 "--channels takes 2 to 8 layered files" "$work/one-channel.json" \
+  init --channels "$data/pell/pell.ora" -o "$work/one-channel.json"
 
 [ "$failures" = 0 ] || { echo "$failures failure(s)"; exit 1; }
-echo "import: PSD (GIMP) and OpenRaster (Krita) Pell bake to the build's rig, init bakes, 7 refusals"
+echo "import: PSD (GIMP) and OpenRaster (Krita) Pell bake to the build's rig, init and init --channels bake, 9 refusals"

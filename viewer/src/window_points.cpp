@@ -85,8 +85,7 @@ std::vector<std::uint32_t> BoundaryLoop(const Rig& rig, std::uint32_t part, cons
   const PartView view = rig.part(part);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
   for (std::uint32_t t = view.first_triangle; t < view.first_triangle + view.triangle_count; ++t)
-    for (int k = 0; k < 3; ++k)
-      edges.emplace_back(rig.triangles()[3 * t + k], rig.triangles()[3 * t + (k + 1) % 3]);
+    for (int k = 0; k < 3; ++k) edges.emplace_back(rig.triangles()[3 * t + k], rig.triangles()[3 * t + (k + 1) % 3]);
   std::vector<std::pair<std::uint32_t, std::uint32_t>> sorted = edges;
   for (auto& e : sorted)
     if (e.first > e.second) std::swap(e.first, e.second);
@@ -307,9 +306,7 @@ bool Editor::PointsInput(const ViewMap& map, bool panning, std::string* status) 
                [&](auto& lists) {
                  for (std::size_t i = 0; i < lists.size(); ++i) {
                    const Span<const double> p = rig_->pose_positions(std::uint32_t(i));
-                   auto vertex = [&](int k) {
-                     return glm::dvec2(p.data[2 * tri[k]], p.data[2 * tri[k] + 1]);
-                   };
+                   auto vertex = [&](int k) { return glm::dvec2(p.data[2 * tri[k]], p.data[2 * tri[k] + 1]); };
                    const glm::dvec2 q = (1 - u - w) * vertex(0) + u * vertex(1) + w * vertex(2);
                    lists[i].push_back(InDrawing(q, s.points->poses[i].origin));
                  }
