@@ -10,7 +10,9 @@
 # Prints one row per character: baked with defaults or not (and the bake's
 # first error line), folded in-between triangles, the smallest angle of the
 # mesh over all poses, vertices, rig bytes against the drawings' PNG bytes,
-# ghosting (mean over the pose hull, of 255) and the bake's time. --table
+# ghosting (mean over the pose hull, of 255), the bake's time, and whether
+# `posemorph-bake init` on the drawings alone writes a description that
+# bakes as written (no landmark placed by hand). --table
 # writes the same table as Markdown (docs/game-art.md is made by it).
 # --check fails when a character listed as baking in
 # tests/game-art/expected.json no longer bakes, or a baked rig breaks one of
@@ -108,24 +110,49 @@ def bake(binary, character, cache, out_dir):
     return row
 
 
+def init_alone(binary, character, cache, out_dir):
+    """Whether `posemorph-bake init` on the character's drawings alone (one
+    per pose, in the description's order; none placed by hand) writes a
+    description that bakes as written: True, False, or None for a layered
+    character (parts), which init takes as POSE-PART.png files."""
+    name = character["name"]
+    folder = os.path.join(fetch(character["package"], cache), character["folder"])
+    with open(os.path.join(CORPUS, name + ".json")) as f:
+        description = json.load(f)
+    if description.get("parts") or not description.get("poses"):
+        return None
+    drawings = [os.path.join(folder, p["drawing"]) for p in description["poses"] if "drawing" in p]
+    os.makedirs(os.path.join(out_dir, "init"), exist_ok=True)
+    r = subprocess.run([binary, "init", *drawings, "-o", os.path.join(out_dir, "init", name + ".json"), "--force"],
+                       capture_output=True, text=True)
+    return r.returncode == 0 and "it bakes as written" in r.stdout
+
+
+def alone(r):
+    return "-" if r.get("init") is None else ("bakes" if r["init"] else "does not bake")
+
+
 def table(rows):
     lines = ["| character | package | exercises | baked with defaults | folds | min angle | vertices | "
-             "rig / PNG bytes | ghosting | bake |",
-             "|---|---|---|---|---|---|---|---|---|---|"]
+             "rig / PNG bytes | ghosting | bake | `init` alone |",
+             "|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         traits = ", ".join(r["traits"])
         if r["baked"]:
             ghost = f"{r['ghosting']:.2f}" if r.get("ghosting") is not None else "-"
             lines.append(f"| {r['name']} | {r['package']} | {traits} | yes | {r['folds']} | "
                          f"{r['min_angle']:.1f} deg | {r['vertices']} | {r['rig_bytes']:,} / {r['png_bytes']:,} "
-                         f"({r['rig_bytes'] / r['png_bytes']:.2f}x) | {ghost} | {r['seconds']:.1f} s |")
+                         f"({r['rig_bytes'] / r['png_bytes']:.2f}x) | {ghost} | {r['seconds']:.1f} s | {alone(r)} |")
         else:
             error = r["error"].replace("|", "\\|")
             lines.append(f"| {r['name']} | {r['package']} | {traits} | no: {error} | - | - | - | - / "
-                         f"{r['png_bytes']:,} | - | {r['seconds']:.1f} s |")
+                         f"{r['png_bytes']:,} | - | {r['seconds']:.1f} s | {alone(r)} |")
     baked = sum(1 for r in rows if r["baked"])
     lines.append("")
     lines.append(f"{baked} of {len(rows)} characters baked with default settings.")
+    tried = [r for r in rows if r.get("init") is not None]
+    lines.append(f"{sum(1 for r in tried if r['init'])} of {len(tried)} drawn without parts bake from "
+                 "`posemorph-bake init` on their drawings alone (no landmark placed by hand).")
     return "\n".join(lines)
 
 
@@ -176,6 +203,8 @@ def main():
     out_dir = os.path.join(args.cache, "rigs")
     os.makedirs(out_dir, exist_ok=True)
     rows = [bake(os.path.abspath(args.bake), c, args.cache, out_dir) for c in characters]
+    for r, c in zip(rows, characters):
+        r["init"] = init_alone(os.path.abspath(args.bake), c, args.cache, out_dir)
     text = table(rows)
     print(text)
     for r in rows:

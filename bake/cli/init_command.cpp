@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -18,6 +19,7 @@
 #include "posemorph/bake/import/layered_image.h"
 #include "posemorph/bake/input_file.h"
 #include "posemorph/bake/map_drawings.h"
+#include "posemorph/bake/mapping/boundary_matching.h"
 #include "posemorph/bake/mapping/outline_image.h"
 #include "posemorph/bake/rig_description.h"
 
@@ -79,10 +81,24 @@ std::string Description(const std::string& name, const std::vector<Drawing>& dra
 
 // Where each drawing stands: its outline's lowest point (the largest y in
 // drawing pixels; the middle of a flat bottom), a landmark that matches
-// across poses of a character standing on the ground.
-std::vector<std::array<double, 2>> LowestPoints(const RigDescription& rig) {
+// across poses of a character standing on the ground. Where the matching
+// is unsure of it (the outline's bends agree clearly better with another
+// start, more than an eighth of the way round from it: a character that
+// stands on the other foot, or does not stand), `suggested` gets the start
+// where they agree best with the first pose's, and `moved` says which poses
+// (empty when none is unsure).
+std::vector<std::array<double, 2>> StartPoints(const RigDescription& rig, std::vector<std::array<double, 2>>* suggested,
+                                               std::vector<std::string>* moved) {
   std::vector<std::array<double, 2>> out;
-  for (const DrawnPoseOutline& pose : TraceDrawings(rig).poses) {
+  const DrawnOutlines traced = TraceDrawings(rig);
+  // In rig orientation (y up) the traced outlines, counter-clockwise as
+  // seen, are counter-clockwise as AlignStart takes them.
+  auto flipped = [](const std::vector<Eigen::Vector2d>& points) {
+    mapping::Polygon p;
+    for (const Eigen::Vector2d& q : points) p.emplace_back(q.x(), -q.y());
+    return p;
+  };
+  for (const DrawnPoseOutline& pose : traced.poses) {
     const std::vector<Eigen::Vector2d>& outline = pose.traced;
     double bottom = -1e300;
     for (const Eigen::Vector2d& p : outline) bottom = std::max(bottom, p.y());
@@ -98,6 +114,18 @@ std::vector<std::array<double, 2>> LowestPoints(const RigDescription& rig) {
         best_d = std::abs(p.x() - mid), best = {p.x(), p.y()};
     out.push_back(best);
   }
+  *suggested = out;
+  for (std::size_t k = 1; k < out.size() && k < traced.poses.size(); ++k) {
+    const mapping::Polygon o0 = flipped(traced.poses[0].traced), ok = flipped(traced.poses[k].traced);
+    const mapping::StartAlignment a = mapping::AlignStart(o0, {out[0][0], -out[0][1]}, ok, {out[k][0], -out[k][1]});
+    if (!a.Misplaced()) continue;
+    const mapping::Point at = mapping::PointAtArcLength(ok, a.best_start);
+    moved->push_back(traced.poses[k].label + ": from its lowest point (" + Coordinate(out[k][0]) + ", " +
+                     Coordinate(out[k][1]) + ") to (" + Coordinate(at.x()) + ", " + Coordinate(-at.y()) +
+                     "), where its outline's bends agree with the first pose's");
+    (*suggested)[k] = {at.x(), -at.y()};
+  }
+  if (moved->empty()) suggested->clear();
   return out;
 }
 
@@ -516,7 +544,8 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   }
   if (name.empty()) name = fs::path(output).stem().string();
 
-  std::string text, summary;
+  std::string text, summary, advice;
+  std::optional<std::string> tried;  // the trial bake of `text`, when made already
   Layered layered;
   if (AsLayered(drawings, &layered)) {
     ChannelDrawings only;
@@ -536,22 +565,44 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     // description whose landmarks are placeholders (the tracing reads none).
     std::vector<std::vector<std::array<double, 2>>> landmarks(drawings.size(), {{{0.0, 0.0}}});
     const std::string placeholder = Description(name, drawings, landmarks);
-    std::size_t k = 0;
-    for (const std::array<double, 2>& p : LowestPoints(ParseRigDescription(placeholder, output, folder.string())))
-      landmarks[k++] = {p};
+    std::vector<std::array<double, 2>> suggested;
+    std::vector<std::string> moved;
+    const std::vector<std::array<double, 2>> lowest =
+        StartPoints(ParseRigDescription(placeholder, output, folder.string()), &suggested, &moved);
+    for (std::size_t k = 0; k < lowest.size(); ++k) landmarks[k] = {lowest[k]};
     text = Description(name, drawings, landmarks);
     summary = std::to_string(drawings.size()) + " poses (" + drawings[0].name +
               " at the pad's centre, the others around it); the start landmark at each drawing's lowest point "
               "(where it stands)";
+    // Where the matching is unsure of a start and the description does not
+    // bake with the lowest points, the starts the outlines' bends suggest
+    // are tried; kept when they bake, else said.
+    if (!suggested.empty()) {
+      tried = TryBake(text, output, folder.string());
+      if (!tried->empty()) {
+        std::vector<std::vector<std::array<double, 2>>> aligned(drawings.size());
+        for (std::size_t k = 0; k < suggested.size(); ++k) aligned[k] = {suggested[k]};
+        const std::string other = Description(name, drawings, aligned);
+        std::string list;
+        for (const std::string& m : moved) list += (list.empty() ? " " : "; ") + m;
+        if (TryBake(other, output, folder.string()).empty()) {
+          text = other, tried = std::string();
+          summary += ", except where the outlines' bends place it elsewhere (the lowest points do not bake):" + list;
+        } else {
+          advice = "the outlines' bends suggest other starts (neither bakes as written):" + list;
+        }
+      }
+    }
   }
-  const std::string problem = TryBake(text, output, folder.string());
+  const std::string problem = tried ? *tried : TryBake(text, output, folder.string());
   WriteText(output, text);
   out << "wrote " << output << ": " << imported << summary << "\n";
   if (problem.empty()) {
     out << "it bakes as written: posemorph-bake " << output << "\n";
   } else {
-    out << "it does not bake yet: " << Printable(problem) << "\n"
-        << "place landmarks at points every drawing shares (posemorph-bake outline " << output
+    out << "it does not bake yet: " << Printable(problem) << "\n";
+    if (!advice.empty()) out << Printable(advice) << "\n";
+    out << "place landmarks at points every drawing shares (posemorph-bake outline " << output
         << " -o DIR draws the outlines to read them from)\n";
   }
   return 0;
