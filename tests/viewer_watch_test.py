@@ -10,17 +10,36 @@
 # message names the file, and the window keeps the last rig; the description
 # mended is baked and swapped in again; the window then writes its shot and
 # exits 0 after those three re-bakes, without having been closed.
-#   viewer_watch_test.py VIEW XVFB_RUN PIP_FOLDER WORK
-import os, shutil, subprocess, sys, threading, time
+#
+# With --layered BAKE ORA: Pell described by `posemorph-bake init` from
+# Krita's pell.ora (its "import"); the window open on it, pell.ora is saved
+# again with the wave pose's body at 80% opacity: the watch imports it
+# again, wave-body.png changes (and no other drawing), and the re-bake
+# swaps in.
+#   viewer_watch_test.py VIEW XVFB_RUN PIP_FOLDER WORK [--layered BAKE ORA]
+import json, os, re, shutil, subprocess, sys, threading, time, zipfile
 
 view, xvfb, pip, work = sys.argv[1:5]
+layered = len(sys.argv) > 5 and sys.argv[5] == "--layered"
 shutil.rmtree(work, ignore_errors=True)
-shutil.copytree(pip, work)
-description = os.path.join(work, "pip.json")
+if layered:
+    bake, ora = sys.argv[6:8]
+    os.makedirs(work)
+    shutil.copy(ora, work)
+    r = subprocess.run([bake, "init", os.path.join(work, "pell.ora"), "-o", os.path.join(work, "pell.json")],
+                       capture_output=True, text=True)
+    if r.returncode != 0 or "it bakes as written" not in r.stdout:
+        sys.exit("FAIL: init on pell.ora: " + r.stdout + r.stderr)
+    description = os.path.join(work, "pell.json")
+    if json.load(open(description)).get("import", {}).get("files") != ["pell.ora"]:
+        sys.exit("FAIL: init did not record the file it imported:\n" + open(description).read()[:300])
+else:
+    shutil.copytree(pip, work)
+    description = os.path.join(work, "pip.json")
 shot = os.path.join(work, "watch-shot.png")
 process = subprocess.Popen(
     [xvfb, "-a", "-s", "-screen 0 1400x900x24", view, "--watch", description, "--validation", "--size", "1024x640",
-     "--smoke-test", shot, "--frames", "20", "--rebakes", "4"],
+     "--smoke-test", shot, "--frames", "20", "--rebakes", "2" if layered else "4"],
     stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
 lines = []
 seen = threading.Condition()
@@ -39,11 +58,11 @@ def read():
 threading.Thread(target=read, daemon=True).start()
 
 def wait_for(text, after, seconds=300):
-    # The index of the first line after `after` that holds `text`.
+    # The index of the first line after line `after` (-1: from the first) that holds `text`.
     deadline = time.time() + seconds
     with seen:
         while True:
-            for i in range(after, len(lines)):
+            for i in range(after + 1, len(lines)):
                 if lines[i] is None:
                     sys.exit(f"FAIL: the viewer ended before printing '{text}'")
                 if text in lines[i]:
@@ -53,7 +72,39 @@ def wait_for(text, after, seconds=300):
                 sys.exit(f"FAIL: no '{text}' within {seconds} s")
             seen.wait(1)
 
-i = wait_for("watching it and its drawings", 0)
+if layered:
+    i = wait_for("watching it and its drawings", -1)
+    # The smoke session's own saves: one re-bake.
+    i = wait_for("swapped in", i)
+    before = {f: open(os.path.join(work, f), "rb").read() for f in os.listdir(work) if f.endswith(".png")}
+    time.sleep(0.3)
+    # pell.ora saved again: in the wave group, the body layer at 80%.
+    with zipfile.ZipFile(os.path.join(work, "pell.ora")) as z:
+        entries = [(info, z.read(info.filename)) for info in z.infolist()]
+    with zipfile.ZipFile(os.path.join(work, "pell.ora.tmp"), "w") as z:
+        for info, data in entries:
+            if info.filename == "stack.xml":
+                xml = data.decode()
+                wave = xml.index('name="wave"')
+                body = xml.index('name="body', wave)
+                start = xml.rindex("<layer", 0, body)
+                layer = xml[start:xml.index("/>", body)]
+                xml = xml[:start] + re.sub(r'opacity="1"', 'opacity="0.8"', layer) + xml[start + len(layer):]
+                data = xml.encode()
+            z.writestr(info, data)
+    os.replace(os.path.join(work, "pell.ora.tmp"), os.path.join(work, "pell.ora"))
+    i = wait_for("swapped in", i)
+    changed = sorted(f for f, b in before.items() if open(os.path.join(work, f), "rb").read() != b)
+    if changed != ["wave-body.png"]:
+        sys.exit(f"FAIL: after pell.ora was saved again, the drawings that changed are {changed}, not wave-body.png")
+    wait_for("wrote " + shot, i)
+    status = process.wait(timeout=120)
+    if status != 0:
+        sys.exit(f"FAIL: exit status {status}")
+    print("watch: pell.ora saved again was imported again (wave-body.png alone changed) and its re-bake swapped in")
+    sys.exit(0)
+
+i = wait_for("watching it and its drawings", -1)
 # The smoke session saves into the description (a gesture, an edited pose,
 # pose 1's point dragged on the pad): one re-bake with 6 poses.
 wait_for('moved pose "stretch" to (0.25, 1) in ' + description + " (baked again)", i)

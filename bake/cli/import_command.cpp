@@ -12,7 +12,6 @@
 #include "posemorph/bake/import/layered_image.h"
 #include "posemorph/bake/input_file.h"
 #include "posemorph/bake/output_file.h"
-#include "textured_sheet.h"
 
 namespace posemorph::bake::cli {
 
@@ -21,22 +20,7 @@ namespace fs = std::filesystem;
 std::vector<std::string> WriteLayeredCharacter(const import::LayeredCharacter& c, const std::string& folder,
                                                bool overwrite, std::ostream& warnings) {
   for (const std::string& note : c.notes) warnings << "posemorph-bake: warning: " << Printable(note) << "\n";
-  const std::size_t per_pose = c.parts.empty() ? 1 : c.parts.size();
-  std::vector<std::string> paths;
-  std::vector<std::vector<unsigned char>> pngs;
-  for (std::size_t i = 0; i < c.poses.size(); ++i)
-    for (std::size_t q = 0; q < per_pose; ++q) {
-      const std::string path = (fs::path(folder) / c.FileName(i, q)).string();
-      if (!overwrite && fs::exists(path))
-        throw BakeError(
-            path, "exists, and the drawing of " + c.sources[i * per_pose + q] + " would replace it (--force does)");
-      CheckOutputPath(path, {});
-      RgbaImage image{std::uint32_t(c.width), std::uint32_t(c.height), c.drawings[i * per_pose + q]};
-      pngs.push_back(EncodePng(image, path));
-      paths.push_back(path);
-    }
-  for (std::size_t k = 0; k < paths.size(); ++k) WriteFileAtomic(paths[k], pngs[k]);
-  return paths;
+  return import::WriteLayeredDrawings(c, folder, overwrite);
 }
 
 int ImportCommand(const Arguments& a, std::size_t from, std::ostream& out, std::ostream& err) {

@@ -48,6 +48,24 @@ struct Drawing {
   std::string name;       // the pose's name: the file's stem, made unique
 };
 
+// The description `text` (as written here: its second line the name) with
+// "import" after the name: the layered files its drawings came from,
+// relative to the description's folder, so that posemorph-view --watch
+// imports them again when one changes.
+std::string WithImport(const std::string& text, const std::vector<std::string>& files, const fs::path& folder,
+                       bool channels, bool flatten) {
+  std::string line = "  \"import\": {\"files\": [";
+  for (std::size_t k = 0; k < files.size(); ++k)
+    line += (k ? ", " : "") + Quoted(fs::absolute(files[k]).lexically_relative(folder).generic_string());
+  line += "]";
+  if (channels) line += ", \"channels\": true";
+  if (flatten) line += ", \"flatten\": true";
+  line += "},\n";
+  const std::size_t name = text.find("\n  \"name\": ");
+  const std::size_t after = name == std::string::npos ? std::string::npos : text.find('\n', name + 1);
+  return after == std::string::npos ? text : text.substr(0, after + 1) + line + text.substr(after + 1);
+}
+
 // Pose k of n on the pad: pose 0 at the centre, the others on the unit
 // circle, clockwise from the top (four others: up, right, down, left).
 std::array<double, 2> PadPoint(std::size_t k, std::size_t n) {
@@ -450,6 +468,7 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     throw BakeError(output, "exists; init does not overwrite a description (--force does)");
   const fs::path folder = fs::absolute(output).parent_path();
   std::string imported;
+  std::vector<std::string> import_files;  // the layered files imported, for the description's "import"
   if (channels) {
     // One file of poses per channel, named by the file's stem: its drawings
     // beside the description, the first channel's parts glued into the
@@ -499,7 +518,7 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
       described.push_back(std::move(ch));
     }
     if (name.empty()) name = fs::path(output).stem().string();
-    const std::string text = LayeredDescription(name, described);
+    const std::string text = WithImport(LayeredDescription(name, described), files, folder, true, false);
     std::string summary = std::to_string(described.size()) + " channels (";
     for (std::size_t k = 0; k < described.size(); ++k)
       summary += (k ? ", " : "") + described[k].name + ": " + std::to_string(described[k].poses.size()) + " poses of " +
@@ -528,6 +547,7 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     drawings.clear();
     for (const std::string& path : WriteLayeredCharacter(c, folder.string(), overwrite, err))
       drawings.push_back({path, "", ""});
+    import_files = files;
     imported = "imported " + std::to_string(drawings.size()) + " drawings from " + std::to_string(files.size()) +
                (files.size() == 1 ? " layered file" : " layered files") + " beside it; ";
   }
@@ -594,6 +614,7 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
       }
     }
   }
+  if (!import_files.empty()) text = WithImport(text, import_files, folder, false, flatten), tried.reset();
   const std::string problem = tried ? *tried : TryBake(text, output, folder.string());
   WriteText(output, text);
   out << "wrote " << output << ": " << imported << summary << "\n";

@@ -119,6 +119,20 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
     if (f != "left" && f != "right") r.Fail("facing", "expected \"left\" or \"right\" (the way the drawings face)");
     rig.facing_left = f == "left";
   }
+  if (root.contains("import")) {
+    const json& im = root["import"];
+    if (!im.is_object() || !im.contains("files") || !im["files"].is_array() || im["files"].empty())
+      r.Fail("import", "expected {\"files\": [LAYERED, ...], \"channels\": bool, \"flatten\": bool}");
+    for (std::size_t k = 0; k < im["files"].size(); ++k)
+      rig.import.files.push_back(
+          (std::filesystem::path(base_dir) / r.String(im["files"][k], "import.files[" + std::to_string(k) + "]"))
+              .string());
+    for (const char* flag : {"channels", "flatten"})
+      if (im.contains(flag)) {
+        if (!im[flag].is_boolean()) r.Fail(std::string("import.") + flag, "expected true or false");
+        (std::string(flag) == "channels" ? rig.import.channels : rig.import.flatten) = im[flag].get<bool>();
+      }
+  }
   bool have_triangles = root.contains("triangles");
   if (root.contains("channels")) ParseChannels(r, root, &rig);
   if (root.contains("parts")) {

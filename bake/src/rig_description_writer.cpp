@@ -292,6 +292,10 @@ DescriptionAddition AddToRigDescription(const std::string& text, const std::stri
                       "add it to the description by hand");
     paths_home = &root["channels"][0];
   }
+  if (root.contains("parts") && !poses.empty())
+    throw BakeError(file,
+                    "a layered rig takes a new pose as a pose of each of its parts, with its drawings; add it to the "
+                    "description by hand");
   for (PoseDescription pose : poses) {
     ordered& list = ListIn(root, "poses", file);
     pose.name = FreshName(list, pose.name);

@@ -88,7 +88,7 @@ refuse() {  # refuse STATUS EXPECTED-TEXT CHECK-ABSENT ARGS...
   [ -z "$absent" ] || [ ! -e "$absent" ] || fail "posemorph-bake $*: wrote $absent"
 }
 mkdir -p "$work/again"
-cp "$work/init/rest-body.png" "$work/again/"
+cp "$work/init/rest-head.png" "$work/again/rest-body.png"  # another drawing where one would be written
 refuse 1 "$work/again/rest-body.png: exists, and the drawing of $data/pell/pell.ora: group 'rest': layer 'body' would replace it (--force does)" \
   "$work/again/pell.json" init "$data/pell/pell.ora" -o "$work/again/pell.json"
 [ ! -e "$work/again/rest-mouth.png" ] || fail "init wrote drawings before refusing"

@@ -70,7 +70,8 @@ refused 2 "init needs -o RIG.json" "$p/rest.png" "$p/wave.png"
 refused 2 "init needs two drawings or more" "$p/rest.png" -o "$work/one.json"
 refused 2 "-o must name a .json file" "$p/rest.png" "$p/wave.png" -o "$work/out.txt"
 refused 1 "$work/missing.png: cannot read the drawing" "$p/rest.png" "$work/missing.png" -o "$work/missing.json"
-refused 1 "layered .ora files are not read yet" "$p/rest.png" "$work/pose.ora" -o "$work/ora.json"
+refused 2 "init takes layered files (.ora, .psd) or flat drawings (PNG, SVG), not both" "$p/rest.png" \
+  "$work/pose.ora" -o "$work/ora.json"
 refused 1 "$work/pip.json: exists; init does not overwrite" "$p/rest.png" "$p/wave.png" -o "$work/pip.json"
 for f in one missing ora; do [ ! -e "$work/$f.json" ] || fail "$f.json was written"; done
 [ "$failures" -eq 0 ] && echo "init: ok" || exit 1

@@ -15,6 +15,7 @@
 
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/import/layered_character.h"
 #include "posemorph/bake/rig_description.h"
 #include "posemorph/bake/stage.h"
 
@@ -42,10 +43,12 @@ Stamp StampOf(const std::string& path) {
 }
 
 // The description and every file it names that a bake reads or records
-// (drawings and images of poses and parts), resolved as the bake does.
+// (drawings and images of poses and parts, the layered files it imports),
+// resolved as the bake does.
 std::vector<std::string> InputsOf(const std::string& description, const bake::RigDescription* d) {
   std::vector<std::string> paths{description};
   if (!d) return paths;
+  for (const std::string& f : d->import.files) paths.push_back(f);
   const fs::path folder = fs::path(description).parent_path();
   auto add = [&](const bake::PoseDescription& pose) {
     if (!pose.drawing_path.empty()) paths.push_back(pose.drawing_path);
@@ -76,12 +79,23 @@ class DescriptionWatch final : public WatchedBake {
   }
 
   // One bake of the description as it is on disk now: the rig, or false
-  // with the message; `inputs` gets the files it read.
-  bool Bake(std::unique_ptr<BakedRig>* out, std::string* problem, std::vector<std::string>* inputs) {
+  // with the message; `inputs` gets the files it read, `read` them as they
+  // were when it read them. A description that imports layered files (its
+  // "import", which init writes) has their drawings written again first
+  // (only those that changed).
+  bool Bake(std::unique_ptr<BakedRig>* out, std::string* problem, std::vector<std::string>* inputs, Fingerprint* read) {
     *inputs = InputsOf(description_, nullptr);
+    *read = FingerprintOf(*inputs);
     try {
       bake::RigDescription d = bake::ReadRigDescription(description_);
+      if (!d.import.files.empty()) {
+        std::vector<std::string> notes;
+        std::string folder = fs::path(description_).parent_path().string();
+        bake::import::ImportAgain(d.import.files, d.import.channels, d.import.flatten, folder.empty() ? "." : folder,
+                                  &notes);
+      }
       *inputs = InputsOf(description_, &d);
+      *read = FingerprintOf(*inputs);
       // The rig as posemorph-bake would write it beside the description, so
       // that it records the description's folder as its drawings' folder.
       fs::path rig_file = description_;
@@ -118,9 +132,9 @@ class DescriptionWatch final : public WatchedBake {
     return false;
   }
 
-  void Start(std::vector<std::string> inputs) {
+  void Start(std::vector<std::string> inputs, Fingerprint read) {
     inputs_ = std::move(inputs);
-    baked_ = FingerprintOf(inputs_);
+    baked_ = std::move(read);
     thread_ = std::thread([this] { Loop(); });
   }
 
@@ -168,17 +182,13 @@ class DescriptionWatch final : public WatchedBake {
         std::unique_ptr<BakedRig> rig;
         std::string problem;
         std::vector<std::string> inputs;
-        const bool ok = Bake(&rig, &problem, &inputs);
+        Fingerprint read;
+        const bool ok = Bake(&rig, &problem, &inputs, &read);
         baking_.store(false);
-        // What the bake read: the inputs as they were when it began (a
-        // change while it ran is baked next), or, when the description now
-        // names other files, those files as they are.
-        if (inputs == inputs_) {
-          baked_ = now;
-        } else {
-          inputs_ = inputs;
-          baked_ = FingerprintOf(inputs_);
-        }
+        // What the bake read, as it was when it read it: a change while it
+        // ran is baked next.
+        inputs_ = inputs;
+        baked_ = read;
         seen = baked_;
         lock.lock();
         if (ok)
@@ -211,8 +221,9 @@ std::unique_ptr<WatchedBake> WatchDescription(const std::string& description, st
   auto watch = std::make_unique<DescriptionWatch>(description);
   std::fprintf(stderr, "posemorph-view: baking %s\n", Printable(description, 1000).c_str());
   std::vector<std::string> inputs;
-  if (!watch->Bake(first, problem, &inputs)) return nullptr;
-  watch->Start(std::move(inputs));
+  Fingerprint read;
+  if (!watch->Bake(first, problem, &inputs, &read)) return nullptr;
+  watch->Start(std::move(inputs), std::move(read));
   return watch;
 }
 

@@ -62,7 +62,8 @@ void SmokeDriver::Input() {
 }
 
 void SmokeDriver::WatchScript() {
-  if (!w_.options.watch || !EditModeBuilt() || w_.options.description.empty()) return;
+  // (A layered rig's watch session is about its layered files: no click.)
+  if (!w_.options.watch || !EditModeBuilt() || w_.options.description.empty() || w_.rig->part_count() > 1) return;
   ImGuiIO& io = ImGui::GetIO();
   Edit& edit = w_.editor.state();
   const Rig& rig = *w_.rig;

@@ -41,8 +41,9 @@ class SmokeDriver {
   // or 10 minutes passed.
   bool WatchDone() const;
 
-  // --watch, once the first re-bake is in: edit mode's landmarks, a click on
-  // the outline's upper right (a landmark in every pose), then out.
+  // --watch on a rig without parts, once the first re-bake is in: edit
+  // mode's landmarks, a click on the outline's upper right (a landmark in
+  // every pose), then out.
   void WatchScript();
 
   Parts& w_;

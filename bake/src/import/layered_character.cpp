@@ -2,11 +2,16 @@
 // A character's drawings from layered files (layered_character.h).
 #include "posemorph/bake/import/layered_character.h"
 
+#include <png.h>
+
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/import/layered_image.h"
+#include "posemorph/bake/input_file.h"
+#include "posemorph/bake/output_file.h"
 
 namespace posemorph::bake::import {
 namespace {
@@ -141,6 +146,73 @@ LayeredCharacter ImportLayeredCharacter(const std::vector<std::string>& paths, b
                                                 "is drawn tiny, or hidden behind another by its order)");
   }
   return c;
+}
+
+namespace {
+
+std::vector<unsigned char> EncodeRgbaPng(const std::vector<unsigned char>& rgba, int width, int height,
+                                         const std::string& file) {
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  png.width = png_uint_32(width);
+  png.height = png_uint_32(height);
+  png.format = PNG_FORMAT_RGBA;
+  png_alloc_size_t size = 0;
+  if (!png_image_write_get_memory_size(png, size, 0, rgba.data(), 0, nullptr))
+    throw BakeError(file, std::string("cannot encode PNG: ") + png.message);
+  std::vector<unsigned char> out(size);
+  if (!png_image_write_to_memory(&png, out.data(), &size, 0, rgba.data(), 0, nullptr))
+    throw BakeError(file, std::string("cannot encode PNG: ") + png.message);
+  out.resize(size);
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> WriteLayeredDrawings(const LayeredCharacter& c, const std::string& folder, bool overwrite) {
+  const std::size_t per_pose = c.parts.empty() ? 1 : c.parts.size();
+  std::vector<std::string> paths;
+  std::vector<std::vector<unsigned char>> pngs;
+  std::vector<bool> same;
+  for (std::size_t i = 0; i < c.poses.size(); ++i)
+    for (std::size_t q = 0; q < per_pose; ++q) {
+      const std::string path = (std::filesystem::path(folder) / c.FileName(i, q)).string();
+      CheckOutputPath(path, {});
+      std::vector<unsigned char> png = EncodeRgbaPng(c.drawings[i * per_pose + q], c.width, c.height, path);
+      bool unchanged = false;
+      if (std::filesystem::exists(path)) {
+        try {
+          unchanged = ReadInputFile(path, kMaxLayeredFileBytes, "a drawing") == png;
+        } catch (const BakeError&) {
+        }
+        if (!unchanged && !overwrite)
+          throw BakeError(
+              path, "exists, and the drawing of " + c.sources[i * per_pose + q] + " would replace it (--force does)");
+      }
+      paths.push_back(path);
+      pngs.push_back(std::move(png));
+      same.push_back(unchanged);
+    }
+  for (std::size_t k = 0; k < paths.size(); ++k)
+    if (!same[k]) WriteFileAtomic(paths[k], pngs[k]);
+  return paths;
+}
+
+std::vector<std::string> ImportAgain(const std::vector<std::string>& files, bool channels, bool flatten,
+                                     const std::string& folder, std::vector<std::string>* notes) {
+  std::vector<LayeredCharacter> characters;
+  if (channels) {
+    for (const std::string& f : files) characters.push_back(ImportLayeredCharacter({f}, false));
+  } else {
+    characters.push_back(ImportLayeredCharacter(files, flatten));
+  }
+  std::vector<std::string> paths;
+  for (const LayeredCharacter& c : characters) {
+    notes->insert(notes->end(), c.notes.begin(), c.notes.end());
+    for (std::string& p : WriteLayeredDrawings(c, folder, true)) paths.push_back(std::move(p));
+  }
+  return paths;
 }
 
 }  // namespace posemorph::bake::import

@@ -255,6 +255,14 @@ struct RigDescription {
   std::vector<PathDescription> paths;
   StateMachineDescription state_machine;
   std::vector<std::string> warnings;  // from reading it: keys this bake does not know (a misspelt option)
+  // "import": the layered files (OpenRaster, Photoshop) its drawings were
+  // imported from (init writes it): resolved against its folder, and how
+  // (`init --channels`, `--flatten`). The bake reads the PNGs as they are;
+  // posemorph-view --watch imports again when one of these changes.
+  struct Import {
+    std::vector<std::string> files;
+    bool channels = false, flatten = false;
+  } import;
 };
 
 // Reads and parses a description; relative mesh paths resolve against its

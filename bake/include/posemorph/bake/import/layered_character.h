@@ -37,4 +37,19 @@ struct LayeredCharacter {
 // convention, or that cannot be read (layered_image.h).
 LayeredCharacter ImportLayeredCharacter(const std::vector<std::string>& paths, bool flatten);
 
+// Writes every drawing of `c` into `folder` as a PNG named c.FileName(pose,
+// part), each atomically, after all are encoded (nothing is written when
+// one cannot be). A file that already holds those very bytes is left as it
+// is (its time too, so a watcher sees no change); another existing file is
+// replaced only with `overwrite`, else refused (BakeError) before anything
+// is written. Returns the paths, in the character's order.
+std::vector<std::string> WriteLayeredDrawings(const LayeredCharacter& c, const std::string& folder, bool overwrite);
+
+// A description's "import" done again into `folder` (the description's):
+// the files as one character (by the two conventions), or with `channels`
+// each file as one (init --channels); their notes appended to `notes`.
+// Returns the paths written or kept, as WriteLayeredDrawings does.
+std::vector<std::string> ImportAgain(const std::vector<std::string>& files, bool channels, bool flatten,
+                                     const std::string& folder, std::vector<std::string>* notes);
+
 }  // namespace posemorph::bake::import
