@@ -7,7 +7,7 @@
 # default, then avx2, sse2, scalar); the bake and every test built with
 # Clang under AddressSanitizer + UBSan (debug: the viewer left out), the
 # runtime's threads under ThreadSanitizer (tsan), the libFuzzer harnesses
-# for 45 s each (scripts/fuzz.sh; POSEMORPH_FUZZ_SECONDS changes it),
+# for 40 s each (scripts/fuzz.sh; POSEMORPH_FUZZ_SECONDS changes it),
 # the hostile-input corpus (a ctest test, tests/hostile/), the ways a game
 # consumes the library (install + find_package, pkg-config from C,
 # add_subdirectory without the bake's dependencies, a shared library:
@@ -82,8 +82,8 @@ for preset in tsan debug; do
   say "$preset: tests"
   ctest --preset "$preset" -j"$jobs"
 done
-say "fuzz: each libFuzzer harness for ${POSEMORPH_FUZZ_SECONDS:-45} s"
-scripts/fuzz.sh "${POSEMORPH_FUZZ_SECONDS:-45}"
+say "fuzz: each libFuzzer harness for ${POSEMORPH_FUZZ_SECONDS:-40} s"
+scripts/fuzz.sh "${POSEMORPH_FUZZ_SECONDS:-40}"
 say "cross builds (scripts/cross-test.sh)"
 scripts/cross-test.sh
 say "done"

@@ -47,7 +47,7 @@ said=$("$bake" init "$data/pell/pell.ora" -o "$work/init/pell.json" 2>&1) || fai
 case "$said" in *"imported 28 drawings from 1 layered file"*"4 poses"*"of 7 parts"*"it bakes as written"*) echo "init: $(head -1 <<< "$said")" ;;
   *) fail "init says: $said" ;; esac
 [ -f "$work/init/wave-arm-left.png" ] || fail "init: no wave-arm-left.png beside the description"
-"$bake" "$work/init/pell.json" -o "$work/init/pell.pmrig" --quiet || fail "init: its description does not bake"
+# (init's own trial bake, in memory, is what "bakes as written" says.)
 
 # init --channels: Pell with a face from two Krita files, body.ora (a group
 # per pose) and face.ora (a group per expression): it bakes as written, and
@@ -72,10 +72,8 @@ PY
 ) || fail "init --channels: the face's glue is not on the head"
 python3 -c "import sys; sys.exit(0 if float('$worst') <= 4 else 1)" || fail "init --channels: a face joint is $worst px from the hand-written one"
 echo "init --channels: the face's joints within $worst px of pell-face.json's"
-baked=$("$bake" "$work/channels/pell-face.json" -o "$work/channels/pell-face.pmrig" 2>&1) ||
-  fail "init --channels: its description does not bake: $(tail -1 <<< "$baked")"
-grep -q "^channels: body (the figures above: its parts), face; 3 attached part(s)" <<< "$baked" ||
-  fail "init --channels: the rig has not the face channel: $baked"
+python3 -c "import json, sys; d = json.load(open(sys.argv[1])); sys.exit(0 if [c['name'] for c in d['channels']] == ['body', 'face'] and sum(p.get('channel') == 'face' for p in d['parts']) == 3 else 1)" "$work/channels/pell-face.json" ||
+  fail "init --channels: the description has not channels body and face, the face's 3 parts on face"
 
 # Refusals: one line, the status, nothing written.
 refuse() {  # refuse STATUS EXPECTED-TEXT CHECK-ABSENT ARGS...
