@@ -79,6 +79,37 @@ int pm_character_texture_filter(const pm_rig* rig, uint32_t list) {
   return r && r->texture_filter() == posemorph::TextureFilter::kNearest ? PM_FILTER_NEAREST : PM_FILTER_LINEAR;
 }
 
+// Texture pages (format 1.12): Rig::page and Rig::part_region per list.
+int pm_rig_has_atlas(const pm_rig* rig) { return rig && rig->rig.has_atlas() ? 1 : 0; }
+
+uint32_t pm_character_page_count(const pm_rig* rig, uint32_t list) {
+  const posemorph::Rig* r = ListRig(rig, list);
+  return r ? r->page_count() : 0;
+}
+
+int pm_character_page(const pm_rig* rig, uint32_t list, uint32_t page, pm_page* out) {
+  const posemorph::Rig* r = ListRig(rig, list);
+  if (!r || !out || page >= r->page_count()) return PM_ERROR_INVALID_ARGUMENT;
+  const posemorph::TexturePage p = r->page(page);
+  *out = pm_page{p.width, p.height, p.atlas ? 1 : 0, p.premultiplied ? 1 : 0};
+  return PM_OK;
+}
+
+int pm_character_page_name(const pm_rig* rig, uint32_t list, uint32_t page, char* out, size_t capacity,
+                           size_t* length) {
+  const posemorph::Rig* r = ListRig(rig, list);
+  return CopyString(r ? r->page(page).name : posemorph::StringView{}, r && page < r->page_count(), out, capacity,
+                    length);
+}
+
+int pm_character_part_region(const pm_rig* rig, uint32_t list, uint32_t part, uint32_t pose, pm_region* out) {
+  const posemorph::Rig* r = ListRig(rig, list);
+  if (!r || !out || part >= r->part_count() || pose >= r->pose_count()) return PM_ERROR_INVALID_ARGUMENT;
+  const posemorph::TextureRegion g = r->part_region(part, pose);
+  *out = pm_region{g.page, g.scale_u, g.offset_u, g.scale_v, g.offset_v, g.x, g.y, g.width, g.height};
+  return PM_OK;
+}
+
 int pm_channel_pose_name(const pm_rig* rig, uint32_t channel, uint32_t pose, char* out, size_t capacity,
                          size_t* length) {
   const posemorph::Rig* c = ChannelRig(rig, channel);

@@ -40,6 +40,9 @@ Rig& Rig::operator=(Rig&& other) noexcept {
   draw_sequence_ = std::exchange(other.draw_sequence_, {});
   part_pose_orders_ = std::exchange(other.part_pose_orders_, {});
   part_strings_ = std::exchange(other.part_strings_, {});
+  pages_ = std::exchange(other.pages_, {});
+  regions_ = std::exchange(other.regions_, {});
+  has_atlas_ = std::exchange(other.has_atlas_, false);
   paths_ = std::exchange(other.paths_, {});
   events_ = std::exchange(other.events_, {});
   machine_inputs_ = std::exchange(other.machine_inputs_, {});
@@ -120,6 +123,13 @@ StringView Rig::part_image(std::uint32_t index, std::uint32_t pose) const {
   if (!loaded() || index >= part_count() || pose >= pose_count_) return {};
   if (part_table_.empty()) return pose_image(pose);
   return part_strings_[part_count() + std::size_t(index) * pose_count_ + pose];
+}
+
+TexturePage Rig::page(std::uint32_t index) const { return index < pages_.size ? pages_[index] : TexturePage{}; }
+
+TextureRegion Rig::part_region(std::uint32_t part, std::uint32_t pose) const {
+  if (!loaded() || part >= part_count() || pose >= pose_count_ || regions_.empty()) return {};
+  return regions_[std::size_t(part) * pose_count_ + pose];
 }
 
 Span<const std::uint32_t> Rig::draw_sequence(std::uint32_t pose) const {

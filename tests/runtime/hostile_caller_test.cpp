@@ -22,16 +22,6 @@ using namespace posemorph::test;
 
 namespace {
 
-// Writes a value at `offset` and recomputes the checksum, so that only the
-// loader's checks stand between the value and the jobs.
-template <typename T>
-std::vector<unsigned char> WithValue(std::vector<unsigned char> bytes, std::size_t offset, T value) {
-  std::memcpy(bytes.data() + offset, &value, sizeof(T));
-  const std::uint32_t crc = format::Crc32(bytes.data() + format::kHeaderSize, bytes.size() - format::kHeaderSize);
-  std::memcpy(bytes.data() + format::kOffChecksum, &crc, 4);
-  return bytes;
-}
-
 bool AllFinite(const std::vector<double>& v) {
   for (double x : v)
     if (!std::isfinite(x)) return false;

@@ -48,6 +48,16 @@ inline std::vector<unsigned char> TestRigBytes(const std::string& name) {
   return bytes;
 }
 
+// `bytes` with a value written at `offset` and the checksum recomputed, so
+// that only the loader's checks stand between the value and the jobs.
+template <typename T>
+std::vector<unsigned char> WithValue(std::vector<unsigned char> bytes, std::size_t offset, T value) {
+  std::memcpy(bytes.data() + offset, &value, sizeof(T));
+  const std::uint32_t crc = format::Crc32(bytes.data() + format::kHeaderSize, bytes.size() - format::kHeaderSize);
+  std::memcpy(bytes.data() + format::kOffChecksum, &crc, 4);
+  return bytes;
+}
+
 inline Rig LoadTestRig(const std::string& name, Isa isa = Isa::kAuto) {
   const std::vector<unsigned char> bytes = TestRigBytes(name);
   Rig rig;

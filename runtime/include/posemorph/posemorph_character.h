@@ -43,6 +43,32 @@ PM_API int pm_character_canvas(const pm_rig* rig, uint32_t list, uint32_t pose, 
 /* PM_FILTER_LINEAR or PM_FILTER_NEAREST for list `list`'s drawings (linear for NULL or a list out of range). */
 PM_API int pm_character_texture_filter(const pm_rig* rig, uint32_t list);
 
+/* Texture pages (Rig::page, format 1.12): what a renderer uploads. `list`
+ * 0 is the rig, 1 + a its attachment a (each has its own list). With an
+ * atlas (pm_rig_has_atlas), the pages the bake packed the drawings into:
+ * PNG files beside the rig file, premultiplied RGBA, one size per list, the
+ * same files for every list of a character. Without one, a page per part
+ * and pose: page p x N + i is pm_character_part_image(list, p, i), straight alpha, in
+ * the drawing folder. Part p in pose i samples page region.page at
+ * (u scale_u + offset_u, v scale_v + offset_v) for its uvs (u, v), inside
+ * the rectangle x, y, width, height of that page's pixels. */
+typedef struct pm_page {
+  uint32_t width, height; /* pixels; 0 when unknown (a drawing of a rig without canvases) */
+  int atlas;              /* 1: an atlas page beside the rig; 0: a drawing in the drawing folder */
+  int premultiplied;      /* 1: premultiplied RGBA (atlas pages) */
+} pm_page;
+typedef struct pm_region {
+  uint32_t page;
+  float scale_u, offset_u, scale_v, offset_v;
+  uint32_t x, y, width, height;
+} pm_region;
+PM_API int pm_rig_has_atlas(const pm_rig* rig);                            /* 1 with an atlas, 0 without (or NULL) */
+PM_API uint32_t pm_character_page_count(const pm_rig* rig, uint32_t list); /* 0 beyond the lists */
+PM_API int pm_character_page(const pm_rig* rig, uint32_t list, uint32_t page, pm_page* out);
+PM_API int pm_character_page_name(const pm_rig* rig, uint32_t list, uint32_t page, char* out, size_t capacity,
+                                  size_t* length);
+PM_API int pm_character_part_region(const pm_rig* rig, uint32_t list, uint32_t part, uint32_t pose, pm_region* out);
+
 /* A channel's poses and paths by name, and its default texture sharpening
  * (channel 0: pm_rig_pose_name, pm_rig_path_name, pm_rig_info's). */
 PM_API int pm_channel_pose_name(const pm_rig* rig, uint32_t channel, uint32_t pose, char* out, size_t capacity,

@@ -99,6 +99,30 @@ struct DrawingCanvas {
   double pivot_x = 0, pivot_y = 0;
 };
 
+// A texture a renderer uploads (Rig::page): a page of the rig's texture
+// atlas (format 1.12), or, for a rig without one, one drawing as the bake
+// found it. The drawing part p shows in pose i lies on page
+// part_region(p, i).page.
+struct TexturePage {
+  // An atlas page: a PNG file beside the rig file (relative to its folder).
+  // Without an atlas: part_image(p, i), found in the drawing folder.
+  StringView name;
+  std::uint32_t width = 0, height = 0;  // pixels (without an atlas: the pose's canvas; 0 when unknown)
+  bool atlas = false;                   // an atlas page (beside the rig), not a drawing
+  bool premultiplied = false;           // its pixels are premultiplied RGBA (atlas pages); drawings: straight alpha
+};
+
+// Where a part's drawing in a pose lies on its page: sample page `page` at
+// (u scale_u + offset_u, v scale_v + offset_v), where (u, v) are the rig's
+// uvs (Rig::uvs: 0..1 over the drawing's canvas). The part samples pixels
+// inside x, y, width, height of the page (padding lies around it). Without
+// an atlas: the identity, and the whole drawing.
+struct TextureRegion {
+  std::uint32_t page = 0;
+  float scale_u = 1, offset_u = 0, scale_v = 1, offset_v = 0;
+  std::uint32_t x = 0, y = 0, width = 0, height = 0;  // page pixels
+};
+
 // A part of a layered character (format 1.6): a run of the rig's triangles
 // with its own drawings, drawn in order. A rig without parts is one part
 // covering every triangle, named "", drawing the poses' images.
@@ -218,6 +242,17 @@ class PM_API Rig {
   PartView part(std::uint32_t index) const;  // an empty view beyond part_count()
   // The drawing part `index` shows in `pose`: pose_image(pose) for a rig without parts.
   StringView part_image(std::uint32_t index, std::uint32_t pose) const;
+  // Texture pages (format 1.12, ATLS): the atlas the bake packed the
+  // drawings into, or, for a rig without one (older rigs, rigs baked with
+  // "atlas": false), one page per part and pose: page p x N + i is
+  // part_image(p, i) with an identity region. Renderers upload the pages
+  // and sample part_region(p, i) of page part_region(p, i).page; the same
+  // code draws both. An attachment's rig has its own list (an atlas's
+  // pages are the character's: the same names).
+  bool has_atlas() const { return has_atlas_; }
+  std::uint32_t page_count() const { return std::uint32_t(pages_.size); }
+  TexturePage page(std::uint32_t index) const;                              // empty beyond the count
+  TextureRegion part_region(std::uint32_t part, std::uint32_t pose) const;  // identity on page 0 beyond the counts
   // Part indices back to front (by draw order, ties by index): the order a
   // renderer draws them in. Never empty for a loaded rig. A rig whose order
   // changes with the pose (RIG_DESCRIPTION.md, "order" per pose) has one
@@ -338,6 +373,9 @@ class PM_API Rig {
   Span<const std::uint32_t> draw_sequence_;     // part indices back to front, or empty; N x M with PORD
   Span<const std::uint32_t> part_pose_orders_;  // N x M i32 (PORD), or empty
   Span<const StringView> part_strings_;         // M names, then M x N images, or empty
+  Span<const TexturePage> pages_;               // ATLS's pages, or M x N drawings
+  Span<const TextureRegion> regions_;           // M x N, part-major
+  bool has_atlas_ = false;
   Span<const PathView> paths_;
   Span<const EventView> events_;                 // format 1.8, or empty
   Span<const MachineInputView> machine_inputs_;  // format 1.9 (MACH), or empty

@@ -24,8 +24,9 @@ constexpr std::uint16_t kVersionMajor = 1;
 // 1.8 named events on paths (kMetaFlagEvents, EVNT); 1.9 a state machine
 // (MACH, in the top-level rig only); 1.10 colours set by states (MACH's
 // colour entries); 1.11 where the character stands and which way it faces
-// (PLCE, optional). Older files load unchanged.
-constexpr std::uint16_t kVersionMinor = 11;
+// (PLCE, optional); 1.12 a texture atlas (ATLS, optional). Older files load
+// unchanged.
+constexpr std::uint16_t kVersionMinor = 12;
 constexpr std::uint32_t kHeaderSize = FileHeader::kSize;
 constexpr std::uint32_t kSectionEntrySize = SectionEntry::kSize;
 constexpr std::uint32_t kSectionAlignment = 16;
@@ -143,6 +144,20 @@ constexpr std::uint32_t kMachine = Tag('M', 'A', 'C', 'H');
 constexpr std::uint32_t kPlacement = Tag('P', 'L', 'C', 'E');
 constexpr std::uint32_t kPlacementFacingLeft = 1u;
 constexpr double kMaxAnchor = 1e9;  // |anchor| in rig units
+// ATLS section (1.12, optional; in the character's rig and in each
+// attachment's): the drawings packed into texture pages (PNG files beside
+// the rig file), AtlasHeader then its entries (records.h), then each page's
+// name, u32 length (1..kMaxAtlasPageName) + bytes, a reference relative to
+// the rig file's folder (image_reference.h); the section ends there. Every
+// page of a rig has one size; a rig with an atlas has a canvas per pose
+// (CANV). A region lies inside its page; its crop's corner within
+// +-kMaxAtlasCanvasOffset of the canvas's.
+constexpr std::uint32_t kAtlas = Tag('A', 'T', 'L', 'S');
+constexpr std::uint32_t kAtlasPremultiplied = 1u;  // the pages hold premultiplied RGBA
+constexpr std::uint32_t kMaxAtlasPages = 64;
+constexpr std::uint32_t kMaxAtlasPageSize = 16384;
+constexpr std::uint32_t kMaxAtlasPageName = 255;
+constexpr std::int32_t kMaxAtlasCanvasOffset = 1 << 20;
 constexpr std::uint32_t kMaxMachineInputs = 64;
 constexpr std::uint32_t kMaxMachineStates = 1024;
 constexpr std::uint32_t kMaxMachineTransitions = 4096;

@@ -74,6 +74,8 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   if (channels.A && !CheckCharacterLimits(c, limits, channels, err)) return false;
   Machine machine;
   if (!ReadMachine(bytes, parser, source.nested, channels.C, &machine, err)) return false;
+  Atlas atlas;
+  if (!ReadAtlas(bytes, parser, c, s, &atlas, err)) return false;
 
   // Two passes over one layout: size the arena, then fill it.
   Rig rig;
@@ -88,6 +90,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
     if (pass == 0 && !CheckArenaSize(arena, c, h.file_size, err)) return false;
     LayoutChannels(arena, channels, &rig, &nested, nested_memory);
     LayoutMachine(arena, machine, &rig);
+    LayoutAtlas(arena, c, atlas, &rig);
     if (pass == 0) {
       if (arena.used > std::uint64_t(SIZE_MAX / 2))
         return Fail(err, ErrorCode::kTooLarge, "the rig needs %llu bytes in memory, more than this target addresses",
@@ -112,6 +115,7 @@ bool RigLoader::Load(const void* data, std::size_t size, Rig* out, Error* err, c
   BuildBlendBlocks(c, scratch, &rig);
   if (!CheckNumbers(rig, err) || (options.bound_solve && !CheckSolveBound(c, scratch, rig, err))) return false;
   Finish(h, c, kernels, &rig);
+  FillPages(atlas, &rig);
   if (!ReadPlacement(s, source.nested, &rig, err)) return false;
   if (channels.A && !LoadAttachments(channels, options, nested, nested_memory, &rig, err)) return false;
   if (machine.present && !CheckMachinePaths(rig, err)) return false;

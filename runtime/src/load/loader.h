@@ -17,6 +17,7 @@
 //   kernel_data.cpp    BuildSolveRows, BuildBlendBlocks, Finish (what the kernels read)
 //   solve_bound.cpp    CheckSolveBound (what the solve can give for any weights the jobs take)
 //   placement.cpp      ReadPlacement (PLCE, or the default anchor; after Finish)
+//   atlas.cpp          ReadAtlas (ATLS, before the arena), LayoutAtlas, FillPages (the pages, or one per drawing)
 // The records read are defined once, with the bake's writer, in
 // posemorph/format/records.h.
 #pragma once
@@ -219,6 +220,16 @@ struct Machine {
   std::uint32_t part_colours = 0;  // colour entries for a part (the rest are a state's character colour)
 };
 
+// ATLS (format 1.12), read before the arena is laid out: its header and
+// where its entries and names lie.
+struct Atlas {
+  bool present = false;
+  fmt::AtlasHeader h{};
+  const unsigned char *pages = nullptr, *regions = nullptr, *names = nullptr;
+  const unsigned char* canvases = nullptr;  // CANV: the poses' canvases, which the regions' maps take
+  std::uint64_t name_bytes = 0;             // without their lengths
+};
+
 }  // namespace detail::load
 
 // The one loader (a friend of Rig): its steps are the static members below,
@@ -230,6 +241,7 @@ struct RigLoader {
   using Counts = detail::load::Counts;
   using Header = detail::load::Header;
   using Machine = detail::load::Machine;
+  using Atlas = detail::load::Atlas;
   using Parser = detail::load::Parser;
   using Scratch = detail::load::Scratch;
   using Sources = detail::load::Sources;
@@ -275,6 +287,10 @@ struct RigLoader {
   static void LayoutMachine(ArenaLayout& arena, const Machine& m, Rig* rig);
   static bool CheckMachinePaths(const Rig& rig, Error* err);
   static bool ReadPlacement(const Sources& s, bool nested, Rig* rig, Error* err);
+  static bool ReadAtlas(const unsigned char* bytes, const Parser& parser, const Counts& c, const Sources& s, Atlas* a,
+                        Error* err);
+  static void LayoutAtlas(ArenaLayout& arena, const Counts& c, const Atlas& a, Rig* rig);
+  static void FillPages(const Atlas& a, Rig* rig);
 };
 
 }  // namespace posemorph

@@ -159,6 +159,50 @@ struct AttachmentEntry {
   }
 };
 
+// ATLS (1.12): the texture atlas's header; page_count AtlasPageEntry and
+// region_count AtlasRegionEntry records follow, then the pages' names.
+struct AtlasHeader {
+  static constexpr std::uint32_t kSize = 16;
+  std::uint32_t page_count;    // 1..kMaxAtlasPages
+  std::uint32_t region_count;  // M x N: a region per part and pose, part-major (as the part images)
+  std::uint32_t flags;         // kAtlasPremultiplied
+  std::uint32_t reserved;
+  template <typename Self, typename F>
+  static constexpr void Fields(Self& r, F& f) {
+    f(r.page_count), f(r.region_count), f(r.flags), f(r.reserved);
+  }
+};
+
+// ATLS: a page's size in pixels.
+struct AtlasPageEntry {
+  static constexpr std::uint32_t kSize = 8;
+  std::uint32_t width;
+  std::uint32_t height;
+  template <typename Self, typename F>
+  static constexpr void Fields(Self& r, F& f) {
+    f(r.width), f(r.height);
+  }
+};
+
+// ATLS: where a part's drawing in a pose lies on a page: the crop of the
+// drawing the part samples, width x height pixels whose top left is pixel
+// (canvas_x, canvas_y) of the drawing's canvas (negative, or past its
+// size, where the mesh reaches past the canvas: transparent there), lies at
+// (x, y) on page `page`, padding around it. So the page's uv is
+// (u W / PW + (x - canvas_x) / PW, v H / PH + (y - canvas_y) / PH) for the
+// rig's uv (u, v), W x H the pose's canvas (CANV), PW x PH the page's size.
+struct AtlasRegionEntry {
+  static constexpr std::uint32_t kSize = 20;
+  std::uint16_t page;
+  std::uint16_t x, y, width, height;
+  std::uint16_t reserved;
+  std::int32_t canvas_x, canvas_y;
+  template <typename Self, typename F>
+  static constexpr void Fields(Self& r, F& f) {
+    f(r.page), f(r.x), f(r.y), f(r.width), f(r.height), f(r.reserved), f(r.canvas_x), f(r.canvas_y);
+  }
+};
+
 // QPOS (1.3): the quantised positions' header; pose_count Point records
 // (each pose's origin) and the Exp-Golomb stream follow.
 struct QuantPositionsHeader {
@@ -308,6 +352,18 @@ PM_FORMAT_FIELD(AttachmentEntry, parent_weights, 16);
 PM_FORMAT_FIELD(AttachmentEntry, joint_weights, 40);
 PM_FORMAT_FIELD(AttachmentEntry, offset, 64);
 PM_FORMAT_FIELD(AttachmentEntry, size, 72);
+PM_FORMAT_RECORD(AtlasHeader);
+PM_FORMAT_FIELD(AtlasHeader, region_count, 4);
+PM_FORMAT_FIELD(AtlasHeader, flags, 8);
+PM_FORMAT_FIELD(AtlasHeader, reserved, 12);
+PM_FORMAT_RECORD(AtlasPageEntry);
+PM_FORMAT_FIELD(AtlasPageEntry, height, 4);
+PM_FORMAT_RECORD(AtlasRegionEntry);
+PM_FORMAT_FIELD(AtlasRegionEntry, x, 2);
+PM_FORMAT_FIELD(AtlasRegionEntry, height, 8);
+PM_FORMAT_FIELD(AtlasRegionEntry, reserved, 10);
+PM_FORMAT_FIELD(AtlasRegionEntry, canvas_x, 12);
+PM_FORMAT_FIELD(AtlasRegionEntry, canvas_y, 16);
 PM_FORMAT_RECORD(QuantPositionsHeader);
 PM_FORMAT_FIELD(QuantPositionsHeader, code_order, 8);
 PM_FORMAT_FIELD(QuantPositionsHeader, reserved, 12);
