@@ -3,11 +3,13 @@
 #include "commands.h"
 
 #include <algorithm>
+#include <filesystem>
 #include <iomanip>
 #include <optional>
 #include <sstream>
 
 #include "command_args.h"
+#include "textured_sheet.h"
 #include "progress_line.h"
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/input_file.h"
@@ -16,8 +18,8 @@
 namespace posemorph::bake::cli {
 
 int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& report_out, std::ostream& err) {
-  const Args args =
-      Args::Parse(a, from, {"-o", "--precision", "--max-error"}, {"--allow-folds", "--no-align", "--quiet"});
+  const Args args = Args::Parse(a, from, {"-o", "--precision", "--max-error"},
+                                {"--allow-folds", "--no-align", "--quiet", "--no-atlas"});
   // --quiet: no progress line and no report; warnings and errors still go to stderr.
   const bool quiet = args.switches.count("--quiet") > 0;
   std::ostringstream discarded;
@@ -48,6 +50,7 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   }
   if (args.switches.count("--allow-folds")) rig.parameters.allow_folds = true;
   if (args.switches.count("--no-align")) rig.mapping.align_interiors = false;
+  if (args.switches.count("--no-atlas")) rig.atlas.enabled = false;
   BakeReport report;
   rig.rig_file = output;
   // A grid coarser than the default says so, with its estimate.
@@ -58,8 +61,25 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
         << " px of the default grid's)";
     return s.str();
   };
-  const std::vector<unsigned char> bytes = BakeRig(rig, &report);
+  std::vector<unsigned char> bytes = BakeRig(rig, &report);
+  std::optional<PackedAtlas> atlas;
+  if (rig.atlas.enabled && RigHasDrawings(bytes)) {
+    BakeStage packing("packing the texture atlas");
+    atlas = PackAtlas(bytes, output, std::filesystem::path(rig.file).parent_path().string(), rig.atlas, rig.file);
+    if (atlas->skipped.empty()) {
+      bytes = std::move(atlas->rig);
+      report.bytes = bytes.size();
+    } else {
+      err << "posemorph-bake: warning: " << args.positional << ": no texture atlas: " << atlas->skipped << "\n";
+      atlas.reset();
+    }
+  }
   BakeStage writing("writing the output");
+  // The pages first: a rig on disk never names a page that is not there.
+  if (atlas)
+    for (const AtlasPage& page : atlas->pages)
+      WriteFileAtomic((std::filesystem::path(output).parent_path() / page.name).string(),
+                      EncodePng(RgbaImage{page.width, page.height, page.rgba}, page.name));
   WriteFileAtomic(output, bytes);
   progress.reset();  // erased before the report
   out << "baked " << args.positional << " -> " << output << ": " << report.vertices << " vertices, " << report.triangles
@@ -67,6 +87,15 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
       << "nnz(L) " << report.factor_nonzeros << ", grid " << report.grid_cells_x << "x" << report.grid_cells_y
       << GridNote(report) << ", " << report.seconds * 1e3 << " ms; max pose reproduction error "
       << report.max_reproduction_error << " of the rig size\n";
+  if (atlas) {
+    out << "texture atlas: " << atlas->drawings << " drawing(s), " << atlas->regions << " part(s) x pose(s), in "
+        << atlas->pages.size() << " page(s) of " << atlas->pages[0].width << "x" << atlas->pages[0].height << " (";
+    for (std::size_t k = 0; k < atlas->pages.size(); ++k) out << (k ? ", " : "") << atlas->pages[k].name;
+    out << ") beside the rig, " << std::fixed << std::setprecision(0) << atlas->filled * 100 << "% filled; "
+        << atlas->drawing_pixels << " drawing pixels -> "
+        << std::uint64_t(atlas->pages.size()) * atlas->pages[0].width * atlas->pages[0].height << "\n"
+        << std::defaultfloat << std::setprecision(6);
+  }
   if (!report.parts.empty()) {
     bool changes = false;
     for (const MeshPart& part : report.parts)

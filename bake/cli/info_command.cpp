@@ -134,8 +134,19 @@ void PrintSummary(const std::string& file, const std::vector<unsigned char>& byt
   if (rig.drawing_folder().size)
     out << ", found in " << Printable(std::string(rig.drawing_folder().data, rig.drawing_folder().size))
         << " (relative to the rig)";
-  out << "\n"
-      << "  load " << MedianLoadMicroseconds(bytes) << " us (median of 21 loads on this machine)\n"
+  out << "\n";
+  if (rig.has_atlas()) {
+    out << "  texture atlas: " << rig.page_count() << " page(s) of " << rig.page(0).width << " x " << rig.page(0).height
+        << " beside the rig (";
+    for (std::uint32_t k = 0; k < rig.page_count(); ++k)
+      out << (k ? ", " : "") << Printable(std::string(rig.page(k).name.data, rig.page(k).name.size));
+    out << "), premultiplied; " << rig.part_count() * N << " part(s) x pose(s) of the body"
+        << (rig.attachment_count() ? " and the attachments' on the same pages" : "") << "\n";
+  } else if (!rig.uvs(0).empty()) {
+    out << "  no texture atlas: a renderer uploads each part's drawing in each pose (" << rig.page_count()
+        << " textures)\n";
+  }
+  out << "  load " << MedianLoadMicroseconds(bytes) << " us (median of 21 loads on this machine)\n"
       << "  kernel path " << IsaName(rig.isa()) << " (this build and CPU run:";
   for (Isa isa : {Isa::kScalar, Isa::kSse2, Isa::kAvx2, Isa::kAvx512, Isa::kNeon, Isa::kWasmSimd})
     if (IsaAvailable(isa)) out << ' ' << IsaName(isa);
@@ -188,7 +199,7 @@ void PrintGhosting(const std::string& file, const Rig& rig, const std::string* i
   std::vector<RgbaImage> drawings;
   const std::string folder = images ? *images : DefaultDrawingFolder(file, rig);
   try {
-    drawings = ReadPoseDrawings(rig, file, folder);
+    drawings = ReadPoseDrawings(rig, file, folder, false);  // the drawings the bake measured, not the atlas's
   } catch (const BakeError& e) {
     out << "  ghosting: not measured: " << Printable(e.what()) << "\n";
     return;

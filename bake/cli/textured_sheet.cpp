@@ -63,11 +63,57 @@ void Sample(const RgbaImage& d, double u, double v, TextureFilter filter, double
   out[3] = a;
 }
 
+// A rig with an atlas: each part's drawing in each pose cut back out of
+// its page (beside the rig file) onto a canvas of its pose's size,
+// transparent outside the crop the rig samples, straight alpha again.
+std::vector<RgbaImage> CutFromPages(const Rig& rig, const std::string& rig_file) {
+  const std::filesystem::path folder = std::filesystem::path(rig_file).parent_path();
+  std::vector<RgbaImage> pages;
+  for (std::uint32_t k = 0; k < rig.page_count(); ++k) {
+    const TexturePage page = rig.page(k);
+    const std::string ref = RigString(page.name);
+    if (!ImageReferenceStaysInside(page.name))
+      throw BakeError(rig_file, "atlas page '" + ref + "' is not a file beside the rig");
+    const std::string path = (folder / ref).string();
+    pages.push_back(DecodeRgba(ReadInputFile(path, kMaxTextFileBytes, "an atlas page"), path));
+    if (pages.back().width != page.width || pages.back().height != page.height)
+      throw BakeError(path, "the atlas page is " + std::to_string(pages.back().width) + "x" +
+                                std::to_string(pages.back().height) + ", the rig says " + std::to_string(page.width) +
+                                "x" + std::to_string(page.height) + " (bake the rig again)");
+  }
+  std::vector<RgbaImage> out;
+  for (std::uint32_t p = 0; p < rig.part_count(); ++p)
+    for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {
+      const TextureRegion g = rig.part_region(p, i);
+      const RgbaImage& page = pages[g.page];
+      const DrawingCanvas c = rig.pose_canvas(i);
+      RgbaImage d;
+      d.width = std::uint32_t(c.width), d.height = std::uint32_t(c.height);
+      d.rgba.assign(std::size_t(d.width) * d.height * 4, 0);
+      // The crop's corner on the canvas: page x = canvas x + offset_u x page width.
+      const long cx = long(g.x) - std::lround(double(g.offset_u) * page.width);
+      const long cy = long(g.y) - std::lround(double(g.offset_v) * page.height);
+      for (std::uint32_t y = 0; y < g.height; ++y)
+        for (std::uint32_t x = 0; x < g.width; ++x) {
+          const long tx = cx + long(x), ty = cy + long(y);
+          if (tx < 0 || ty < 0 || tx >= long(d.width) || ty >= long(d.height)) continue;
+          const unsigned char* s = &page.rgba[(std::size_t(g.y + y) * page.width + (g.x + x)) * 4];
+          unsigned char* t = &d.rgba[(std::size_t(ty) * d.width + std::size_t(tx)) * 4];
+          for (int k = 0; k < 3; ++k) t[k] = s[3] ? (unsigned char)std::min(255, (s[k] * 255 + s[3] / 2) / s[3]) : 0;
+          t[3] = s[3];
+        }
+      out.push_back(std::move(d));
+    }
+  return out;
+}
+
 }  // namespace
 
-std::vector<RgbaImage> ReadPoseDrawings(const Rig& rig, const std::string& rig_file, const std::string& images) {
+std::vector<RgbaImage> ReadPoseDrawings(const Rig& rig, const std::string& rig_file, const std::string& images,
+                                        bool use_atlas) {
   std::vector<RgbaImage> out;
   if (rig.uvs(0).size == 0) throw BakeError(rig_file, "has no uvs: --textured needs a rig baked from drawings");
+  if (rig.has_atlas() && use_atlas) return CutFromPages(rig, rig_file);
   const bool parts = rig.part_count() > 1;
   for (std::uint32_t p = 0; p < rig.part_count(); ++p)
     for (std::uint32_t i = 0; i < rig.pose_count(); ++i) {

@@ -27,8 +27,13 @@ struct RgbaImage {
 // N + pose]; a rig without parts is one part, the poses' drawings): references relative to `images`, never leaving
 // it ('..', absolute paths, backslashes and control characters are refused),
 // regular files of at most 64 MiB and 16,777,216 pixels, each the size its
-// pose's canvas records. Throws BakeError naming the rig or the file.
-std::vector<RgbaImage> ReadPoseDrawings(const Rig& rig, const std::string& rig_file, const std::string& images);
+// pose's canvas records. A rig with an atlas (Rig::has_atlas): each drawing
+// cut back out of its page (beside `rig_file`) onto its canvas, transparent
+// outside the part of it the rig samples. Throws BakeError naming the rig or the file.
+// use_atlas false: the drawings themselves, atlas or not (the ghosting
+// measure, which the bake took on them).
+std::vector<RgbaImage> ReadPoseDrawings(const Rig& rig, const std::string& rig_file, const std::string& images,
+                                        bool use_atlas = true);
 
 struct TexturedSheetLayout {
   std::uint32_t cell = 0;               // pixels per cell side

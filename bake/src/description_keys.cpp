@@ -26,7 +26,7 @@ void WarnUnknownKeys(const json& object, const std::string& where, std::initiali
 void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std::string>* warnings) {
   WarnUnknownKeys(root, "",
                   {"posemorph", "name", "filter", "anchor", "facing", "poses", "triangles", "parts", "glue", "mapping",
-                   "bake", "paths", "channels", "state_machine", "import"},
+                   "bake", "paths", "channels", "state_machine", "import", "atlas"},
                   file, warnings);
   if (root.contains("parts") && root["parts"].is_array())
     for (std::size_t p = 0; p < root["parts"].size(); ++p) {

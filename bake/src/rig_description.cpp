@@ -119,6 +119,30 @@ RigDescription ParseRigDescription(const std::string& text, const std::string& f
     if (f != "left" && f != "right") r.Fail("facing", "expected \"left\" or \"right\" (the way the drawings face)");
     rig.facing_left = f == "left";
   }
+  if (root.contains("atlas")) {
+    const json& a = root["atlas"];
+    rig.atlas_given = true;
+    if (a.is_boolean()) {
+      rig.atlas.enabled = a.get<bool>();
+    } else if (a.is_object()) {
+      for (const auto& [key, value] : a.items()) {
+        const std::string where = "atlas." + key;
+        if (key != "max_page_size" && key != "padding")
+          r.Fail(where, "unknown key (expected \"max_page_size\" or \"padding\")");
+        const double v = r.Number(value, where);
+        if (key == "max_page_size") {
+          if (!(v >= 64 && v <= 16384) || std::floor(std::log2(v)) != std::log2(v))
+            r.Fail(where, "expected a power of two from 64 to 16384 pixels");
+          rig.atlas.max_page_size = std::uint32_t(v);
+        } else {
+          if (!(v >= 0 && v <= 64) || std::floor(v) != v) r.Fail(where, "expected a whole number of pixels, 0 to 64");
+          rig.atlas.padding = std::uint32_t(v);
+        }
+      }
+    } else {
+      r.Fail("atlas", "expected false, true or {\"max_page_size\": 2048, \"padding\": 2}");
+    }
+  }
   if (root.contains("import")) {
     const json& im = root["import"];
     if (!im.is_object() || !im.contains("files") || !im["files"].is_array() || im["files"].empty())

@@ -136,6 +136,12 @@ std::string RigDescriptionText(const RigDescription& rig) {
   if (rig.nearest_filter) root["filter"] = "nearest";
   if (rig.anchor_given) root["anchor"] = {rig.anchor.x(), rig.anchor.y()};
   if (rig.facing_left) root["facing"] = "left";
+  if (rig.atlas_given) {
+    if (!rig.atlas.enabled)
+      root["atlas"] = false;
+    else
+      root["atlas"] = {{"max_page_size", rig.atlas.max_page_size}, {"padding", rig.atlas.padding}};
+  }
   const bool any_drawn = std::any_of(rig.poses.begin(), rig.poses.end(), [](const auto& p) { return p.drawn; });
   if (!any_drawn) root["triangles"] = rig.triangles;
   json poses = json::array();

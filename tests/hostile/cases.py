@@ -181,7 +181,11 @@ def prepare(work, tools):
             f.write(data)
     with open(os.path.join(PREPARED, 'rig.json'), 'w') as f:
         f.write(drawn_rig())
-    subprocess.run([tools['bake'], os.path.join(PREPARED, 'rig.json'), '-o', os.path.join(PREPARED, 'rig.pmrig')],
+    # rig.pmrig without an atlas (the viewer's cases read its drawings);
+    # atlas.pmrig with one (atlas.page0.png beside it).
+    subprocess.run([tools['bake'], os.path.join(PREPARED, 'rig.json'), '-o', os.path.join(PREPARED, 'rig.pmrig'),
+                    '--no-atlas'], check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([tools['bake'], os.path.join(PREPARED, 'rig.json'), '-o', os.path.join(PREPARED, 'atlas.pmrig')],
                    check=True, stdout=subprocess.DEVNULL)
     rig = open(os.path.join(PREPARED, 'rig.pmrig'), 'rb').read()
     with open(os.path.join(PREPARED, 'truncated.pmrig'), 'wb') as f:
@@ -191,7 +195,7 @@ def prepare(work, tools):
     with open(os.path.join(PREPARED, 'escape.json'), 'w') as f:
         json.dump(escape, f)
     subprocess.run([tools['bake'], os.path.join(PREPARED, 'escape.json'), '-o', os.path.join(PREPARED, 'escape.pmrig')],
-                   check=True, stdout=subprocess.DEVNULL)
+                   check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
 
 
 def drawings():
@@ -417,6 +421,14 @@ CASES = [
          {'rig.pmrig': copy_of('rig.pmrig'), 'b.png': copy_of('b.png'), 'a.png': fifo}),
     Case('view-image-leaves-folder', V, ['{w}/rig.pmrig', '--headless', '-o', '{w}/f.png'], 1,
          r"image reference '\.\./\.\./etc/passwd' leaves the images folder", dict(drawings(), **{'rig.pmrig': copy_of('escape.pmrig')})),
+    Case('view-atlas-page-missing', V, ['{w}/atlas.pmrig', '--headless', '-o', '{w}/f.png'], 1, r'atlas\.page0\.png',
+         {'atlas.pmrig': copy_of('atlas.pmrig')}),
+    Case('view-atlas-page-wrong-size', V, ['{w}/atlas.pmrig', '--headless', '-o', '{w}/f.png'], 1,
+         r'atlas\.page0\.png: the atlas page is 16x16, the rig says',
+         {'atlas.pmrig': copy_of('atlas.pmrig'), 'atlas.page0.png': png(16, 16, disc(8, 8, 4))}),
+    Case('view-atlas-page-bomb', V, ['{w}/atlas.pmrig', '--headless', '-o', '{w}/f.png'], 1, r'atlas\.page0\.png',
+         {'atlas.pmrig': copy_of('atlas.pmrig'),
+          'atlas.page0.png': lambda p: open(p, 'wb').write(png(16384, 16384, idat=zlib.compress(b'\0' * (1 << 20))))}),
     Case('view-images-folder-missing', V, ['{w}/rig.pmrig', '--images', '{w}/none', '--headless', '-o', '{w}/f.png'], 1, r'none',
          {'rig.pmrig': copy_of('rig.pmrig')}),
     Case('view-unknown-path', V, ['{w}/rig.pmrig', '--headless', '--path', 'nope', '-o', '{w}/f.png'], 1, r'rig\.pmrig: .*nope',

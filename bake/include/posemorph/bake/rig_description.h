@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "posemorph/bake/texture_atlas.h"
 #include "posemorph/rig.h"
 
 #include <Eigen/Core>
@@ -243,6 +244,10 @@ struct RigDescription {
   bool anchor_given = false;
   Eigen::Vector2d anchor = Eigen::Vector2d::Zero();
   bool facing_left = false;
+  // "atlas": false, or {"max_page_size": S, "padding": P}: how posemorph-bake
+  // packs the drawings into texture pages (texture_atlas.h); on by default.
+  AtlasSettings atlas;
+  bool atlas_given = false;  // the key was there (the writer keeps it)
   std::vector<std::array<std::uint32_t, 3>> triangles;
   std::vector<PoseDescription> poses;  // with parts: names and points only
   std::vector<PartDescription> parts;  // empty: one shape (the poses' own meshes or drawings)
