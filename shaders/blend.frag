@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 #version 460
-// Cross-fades a character's drawings (of the part drawn, for a layered
-// character: its layers start at layer_offset): each pose's own drawing sampled
-// through that pose's uvs, weighted by the texture weights w''
+// Cross-fades a character's drawings (of the part drawn): each pose's own
+// drawing sampled through that pose's uvs on its page (array layer: an
+// atlas page, or the drawing itself; skin.vert maps the uvs and the layers), weighted by the texture weights w''
 // (premultiplied alpha, so the sum is a premultiplied colour too). With
 // only_slot = s >= 0 it draws one drawing instead, at opacity
 // w_s / (w_0 + ... + w_s): drawn for s = 0, 1, ... each "over" the last,
@@ -29,7 +29,7 @@ layout(location = 8) flat in vec4 tint;
 layout(location = 0) out vec4 colour;
 
 vec4 Drawing(float w, vec2 uv, int layer) {
-  return w == 0.0 ? vec4(0.0) : w * tint * texture(drawings, vec3(uv, float(layer + pc.layer_offset)));
+  return w == 0.0 ? vec4(0.0) : w * tint * texture(drawings, vec3(uv, float(layer)));
 }
 
 void main() {

@@ -441,7 +441,7 @@ TEST_CASE("frames: a layered character's parts each show their own drawings, in 
   const Rig& rig = arm->rig;
   REQUIRE(rig.part_count() == 2);
   REQUIRE(arm->drawings.rgba.size() == 2 * rig.pose_count());
-  REQUIRE(arm->drawings.layers_per_part == rig.pose_count());
+  REQUIRE(arm->drawings.pages == 2 * rig.pose_count());  // no atlas: a page per part and pose
   const Camera pixels = ArmPixels();
   for (std::uint32_t pose = 0; pose < rig.pose_count(); ++pose) {
     CAPTURE(pose);

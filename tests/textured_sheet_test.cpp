@@ -14,6 +14,7 @@
 
 #include "cli.h"
 #include "posemorph/bake/bake.h"
+#include "posemorph/bake/mapping/outline_image.h"
 #include "posemorph/rig.h"
 #include "textured_sheet.h"
 
@@ -25,8 +26,12 @@ namespace {
 // A sample as the build baked it (build/<preset>/rigs/NAME.compact.pmrig:
 // `posemorph-bake DRAWINGS/NAME.json`, the default compact encoding), read
 // rather than baked again by every test case.
+std::string RigPath(const std::string& name) {
+  return std::string(POSEMORPH_TEST_RIGS) + "/" + name + ".compact.pmrig";
+}
+
 std::vector<unsigned char> BakedRigBytes(const std::string& name) {
-  const std::string path = std::string(POSEMORPH_TEST_RIGS) + "/" + name + ".compact.pmrig";
+  const std::string path = RigPath(name);
   std::ifstream in(path, std::ios::binary);
   REQUIRE_MESSAGE(in, "cannot read " << path << " (the build bakes it: target posemorph-test-rigs)");
   return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
@@ -52,9 +57,37 @@ struct Pip {
 
 }  // namespace
 
+TEST_CASE("sheet --textured: the drawings cut back out of the atlas are the drawings where the rig samples them") {
+  Pip pip;
+  REQUIRE(pip.rig.has_atlas());
+  const std::vector<bake::RgbaImage> cut = bake::ReadPoseDrawings(pip.rig, RigPath("pip"), pip.images);
+  REQUIRE(cut.size() == pip.rig.pose_count());
+  std::size_t compared = 0;
+  for (std::uint32_t i = 0; i < pip.rig.pose_count(); ++i) {
+    CAPTURE(i);
+    int w = 0, h = 0;
+    const std::string drawing = pip.images + "/" + std::string(pip.rig.pose_image(i).data, pip.rig.pose_image(i).size);
+    const std::vector<unsigned char> original = bake::mapping::ReadPngRgba(drawing, &w, &h, drawing);
+    REQUIRE((std::uint32_t(w) == cut[i].width && std::uint32_t(h) == cut[i].height));
+    // Every pixel the part samples: alpha exact, colour within the rounding
+    // of premultiplied 8-bit storage (where alpha is at least 32).
+    for (std::size_t p = 0; p < original.size(); p += 4) {
+      const unsigned a = original[p + 3];
+      if (cut[i].rgba[p + 3] != a) {
+        CHECK(cut[i].rgba[p + 3] == 0);  // outside the crop: transparent
+        continue;
+      }
+      if (a < 32) continue;
+      ++compared;
+      for (int c = 0; c < 3; ++c) REQUIRE(std::abs(int(cut[i].rgba[p + c]) - int(original[p + c])) <= 4);
+    }
+  }
+  CHECK(compared > 50000);  // Pip's five drawings: 86,254 pixels of alpha >= 32
+}
+
 TEST_CASE("sheet --textured: each base pose is drawn as its own drawing, the in-betweens cross-fade") {
   Pip pip;
-  const std::vector<bake::RgbaImage> drawings = bake::ReadPoseDrawings(pip.rig, "pip.pmrig", pip.images);
+  const std::vector<bake::RgbaImage> drawings = bake::ReadPoseDrawings(pip.rig, RigPath("pip"), pip.images);
   REQUIRE(drawings.size() == pip.rig.pose_count());
   bake::TexturedSheetLayout layout;
   const bake::RgbaImage sheet =
@@ -112,7 +145,7 @@ TEST_CASE("sheet --textured: a layered character's parts are drawn back to front
   const std::uint32_t N = rig.pose_count(), M = rig.part_count();
   REQUIRE(M == 7);
   REQUIRE(rig.draw_order_changes());
-  const std::vector<bake::RgbaImage> drawings = bake::ReadPoseDrawings(rig, "pell.pmrig", images);
+  const std::vector<bake::RgbaImage> drawings = bake::ReadPoseDrawings(rig, RigPath("pell"), images);
   REQUIRE(drawings.size() == std::size_t(M) * N);
   const std::uint32_t cell = 200;
   bake::TexturedSheetLayout layout;
@@ -167,8 +200,8 @@ TEST_CASE("sheet --textured --channel: Pell's face channel, each expression laid
   REQUIRE(rig.attachment_count() == 3);
   const std::uint32_t N = rig.pose_count();
   const Rig& face = *rig.channel_rig(1);
-  const std::vector<bake::RgbaImage> drawings = bake::ReadPoseDrawings(rig, "pell-face.pmrig", images);
-  const auto attached = bake::ReadAttachmentDrawings(rig, "pell-face.pmrig", images);
+  const std::vector<bake::RgbaImage> drawings = bake::ReadPoseDrawings(rig, RigPath("pell-face"), images);
+  const auto attached = bake::ReadAttachmentDrawings(rig, RigPath("pell-face"), images);
   REQUIRE(attached.size() == 3);
   const std::uint32_t cell = 200;
   bake::TexturedSheetLayout layout;
@@ -224,6 +257,9 @@ TEST_CASE("posemorph-bake sheet --textured writes a PNG, and refuses what it can
   const fs::path rig = dir / "rigs" / "pip.pmrig", out = dir / "sheet.png";
   std::ofstream(rig, std::ios::binary)
       .write(reinterpret_cast<const char*>(pip.bytes.data()), std::streamsize(pip.bytes.size()));
+  // Its atlas page beside it (named as the bake named it, after the rig it wrote).
+  const std::string page(pip.rig.page(0).name.data, pip.rig.page(0).name.size);
+  fs::copy_file(fs::path(RigPath("pip")).parent_path() / page, dir / "rigs" / page);
   auto run = [](const std::vector<std::string>& args, std::string* text) {
     std::ostringstream o, e;
     const int status = bake::RunBakeCommand(args, o, e);
@@ -246,9 +282,10 @@ TEST_CASE("posemorph-bake sheet --textured writes a PNG, and refuses what it can
 
   CHECK(run({"sheet", rig.string(), "--textured", "-o", (dir / "s.svg").string()}, &text) == 2);
   CHECK(text.find("sheet --textured needs -o OUT.png") != std::string::npos);
-  // The drawings are not beside the rig (no --images): the first missing one is named.
+  // The atlas page is not beside the rig: it is named.
+  fs::remove(dir / "rigs" / page);
   CHECK(run({"sheet", rig.string(), "--textured", "-o", (dir / "t.png").string()}, &text) == 1);
-  CHECK(text.find("posemorph-bake: error: " + (dir / "rigs" / "rest.png").string() + ": ") != std::string::npos);
+  CHECK(text.find("posemorph-bake: error: " + (dir / "rigs" / page).string() + ": ") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "t.png"));
   fs::remove_all(dir);
 }
@@ -278,7 +315,7 @@ TEST_CASE("eval --no-weight-limit blends the stretches with raw weights, and --n
 
 TEST_CASE("sheet --textured: the tint multiplies every frame, opacity fades it over the background, parts fade alone") {
   Pip pip;
-  const std::vector<bake::RgbaImage> drawings = bake::ReadPoseDrawings(pip.rig, "pip.pmrig", pip.images);
+  const std::vector<bake::RgbaImage> drawings = bake::ReadPoseDrawings(pip.rig, RigPath("pip"), pip.images);
   const auto sheet_of = [&](const bake::SheetColour& colour) {
     return bake::TexturedSheet(pip.rig, drawings, 3, 1, bake::EvalOptions{}, TextureFilter::kNearest, 80, nullptr, 0,
                                {}, colour);
@@ -319,7 +356,7 @@ TEST_CASE("sheet --textured: the tint multiplies every frame, opacity fades it o
   const std::vector<unsigned char> bytes = BakedRigBytes("pell");
   Rig pell;
   REQUIRE(LoadRig(bytes.data(), bytes.size(), &pell, nullptr));
-  const std::vector<bake::RgbaImage> parts = bake::ReadPoseDrawings(pell, "pell.pmrig", images);
+  const std::vector<bake::RgbaImage> parts = bake::ReadPoseDrawings(pell, RigPath("pell"), images);
   bake::SheetColour all_opaque, one_clear;
   all_opaque.part_opacities.assign(pell.part_count(), 1.0f);
   one_clear.part_opacities.assign(pell.part_count(), 1.0f);

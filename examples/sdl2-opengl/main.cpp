@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -23,6 +24,7 @@
 #include <vector>
 
 #include "posemorph/draw_list.h"
+#include "posemorph/image_reference.h"
 #include "posemorph/path.h"
 #include "posemorph_gl.h"
 
@@ -35,8 +37,9 @@ int Fail(const std::string& message) {
   return 1;
 }
 
-// A drawing as premultiplied RGBA8, the way the cross-fade wants it (the renderer's ImageReader).
-bool ReadDrawing(const std::string& path, gl::Pixels* out, std::string* error) {
+// A texture page as premultiplied RGBA8, the way the cross-fade wants it
+// (the renderer's ImageReader): an atlas page is premultiplied already.
+bool ReadPage(const std::string& path, bool premultiplied, gl::Pixels* out, std::string* error) {
   png_image image{};
   image.version = PNG_IMAGE_VERSION;
   out->source = path;
@@ -46,7 +49,7 @@ bool ReadDrawing(const std::string& path, gl::Pixels* out, std::string* error) {
   out->rgba.resize(PNG_IMAGE_SIZE(image));
   if (!png_image_finish_read(&image, nullptr, out->rgba.data(), 0, nullptr)) return *error = path + ": bad PNG", false;
   std::vector<unsigned char>& p = out->rgba;
-  for (std::size_t i = 0; i < p.size(); i += 4)
+  for (std::size_t i = 0; i < p.size() && !premultiplied; i += 4)
     for (int c = 0; c < 3; ++c) p[i + c] = (unsigned char)((p[i + c] * p[i + 3] + 127) / 255);
   return true;
 }
@@ -170,13 +173,19 @@ int main(int argc, char** argv) {
   SDL_Window* window = SDL_CreateWindow("posemorph + SDL2", SDL_WINDOWPOS_CENTERED, SDL_WINDOWPOS_CENTERED, o.width,
                                         o.height, SDL_WINDOW_OPENGL);
   if (!window || !SDL_GL_CreateContext(window)) return Fail(std::string("no OpenGL 3.3 window: ") + SDL_GetError());
-  // The renderer: every drawing of every list, the uvs, the triangles, the program.
+  // The renderer: the texture pages (the atlas beside the rig; or, for a rig
+  // without one, every drawing of every list), the uvs, the triangles, the program.
   gl::Renderer renderer;
   gl::Settings settings;
   if (!o.filter.empty()) settings.filter = o.filter == "nearest" ? 1 : 0;  // else the rig's hint
   std::string problem;
-  const auto read = [&o](const std::string& name, gl::Pixels* out, std::string* error) {
-    return ReadDrawing(o.images + "/" + name, out, error);
+  const std::string rig_folder = std::filesystem::path(o.rig_path).parent_path().string();
+  const auto read = [&](const TexturePage& page, gl::Pixels* out, std::string* error) {
+    if (!ImageReferenceStaysInside(page.name))  // a rig file is hostile input
+      return *error = "a page's name leaves its folder", false;
+    const std::string name(page.name.data, page.name.size);
+    return ReadPage((page.atlas ? (rig_folder.empty() ? "." : rig_folder) : o.images) + "/" + name, page.premultiplied,
+                    out, error);
   };
   if (!renderer.Init(rig, read, settings, &problem)) return Fail(o.rig_path + ": " + problem);
 
@@ -214,9 +223,10 @@ int main(int argc, char** argv) {
   }
   std::printf(
       "%d frames of %zu character(s) on %s; the runtime took %.3f ms per frame for all of them; %u draw calls "
-      "a frame (%u per character)\n",
+      "a frame (%u per character), %u texture(s) bound, %u page(s) (%s)\n",
       frame, count, reinterpret_cast<const char*>(glGetString(GL_RENDERER)), 1e3 * eval_seconds / std::max(frame, 1),
-      renderer.draw_calls(), renderer.draw_calls() / std::uint32_t(count));
+      renderer.draw_calls(), renderer.draw_calls() / std::uint32_t(count), renderer.texture_binds(), rig.page_count(),
+      rig.has_atlas() ? "an atlas" : "one per drawing");
   SDL_Quit();
   return glGetError() == GL_NO_ERROR ? 0 : Fail("OpenGL reported an error");
 }

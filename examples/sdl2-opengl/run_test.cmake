@@ -3,7 +3,9 @@
 # a pose-space point against posemorph-view's (lavapipe) at the same point,
 # the same tinted and half transparent, Pell with a face (parts and
 # attachments, drawn by integrations/opengl step by step) against the
-# viewer's, a crowd of 200 on a path, and its messages for bad drawings.
+# viewer's, a crowd of 200 on a path, Pip baked without an atlas (its
+# drawings one texture each) against Pip with one, and its messages for a
+# bad atlas page and bad drawings.
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 set(run ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${EXAMPLE} ${RIG})
@@ -39,7 +41,8 @@ if(same EQUAL 0)
   message(FATAL_ERROR "the tint changed nothing: ${out}")
 endif()
 
-# A layered character with attachments: 7 draw calls (4 body parts, 3 face parts), the viewer's picture.
+# A layered character with attachments: 4 draw calls (the body's 4 parts in one, each face part's list in one),
+# one texture (its atlas), the viewer's picture.
 execute_process(COMMAND ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${EXAMPLE} ${FACE_RIG} --images ${FACE_IMAGES}
                         --at 0.3,0.2 --size 256x256 --frames 3 --screenshot ${WORK}/sdl2-face.png
                 RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
@@ -48,7 +51,8 @@ execute_process(COMMAND ${VIEW} ${FACE_RIG} --images ${FACE_IMAGES} --headless -
 execute_process(COMMAND ${COMPARE} ${WORK}/sdl2-face.png ${WORK}/view-face.png 0.01 RESULT_VARIABLE compared
                 OUTPUT_VARIABLE compare_out)
 message("SDL2 + OpenGL against posemorph-view, Pell with a face at (0.3, 0.2): ${compare_out}${out}${err}")
-if(NOT status EQUAL 0 OR NOT view_status EQUAL 0 OR NOT compared EQUAL 0 OR NOT out MATCHES "7 draw calls a frame")
+if(NOT status EQUAL 0 OR NOT view_status EQUAL 0 OR NOT compared EQUAL 0 OR NOT out MATCHES "4 draw calls a frame"
+   OR NOT out MATCHES "1 texture\\(s\\) bound, 1 page\\(s\\) \\(an atlas\\)")
   message(FATAL_ERROR "Pell with a face differs or draws otherwise (${status}, ${view_status}, ${compared})")
 endif()
 
@@ -60,7 +64,49 @@ if(NOT status EQUAL 0 OR NOT out MATCHES "120 frames of 200 character")
 endif()
 file(COPY ${WORK}/crowd.png DESTINATION ${SHOTS})
 
-# Bad drawings: one missing, one of another size. One message naming the file, exit status 1.
+# Pip without an atlas: each drawing its own texture, the same picture.
+file(MAKE_DIRECTORY ${WORK}/drawn)
+execute_process(COMMAND ${BAKE} ${IMAGES}/pip.json --precision exact --no-atlas -o ${WORK}/drawn/pip.pmrig
+                RESULT_VARIABLE status OUTPUT_QUIET)
+execute_process(COMMAND ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${EXAMPLE} ${WORK}/drawn/pip.pmrig --images ${IMAGES}
+                        --at 0.5,0.5 --size 256x256 --frames 3 --screenshot ${WORK}/sdl2-drawn.png
+                RESULT_VARIABLE drawn_status OUTPUT_VARIABLE out)
+execute_process(COMMAND ${COMPARE} ${WORK}/sdl2-drawn.png ${WORK}/sdl2.png 0.01 RESULT_VARIABLE compared
+                OUTPUT_VARIABLE compare_out)
+message("Pip without an atlas against Pip with one: ${compare_out}${out}")
+if(NOT status EQUAL 0 OR NOT drawn_status EQUAL 0 OR NOT compared EQUAL 0 OR NOT out MATCHES "5 page\\(s\\) \\(one per drawing\\)")
+  message(FATAL_ERROR "Pip draws otherwise without an atlas (${status}, ${drawn_status}, ${compared})")
+endif()
+# And posemorph-view: Pip without an atlas against Pip with one.
+execute_process(COMMAND ${VIEW} ${WORK}/drawn/pip.pmrig --images ${IMAGES} --headless --at 0.5,0.5 --size 256x256
+                        -o ${WORK}/view-drawn.png RESULT_VARIABLE view_status)
+execute_process(COMMAND ${COMPARE} ${WORK}/view-drawn.png ${WORK}/view.png 0.01 RESULT_VARIABLE compared
+                OUTPUT_VARIABLE compare_out)
+message("posemorph-view: Pip without an atlas against Pip with one: ${compare_out}")
+if(NOT view_status EQUAL 0 OR NOT compared EQUAL 0)
+  message(FATAL_ERROR "the viewer draws Pip otherwise without an atlas (${view_status}, ${compared})")
+endif()
+
+# A bad atlas page: missing, or of another size. One message naming the file, exit status 1.
+get_filename_component(rig_name ${RIG} NAME)
+get_filename_component(rig_stem ${RIG} NAME_WE)
+file(MAKE_DIRECTORY ${WORK}/no-page ${WORK}/small-page)
+configure_file(${RIG} ${WORK}/no-page/${rig_name} COPYONLY)
+configure_file(${RIG} ${WORK}/small-page/${rig_name} COPYONLY)
+configure_file(${WRONG_SIZE_PNG} ${WORK}/small-page/${rig_stem}.page0.png COPYONLY)
+foreach(case "no-page|no-page/${rig_stem}.page0.png: cannot read the PNG"
+             "small-page|small-page/${rig_stem}.page0.png: the atlas page is [0-9]+x[0-9]+, the rig was baked with 512x512")
+  string(REPLACE "|" ";" parts "${case}")
+  list(GET parts 0 folder)
+  list(GET parts 1 expected)
+  execute_process(COMMAND ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${EXAMPLE} ${WORK}/${folder}/${rig_name}
+                          --images ${IMAGES} --frames 1 RESULT_VARIABLE status ERROR_VARIABLE err)
+  if(NOT status EQUAL 1 OR NOT err MATCHES "${expected}")
+    message(FATAL_ERROR "${folder}: expected status 1 and '${expected}', got ${status}: ${err}")
+  endif()
+endforeach()
+
+# Bad drawings of the rig without an atlas: one missing, one of another size.
 file(COPY ${IMAGES}/ DESTINATION ${WORK}/missing)
 file(REMOVE ${WORK}/missing/wave.png)
 file(COPY ${IMAGES}/ DESTINATION ${WORK}/resized)
@@ -69,7 +115,8 @@ foreach(case "missing|missing/wave.png: cannot read the PNG" "resized|resized/re
   string(REPLACE "|" ";" parts "${case}")
   list(GET parts 0 folder)
   list(GET parts 1 expected)
-  execute_process(COMMAND ${run} --images ${WORK}/${folder} --frames 1 RESULT_VARIABLE status ERROR_VARIABLE err)
+  execute_process(COMMAND ${XVFB_RUN} -a -s "-screen 0 1024x768x24" ${EXAMPLE} ${WORK}/drawn/pip.pmrig
+                          --images ${WORK}/${folder} --frames 1 RESULT_VARIABLE status ERROR_VARIABLE err)
   if(NOT status EQUAL 1 OR NOT err MATCHES "${expected}")
     message(FATAL_ERROR "${folder}: expected status 1 and '${expected}', got ${status}: ${err}")
   endif()

@@ -79,6 +79,23 @@ public struct Canvas {
   public double Width, Height, PivotX, PivotY;
 }
 
+// A texture page (pm_page): an atlas page beside the rig file (premultiplied),
+// or, for a rig without an atlas, one drawing (straight alpha).
+[StructLayout(LayoutKind.Sequential)]
+public struct Page {
+  public uint Width, Height;
+  public int Atlas, Premultiplied;
+}
+
+// Where a part's drawing in a pose lies on its page (pm_region): sample page
+// Page at (u ScaleU + OffsetU, v ScaleV + OffsetV), inside X, Y, Width, Height.
+[StructLayout(LayoutKind.Sequential)]
+public struct Region {
+  public uint Page;
+  public float ScaleU, OffsetU, ScaleV, OffsetV;
+  public uint X, Y, Width, Height;
+}
+
 // One drawing of a list's cross-fade.
 public struct BlendedDrawing {
   public uint Pose;
@@ -213,6 +230,13 @@ internal static class Native {
                                                                     byte[] o, UIntPtr cap, out UIntPtr n);
   [DllImport(Lib)] public static extern int pm_character_canvas(IntPtr rig, uint list, uint pose, out Canvas c);
   [DllImport(Lib)] public static extern int pm_character_texture_filter(IntPtr rig, uint list);
+  [DllImport(Lib)] public static extern int pm_rig_has_atlas(IntPtr rig);
+  [DllImport(Lib)] public static extern uint pm_character_page_count(IntPtr rig, uint list);
+  [DllImport(Lib)] public static extern int pm_character_page(IntPtr rig, uint list, uint page, out Page p);
+  [DllImport(Lib)] public static extern int pm_character_page_name(IntPtr rig, uint list, uint page, byte[] o,
+                                                                   UIntPtr cap, out UIntPtr n);
+  [DllImport(Lib)] public static extern int pm_character_part_region(IntPtr rig, uint list, uint part, uint pose,
+                                                                     out Region r);
   [DllImport(Lib)] public static extern void pm_transform_make(double x, double y, double r, double sx, double sy,
                                                                int flip, out Transform t);
   [DllImport(Lib)] public static extern void pm_transform_compose(ref Transform o, ref Transform i, out Transform t);
@@ -395,6 +419,27 @@ public sealed class Rig : IDisposable {
     return b;
   }
   public bool NearestFilter(uint list) { return Native.pm_character_texture_filter(H, list) == 1; }
+  // Texture pages (Rig::page): what a renderer uploads for list `list`, and
+  // where part `part`'s drawing in pose `pose` lies on them.
+  public bool HasAtlas { get { return Native.pm_rig_has_atlas(H) == 1; } }
+  public uint PageCount(uint list) { return Native.pm_character_page_count(H, list); }
+  public Page ListPage(uint list, uint page) {
+    Page p;
+    if (Native.pm_character_page(H, list, page, out p) != 0)
+      throw new PosemorphException(1, File + ": no page " + page + " in list " + list);
+    return p;
+  }
+  public string PageName(uint list, uint page) {
+    return Native.Name(
+        (byte[] o, UIntPtr cap, out UIntPtr n) => Native.pm_character_page_name(H, list, page, o, cap, out n),
+        "list " + list + " page " + page);
+  }
+  public Region PartRegion(uint list, uint part, uint pose) {
+    Region r;
+    if (Native.pm_character_part_region(H, list, part, pose, out r) != 0)
+      throw new PosemorphException(1, File + ": no part " + part + " or pose " + pose + " in list " + list);
+    return r;
+  }
 
   public void Dispose() {
     if (handle != IntPtr.Zero) Native.pm_rig_free(handle);

@@ -8,7 +8,7 @@
 --   local rig = posemorph.load("pell-face.pmrig")            -- error "FILE: problem" if refused
 --   local crowd = rig:crowd(200)
 --   crowd:evaluate(points, channel_points, transforms)      -- Lua arrays, 1-based
---   local drawer = posemorph.drawer(rig, "drawings/")       -- LÖVE: images, meshes, shader
+--   local drawer = posemorph.drawer(rig, "drawings/")       -- LÖVE: texture pages, meshes, shader
 --   drawer:draw(crowd, k)                                   -- character k (1-based), under the current transform
 --
 -- Memory: every buffer the runtime writes is an FFI array the rig or crowd
@@ -39,6 +39,8 @@ typedef struct pm_character_inputs { const double* points; const double* channel
   const double *attached_weights, *attached_limited_weights, *attached_texture_weights;
   const pm_transform* transforms; } pm_character_inputs;
 typedef struct pm_draw_step { uint32_t list, part; } pm_draw_step;
+typedef struct pm_page { uint32_t width, height; int atlas; int premultiplied; } pm_page;
+typedef struct pm_region { uint32_t page; float scale_u, offset_u, scale_v, offset_v; uint32_t x, y, width, height; } pm_region;
 const char* pm_version(void);
 int pm_rig_load(const void* bytes, size_t size, pm_rig** out_rig, pm_error* err);
 void pm_rig_free(pm_rig* rig);
@@ -56,6 +58,11 @@ int pm_character_list(const pm_rig* rig, uint32_t list, pm_list_info* out);
 int pm_character_part(const pm_rig* rig, uint32_t list, uint32_t part, pm_part* out);
 int pm_character_part_image(const pm_rig* rig, uint32_t list, uint32_t part, uint32_t pose, char* out, size_t capacity, size_t* length);
 int pm_character_texture_filter(const pm_rig* rig, uint32_t list);
+int pm_rig_has_atlas(const pm_rig* rig);
+uint32_t pm_character_page_count(const pm_rig* rig, uint32_t list);
+int pm_character_page(const pm_rig* rig, uint32_t list, uint32_t page, pm_page* out);
+int pm_character_page_name(const pm_rig* rig, uint32_t list, uint32_t page, char* out, size_t capacity, size_t* length);
+int pm_character_part_region(const pm_rig* rig, uint32_t list, uint32_t part, uint32_t pose, pm_region* out);
 const uint32_t* pm_rig_triangles(const pm_rig* rig);
 const double* pm_rig_pose_positions(const pm_rig* rig, uint32_t pose);
 const uint32_t* pm_rig_attachment_triangles(const pm_rig* rig, uint32_t attachment);
@@ -151,6 +158,20 @@ function Rig:part(l, p)
 end
 function Rig:part_image(l, p, pose)
   return string_of(function(b, c, n) return C.pm_character_part_image(self.handle, l, p, pose, b, c, n) end)
+end
+-- Texture page k of list l (an atlas page beside the rig file, or one
+-- drawing): its name and pm_page; and part p's region in a pose on it.
+function Rig:page(l, k)
+  local page = ffi.new("pm_page")
+  if C.pm_character_page(self.handle, l, k, page) ~= 0 then error(self.file .. ": no page " .. k, 2) end
+  return string_of(function(b, c, n) return C.pm_character_page_name(self.handle, l, k, b, c, n) end), page
+end
+function Rig:page_count(l) return C.pm_character_page_count(self.handle, l) end
+function Rig:has_atlas() return C.pm_rig_has_atlas(self.handle) == 1 end
+function Rig:region(l, p, pose)
+  local r = ffi.new("pm_region")
+  if C.pm_character_part_region(self.handle, l, p, pose, r) ~= 0 then error(self.file .. ": no part " .. p, 2) end
+  return r
 end
 function Rig:triangles(l)
   if l == 0 then return C.pm_rig_triangles(self.handle) end
@@ -288,10 +309,15 @@ local uv_names = { "uv0", "uv1", "uv2", "uv3", "uv4", "uv5", "uv6", "uv7" }
 local vertex_code = [[
 attribute vec2 uv0; attribute vec2 uv1; attribute vec2 uv2; attribute vec2 uv3;
 attribute vec2 uv4; attribute vec2 uv5; attribute vec2 uv6; attribute vec2 uv7;
+uniform vec4 map0; uniform vec4 map1; uniform vec4 map2; uniform vec4 map3;
+uniform vec4 map4; uniform vec4 map5; uniform vec4 map6; uniform vec4 map7;
 varying vec2 v0; varying vec2 v1; varying vec2 v2; varying vec2 v3;
 varying vec2 v4; varying vec2 v5; varying vec2 v6; varying vec2 v7;
 vec4 position(mat4 transform_projection, vec4 vertex_position) {
-  v0 = uv0; v1 = uv1; v2 = uv2; v3 = uv3; v4 = uv4; v5 = uv5; v6 = uv6; v7 = uv7;
+  // Each drawing's uvs onto its page (the atlas's region; identity for a drawing of its own).
+  v0 = uv0 * map0.xz + map0.yw; v1 = uv1 * map1.xz + map1.yw; v2 = uv2 * map2.xz + map2.yw;
+  v3 = uv3 * map3.xz + map3.yw; v4 = uv4 * map4.xz + map4.yw; v5 = uv5 * map5.xz + map5.yw;
+  v6 = uv6 * map6.xz + map6.yw; v7 = uv7 * map7.xz + map7.yw;
   return transform_projection * vertex_position;
 }]]
 -- The exact cross-fade: the weighted sum of premultiplied drawings, times
@@ -309,16 +335,17 @@ vec4 effect(vec4 color, Image tex, vec2 tc, vec2 sc) {
   return c * tint;
 }]]
 
-local function read_image(path, nearest)
+local function read_image(path, nearest, premultiplied)
   local f, why = io.open(path, "rb")
-  if not f then error(path .. ": cannot read the drawing (" .. tostring(why) .. ")", 3) end
+  if not f then error(path .. ": cannot read the " .. (premultiplied and "atlas page" or "drawing") .. " (" .. tostring(why) .. ")", 3) end
   local bytes = f:read("*a")
   f:close()
   local ok, data = pcall(love.image.newImageData, love.filesystem.newFileData(bytes, path))
   if not ok then error(path .. ": not a PNG the renderer reads (" .. tostring(data) .. ")", 3) end
-  -- Premultiply, through the FFI: what the blend wants, and what linear filtering of a transparent edge needs.
+  -- Premultiply, through the FFI: what the blend wants, and what linear
+  -- filtering of a transparent edge needs (an atlas page is stored so).
   local p = ffi.cast("uint8_t*", data:getFFIPointer())
-  for i = 0, data:getWidth() * data:getHeight() * 4 - 1, 4 do
+  for i = 0, premultiplied and -1 or data:getWidth() * data:getHeight() * 4 - 1, 4 do
     local a = p[i + 3]
     p[i] = math.floor((p[i] * a + 127) / 255)
     p[i + 1] = math.floor((p[i + 1] * a + 127) / 255)
@@ -329,30 +356,46 @@ local function read_image(path, nearest)
   return image
 end
 
+-- A page's name names a file inside its folder (a rig file is hostile input).
+local function stays_inside(name)
+  return name ~= "" and not name:find("^/") and not name:find("[\\:%c]") and not ("/" .. name .. "/"):find("/%.%./")
+end
+
+-- A drawer for `rig`: its texture pages (the atlas beside the rig file; or,
+-- for a rig without one, each part's drawing in each pose, from `folder`),
+-- each page read once, and each part's region in each pose.
 function M.drawer(rig, folder)
-  local d = setmetatable({ rig = rig, images = {}, meshes = {}, bytes = {}, parts = {}, filled = {},
+  local d = setmetatable({ rig = rig, pages = {}, regions = {}, meshes = {}, bytes = {}, parts = {}, filled = {},
     weights_a = { 0, 0, 0, 0 }, weights_b = { 0, 0, 0, 0 }, tint = { 1, 1, 1, 1 }, transform = love.math.newTransform(),
-    texture_names = { "d0", "d1", "d2", "d3", "d4", "d5", "d6", "d7" } }, Drawer)
+    texture_names = { "d0", "d1", "d2", "d3", "d4", "d5", "d6", "d7" },
+    map_names = { "map0", "map1", "map2", "map3", "map4", "map5", "map6", "map7" } }, Drawer)
   local steps = 0
   d.shader = love.graphics.newShader(pixel_code, vertex_code)
   local format = { { "VertexPosition", "float", 2 } }
   for _, name in ipairs(uv_names) do format[#format + 1] = { name, "float", 2 } end
+  local rig_folder = rig.file:match("^(.*)/[^/]*$") or "."
   local cache = {}
   for l = 0, rig.list_count - 1 do
     local info = rig:list(l)
     local nearest = C.pm_character_texture_filter(rig.handle, l) == 1
-    d.images[l], d.parts[l] = {}, {}
+    d.pages[l], d.regions[l], d.parts[l] = {}, {}, {}
     steps = steps + info.part_count
+    for k = 0, rig:page_count(l) - 1 do
+      local name, page = rig:page(l, k)
+      if not name or not stays_inside(name) then
+        error(rig.file .. ": list " .. l .. " page " .. k .. " has no name, or one that leaves its folder", 2)
+      end
+      local path = (page.atlas == 1 and rig_folder or folder) .. "/" .. name
+      cache[path] = cache[path] or read_image(path, nearest, page.premultiplied == 1)
+      d.pages[l][k] = cache[path]
+    end
     for p = 0, info.part_count - 1 do
       local part = rig:part(l, p)
       d.parts[l][p] = { part.first_triangle, part.triangle_count }
-      d.images[l][p] = {}
+      d.regions[l][p] = {}
       for pose = 0, info.pose_count - 1 do
-        local name = rig:part_image(l, p, pose)
-        if not name or name == "" then error(rig.file .. ": list " .. l .. " part " .. p .. " has no drawing", 2) end
-        local path = folder .. "/" .. name
-        cache[path] = cache[path] or read_image(path, nearest)
-        d.images[l][p][pose] = cache[path]
+        local r = rig:region(l, p, pose)
+        d.regions[l][p][pose] = { page = r.page, map = { r.scale_u, r.offset_u, r.scale_v, r.offset_v } }
       end
     end
     local mesh = love.graphics.newMesh(format, info.vertex_count, "triangles", "stream")
@@ -365,6 +408,17 @@ function M.drawer(rig, folder)
   d.step_capacity = math.max(steps, 1)
   d.step_buffer = ffi.new("pm_draw_step[?]", d.step_capacity)
   return d
+end
+
+-- The textures the drawer holds (each page once: Pell with a face's atlas is one).
+function Drawer:texture_count()
+  local seen, n = {}, 0
+  for _, pages in pairs(self.pages) do
+    for _, image in pairs(pages) do
+      if not seen[image] then seen[image], n = true, n + 1 end
+    end
+  end
+  return n
 end
 
 -- Character k of the crowd (1-based), back to front, under LÖVE's current
@@ -400,7 +454,9 @@ function Drawer:draw(crowd, k)
     for d = 0, K - 1 do
       local w = d < list.drawing_count and list.drawings[d].weight or 0
       if d < 4 then weights_a[d + 1] = w else weights_b[d - 3] = w end
-      self.shader:send(self.texture_names[d + 1], self.images[l][p][list.drawings[d < list.drawing_count and d or 0].pose])
+      local region = self.regions[l][p][list.drawings[d < list.drawing_count and d or 0].pose]
+      self.shader:send(self.texture_names[d + 1], self.pages[l][region.page])
+      self.shader:send(self.map_names[d + 1], region.map)
     end
     self.shader:send("weights_a", weights_a)
     self.shader:send("weights_b", weights_b)

@@ -1,11 +1,19 @@
 // SPDX-License-Identifier: MIT
 // posemorph's OpenGL renderer: everything a game on OpenGL 3.3 (or OpenGL
 // ES 3.0) needs to draw posemorph characters from a DrawListJob -- the
-// drawings of every list (the body and each attachment) in one texture array
-// per list, every pose's uvs, the triangles, the characters' positions, and
-// the program that cross-fades up to 8 drawings in premultiplied alpha, as
-// posemorph-view does. One draw call per step of CharacterDrawSteps: a rig
-// without parts draws a character in one call, Pell with a face in seven.
+// texture pages of every list (the body and each attachment: Rig::page, the
+// atlas the bake packed the drawings into, or for an older rig each
+// drawing) in one texture array (one for the whole character when its lists
+// share an atlas), every pose's uvs mapped onto the pages
+// (Rig::part_region), the triangles, the characters' positions, and the
+// program that cross-fades up to 8 drawings in premultiplied alpha, as
+// posemorph-view does. It splits each list's vertices per part (a glued
+// joint's vertex, which two parts share, gets one per part: its drawings
+// lie in two regions) and orders the triangles by each draw sequence, so
+// the steps of CharacterDrawSteps that follow each other in one list draw
+// in one call: a rig without parts draws a character in one call, Pell
+// with a face in four (its body, then each face part's list), where one
+// call per step took seven; with an atlas it binds one texture a frame.
 //
 //   posemorph::gl::Renderer renderer;
 //   renderer.Init(rig, ReadMyPng, {}, &error);      // once, with a current GL context
@@ -13,7 +21,7 @@
 //   renderer.Draw(job, posemorph::gl::View(...));    // every character of the job, back to front
 //
 // The caller owns the context, the window and the image decoding (a
-// callback hands over each drawing as premultiplied RGBA8). The renderer
+// callback hands over each page as premultiplied RGBA8). The renderer
 // sets the blend to premultiplied "over" (ONE, ONE_MINUS_SRC_ALPHA) and
 // leaves program, vertex array and texture bindings changed.
 #pragma once
@@ -34,9 +42,12 @@ struct Pixels {
   std::vector<unsigned char> rgba;
   std::string source;  // where it was read from (a path), for messages; the name when empty
 };
-// Reads drawing `name` (as the bake wrote it: Rig::part_image) into *out;
-// false with *error naming the file and the problem.
-using ImageReader = std::function<bool(const std::string& name, Pixels* out, std::string* error)>;
+// Reads texture page `page` (Rig::page: page.atlas, an atlas page, its
+// name relative to the rig file's folder, premultiplied already; else a
+// drawing as the bake named it, relative to the drawing folder, straight
+// alpha) into *out, premultiplied; false with *error naming the file and
+// the problem.
+using ImageReader = std::function<bool(const TexturePage& page, Pixels* out, std::string* error)>;
 
 struct Settings {
   bool es = false;              // OpenGL ES 3.0 shaders (#version 300 es) instead of OpenGL 3.3 core
@@ -63,25 +74,28 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Uploads `rig`'s drawings (every list, part and pose), uvs and triangles
-  // and builds the program; the rig must outlive the renderer. False with
-  // *error (naming the drawing and the problem) when a drawing cannot be
-  // read or is not its list's canvas size, or the rig was not baked from
-  // drawings.
+  // Uploads `rig`'s texture pages (every list's), uvs and triangles and
+  // builds the program; the rig must outlive the renderer. False with
+  // *error (naming the page and the problem) when a page cannot be read or
+  // is not the size the rig says, or the rig was not baked from drawings.
   bool Init(const Rig& rig, const ImageReader& read, const Settings& settings, std::string* error);
   // Draws every character of `job` (which ran on this renderer's rig; its
   // attachments too when it has attached_output) back to front.
   void Draw(const DrawListJob& job, const View& view);
-  // Draw calls the last Draw made (one per step).
+  // Draw calls the last Draw made (one per step), and the textures it bound.
   std::uint32_t draw_calls() const { return draw_calls_; }
+  std::uint32_t texture_binds() const { return texture_binds_; }
 
  private:
-  struct List;  // one list's GPU objects
+  struct List;  // one list's GPU objects (posemorph_gl.cpp)
+  // List `r`'s vertices split per part, their page uvs per pose, their parts
+  // and its triangles in each draw sequence's order, into `gpu` (its vertex array bound).
+  static void BuildGeometry(const Rig& r, List* gpu);
   const Rig* rig_ = nullptr;
   std::vector<List*> lists_;
-  unsigned program_ = 0, positions_[2] = {0, 0};
-  int weights_at_ = -1, layers_at_ = -1, linear_at_ = -1, translation_at_ = -1, tint_at_ = -1, view_at_ = -1;
-  std::uint32_t draw_calls_ = 0;
+  unsigned program_ = 0;
+  int weights_at_ = -1, linear_at_ = -1, translation_at_ = -1, tints_at_ = -1, view_at_ = -1;
+  std::uint32_t draw_calls_ = 0, texture_binds_ = 0;
 };
 
 }  // namespace posemorph::gl

@@ -3,11 +3,14 @@
 import type { Container, Texture } from 'pixi.js';
 import type { Crowd, Rig } from './posemorph.mjs';
 
-/** Textures by list, part and pose: drawings[list][part][pose]. */
-export type Drawings = Texture[][][];
+/** Textures by list and page: drawings[list][page] (List.pages; a part's drawing in a pose is Part.regions[pose].page). */
+export type Drawings = Texture[][];
 
-/** Every drawing of the rig from `baseUrl` (premultiplied, no mipmaps, each list's filter). */
-export declare function loadDrawings(rig: Rig, baseUrl: string): Promise<Drawings>;
+/**
+ * Every list's texture pages (premultiplied, no mipmaps, each list's filter): an atlas's pages from `pagesUrl`
+ * (the rig file's folder; by default `baseUrl`), a rig without an atlas's drawings from `baseUrl`.
+ */
+export declare function loadDrawings(rig: Rig, baseUrl: string, pagesUrl?: string): Promise<Drawings>;
 
 /** One character: one mesh per draw step, cross-fading up to eight drawings. */
 export declare class CharacterView extends Container {

@@ -3,15 +3,19 @@
 // and attachments) drawn back to front, one mesh per draw step, with a
 // shader that cross-fades up to eight drawings in premultiplied alpha
 // exactly as posemorph-view does (the weighted sum of the drawings' texels,
-// times the list's colour and the part's opacity).
+// each in its region of its texture page, times the list's colour and the
+// part's opacity).
 //
 //   import { loadDrawings, CharacterView } from 'posemorph/pixi';
-//   const drawings = await loadDrawings(rig, 'drawings/');   // PIXI textures of every part, pose and list
+//   const drawings = await loadDrawings(rig, 'drawings/', 'rigs/');  // PIXI textures of every list's pages
 //   const view = new CharacterView(rig, drawings);           // a PIXI.Container; add it to the stage
 //   crowd.evaluate(); view.update(crowd, k);                 // each frame, after the crowd's frame
 //
-// Draw calls: one per step, that is one per part of each list (Pip 1, Pell
-// with a face 7), whatever the number of drawings blended.
+// Textures: a rig baked with an atlas (list.atlas) needs its pages only
+// (one texture for Pell with a face, beside the rig file: `pagesUrl`);
+// an older rig, every drawing (from `baseUrl`). Draw calls: one per step,
+// that is one per part of each list (Pip 1, Pell with a face 7), whatever
+// the number of drawings blended.
 import * as PIXI from 'pixi.js';
 
 const vertex = `
@@ -20,9 +24,12 @@ attribute vec2 aPosition;
 attribute vec2 aUv0, aUv1, aUv2, aUv3, aUv4, aUv5, aUv6, aUv7;
 uniform mat3 projectionMatrix;
 uniform mat3 translationMatrix;
+uniform vec4 uMap0, uMap1, uMap2, uMap3, uMap4, uMap5, uMap6, uMap7;  // each drawing's region: uv * xz + yw
 varying vec2 v0, v1, v2, v3, v4, v5, v6, v7;
 void main() {
-  v0 = aUv0; v1 = aUv1; v2 = aUv2; v3 = aUv3; v4 = aUv4; v5 = aUv5; v6 = aUv6; v7 = aUv7;
+  v0 = aUv0 * uMap0.xz + uMap0.yw; v1 = aUv1 * uMap1.xz + uMap1.yw; v2 = aUv2 * uMap2.xz + uMap2.yw;
+  v3 = aUv3 * uMap3.xz + uMap3.yw; v4 = aUv4 * uMap4.xz + uMap4.yw; v5 = aUv5 * uMap5.xz + uMap5.yw;
+  v6 = aUv6 * uMap6.xz + uMap6.yw; v7 = aUv7 * uMap7.xz + uMap7.yw;
   gl_Position = vec4((projectionMatrix * translationMatrix * vec3(aPosition, 1.0)).xy, 0.0, 1.0);
 }`;
 const fragment = `
@@ -39,34 +46,39 @@ void main() {
 const K = 8;
 let program = null;
 
-// Every drawing of every list, part and pose as a PIXI.Texture, from `baseUrl`
-// (the folder the rig's image references are relative to). Premultiplied on
-// decode, no mipmaps, the list's filter. A drawing that does not load is an
-// Error naming it.
-export async function loadDrawings(rig, baseUrl) {
-  const base = baseUrl.endsWith('/') || baseUrl === '' ? baseUrl : `${baseUrl}/`;
+// Every list's texture pages (list.pages: an atlas's pages, beside the rig
+// file, from `pagesUrl`; or, for a rig without an atlas, each part's drawing
+// in each pose, from `baseUrl`, the folder the rig's image references are
+// relative to) as PIXI.Textures: drawings[list][page]. A page loads once
+// whatever the lists that show it. Premultiplied (an atlas page is stored
+// so; a drawing on decode), no mipmaps, the list's filter. A page that does
+// not load, or whose name leaves its folder, is an Error naming it.
+export async function loadDrawings(rig, baseUrl, pagesUrl = baseUrl) {
+  const folder = (url) => (url.endsWith('/') || url === '' ? url : `${url}/`);
+  const drawingsBase = folder(baseUrl), pagesBase = folder(pagesUrl);
   const byUrl = new Map();
-  const textures = [];
-  for (const list of rig.lists) {
+  const textures = rig.lists.map((list) => {
     const scaleMode = list.textureFilter === 'nearest' ? PIXI.SCALE_MODES.NEAREST : PIXI.SCALE_MODES.LINEAR;
-    textures.push(list.parts.map((part, p) => part.images.map((image, pose) => {
-      if (!image) throw new Error(`${rig.name}: list ${list.index} part ${p} has no drawing in pose ${pose}`);
-      const url = base + image;
-      if (!byUrl.has(url)) byUrl.set(url, loadTexture(url, scaleMode));
+    return list.pages.map((page, k) => {
+      if (!page.name || /^\/|(^|\/)\.\.(\/|$)|[\\:\x00-\x1f]/.test(page.name))
+        throw new Error(`${rig.name}: list ${list.index} page ${k}: no name, or a name that leaves its folder`);
+      const url = (page.atlas ? pagesBase : drawingsBase) + page.name;
+      if (!byUrl.has(url)) byUrl.set(url, loadTexture(url, scaleMode, page.premultiplied));
       return byUrl.get(url);
-    })));
-  }
-  const settled = await Promise.all(textures.flat(2));
+    });
+  });
+  const settled = await Promise.all(textures.flat());
   let i = 0;
-  return textures.map((parts) => parts.map((poses) => poses.map(() => settled[i++])));
+  return textures.map((pages) => pages.map(() => settled[i++]));
 }
 
-async function loadTexture(url, scaleMode) {
+async function loadTexture(url, scaleMode, premultiplied) {
   const response = await fetch(url);
   if (!response.ok) throw new Error(`${url.split('/').pop()}: HTTP ${response.status}`);
   let bitmap;
   try {
-    bitmap = await createImageBitmap(await response.blob(), { premultiplyAlpha: 'premultiply', colorSpaceConversion: 'none' });
+    bitmap = await createImageBitmap(await response.blob(),
+                                     { premultiplyAlpha: premultiplied ? 'none' : 'premultiply', colorSpaceConversion: 'none' });
   } catch (e) {
     throw new Error(`${url.split('/').pop()}: not an image the browser reads (${e.message})`);
   }
@@ -98,7 +110,7 @@ export class CharacterView extends PIXI.Container {
   #mesh(s) {
     while (this.meshes.length <= s) {
       const uniforms = { uWeightsA: new Float32Array(4), uWeightsB: new Float32Array(4), uTint: new Float32Array(4) };
-      for (let d = 0; d < K; ++d) uniforms[`d${d}`] = PIXI.Texture.EMPTY;
+      for (let d = 0; d < K; ++d) uniforms[`d${d}`] = PIXI.Texture.EMPTY, uniforms[`uMap${d}`] = new Float32Array([1, 0, 1, 0]);
       const mesh = new PIXI.Mesh(this.lists[0].geometry, new PIXI.Shader(program, uniforms));
       mesh.state.blendMode = PIXI.BLEND_MODES.NORMAL;  // premultiplied: ONE, ONE_MINUS_SRC_ALPHA
       this.addChild(mesh);
@@ -140,7 +152,9 @@ export class CharacterView extends PIXI.Container {
       mesh.size = 3 * part.triangleCount;
       for (let d = 0; d < K; ++d) {
         const drawing = frame.drawings[d < frame.drawings.length ? d : 0];
-        u[`d${d}`] = this.drawings[l][p][drawing.pose];
+        const region = part.regions[drawing.pose];  // where the part's drawing in that pose lies on its page
+        u[`d${d}`] = this.drawings[l][region.page];
+        u[`uMap${d}`].set([region.scaleU, region.offsetU, region.scaleV, region.offsetV]);
         (d < 4 ? u.uWeightsA : u.uWeightsB)[d % 4] = d < frame.drawings.length ? drawing.weight : 0;
       }
       const c = frame.colour, a = c[3] * (p < 64 ? frame.partOpacity[p] : 1);

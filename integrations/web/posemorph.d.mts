@@ -53,7 +53,16 @@ export interface Part {
   drawOrder: number;
   /** The part's drawing in each of the list's poses (as the bake wrote the reference). */
   images: (string | null)[];
+  /** Where that drawing lies in each pose: on page `page` of the list, at uv * scale + offset, inside x, y, width, height. */
+  regions: Region[];
 }
+export interface Region {
+  page: number;
+  scaleU: number; offsetU: number; scaleV: number; offsetV: number;
+  x: number; y: number; width: number; height: number;
+}
+/** A texture page: an atlas page beside the rig file (premultiplied), or, without an atlas, one drawing. */
+export interface Page { name: string | null; width: number; height: number; atlas: boolean; premultiplied: boolean; }
 export interface Canvas { width: number; height: number; pivotX: number; pivotY: number; }
 /** A list of a character: 0 is the body, a + 1 attachment a. */
 export interface List {
@@ -66,6 +75,10 @@ export interface List {
   triangles: Uint32Array;
   parts: Part[];
   canvases: Canvas[];
+  /** The textures a renderer uploads (Rig::page): the atlas's pages, or one per part and pose. */
+  pages: Page[];
+  /** The rig was baked with an atlas. */
+  atlas: boolean;
   textureFilter: 'linear' | 'nearest';
 }
 

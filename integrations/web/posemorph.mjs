@@ -157,16 +157,28 @@ export class Rig {
   #list(l) {
     const m = this.wasm, h = this.handle;
     m._pmw_list(h, l);
-    const [vertexCount, triangleCount, poseCount, partCount, channel, filter] = out(m, 6);
+    const [vertexCount, triangleCount, poseCount, partCount, channel, filter, pageCount, atlas] = out(m, 8);
     const at = m._pmw_list_triangles(h, l) >> 2;
     const triangles = m.HEAPU32.slice(at, at + 3 * triangleCount);
     const parts = [];
     for (let p = 0; p < partCount; ++p) {
       m._pmw_list_part(h, l, p);
       const [firstTriangle, count, drawOrder] = out(m, 3);
-      const images = [];
-      for (let pose = 0; pose < poseCount; ++pose) images.push(this.#name(4, l, p, pose));
-      parts.push({ name: this.#name(3, l, p) ?? '', firstTriangle, triangleCount: count, drawOrder, images });
+      const images = [], regions = [];
+      for (let pose = 0; pose < poseCount; ++pose) {
+        images.push(this.#name(4, l, p, pose));
+        m._pmw_list_region(h, l, p, pose);
+        const [page, scaleU, offsetU, scaleV, offsetV, x, y, width, height] = out(m, 9);
+        regions.push({ page, scaleU, offsetU, scaleV, offsetV, x, y, width, height });
+      }
+      parts.push({ name: this.#name(3, l, p) ?? '', firstTriangle, triangleCount: count, drawOrder, images, regions });
+    }
+    // The texture pages (an atlas beside the rig file, or one per drawing).
+    const pages = [];
+    for (let k = 0; k < pageCount; ++k) {
+      m._pmw_list_page(h, l, k);
+      const [width, height, isAtlas, premultiplied] = out(m, 4);
+      pages.push({ name: this.#name(8, l, k), width, height, atlas: isAtlas === 1, premultiplied: premultiplied === 1 });
     }
     const canvases = [];
     for (let pose = 0; pose < poseCount; ++pose) {
@@ -174,8 +186,8 @@ export class Rig {
       const [width, height, pivotX, pivotY] = out(m, 4);
       canvases.push({ width, height, pivotX, pivotY });
     }
-    return { index: l, channel, vertexCount, triangleCount, poseCount, triangles, parts, canvases,
-             textureFilter: filter === 1 ? 'nearest' : 'linear' };
+    return { index: l, channel, vertexCount, triangleCount, poseCount, triangles, parts, canvases, pages,
+             atlas: atlas === 1, textureFilter: filter === 1 ? 'nearest' : 'linear' };
   }
   // A path's index in channel `channel` by name, or -1.
   findPath(name, channel = 0) {

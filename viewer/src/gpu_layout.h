@@ -42,11 +42,13 @@ static_assert(offsetof(PushData, view_offset) == 32, "PushData.view_offset");
 static_assert(offsetof(PushData, vertex_count) == 40, "PushData.vertex_count");
 static_assert(offsetof(PushData, flat_colour) == 44, "PushData.flat_colour");
 static_assert(offsetof(PushData, only_slot) == 48, "PushData.only_slot");
-static_assert(offsetof(PushData, layer_offset) == 52, "PushData.layer_offset");
+static_assert(offsetof(PushData, pose_count) == 52, "PushData.pose_count");
 static_assert(offsetof(PushData, opacities) == 56, "PushData.opacities");
 static_assert(offsetof(PushData, part) == 64, "PushData.part");
 static_assert(offsetof(PushData, part_count) == 68, "PushData.part_count");
-static_assert(sizeof(PushData) == 72, "PushData: 72 bytes (push constants: at most 128)");
+static_assert(offsetof(PushData, regions) == 72, "PushData.regions");
+static_assert(sizeof(PushData) == 80, "PushData: 80 bytes (push constants: at most 128)");
+static_assert(offsetof(Region, page) == 16 && sizeof(Region) == 20 && alignof(Region) == 4, "Region: 20 bytes");
 
 // A buffer device address as the shaders' uvec2 (low, high).
 inline uvec2 Address(std::uint64_t a) { return uvec2(std::uint32_t(a), std::uint32_t(a >> 32)); }

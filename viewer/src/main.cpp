@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 
 #include <memory>
 #include <new>
@@ -254,7 +255,8 @@ int Run(int argc, char** argv, std::string* rig_path_out) {
   if (!o.watch) {
     if (o.images.empty()) o.images = bake::DefaultDrawingFolder(o.rig_path, rig);
     std::string problem;
-    if (!LoadDrawings(rig, o.images, &loaded_drawings, &problem)) return Fail(o.rig_path + ": " + problem);
+    const std::string rig_dir = std::filesystem::path(o.rig_path).parent_path().string();
+    if (!LoadDrawings(rig, o.images, &loaded_drawings, &problem, rig_dir)) return Fail(o.rig_path + ": " + problem);
   }
   const Drawings& drawings = o.watch ? first->drawings : loaded_drawings;
   if (o.headless) return RunHeadless(rig, drawings, o);

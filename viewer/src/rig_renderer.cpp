@@ -58,6 +58,15 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   for (std::uint32_t i = 0; i < N; ++i)
     std::memcpy(static_cast<char*>(uvs_.mapped) + 8ull * V * i, rig.uvs(i).data, 8ull * V);
   pose_count_ = N;
+  // Each part's drawing in each pose: its page and where on it (Rig::part_region).
+  const std::uint32_t M = rig.part_count();
+  regions_ = gpu.CreateBuffer(sizeof(gpu::Region) * M * N, storage);
+  for (std::uint32_t p = 0; p < M; ++p)
+    for (std::uint32_t i = 0; i < N; ++i) {
+      const TextureRegion r = rig.part_region(p, i);
+      static_cast<gpu::Region*>(regions_.mapped)[std::size_t(p) * N + i] =
+          gpu::Region{gpu::vec4(r.scale_u, r.offset_u, r.scale_v, r.offset_v), std::int32_t(r.page)};
+    }
   parts_.clear();
   for (std::uint32_t p = 0; p < rig.part_count(); ++p)
     parts_.push_back({3 * rig.part(p).first_triangle, 3 * rig.part(p).triangle_count});
@@ -85,7 +94,7 @@ bool RigRenderer::Init(Gpu& gpu, const Rig& rig, const Drawings& drawings, VkFor
   return true;
 }
 
-// The drawings as one texture array: N layers per part.
+// The pages as one texture array (an atlas's pages, or every part's drawing in every pose).
 void RigRenderer::UploadDrawings(const Drawings& drawings, std::uint32_t) {
   const std::uint32_t N = std::uint32_t(drawings.rgba.size());
   Gpu& gpu = *gpu_;
@@ -228,7 +237,7 @@ RigRenderer::~RigRenderer() {
   if (set_layout_) vkDestroyDescriptorSetLayout(dev, set_layout_, nullptr);
   if (sampler_) vkDestroySampler(dev, sampler_, nullptr);
   gpu_->Destroy(drawings_);
-  for (Buffer* b : {&indices_, &uvs_, &positions_, &instances_, &opacities_}) gpu_->Destroy(*b);
+  for (Buffer* b : {&indices_, &uvs_, &positions_, &instances_, &opacities_, &regions_}) gpu_->Destroy(*b);
 }
 
 void RigRenderer::SetCharacter(std::uint32_t k, const DrawList& list) {
@@ -245,7 +254,8 @@ void RigRenderer::DrawPart(VkCommandBuffer cmd, std::uint32_t k, std::uint32_t p
   push.uvs = gpu::Address(uvs_.address);
   push.instances = gpu::Address(instances_.address);
   push.vertex_count = vertex_count_;
-  push.layer_offset = std::int32_t(p * pose_count_);
+  push.pose_count = pose_count_;
+  push.regions = gpu::Address(regions_.address);
   push.opacities = gpu::Address(opacities_.address);
   push.part = p;
   push.part_count = std::uint32_t(parts_.size());
@@ -273,6 +283,8 @@ void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const Camera&
   push.instances = gpu::Address(instances_.address);
   ClipTransform(camera, width, height, &push.view_scale, &push.view_offset);
   push.vertex_count = vertex_count_;
+  push.pose_count = pose_count_;
+  push.regions = gpu::Address(regions_.address);
   push.only_slot = -1;
   push.opacities = gpu::Address(opacities_.address);
   push.part_count = std::uint32_t(parts_.size());
@@ -323,11 +335,9 @@ void RigRenderer::Record(VkCommandBuffer cmd, std::uint32_t count, const Camera&
       for (std::size_t s = 0; s < parts_.size(); ++s) {
         const std::uint32_t p = sequences_[k][s];
         if (p >= parts_.size() || (p < 64 && (hidden_parts_ >> p) & 1)) continue;
-        push.layer_offset = std::int32_t(p * pose_count_);
         push.part = p;
         draw(parts_[p].first_index, parts_[p].index_count, k, 1);
       }
-    push.layer_offset = 0;
     push.part = 0;
   }
   push.only_slot = -1;
@@ -348,7 +358,8 @@ void RigRenderer::RecordLines(VkCommandBuffer cmd, std::uint32_t count, gpu::Pus
   push.uvs = gpu::Address(uvs_.address);
   push.instances = gpu::Address(instances_.address);
   push.vertex_count = vertex_count_;
-  push.layer_offset = 0;
+  push.pose_count = pose_count_;
+  push.regions = gpu::Address(regions_.address);
   push.opacities = gpu::Address(opacities_.address);
   push.part = 0;
   push.part_count = std::uint32_t(parts_.size());

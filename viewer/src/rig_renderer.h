@@ -93,6 +93,7 @@ class RigRenderer {
   std::vector<std::unique_ptr<RigRenderer>> attachments_;
   std::uint64_t hidden_parts_ = 0;
   Buffer indices_, uvs_, positions_, instances_;
+  Buffer regions_;    // gpu::Region per part and pose
   Buffer opacities_;  // per character: each part's opacity (DrawList::part_opacity)
   Image drawings_;
   VkSampler sampler_ = VK_NULL_HANDLE;

@@ -5,6 +5,7 @@
 // its texture per blended drawing, the weights -- as a renderer's draw calls.
 //   mono Example.exe RIG.pmrig [N]
 using System;
+using System.Collections.Generic;
 using Posemorph;
 
 static class Example {
@@ -33,16 +34,23 @@ static class Example {
           drawCalls = 0;
           for (int k = 0; k < n; ++k) drawCalls += crowd.CopySteps(k, steps);  // one draw per step
         }
-        Console.WriteLine("{0}: {1} characters, {2} lists each, {3} draw calls a frame ({4} per character)", rig.File,
-                          n, rig.ListCount, drawCalls, drawCalls / n);
+        var textures = new HashSet<string>();  // what a renderer uploads: each page once
+        for (uint l = 0; l < rig.ListCount; ++l)
+          for (uint p = 0; p < rig.PageCount(l); ++p) textures.Add(rig.PageName(l, p));
+        Console.WriteLine("{0}: {1} characters, {2} lists each, {3} draw calls a frame ({4} per character), {5} " +
+                          "texture(s) ({6})", rig.File, n, rig.ListCount, drawCalls, drawCalls / n, textures.Count,
+                          rig.HasAtlas ? "an atlas" : "one per drawing");
         // Character 0's draw calls, back to front.
         foreach (DrawStep s in crowd.Steps(0)) {
           DrawList l = crowd.List(0, s.List);
           Part part = rig.ListPart(s.List, s.Part);
           Console.Write("  list {0} part '{1}': triangles {2}..{3}", s.List, rig.PartName(s.List, s.Part),
                         part.FirstTriangle, part.FirstTriangle + part.TriangleCount - 1);
-          foreach (BlendedDrawing d in l.Drawings)
-            Console.Write(", {0} x {1:0.000}", rig.PartImage(s.List, s.Part, d.Pose), d.Weight);
+          foreach (BlendedDrawing d in l.Drawings) {
+            Region g = rig.PartRegion(s.List, s.Part, d.Pose);
+            Console.Write(", {0} ({1} at {2},{3}) x {4:0.000}", rig.PartImage(s.List, s.Part, d.Pose),
+                          rig.PageName(s.List, g.Page), g.X, g.Y, d.Weight);
+          }
           Console.WriteLine();
         }
       }

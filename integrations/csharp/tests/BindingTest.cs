@@ -108,6 +108,15 @@ static class BindingTest {
       for (uint p = 0; p < parts; ++p) covered += rig.ListPart(l, p).TriangleCount;
       Expect(covered == t, "parts cover the triangles");
       Expect(rig.ListCanvas(l, 0).Width >= 0, "canvas");
+      // Texture pages: every part's region in every pose lies inside its page.
+      for (uint p = 0; p < parts; ++p)
+        for (uint pose = 0; pose < n; ++pose) {
+          Region g = rig.PartRegion(l, p, pose);
+          Page page = rig.ListPage(l, g.Page);
+          Expect(g.Page < rig.PageCount(l) && (page.Width == 0 || g.X + g.Width <= page.Width) &&
+                     (page.Atlas == 1) == rig.HasAtlas && (!rig.HasAtlas || rig.PageName(l, g.Page).Length > 0),
+                 "regions on their pages");
+        }
     }
     using (var animator = new Animator(rig, 3))
     using (var crowd = new Crowd(rig, 3)) {

@@ -138,7 +138,8 @@ function love.draw()
         local f = io.open(o.screenshot, "wb")
         f:write(image:encode("png"):getString())
         f:close()
-        print(string.format("%d frames of %d character(s); screenshot %s", frame, o.crowd, o.screenshot))
+        print(string.format("%d frames of %d character(s), %d texture(s); screenshot %s", frame, o.crowd,
+                            drawer:texture_count(), o.screenshot))
         love.event.quit(0)
       end)
     else

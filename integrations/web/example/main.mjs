@@ -40,7 +40,9 @@ async function main() {
   const app = new PIXI.Application({ width, height, background: [0.93, 0.94, 0.95], antialias: false,
                                      preserveDrawingBuffer: true, autoStart: false });
   document.body.prepend(app.view);
-  const drawings = await loadDrawings(rig, query.get('images') ?? 'pell/');
+  // The atlas's pages lie beside the rig file; a rig without one draws its drawings.
+  const rigUrl = query.get('rig') ?? '';
+  const drawings = await loadDrawings(rig, query.get('images') ?? 'pell/', rigUrl.slice(0, rigUrl.lastIndexOf('/') + 1));
   // Where each character stands: a grid, alternate ones facing left, fitted to the canvas.
   const b = rig.bounds(), margin = 0.06 * Math.max(b.maxX - b.minX, b.maxY - b.minY);
   const cw = b.maxX - b.minX + 2 * margin, ch = b.maxY - b.minY + 2 * margin;
@@ -67,7 +69,9 @@ async function main() {
   if (frames > 0) {
     for (let f = 0; f < frames; ++f) frame(f / 60);
     const calls = views.reduce((sum, v) => sum + v.drawCalls, 0);
-    say(`ready: ${frames} frames of ${n} character(s), ${calls / n} draw calls per character, posemorph ${pm.version}`);
+    const textures = new Set(drawings.flat()).size;
+    say(`ready: ${frames} frames of ${n} character(s), ${calls / n} draw calls per character, ${textures} texture(s), ` +
+        `posemorph ${pm.version}`);
   } else {
     let t = 0;
     app.ticker.add(() => frame((t += app.ticker.deltaMS / 1000)));

@@ -20,7 +20,7 @@ enum { kTextCapacity = 4096, kEventCapacity = 256 };
 
 static pm_error g_error;
 static char g_text[kTextCapacity];
-static double g_out[8];
+static double g_out[9];
 static float g_transforms[18]; /* three pm_transforms: two in, one out */
 
 const char* pmw_error(void) { return g_error.message; }
@@ -86,7 +86,7 @@ uint32_t pmw_rig_count(const pm_rig* rig, int what) {
 /* Names into the text buffer (NULL when out of range or too long):
  * 0 channel a, 1 channel a's pose b, 2 channel a's path b, 3 list a's part
  * b, 4 list a's part b's drawing in pose c, 5 channel a's event b, 6 the
- * drawing folder, 7 the machine's state a. */
+ * drawing folder, 7 the machine's state a, 8 list a's texture page b. */
 const char* pmw_name(const pm_rig* rig, int what, uint32_t a, uint32_t b, uint32_t c) {
   size_t length = 0;
   int status = PM_ERROR_INVALID_ARGUMENT;
@@ -114,6 +114,9 @@ const char* pmw_name(const pm_rig* rig, int what, uint32_t a, uint32_t b, uint32
       break;
     case 7:
       status = pm_machine_state_name(rig, a, g_text, kTextCapacity, &length);
+      break;
+    case 8:
+      status = pm_character_page_name(rig, a, b, g_text, kTextCapacity, &length);
       break;
     default:
       break;
@@ -175,6 +178,24 @@ int pmw_list(const pm_rig* rig, uint32_t list) {
   if (status != PM_OK) return status;
   g_out[0] = info.vertex_count, g_out[1] = info.triangle_count, g_out[2] = info.pose_count;
   g_out[3] = info.part_count, g_out[4] = info.channel, g_out[5] = pm_character_texture_filter(rig, list);
+  g_out[6] = pm_character_page_count(rig, list), g_out[7] = pm_rig_has_atlas(rig);
+  return PM_OK;
+}
+/* out = texture page `page` of list `list`: width, height, atlas, premultiplied. */
+int pmw_list_page(const pm_rig* rig, uint32_t list, uint32_t page) {
+  pm_page p;
+  int status = pm_character_page(rig, list, page, &p);
+  if (status != PM_OK) return status;
+  g_out[0] = p.width, g_out[1] = p.height, g_out[2] = p.atlas, g_out[3] = p.premultiplied;
+  return PM_OK;
+}
+/* out = part `part`'s region in pose `pose`: page, scale u, offset u, scale v, offset v, x, y, width, height. */
+int pmw_list_region(const pm_rig* rig, uint32_t list, uint32_t part, uint32_t pose) {
+  pm_region r;
+  int status = pm_character_part_region(rig, list, part, pose, &r);
+  if (status != PM_OK) return status;
+  g_out[0] = r.page, g_out[1] = r.scale_u, g_out[2] = r.offset_u, g_out[3] = r.scale_v, g_out[4] = r.offset_v;
+  g_out[5] = r.x, g_out[6] = r.y, g_out[7] = r.width, g_out[8] = r.height;
   return PM_OK;
 }
 const uint32_t* pmw_list_triangles(const pm_rig* rig, uint32_t list) {

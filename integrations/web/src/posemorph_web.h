@@ -36,6 +36,8 @@ int pmw_list(const pm_rig* rig, uint32_t list);
 const uint32_t* pmw_list_triangles(const pm_rig* rig, uint32_t list);
 int pmw_list_part(const pm_rig* rig, uint32_t list, uint32_t part);
 int pmw_list_canvas(const pm_rig* rig, uint32_t list, uint32_t pose);
+int pmw_list_page(const pm_rig* rig, uint32_t list, uint32_t page);
+int pmw_list_region(const pm_rig* rig, uint32_t list, uint32_t part, uint32_t pose);
 const double* pmw_pose_positions(const pm_rig* rig, uint32_t pose);
 int pmw_placement(const pm_rig* rig);
 void pmw_transform_make(double x, double y, double radians, double sx, double sy, int flip);

@@ -24,6 +24,13 @@ async function main() {
   check(`the package's version is the runtime's (${pm.version})`, pkg.version === pm.version);
   const rig = await pm.fetchRig('pell-face.compact.pmrig');
   check('Pell with a face: 2 lists or more, 4 body parts', rig.listCount >= 2 && rig.lists[0].parts.length === 4);
+  check('one atlas page for every list, premultiplied, beside the rig',
+        rig.lists.every((l) => l.atlas && l.pages.length === 1 && l.pages[0].name === 'pell-face.compact.page0.png' &&
+                               l.pages[0].premultiplied && l.pages[0].width === rig.lists[0].pages[0].width));
+  check('every part in every pose has its region on that page',
+        rig.lists.every((l) => l.parts.every((p) => p.regions.length === l.poseCount && p.regions.every((g) =>
+          g.page === 0 && g.width > 0 && g.x + g.width <= l.pages[0].width && g.y + g.height <= l.pages[0].height &&
+          Math.abs(g.scaleU * l.pages[0].width - l.canvases[0].width) < 1e-3))));
   check('channel names and paths', rig.channels.every((c) => typeof c.name === 'string') && rig.channels[0].paths.length > 0);
   const crowd = rig.crowd(3);
   const [x, y] = rig.samplePath(0, 0, 0.5);

@@ -11,7 +11,7 @@
 # - the example's frame of Pip and of Pell with a face equals posemorph-view's
 #   at the same pose-space point within the examples' tolerance (at most 1% of
 #   the pixels more than 3 of 255 apart: the two rasterisers' edges);
-# - a crowd of 200 Pells with faces walks for 60 frames, 7 draw calls each
+# - a crowd of 200 Pells with faces walks for 60 frames, 7 draw calls each, from one atlas texture
 #   (its screenshot is kept in SHOTS for the README);
 # - the API's promises (tests/api.mjs): copies do not change, free is
 #   explicit and idempotent, a freed object throws, 4-byte points round-trip;
@@ -40,6 +40,7 @@ fi
 echo "web: npm installed $(basename "$package") and pixi.js@$(node -p "require('$site/node_modules/pixi.js/package.json').version")"
 cp "$here/example/index.html" "$here/example/main.mjs" "$here/tests/api.html" "$here/tests/api.mjs" "$site/"
 cp "$build"/rigs/{pip,pip.compact,pell-face,pell-face.compact,sprout.compact,arm.compact}.pmrig "$site/"
+cp "$build"/rigs/{pip,pip.compact,pell-face,pell-face.compact,sprout.compact}.page0.png "$site/"  # their atlases
 cp -r "$build/assets/pip" "$build/assets/pell" "$site/"
 python3 "$here/../hostile_rigs.py" "$build/rigs/pell-face.compact.pmrig" "$site"
 
@@ -80,7 +81,7 @@ done
 crowd="index.html?rig=pell-face.compact.pmrig&images=pell/&crowd=200&size=800x600&frames=60"
 out=$(page "$crowd")
 echo "web: $out"
-case "$out" in *"60 frames of 200 character(s), 7 draw calls per character"*) ;; *) fail "the crowd: '$out'" ;; esac
+case "$out" in *"60 frames of 200 character(s), 7 draw calls per character, 1 texture(s)"*) ;; *) fail "the crowd: '$out'" ;; esac
 # The README's picture: the crowd's first frame (60 more frames under SwiftShader would add 16 s to the test).
 timeout 120 "${chrome[@]}" --virtual-time-budget=60000 --window-size=800,600 --screenshot="$work/crowd.png" \
   "$url/${crowd%&frames=60}&frames=1" 2>/dev/null && cp "$work/crowd.png" "$shots/web-crowd.png"
