@@ -397,7 +397,9 @@ TEST_CASE("drawn poses: bad drawings and correspondences") {
   d = DrawnDescription();
   d["poses"][0].erase("outline");
   d["poses"][0]["drawing"] = "a.gif";
-  ExpectFailure(d.dump(), "pose 'a' (index 0): drawing \"a.gif\" is neither .png nor .svg");
+  ExpectFailure(
+      d.dump(),
+      "pose 'a' (index 0): drawing \"a.gif\" is neither .png, .svg nor a layered file (.ora, .psd, with #Group/Layer)");
   d["poses"][0]["drawing"] = "missing.png";
   ExpectFailure(d.dump(), "missing.png: cannot open file");
 

@@ -63,12 +63,20 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   };
   std::vector<unsigned char> bytes = BakeRig(rig, &report);
   std::optional<PackedAtlas> atlas;
+  // A drawing named as a layer of a layered file exists as pixels only in the atlas.
+  const bool layered = RigNamesLayeredDrawings(bytes);
+  if (layered && !rig.atlas.enabled)
+    throw BakeError(rig.file,
+                    "a drawing names a layer of a layered file (.ora, .psd), which renderers read from "
+                    "the texture atlas: it cannot be baked with \"atlas\": false or --no-atlas");
   if (rig.atlas.enabled && RigHasDrawings(bytes)) {
     BakeStage packing("packing the texture atlas");
     atlas = PackAtlas(bytes, output, std::filesystem::path(rig.file).parent_path().string(), rig.atlas, rig.file);
     if (atlas->skipped.empty()) {
       bytes = std::move(atlas->rig);
       report.bytes = bytes.size();
+    } else if (layered) {
+      throw BakeError(rig.file, "no texture atlas, which its layered drawings need: " + atlas->skipped);
     } else {
       err << "posemorph-bake: warning: " << args.positional << ": no texture atlas: " << atlas->skipped << "\n";
       atlas.reset();

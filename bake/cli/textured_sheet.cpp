@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "posemorph/bake/import/layered_reference.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/ghosting.h"
 #include "posemorph/bake/input_file.h"
@@ -127,7 +128,7 @@ std::vector<RgbaImage> ReadPoseDrawings(const Rig& rig, const std::string& rig_f
       if (!ImageReferenceStaysInside(StringView{ref.data(), ref.size()}))
         throw BakeError(rig_file, whose + ": image reference '" + ref + "' leaves the images folder");
       const std::string path = (std::filesystem::path(images) / ref).string();
-      out.push_back(DecodeRgba(ReadInputFile(path, kMaxTextFileBytes, "a drawing"), path));
+      out.push_back(DecodeRgba(import::ReadDrawingBytes(path, "a drawing", ErrorSource(path)), path));
       const DrawingCanvas c = rig.pose_canvas(i);
       if (c.width > 0 && (double(out.back().width) != c.width || double(out.back().height) != c.height))
         throw BakeError(path, "is " + std::to_string(out.back().width) + " x " + std::to_string(out.back().height) +
@@ -375,7 +376,7 @@ RgbaImage TexturedSheet(const Rig& rig, const std::vector<RgbaImage>& drawings, 
 }
 
 RgbaImage ReadRgbaPng(const std::string& path) {
-  return DecodeRgba(ReadInputFile(path, kMaxTextFileBytes, "a drawing"), path);
+  return DecodeRgba(import::ReadDrawingBytes(path, "a drawing", ErrorSource(path)), path);
 }
 
 std::vector<unsigned char> EncodePng(const RgbaImage& image, const std::string& file) {

@@ -22,7 +22,7 @@ std::string AlignmentSkipped(const RigDescription& rig, const std::vector<DrawnP
   if (drawn.size() < 2) return "one drawn pose";
   for (const DrawnPose& d : drawn) {
     const PoseDescription& pose = rig.poses[d.index];
-    if (!EndsWith(pose.drawing, ".png")) return PoseLabel(pose.name, d.index) + " is not a PNG drawing";
+    if (!IsRasterDrawing(pose.drawing)) return PoseLabel(pose.name, d.index) + " is not a PNG drawing";
     if (!pose.image.empty() && pose.image != pose.drawing)
       return PoseLabel(pose.name, d.index) + " draws another image than its drawing";
   }

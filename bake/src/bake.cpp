@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // The whole bake as the paper's pipeline (DESIGN.md section 2): each step
 // takes const input and returns its own type, in its own header.
+#include "posemorph/bake/import/layered_reference.h"
 #include "posemorph/bake/bake.h"
 
 #include <algorithm>
@@ -89,7 +90,8 @@ GhostingDrawings ReadGhostingDrawings(const RigDescription& description) {
     const PoseDescription& pose = description.poses[i];
     const std::string& d = pose.drawing;
     const bool png =
-        d.size() > 4 && (d.compare(d.size() - 4, 4, ".png") == 0 || d.compare(d.size() - 4, 4, ".PNG") == 0);
+        (d.size() > 4 && (d.compare(d.size() - 4, 4, ".png") == 0 || d.compare(d.size() - 4, 4, ".PNG") == 0)) ||
+        import::ParseLayeredReference(d);  // a layer of a layered file: pixels too
     if (!pose.drawn || !pose.vertices.empty() || !png) {
       return GhostingDrawings{{}, {}, "pose '" + pose.name + "' has no PNG drawing"};
     }

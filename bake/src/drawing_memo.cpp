@@ -5,6 +5,7 @@
 #include <mutex>
 #include <vector>
 
+#include "posemorph/bake/import/layered_reference.h"
 #include "posemorph/bake/input_file.h"
 
 namespace posemorph::bake {
@@ -16,7 +17,7 @@ class DrawingMemo {
  public:
   template <class Make>
   Value Get(const std::string& path, const Settings& settings, const ErrorSource& source, const Make& make) {
-    std::vector<unsigned char> png = ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source);
+    std::vector<unsigned char> png = import::ReadDrawingBytes(path, "a PNG drawing", source);
     {
       const std::lock_guard<std::mutex> lock(mutex_);
       for (const Entry& e : entries_)

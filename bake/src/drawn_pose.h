@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "mapping/geometry.h"
+#include "posemorph/bake/import/layered_reference.h"
 #include "posemorph/bake/map_drawings.h"
 #include "posemorph/bake/mapping/compatible_triangulation.h"
 #include "posemorph/bake/rig_description.h"
@@ -20,6 +21,12 @@ namespace posemorph::bake {
 inline bool EndsWith(std::string s, const std::string& suffix) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// A drawing the bake reads as pixels: a PNG, or a layer of a layered file
+// (NAME.ora#Group/Layer, import/layered_reference.h).
+inline bool IsRasterDrawing(const std::string& drawing) {
+  return EndsWith(drawing, ".png") || import::ParseLayeredReference(drawing);
 }
 
 struct DrawnPose {

@@ -68,8 +68,9 @@ void ReadDrawnOutline(const RigDescription& rig, const MappingParameters& prm, i
   };
   const PoseDescription& pose = rig.poses[d.index];
   Polygon raw;
-  const bool png = EndsWith(pose.drawing, ".png"), svg = EndsWith(pose.drawing, ".svg");
-  if (!pose.drawing.empty() && !png && !svg) fail("drawing \"" + pose.drawing + "\" is neither .png nor .svg");
+  const bool png = IsRasterDrawing(pose.drawing), svg = EndsWith(pose.drawing, ".svg");
+  if (!pose.drawing.empty() && !png && !svg)
+    fail("drawing \"" + pose.drawing + "\" is neither .png, .svg nor a layered file (.ora, .psd, with #Group/Layer)");
   {
     // A drawing's errors name the description, the pose and the drawing.
     const ErrorSource source(rig.file, PoseLabel(pose.name, d.index) + ": " + pose.drawing_path);
@@ -199,10 +200,10 @@ int CharacterHalvings(const RigDescription& rig, const std::vector<DrawnPose>& d
   if (rig.mapping.working_size <= 0) return 0;
   for (const DrawnPose& d : drawn) {
     const PoseDescription& pose = rig.poses[d.index];
-    if (!pose.drawing.empty() && !EndsWith(pose.drawing, ".png") && !EndsWith(pose.drawing, ".svg"))
-      throw BakeError(rig.file,
-                      PoseLabel(pose.name, d.index) + ": drawing \"" + pose.drawing + "\" is neither .png nor .svg");
-    if (!EndsWith(pose.drawing, ".png") || !pose.vertices.empty()) continue;
+    if (!pose.drawing.empty() && !IsRasterDrawing(pose.drawing) && !EndsWith(pose.drawing, ".svg"))
+      throw BakeError(rig.file, PoseLabel(pose.name, d.index) + ": drawing \"" + pose.drawing +
+                                    "\" is neither .png, .svg nor a layered file (.ora, .psd, with #Group/Layer)");
+    if (!IsRasterDrawing(pose.drawing) || !pose.vertices.empty()) continue;
     int width = 0, height = 0;
     mapping::ReadPngSize(pose.drawing_path, &width, &height,
                          ErrorSource(rig.file, PoseLabel(pose.name, d.index) + ": " + pose.drawing_path));
@@ -353,7 +354,7 @@ MappedDrawings MapDrawingsAsTraced(const RigDescription& rig) {
 bool TracesPngOutline(const RigDescription& rig) {
   if (!rig.parts.empty()) return true;  // a part's poses may be
   for (const PoseDescription& pose : rig.poses)
-    if (pose.drawn && pose.vertices.empty() && EndsWith(pose.drawing, ".png")) return true;
+    if (pose.drawn && pose.vertices.empty() && IsRasterDrawing(pose.drawing)) return true;
   return false;
 }
 
@@ -368,7 +369,7 @@ DrawnOutlines TraceDrawings(const RigDescription& rig) {
     DrawnPoseOutline o;
     o.pose = d.index;
     o.label = in.labels[k];
-    if (EndsWith(pose.drawing, ".png")) o.png_path = pose.drawing_path;
+    if (IsRasterDrawing(pose.drawing)) o.png_path = pose.drawing_path;
     Eigen::AlignedBox2d box;
     for (const Point& p : d.outline) box.extend(p), o.traced.push_back(InDrawing(p, pose));
     if (mapping::SignedArea(d.outline) < 0) std::reverse(o.traced.begin(), o.traced.end());

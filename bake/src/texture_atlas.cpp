@@ -8,6 +8,7 @@
 #include <map>
 
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/import/layered_reference.h"
 #include "posemorph/bake/mapping/outline_image.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
@@ -113,6 +114,18 @@ bool RigHasDrawings(const std::vector<unsigned char>& bytes) {
     }
   }
   return true;
+}
+
+bool RigNamesLayeredDrawings(const std::vector<unsigned char>& bytes) {
+  Rig rig;
+  if (!LoadRig(bytes.data(), bytes.size(), &rig, nullptr)) return false;
+  for (std::uint32_t l = 0; l < 1 + rig.attachment_count(); ++l) {
+    const Rig& r = ListRig(rig, l);
+    for (std::uint32_t i = 0; i < r.pose_count(); ++i)
+      for (std::uint32_t p = 0; p < r.part_count(); ++p)
+        if (import::ParseLayeredReference(Text(r.part_image(p, i)))) return true;
+  }
+  return false;
 }
 
 std::string AtlasPageName(const std::string& rig_file, std::uint32_t page) {

@@ -85,6 +85,36 @@ refuse() {  # refuse STATUS EXPECTED-TEXT CHECK-ABSENT ARGS...
   case "$said" in *"$text"*) ;; *) fail "posemorph-bake $*: says '$said', expected '$text'" ;; esac
   [ -z "$absent" ] || [ ! -e "$absent" ] || fail "posemorph-bake $*: wrote $absent"
 }
+# The same description naming the Krita file's layers directly
+# ("pell.ora#rest/body"): the same meshes (eval's frame), the same atlas page
+# (its pixels come from the layers), no PNG written.
+mkdir -p "$work/refs"
+cp "$data/pell/pell.ora" "$work/refs/"
+python3 - "$source/assets/pell/pell.json" "$work/refs/pell.json" <<'PY'
+import json, re, sys
+d = json.load(open(sys.argv[1]))
+for part in d["parts"]:
+    for pose in part["poses"]:
+        m = re.fullmatch(r"(rest|wave|cross|lean)-(.+)\.png", pose["drawing"])
+        pose["drawing"] = "pell.ora#%s/%s" % (m.group(1), m.group(2))
+json.dump(d, open(sys.argv[2], "w"))
+PY
+if "$bake" "$work/refs/pell.json" -o "$work/refs/pell.pmrig" --quiet; then
+  "$bake" eval "$work/reference/pell.pmrig" --at 0.3,0.2 -o "$work/reference/frame.json" > /dev/null
+  "$bake" eval "$work/refs/pell.pmrig" --at 0.3,0.2 -o "$work/refs/frame.json" > /dev/null
+  cmp -s "$work/reference/frame.json" "$work/refs/frame.json" || fail "layer references: the frame differs from the PNGs'"
+  cmp -s "$work/reference/pell.page0.png" "$work/refs/pell.page0.png" || fail "layer references: the atlas page differs"
+  [ -z "$(find "$work/refs" -name '*-*.png')" ] || fail "layer references: PNG drawings were written"
+  echo "layer references: pell.ora#POSE/PART -> the same frame and atlas page as the imported PNGs"
+else
+  fail "the description naming pell.ora's layers does not bake"
+fi
+sed 's|pell.ora#rest/arm-left|pell.ora#rest/elbow|' "$work/refs/pell.json" > "$work/refs/elbow.json"
+refuse 1 "no layer or group 'elbow' in 'rest' (it holds" "$work/refs/elbow.pmrig" \
+  "$work/refs/elbow.json" -o "$work/refs/elbow.pmrig"
+refuse 1 "cannot be baked with \"atlas\": false or --no-atlas" "$work/refs/flat.pmrig" \
+  "$work/refs/pell.json" --no-atlas -o "$work/refs/flat.pmrig"
+
 mkdir -p "$work/again"
 cp "$work/init/rest-head.png" "$work/again/rest-body.png"  # another drawing where one would be written
 refuse 1 "$work/again/rest-body.png: exists, and the drawing of $data/pell/pell.ora: group 'rest': layer 'body' would replace it (--force does)" \

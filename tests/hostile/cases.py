@@ -243,7 +243,7 @@ CASES = [
     Case('drawing-is-dev-zero', B, [RIG] + OUT, 1, r'zero\.png: is not a regular file',
          {'rig.json': drawn_rig(drawings=('zero.png', 'b.png')), 'zero.png': symlink_to('/dev/zero'), 'b.png': copy_of('b.png')},
          [RIG]),
-    Case('drawing-wrong-extension', B, [RIG] + OUT, 1, r"neither \.png nor \.svg",
+    Case('drawing-wrong-extension', B, [RIG] + OUT, 1, r"neither \.png, \.svg nor a layered file",
          {'rig.json': drawn_rig(drawings=('a.gif', 'b.png'))}, [RIG]),
     # --- outputs -------------------------------------------------------------
     Case('output-is-input', B, [RIG, '-o', RIG], 1, r'is the input .*refusing to overwrite it', {'rig.json': vertex_rig()}, [RIG]),

@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <mutex>
 #include <new>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -18,9 +19,22 @@
 #include "posemorph/bake/import/layered_character.h"
 #include "posemorph/bake/rig_description.h"
 #include "posemorph/bake/stage.h"
+#include "posemorph/bake/texture_atlas.h"
 
 namespace posemorph::viewer {
 namespace {
+
+// The window's textures from an atlas packed in memory: every list shows the
+// same pages (premultiplied already).
+void DrawingsFromPages(const Rig& rig, const bake::PackedAtlas& atlas, Drawings* out) {
+  out->width = atlas.pages[0].width, out->height = atlas.pages[0].height;
+  out->rgba.clear();
+  for (const bake::AtlasPage& page : atlas.pages) out->rgba.push_back(page.rgba);
+  out->pages = std::uint32_t(atlas.pages.size());
+  out->attachments.assign(rig.attachment_count(), Drawings{});
+  for (Drawings& a : out->attachments)
+    a.width = out->width, a.height = out->height, a.rgba = out->rgba, a.pages = out->pages;
+}
 
 namespace fs = std::filesystem;
 
@@ -102,16 +116,29 @@ class DescriptionWatch final : public WatchedBake {
       rig_file.replace_extension(".pmrig");
       d.rig_file = rig_file.string();
       bake::BakeReport report;
-      const std::vector<unsigned char> bytes = bake::BakeRig(d, &report);
+      std::vector<unsigned char> bytes = bake::BakeRig(d, &report);
+      std::string folder = fs::path(description_).parent_path().string();
+      if (folder.empty()) folder = ".";
+      // Its atlas as posemorph-bake would pack it, in memory: the window
+      // draws from the pages (a drawing may name a layer of a layered file,
+      // which only the atlas holds as pixels).
+      std::optional<bake::PackedAtlas> atlas;
+      if (d.atlas.enabled && bake::RigHasDrawings(bytes)) {
+        atlas = bake::PackAtlas(bytes, d.rig_file, folder, d.atlas, d.file);
+        if (atlas->skipped.empty())
+          bytes = std::move(atlas->rig);
+        else
+          atlas.reset();
+      }
       auto baked = std::make_unique<BakedRig>();
       Error err;
       if (!LoadRig(bytes.data(), bytes.size(), &baked->rig, &err)) {
         *problem = description_ + ": the baked rig does not load: " + err.message;
         return false;
       }
-      std::string folder = fs::path(description_).parent_path().string();
-      if (folder.empty()) folder = ".";
-      if (!LoadDrawings(baked->rig, folder, &baked->drawings, problem)) {
+      if (atlas) {
+        DrawingsFromPages(baked->rig, *atlas, &baked->drawings);
+      } else if (!LoadDrawings(baked->rig, folder, &baked->drawings, problem)) {
         *problem = description_ + ": " + *problem;
         return false;
       }

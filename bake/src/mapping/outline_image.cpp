@@ -15,6 +15,7 @@
 #include <unordered_map>
 
 #include "geometry.h"
+#include "posemorph/bake/import/layered_reference.h"
 #include "posemorph/bake/mapping/outline_image.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/input_file.h"
@@ -362,7 +363,7 @@ static std::vector<unsigned char> DecodePng(const std::vector<unsigned char>& fi
 }
 
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height, const ErrorSource& source) {
-  return DecodePng(ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source), source, width, height, false);
+  return DecodePng(import::ReadDrawingBytes(path, "a PNG drawing", source), source, width, height, false);
 }
 
 std::vector<unsigned char> DecodePngRgba(const std::vector<unsigned char>& png, int* width, int* height,
@@ -371,7 +372,7 @@ std::vector<unsigned char> DecodePngRgba(const std::vector<unsigned char>& png, 
 }
 
 std::vector<unsigned char> ReadPngRgba(const std::string& path, int* width, int* height, const ErrorSource& source) {
-  return DecodePngRgba(ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source), width, height, source);
+  return DecodePngRgba(import::ReadDrawingBytes(path, "a PNG drawing", source), width, height, source);
 }
 
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height) {
@@ -386,8 +387,8 @@ ImageOutline OutlineFromPng(const std::string& path, double threshold, const Err
 
 ImageOutline OutlineFromPng(const std::string& path, double threshold, const ErrorSource& source, bool fill_notches,
                             bool drop_shadows, int halvings) {
-  return OutlineFromPngBytes(ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source), threshold, source,
-                             fill_notches, drop_shadows, halvings);
+  return OutlineFromPngBytes(import::ReadDrawingBytes(path, "a PNG drawing", source), threshold, source, fill_notches,
+                             drop_shadows, halvings);
 }
 
 ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double threshold, const ErrorSource& source,

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The working level of a drawing (see working_level.h).
+#include "posemorph/bake/import/layered_reference.h"
 #include "posemorph/bake/mapping/working_level.h"
 
 #include <png.h>
@@ -44,7 +45,7 @@ int WorkingHalvings(int width, int height, int working_size) {
 }
 
 void ReadPngSize(const std::string& path, int* width, int* height, const ErrorSource& source) {
-  const std::vector<unsigned char> file = ReadInputFile(path, kMaxTextFileBytes, "a PNG drawing", source);
+  const std::vector<unsigned char> file = import::ReadDrawingBytes(path, "a PNG drawing", source);
   png_image image;
   std::memset(&image, 0, sizeof image);
   image.version = PNG_IMAGE_VERSION;

@@ -55,6 +55,11 @@ struct PackedAtlas {
 // (what an atlas needs; a rig from meshes alone has none).
 bool RigHasDrawings(const std::vector<unsigned char>& rig);
 
+// True when some part of the rig file `rig` (or of its attachments) draws a
+// layer of a layered file (import/layered_reference.h): renderers can only
+// read such a drawing from an atlas.
+bool RigNamesLayeredDrawings(const std::vector<unsigned char>& rig);
+
 // The pages' file names for a rig written to `rig_file`: its name without
 // the extension, then ".page<k>.png".
 std::string AtlasPageName(const std::string& rig_file, std::uint32_t page);

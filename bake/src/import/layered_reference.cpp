@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: MIT
+// Drawings named as layers of layered files (layered_reference.h).
+#include "posemorph/bake/import/layered_reference.h"
+
+#include <png.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "posemorph/bake/import/layered_image.h"
+#include "posemorph/bake/input_file.h"
+
+namespace posemorph::bake::import {
+namespace {
+
+bool EndsWithLayeredExtension(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return s.size() > 4 && (s.compare(s.size() - 4, 4, ".ora") == 0 || s.compare(s.size() - 4, 4, ".psd") == 0);
+}
+
+std::vector<unsigned char> EncodePng(const std::vector<unsigned char>& rgba, int width, int height,
+                                     const ErrorSource& source) {
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  png.width = png_uint_32(width);
+  png.height = png_uint_32(height);
+  png.format = PNG_FORMAT_RGBA;
+  png_alloc_size_t size = 0;
+  if (!png_image_write_get_memory_size(png, size, 0, rgba.data(), 0, nullptr))
+    throw source.Error(std::string("cannot encode the layer as PNG: ") + png.message);
+  std::vector<unsigned char> out(size);
+  if (!png_image_write_to_memory(&png, out.data(), &size, 0, rgba.data(), 0, nullptr))
+    throw source.Error(std::string("cannot encode the layer as PNG: ") + png.message);
+  out.resize(size);
+  return out;
+}
+
+// A layer's name without the " #N" GIMP and Krita append to keep an
+// image's names unique ("body #1" in a second pose's group is "body").
+std::string WithoutCopyNumber(std::string name) {
+  const std::size_t hash = name.rfind(" #");
+  if (hash != std::string::npos && hash + 2 < name.size() &&
+      name.find_first_not_of("0123456789", hash + 2) == std::string::npos)
+    name.resize(hash);
+  return name;
+}
+
+// Layered files read in this process, by path, while their size and time stay.
+struct CachedImage {
+  std::uintmax_t size = 0;
+  std::filesystem::file_time_type time;
+  std::shared_ptr<const LayeredImage> image;
+};
+std::mutex cache_mutex;
+std::map<std::string, CachedImage> cache;
+
+std::shared_ptr<const LayeredImage> Read(const std::string& file) {
+  std::error_code ec;
+  const std::uintmax_t size = std::filesystem::file_size(file, ec);
+  const std::filesystem::file_time_type time =
+      ec ? std::filesystem::file_time_type{} : std::filesystem::last_write_time(file, ec);
+  {
+    const std::lock_guard<std::mutex> lock(cache_mutex);
+    const auto it = cache.find(file);
+    if (!ec && it != cache.end() && it->second.size == size && it->second.time == time) return it->second.image;
+  }
+  auto image = std::make_shared<const LayeredImage>(ReadLayeredImage(file));
+  if (!ec) {
+    const std::lock_guard<std::mutex> lock(cache_mutex);
+    if (cache.size() >= 16) cache.erase(cache.begin());  // a few characters' files at most
+    cache[file] = CachedImage{size, time, image};
+  }
+  return image;
+}
+
+}  // namespace
+
+bool ParseLayeredReference(const std::string& reference, LayeredReference* out) {
+  const std::size_t hash = reference.find('#');
+  const std::string file = reference.substr(0, hash);
+  if (!EndsWithLayeredExtension(file)) return false;
+  if (out) {
+    out->file = file;
+    out->path.clear();
+    if (hash != std::string::npos) {
+      std::size_t at = hash + 1;
+      while (at <= reference.size()) {
+        const std::size_t slash = std::min(reference.find('/', at), reference.size());
+        out->path.push_back(reference.substr(at, slash - at));
+        at = slash + 1;
+      }
+    }
+  }
+  return true;
+}
+
+std::vector<unsigned char> LayeredReferencePng(const std::string& reference, const ErrorSource& source) {
+  LayeredReference ref;
+  if (!ParseLayeredReference(reference, &ref)) throw source.Error("not a layered file (.ora or .psd)");
+  const std::shared_ptr<const LayeredImage> image = Read(ref.file);
+  if (ref.path.empty())
+    return EncodePng(Composite(image->layers, image->width, image->height), image->width, image->height, source);
+  const std::vector<Layer>* level = &image->layers;
+  const Layer* found = nullptr;
+  std::string where = ref.file;
+  for (const std::string& name : ref.path) {
+    found = nullptr;
+    for (const Layer& l : *level)  // its exact name first, then without a copy number
+      if (l.name == name) {
+        found = &l;
+        break;
+      }
+    for (const Layer& l : *level)
+      if (!found && WithoutCopyNumber(l.name) == name) found = &l;
+    if (!found) {
+      std::string names;
+      for (const Layer& l : *level) names += (names.empty() ? "'" : ", '") + l.name + "'";
+      throw source.Error("no layer or group '" + name + "' in " + where +
+                         (names.empty() ? " (it holds none)" : " (it holds " + names + ")"));
+    }
+    where = "'" + name + "'";
+    level = &found->children;
+  }
+  return EncodePng(Composite(*found, image->width, image->height), image->width, image->height, source);
+}
+
+std::vector<unsigned char> ReadDrawingBytes(const std::string& path, const std::string& what,
+                                            const ErrorSource& source) {
+  if (ParseLayeredReference(path)) return LayeredReferencePng(path, source);
+  return ReadInputFile(path, kMaxTextFileBytes, what, source);
+}
+
+}  // namespace posemorph::bake::import
