@@ -148,28 +148,6 @@ LayeredCharacter ImportLayeredCharacter(const std::vector<std::string>& paths, b
   return c;
 }
 
-namespace {
-
-std::vector<unsigned char> EncodeRgbaPng(const std::vector<unsigned char>& rgba, int width, int height,
-                                         const std::string& file) {
-  png_image png;
-  std::memset(&png, 0, sizeof png);
-  png.version = PNG_IMAGE_VERSION;
-  png.width = png_uint_32(width);
-  png.height = png_uint_32(height);
-  png.format = PNG_FORMAT_RGBA;
-  png_alloc_size_t size = 0;
-  if (!png_image_write_get_memory_size(png, size, 0, rgba.data(), 0, nullptr))
-    throw BakeError(file, std::string("cannot encode PNG: ") + png.message);
-  std::vector<unsigned char> out(size);
-  if (!png_image_write_to_memory(&png, out.data(), &size, 0, rgba.data(), 0, nullptr))
-    throw BakeError(file, std::string("cannot encode PNG: ") + png.message);
-  out.resize(size);
-  return out;
-}
-
-}  // namespace
-
 std::vector<std::string> WriteLayeredDrawings(const LayeredCharacter& c, const std::string& folder, bool overwrite) {
   const std::size_t per_pose = c.parts.empty() ? 1 : c.parts.size();
   std::vector<std::string> paths;

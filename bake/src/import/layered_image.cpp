@@ -3,9 +3,12 @@
 // its extension (layered_image.h).
 #include "posemorph/bake/import/layered_image.h"
 
+#include <png.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 
 #include "posemorph/bake/error.h"
 
@@ -146,6 +149,24 @@ LayeredImage ReadLayeredImage(const std::string& path) {
   if (ext == "ora") return ReadOpenRaster(path);
   if (ext == "psd") return ReadPhotoshop(path);
   throw BakeError(path, "not a layered drawing (.ora or .psd)");
+}
+
+std::vector<unsigned char> EncodeRgbaPng(const std::vector<unsigned char>& rgba, int width, int height,
+                                         const std::string& file) {
+  png_image png;
+  std::memset(&png, 0, sizeof png);
+  png.version = PNG_IMAGE_VERSION;
+  png.width = png_uint_32(width);
+  png.height = png_uint_32(height);
+  png.format = PNG_FORMAT_RGBA;
+  png_alloc_size_t size = 0;
+  if (!png_image_write_get_memory_size(png, size, 0, rgba.data(), 0, nullptr))
+    throw BakeError(file, std::string("cannot encode PNG: ") + png.message);
+  std::vector<unsigned char> out(size);
+  if (!png_image_write_to_memory(&png, out.data(), &size, 0, rgba.data(), 0, nullptr))
+    throw BakeError(file, std::string("cannot encode PNG: ") + png.message);
+  out.resize(size);
+  return out;
 }
 
 }  // namespace posemorph::bake::import

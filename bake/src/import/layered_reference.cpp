@@ -2,8 +2,6 @@
 // Drawings named as layers of layered files (layered_reference.h).
 #include "posemorph/bake/import/layered_reference.h"
 
-#include <png.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cstring>
@@ -21,24 +19,6 @@ namespace {
 bool EndsWithLayeredExtension(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
   return s.size() > 4 && (s.compare(s.size() - 4, 4, ".ora") == 0 || s.compare(s.size() - 4, 4, ".psd") == 0);
-}
-
-std::vector<unsigned char> EncodePng(const std::vector<unsigned char>& rgba, int width, int height,
-                                     const ErrorSource& source) {
-  png_image png;
-  std::memset(&png, 0, sizeof png);
-  png.version = PNG_IMAGE_VERSION;
-  png.width = png_uint_32(width);
-  png.height = png_uint_32(height);
-  png.format = PNG_FORMAT_RGBA;
-  png_alloc_size_t size = 0;
-  if (!png_image_write_get_memory_size(png, size, 0, rgba.data(), 0, nullptr))
-    throw source.Error(std::string("cannot encode the layer as PNG: ") + png.message);
-  std::vector<unsigned char> out(size);
-  if (!png_image_write_to_memory(&png, out.data(), &size, 0, rgba.data(), 0, nullptr))
-    throw source.Error(std::string("cannot encode the layer as PNG: ") + png.message);
-  out.resize(size);
-  return out;
 }
 
 // A layer's name without the " #N" GIMP and Krita append to keep an
@@ -105,7 +85,7 @@ std::vector<unsigned char> LayeredReferencePng(const std::string& reference, con
   if (!ParseLayeredReference(reference, &ref)) throw source.Error("not a layered file (.ora or .psd)");
   const std::shared_ptr<const LayeredImage> image = Read(ref.file);
   if (ref.path.empty())
-    return EncodePng(Composite(image->layers, image->width, image->height), image->width, image->height, source);
+    return EncodeRgbaPng(Composite(image->layers, image->width, image->height), image->width, image->height, ref.file);
   const std::vector<Layer>* level = &image->layers;
   const Layer* found = nullptr;
   std::string where = ref.file;
@@ -127,7 +107,7 @@ std::vector<unsigned char> LayeredReferencePng(const std::string& reference, con
     where = "'" + name + "'";
     level = &found->children;
   }
-  return EncodePng(Composite(*found, image->width, image->height), image->width, image->height, source);
+  return EncodeRgbaPng(Composite(*found, image->width, image->height), image->width, image->height, ref.file);
 }
 
 std::vector<unsigned char> ReadDrawingBytes(const std::string& path, const std::string& what,

@@ -68,5 +68,8 @@ bool IsLayeredImagePath(const std::string& path);
 // (transparent pixels as 0, 0, 0, 0).
 std::vector<unsigned char> Composite(const std::vector<Layer>& layers, int width, int height);
 std::vector<unsigned char> Composite(const Layer& layer, int width, int height);
+// Straight-alpha RGBA as PNG bytes; BakeError naming `file` when libpng cannot encode it.
+std::vector<unsigned char> EncodeRgbaPng(const std::vector<unsigned char>& rgba, int width, int height,
+                                         const std::string& file);
 
 }  // namespace posemorph::bake::import
