@@ -64,12 +64,13 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   std::vector<unsigned char> bytes = BakeRig(rig, &report);
   std::optional<PackedAtlas> atlas;
   // A drawing named as a layer of a layered file exists as pixels only in the atlas.
-  const bool layered = RigNamesLayeredDrawings(bytes);
+  const RigDrawings drawn = ReadRigDrawings(bytes);
+  const bool layered = drawn.layered;
   if (layered && !rig.atlas.enabled)
     throw BakeError(rig.file,
                     "a drawing names a layer of a layered file (.ora, .psd), which renderers read from "
                     "the texture atlas: it cannot be baked with \"atlas\": false or --no-atlas");
-  if (rig.atlas.enabled && RigHasDrawings(bytes)) {
+  if (rig.atlas.enabled && drawn.all) {
     BakeStage packing("packing the texture atlas");
     atlas = PackAtlas(bytes, output, std::filesystem::path(rig.file).parent_path().string(), rig.atlas, rig.file);
     if (atlas->skipped.empty()) {

@@ -1,7 +1,6 @@
 // SPDX-License-Identifier: MIT
 // The whole bake as the paper's pipeline (DESIGN.md section 2): each step
 // takes const input and returns its own type, in its own header.
-#include "posemorph/bake/import/layered_reference.h"
 #include "posemorph/bake/bake.h"
 
 #include <algorithm>
@@ -31,6 +30,7 @@
 #include "posemorph/bake/stage.h"
 #include "posemorph/bake/validate_rig.h"
 #include "posemorph/rig_format.h"
+#include "drawn_pose.h"
 
 namespace posemorph::bake {
 namespace {
@@ -89,9 +89,7 @@ GhostingDrawings ReadGhostingDrawings(const RigDescription& description) {
   for (std::size_t i = 0; i < description.poses.size(); ++i) {
     const PoseDescription& pose = description.poses[i];
     const std::string& d = pose.drawing;
-    const bool png =
-        (d.size() > 4 && (d.compare(d.size() - 4, 4, ".png") == 0 || d.compare(d.size() - 4, 4, ".PNG") == 0)) ||
-        import::ParseLayeredReference(d);  // a layer of a layered file: pixels too
+    const bool png = IsRasterDrawing(d);  // a PNG, or a layer of a layered file: pixels too
     if (!pose.drawn || !pose.vertices.empty() || !png) {
       return GhostingDrawings{{}, {}, "pose '" + pose.name + "' has no PNG drawing"};
     }

@@ -102,30 +102,22 @@ void Blit(const Drawing& d, std::uint32_t border, AtlasPage& page) {
 
 }  // namespace
 
-bool RigHasDrawings(const std::vector<unsigned char>& bytes) {
+RigDrawings ReadRigDrawings(const std::vector<unsigned char>& bytes) {
+  RigDrawings out;
   Rig rig;
-  if (!LoadRig(bytes.data(), bytes.size(), &rig, nullptr)) return false;
+  if (!LoadRig(bytes.data(), bytes.size(), &rig, nullptr)) return out;
+  out.all = true;
   for (std::uint32_t l = 0; l < 1 + rig.attachment_count(); ++l) {
     const Rig& r = ListRig(rig, l);
     for (std::uint32_t i = 0; i < r.pose_count(); ++i) {
-      if (r.uvs(i).size == 0 || !(r.pose_canvas(i).width >= 1)) return false;
-      for (std::uint32_t p = 0; p < r.part_count(); ++p)
-        if (r.part_image(p, i).size == 0) return false;
+      out.all = out.all && r.uvs(i).size != 0 && r.pose_canvas(i).width >= 1;
+      for (std::uint32_t p = 0; p < r.part_count(); ++p) {
+        out.all = out.all && r.part_image(p, i).size != 0;
+        out.layered = out.layered || import::ParseLayeredReference(Text(r.part_image(p, i)));
+      }
     }
   }
-  return true;
-}
-
-bool RigNamesLayeredDrawings(const std::vector<unsigned char>& bytes) {
-  Rig rig;
-  if (!LoadRig(bytes.data(), bytes.size(), &rig, nullptr)) return false;
-  for (std::uint32_t l = 0; l < 1 + rig.attachment_count(); ++l) {
-    const Rig& r = ListRig(rig, l);
-    for (std::uint32_t i = 0; i < r.pose_count(); ++i)
-      for (std::uint32_t p = 0; p < r.part_count(); ++p)
-        if (import::ParseLayeredReference(Text(r.part_image(p, i)))) return true;
-  }
-  return false;
+  return out;
 }
 
 std::string AtlasPageName(const std::string& rig_file, std::uint32_t page) {

@@ -123,7 +123,7 @@ class DescriptionWatch final : public WatchedBake {
       // draws from the pages (a drawing may name a layer of a layered file,
       // which only the atlas holds as pixels).
       std::optional<bake::PackedAtlas> atlas;
-      if (d.atlas.enabled && bake::RigHasDrawings(bytes)) {
+      if (d.atlas.enabled && bake::ReadRigDrawings(bytes).all) {
         atlas = bake::PackAtlas(bytes, d.rig_file, folder, d.atlas, d.file);
         if (atlas->skipped.empty())
           bytes = std::move(atlas->rig);

@@ -20,10 +20,7 @@ namespace {
 // appends to keep an image's layer names unique ("mouth #1" in a second
 // pose's group is the part "mouth").
 std::string Safe(std::string name, bool dash) {
-  const std::size_t hash = name.rfind(" #");
-  if (hash != std::string::npos && hash + 2 < name.size() &&
-      name.find_first_not_of("0123456789", hash + 2) == std::string::npos)
-    name.resize(hash);
+  name = WithoutCopyNumber(std::move(name));
   std::string out;
   for (char c : name) {
     const bool keep = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||

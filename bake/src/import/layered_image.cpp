@@ -169,4 +169,12 @@ std::vector<unsigned char> EncodeRgbaPng(const std::vector<unsigned char>& rgba,
   return out;
 }
 
+std::string WithoutCopyNumber(std::string name) {
+  const std::size_t hash = name.rfind(" #");
+  if (hash != std::string::npos && hash + 2 < name.size() &&
+      name.find_first_not_of("0123456789", hash + 2) == std::string::npos)
+    name.resize(hash);
+  return name;
+}
+
 }  // namespace posemorph::bake::import

@@ -21,16 +21,6 @@ bool EndsWithLayeredExtension(std::string s) {
   return s.size() > 4 && (s.compare(s.size() - 4, 4, ".ora") == 0 || s.compare(s.size() - 4, 4, ".psd") == 0);
 }
 
-// A layer's name without the " #N" GIMP and Krita append to keep an
-// image's names unique ("body #1" in a second pose's group is "body").
-std::string WithoutCopyNumber(std::string name) {
-  const std::size_t hash = name.rfind(" #");
-  if (hash != std::string::npos && hash + 2 < name.size() &&
-      name.find_first_not_of("0123456789", hash + 2) == std::string::npos)
-    name.resize(hash);
-  return name;
-}
-
 // Layered files read in this process, by path, while their size and time stay.
 struct CachedImage {
   std::uintmax_t size = 0;

@@ -50,15 +50,15 @@ struct PackedAtlas {
   std::string skipped;
 };
 
-// True when the rig file `rig` draws drawings: it has uvs and canvases, and
-// every part of it and of its attachments names a drawing in every pose
-// (what an atlas needs; a rig from meshes alone has none).
-bool RigHasDrawings(const std::vector<unsigned char>& rig);
-
-// True when some part of the rig file `rig` (or of its attachments) draws a
-// layer of a layered file (import/layered_reference.h): renderers can only
-// read such a drawing from an atlas.
-bool RigNamesLayeredDrawings(const std::vector<unsigned char>& rig);
+// What the rig file `rig` draws, read in one load: `all`, it has uvs and
+// canvases and every part of it and of its attachments names a drawing in
+// every pose (what an atlas needs; a rig from meshes alone has none);
+// `layered`, some part draws a layer of a layered file
+// (import/layered_reference.h), which renderers can only read from an atlas.
+struct RigDrawings {
+  bool all = false, layered = false;
+};
+RigDrawings ReadRigDrawings(const std::vector<unsigned char>& rig);
 
 // The pages' file names for a rig written to `rig_file`: its name without
 // the extension, then ".page<k>.png".

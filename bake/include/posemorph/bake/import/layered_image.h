@@ -68,6 +68,10 @@ bool IsLayeredImagePath(const std::string& path);
 // (transparent pixels as 0, 0, 0, 0).
 std::vector<unsigned char> Composite(const std::vector<Layer>& layers, int width, int height);
 std::vector<unsigned char> Composite(const Layer& layer, int width, int height);
+// A layer's name without the " #N" GIMP and Krita append to keep an
+// image's names unique ("body #1" in a second pose's group is "body").
+std::string WithoutCopyNumber(std::string name);
+
 // Straight-alpha RGBA as PNG bytes; BakeError naming `file` when libpng cannot encode it.
 std::vector<unsigned char> EncodeRgbaPng(const std::vector<unsigned char>& rgba, int width, int height,
                                          const std::string& file);
