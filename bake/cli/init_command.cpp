@@ -22,6 +22,7 @@
 #include "posemorph/bake/map_drawings.h"
 #include "posemorph/bake/mapping/boundary_matching.h"
 #include "posemorph/bake/mapping/outline_image.h"
+#include "posemorph/bake/mapping/outline_svg.h"
 #include "posemorph/bake/rig_description.h"
 
 namespace posemorph::bake::cli {
@@ -164,6 +165,47 @@ bool AsLayered(const std::vector<Drawing>& drawings, Layered* out) {
   for (const std::string& pose : out->poses) {
     out->drawing.emplace_back();
     for (const std::string& part : out->parts) out->drawing.back().push_back(cells.at({pose, part}));
+  }
+  return true;
+}
+
+// A layered character drawn as one SVG per pose whose top-level groups
+// (Inkscape layers by label, plain groups by id; hidden ones left out) are
+// the parts, the same names in every drawing: the parts in the first
+// drawing's order, `drawing[pose][part]` the pose's drawing. False when a
+// drawing is no SVG or has fewer than two such groups; drawings that all
+// have groups, but not the same, are refused.
+bool AsLayeredSvg(const std::vector<Drawing>& drawings, Layered* out) {
+  std::vector<std::vector<std::string>> names;
+  for (const Drawing& d : drawings) {
+    if (Extension(d.path) != "svg") return false;
+    names.push_back(mapping::SvgLayerNames(d.path, ErrorSource(d.path)));
+    if (names.back().size() < 2) return false;
+  }
+  auto listed = [](std::vector<std::string> v) {
+    std::string s;
+    for (std::size_t k = 0; k < v.size() && k < 16; ++k) s += (k ? ", '" : "'") + v[k] + "'";
+    return s + (v.size() > 16 ? ", ..." : "");
+  };
+  for (std::size_t k = 0; k < drawings.size(); ++k) {
+    std::vector<std::string> sorted = names[k];
+    std::sort(sorted.begin(), sorted.end());
+    if (const auto twice = std::adjacent_find(sorted.begin(), sorted.end()); twice != sorted.end())
+      throw BakeError(drawings[k].path,
+                      "two top-level groups are named '" + *twice + "': each part is one layer or group, named apart");
+    if (sorted.size() > 64) throw BakeError(drawings[k].path, "has more than 64 layers (parts); a rig has at most 64");
+    std::vector<std::string> first = names[0];
+    std::sort(first.begin(), first.end());
+    if (sorted != first)
+      throw BakeError(drawings[k].path, "its layers (" + listed(names[k]) + ") are not " + drawings[0].path + "'s (" +
+                                            listed(names[0]) +
+                                            "): each pose's SVG holds every part, a top-level layer or group each "
+                                            "(hide a layer that is no part)");
+  }
+  out->parts = names[0];
+  for (std::size_t k = 0; k < drawings.size(); ++k) {
+    out->poses.push_back(drawings[k].name);
+    out->drawing.emplace_back(out->parts.size(), k);
   }
   return true;
 }
@@ -311,18 +353,21 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   std::string text, summary, advice;
   std::optional<std::string> tried;  // the trial bake of `text`, when made already
   Layered layered;
-  if (AsLayered(drawings, &layered)) {
+  const bool svg_layers = AsLayeredSvg(drawings, &layered);
+  if (svg_layers || AsLayered(drawings, &layered)) {
     ChannelDrawings only;
     only.poses = layered.poses, only.parts = layered.parts;
     for (const std::vector<std::size_t>& row : layered.drawing) {
       only.path.emplace_back(), only.reference.emplace_back();
       for (std::size_t k : row)
         only.path.back().push_back(drawings[k].path), only.reference.back().push_back(drawings[k].reference);
+      if (svg_layers) only.layer.push_back(layered.parts);
     }
     text = LayeredDescription(name, {only});
     summary = std::to_string(layered.poses.size()) + " poses (" + layered.poses[0] +
-              " at the pad's centre, the others around it) of " + std::to_string(layered.parts.size()) +
-              " parts (from POSE-PART.png names; the larger behind, glued where drawn over each other)";
+              " at the pad's centre, the others around it) of " + std::to_string(layered.parts.size()) + " parts (" +
+              (svg_layers ? "each SVG's top-level layers" : "from POSE-PART.png names") +
+              "; the larger behind, glued where drawn over each other)";
   } else {
     // Every drawn pose needs a start landmark, a point every drawing shares:
     // where the character stands, its outline's lowest point. Traced from a

@@ -10,6 +10,7 @@
 
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/mapping/outline_image.h"
+#include "posemorph/bake/mapping/outline_svg.h"
 #include "posemorph/bake/rig_description.h"
 
 namespace posemorph::bake::cli {
@@ -37,9 +38,40 @@ namespace {
 
 struct Mask {
   int width = 0, height = 0;
-  std::vector<char> in;  // alpha above the bake's default threshold
+  std::vector<char> in;      // alpha above the bake's default threshold
+  mapping::Polygon outline;  // an SVG layer's: its outline in mask pixels
   bool At(int x, int y) const { return x >= 0 && y >= 0 && x < width && y < height && in[std::size_t(y) * width + x]; }
 };
+// An SVG layer's outline, filled at `scale` pixels per user unit on the
+// viewBox's canvas (pixel centres inside the polygon).
+Mask SvgLayerMask(const std::string& path, const std::string& layer, double* scale, mapping::Point* origin) {
+  const mapping::SvgOutline o = mapping::OutlineFromSvg(path, 0.25, ErrorSource(path), {layer, true});
+  // At least 256 pixels along the longer side, at most 2048.
+  const double longer = std::max(o.canvas_size.x(), o.canvas_size.y());
+  *scale = std::clamp(256.0 / longer, std::min(1.0, 2048.0 / longer), 2048.0 / longer);
+  *origin = o.canvas_origin;
+  Mask m;
+  m.width = int(std::ceil(o.canvas_size.x() * *scale)), m.height = int(std::ceil(o.canvas_size.y() * *scale));
+  m.in.assign(std::size_t(m.width) * std::size_t(m.height), 0);
+  mapping::Polygon& scaled = m.outline;
+  for (const mapping::Point& p : o.outline) scaled.emplace_back((p - o.canvas_origin) * *scale);
+  // Even-odd scanline fill at each row's pixel centres.
+  for (int y = 0; y < m.height; ++y) {
+    const double cy = y + 0.5;
+    std::vector<double> xs;
+    for (std::size_t k = 0; k < scaled.size(); ++k) {
+      const mapping::Point& a = scaled[k];
+      const mapping::Point& b = scaled[(k + 1) % scaled.size()];
+      if ((a.y() <= cy) != (b.y() <= cy)) xs.push_back(a.x() + (cy - a.y()) / (b.y() - a.y()) * (b.x() - a.x()));
+    }
+    std::sort(xs.begin(), xs.end());
+    for (std::size_t k = 0; k + 1 < xs.size(); k += 2)
+      for (int x = std::max(0, int(std::ceil(xs[k] - 0.5))); x < m.width && x + 0.5 < xs[k + 1]; ++x)
+        m.in[std::size_t(y) * m.width + x] = 1;
+  }
+  return m;
+}
+
 Mask ReadMask(const std::string& path) {
   Mask m;
   const std::vector<unsigned char> alpha = mapping::ReadPngAlpha(path, &m.width, &m.height);
@@ -80,9 +112,22 @@ bool JointOf(const Mask& a, const Mask& b, std::array<double, 2>* at) {
   return true;
 }
 
-// The outline point of a mask nearest `target`: the edge between an inside
-// pixel and an outside one, where the traced outline runs.
+// The outline point of a mask nearest `target`: on an SVG layer's outline,
+// else the edge between an inside pixel and an outside one, where the
+// traced outline runs.
 std::array<double, 2> EdgeNearest(const Mask& m, std::array<double, 2> target) {
+  if (!m.outline.empty()) {
+    const mapping::Point t(target[0], target[1]);
+    mapping::Point best = m.outline[0];
+    for (std::size_t k = 0; k < m.outline.size(); ++k) {
+      const mapping::Point& a = m.outline[k];
+      const mapping::Point d = m.outline[(k + 1) % m.outline.size()] - a;
+      const double along = d.squaredNorm() > 0 ? std::clamp((t - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
+      const mapping::Point p = a + along * d;
+      if ((p - t).squaredNorm() < (best - t).squaredNorm()) best = p;
+    }
+    return {best.x(), best.y()};
+  }
   double best = 1e300;
   std::array<double, 2> out = target;
   const int dx[4] = {1, -1, 0, 0}, dy[4] = {0, 0, 1, -1};
@@ -115,12 +160,23 @@ std::string LayeredDescription(const std::string& name, const std::vector<Channe
   const ChannelDrawings& body = channels[0];
   const std::size_t P = body.poses.size(), Q = body.parts.size();
   std::vector<std::vector<std::vector<Mask>>> masks(channels.size());  // [channel][pose][part]
+  // A mask pixel's corner (x, y) is the drawing's point `origin` + (x, y) /
+  // `scale` (SVG user units); a PNG's pixels are its own.
+  std::vector<std::vector<double>> scale(channels.size());
+  std::vector<std::vector<mapping::Point>> origin(channels.size());
   for (std::size_t c = 0; c < channels.size(); ++c)
     for (std::size_t i = 0; i < channels[c].poses.size(); ++i) {
       masks[c].emplace_back();
+      scale[c].push_back(1), origin[c].emplace_back(0, 0);
       for (std::size_t q = 0; q < channels[c].parts.size(); ++q)
-        masks[c][i].push_back(ReadMask(channels[c].path[i][q]));
+        masks[c][i].push_back(channels[c].layer.empty() ? ReadMask(channels[c].path[i][q])
+                                                        : SvgLayerMask(channels[c].path[i][q], channels[c].layer[i][q],
+                                                                       &scale[c][i], &origin[c][i]));
     }
+  // Pose i's mask point as the drawing's coordinates.
+  auto drawn = [&](std::size_t c, std::size_t i, std::array<double, 2> at) {
+    return std::array<double, 2>{origin[c][i].x() + at[0] / scale[c][i], origin[c][i].y() + at[1] / scale[c][i]};
+  };
   auto area_of = [](const Mask& m) {
     std::size_t n = 0;
     for (char c : m.in) n += c != 0;
@@ -239,8 +295,11 @@ std::string LayeredDescription(const std::string& name, const std::vector<Channe
           target = {n > 0 ? sum / n : 0, bottom + 1.0};
         }
         const std::array<double, 2> lm = EdgeNearest(m, target);
-        s << "      {\"drawing\": " << Quoted(ch.reference[i][q]) << ", \"landmarks\": [[" << Coordinate(lm[0]) << ", "
-          << Coordinate(lm[1]) << "]]}" << (i + 1 < ch.poses.size() ? "," : "") << "\n";
+        const std::array<double, 2> at = drawn(c, i, lm);
+        s << "      {\"drawing\": " << Quoted(ch.reference[i][q]);
+        if (!ch.layer.empty() && ch.layer[i][q] != ch.parts[q]) s << ", \"layer\": " << Quoted(ch.layer[i][q]);
+        s << ", \"landmarks\": [[" << Coordinate(at[0]) << ", " << Coordinate(at[1]) << "]]}"
+          << (i + 1 < ch.poses.size() ? "," : "") << "\n";
       }
       const bool last = c + 1 == channels.size() && q + 1 == ch.parts.size();
       s << "    ]}" << (last ? "" : ",") << "\n";
@@ -253,8 +312,10 @@ std::string LayeredDescription(const std::string& name, const std::vector<Channe
       if (glued_to[c][q] < 0) continue;
       s << (first ? "" : ",\n") << "    {\"part\": " << Quoted(channels[c].parts[q])
         << ", \"to\": " << Quoted(body.parts[std::size_t(glued_to[c][q])]) << ", \"at\": [";
-      for (std::size_t i = 0; i < joint[c][q].size(); ++i)
-        s << (i ? ", " : "") << "[" << Coordinate(joint[c][q][i][0]) << ", " << Coordinate(joint[c][q][i][1]) << "]";
+      for (std::size_t i = 0; i < joint[c][q].size(); ++i) {
+        const std::array<double, 2> at = drawn(c, i, joint[c][q][i]);
+        s << (i ? ", " : "") << "[" << Coordinate(at[0]) << ", " << Coordinate(at[1]) << "]";
+      }
       s << "]}";
       first = false;
     }

@@ -25,6 +25,9 @@ struct ChannelDrawings {
   std::string name;  // "": a rig without channels
   std::vector<std::string> poses, parts;
   std::vector<std::vector<std::string>> path, reference;  // [pose][part]: to read, and as the description names it
+  // An SVG drawing per pose whose top-level groups are the parts: the
+  // group of each part ([pose][part]); empty for a drawing per part.
+  std::vector<std::vector<std::string>> layer;
 };
 
 // The layered description: the first channel's parts back to front by size

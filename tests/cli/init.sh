@@ -4,7 +4,8 @@
 # rasterised drawings), a description written from the drawings alone bakes
 # with default settings (fold-free, compact) and says so; Pell's per-part
 # drawings give a layered description whose joints are the hand-written
-# ones within 4 px (head, eyes, mouth); and the refusals:
+# ones within 4 px (head, eyes, mouth); SVGs with a layer per part give
+# parts; and the refusals:
 # each one line naming the file or the option, status 1 or 2, nothing written.
 #   init.sh BAKE ASSETS WORK
 set -euo pipefail
@@ -53,6 +54,43 @@ print(f"pell: the head's, eyes' and mouth's joints within {worst:.2f} px of the 
 sys.exit(0 if worst <= 4 else 1)
 PY
 
+# A layered character drawn as one SVG per pose, a top-level layer per part
+# (Inkscape layers, a hidden one that is no part; a viewBox not at 0, 0 and
+# smaller than 256, so init fills the layers at 256/150 pixels per unit):
+# parts from the layers' names, each joint inside both parts in the
+# drawing's own coordinates; a set of layers that differs is refused.
+python3 - "$work" <<'PY'
+import math, sys
+for i, angle in enumerate((-100, -40, 20)):
+    t = math.radians(angle)
+    at = lambda x, y: (85 + math.cos(t) * x - math.sin(t) * y, 75 + math.sin(t) * x + math.cos(t) * y)
+    arm = " L ".join("%.4f %.4f" % at(x, y) for x, y in ((-8, -8), (60, -8), (60, 8), (-8, 8)))
+    open(f"{sys.argv[1]}/svg{i}.svg", "w").write(
+        '<svg xmlns="http://www.w3.org/2000/svg" xmlns:inkscape="http://www.inkscape.org/namespaces/inkscape" '
+        'viewBox="20 10 150 150">\n'
+        '<g inkscape:groupmode="layer" inkscape:label="paper" id="layer1" style="display:none">'
+        '<path d="M 20 10 H 170 V 160 H 20 Z"/></g>\n'
+        '<g inkscape:groupmode="layer" inkscape:label="body" id="layer2">'
+        '<polygon points="40,60 100,60 100,140 40,140"/></g>\n'
+        f'<g inkscape:groupmode="layer" inkscape:label="arm" id="layer3"><path d="M {arm} Z"/></g>\n</svg>\n')
+PY
+said=$("$bake" init "$work"/svg{0,1,2}.svg -o "$work/svg.json" 2>&1) || fail "svg layers: init: $said"
+case "$said" in *"3 poses"*"of 2 parts (each SVG's top-level layers"*"it bakes as written"*) echo "svg layers: $said" | head -1 ;;
+  *) fail "svg layers: init says: $said" ;; esac
+python3 - "$work/svg.json" <<'PY' || fail "svg layers: parts or joints"
+import json, math, sys
+d = json.load(open(sys.argv[1]))
+assert [p["name"] for p in d["parts"]] == ["body", "arm"], [p["name"] for p in d["parts"]]
+assert [p["drawing"] for p in d["parts"][1]["poses"]] == ["svg0.svg", "svg1.svg", "svg2.svg"]
+(glue,) = d["glue"]
+for (x, y), angle in zip(glue["at"], (-100, -40, 20)):
+    t = math.radians(angle)  # the joint in the arm's own frame, and in the body
+    u, v = math.cos(t) * (x - 85) + math.sin(t) * (y - 75), -math.sin(t) * (x - 85) + math.cos(t) * (y - 75)
+    assert 40 < x < 100 and 60 < y < 140 and -8 < u < 60 and -8 < v < 8, (x, y, u, v)
+print("svg layers: body and arm, joints", glue["at"], "inside both")
+PY
+sed 's/inkscape:label="arm"/inkscape:label="wing"/' "$work/svg2.svg" > "$work/svg3.svg"
+
 # The layout: the first pose at the centre, the others clockwise from the top.
 grep -q '"name": "rest", "point": \[0, 0\]' "$work/pip.json" || fail "pip: rest is not at the centre"
 grep -q '"point": \[0, 1\]' "$work/pip.json" && grep -q '"point": \[-1, 0\]' "$work/pip.json" ||
@@ -73,5 +111,7 @@ refused 1 "$work/missing.png: cannot read the drawing" "$p/rest.png" "$work/miss
 refused 2 "init takes layered files (.ora, .psd) or flat drawings (PNG, SVG), not both" "$p/rest.png" \
   "$work/pose.ora" -o "$work/ora.json"
 refused 1 "$work/pip.json: exists; init does not overwrite" "$p/rest.png" "$p/wave.png" -o "$work/pip.json"
-for f in one missing ora; do [ ! -e "$work/$f.json" ] || fail "$f.json was written"; done
+refused 1 "$work/svg3.svg: its layers ('body', 'wing') are not $work/svg0.svg's ('body', 'arm')" \
+  "$work/svg0.svg" "$work/svg3.svg" -o "$work/layers.json"
+for f in one missing ora layers; do [ ! -e "$work/$f.json" ] || fail "$f.json was written"; done
 [ "$failures" -eq 0 ] && echo "init: ok" || exit 1

@@ -327,6 +327,30 @@ SvgOutline OutlineFromSvg(const std::string& path, double tol, const ErrorSource
   return OutlineFromSvgText(std::string(bytes.begin(), bytes.end()), tol, source, layer);
 }
 
+std::vector<std::string> SvgLayerNames(const std::string& path, const ErrorSource& source) {
+  const std::vector<unsigned char> bytes = ReadInputFile(path, kMaxTextFileBytes, "an SVG drawing", source);
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(reinterpret_cast<const char*>(bytes.data()), bytes.size()) != tinyxml2::XML_SUCCESS)
+    throw source.Error(std::string("invalid SVG (XML): ") + doc.ErrorStr());
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  if (!root || std::string(root->Name()) != "svg") throw source.Error("not an SVG document (no <svg> root)");
+  std::vector<std::string> names;
+  for (const tinyxml2::XMLElement* g = root->FirstChildElement("g"); g; g = g->NextSiblingElement("g")) {
+    const char* style = g->Attribute("style");
+    if (style) {
+      std::string compact;
+      for (const char* c = style; *c; ++c)
+        if (*c != ' ') compact += *c;
+      if (compact.find("display:none") != std::string::npos) continue;
+    }
+    const char* label = g->Attribute("inkscape:label");
+    const char* id = g->Attribute("id");
+    const char* name = label && *label ? label : id;
+    if (name && *name) names.emplace_back(name);
+  }
+  return names;
+}
+
 SvgOutline OutlineFromSvg(const std::string& path, double tol) { return OutlineFromSvg(path, tol, ErrorSource(path)); }
 
 }  // namespace posemorph::bake::mapping

@@ -2,6 +2,7 @@
 // A drawing's outline from an SVG path or polygon (stage 1 of N-way mapping).
 #pragma once
 #include <string>
+#include <vector>
 
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/mapping/polygon.h"
@@ -33,6 +34,14 @@ SvgOutline OutlineFromSvg(const std::string& path, double tolerance, const Error
                           const SvgLayer& layer = {});
 SvgOutline OutlineFromSvgText(const std::string& text, double tolerance, const ErrorSource& source,
                               const SvgLayer& layer = {});
+// The names of a drawing's top-level groups (the <svg> element's <g>
+// children: an Inkscape layer by its inkscape:label, a plain group by its
+// id), in document order, leaving out unnamed and hidden ones
+// (style="display:none", Inkscape's hidden layer): the parts `posemorph-bake
+// init` makes of one SVG per pose. Throws BakeError naming the file when it
+// is not an SVG document.
+std::vector<std::string> SvgLayerNames(const std::string& path, const ErrorSource& source);
+
 // Path data alone ("M 0 0 L 10 0 ..."), first subpath.
 Polygon FlattenSvgPath(const std::string& d, double tolerance, const ErrorSource& source);
 
