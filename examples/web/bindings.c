@@ -24,6 +24,8 @@ const size_t* pmw_layout(void) {
       sizeof(pm_draw_options),
       offsetof(pm_draw_list, colour),
       offsetof(pm_draw_options, colours),
+      sizeof(pm_page),
+      sizeof(pm_region),
   };
   return layout;
 }

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // A character drawn with WebGL2, following the pointer through pose space:
 // posemorph.js gives a draw list per frame, this file draws it with the
-// exact cross-fade (the weighted sum of premultiplied drawings, then "over").
+// exact cross-fade (the weighted sum of premultiplied drawings, then "over"),
+// sampled from the rig's texture pages (its atlas, or without one its drawings).
 // The smallest web example: the body channel of one rig through the C API by
 // hand. A game takes integrations/web instead, the npm package (every
 // channel, part and attachment, transforms, 4-byte points, the animator, a
@@ -30,24 +31,26 @@ void main() {
 const fragmentShader = `#version 300 es
 precision highp float;
 precision highp sampler2DArray;
-uniform sampler2DArray drawings;
+uniform sampler2DArray pages;
 uniform float weights[8];
-uniform int layers[8];
+uniform int layers[8];  // each picked drawing's page
+uniform vec4 maps[8];   // and where it lies there: page uv = (u x + y, v z + w)
 uniform vec4 tint;  // the draw list's colour, premultiplied: (r a, g a, b a, a)
 in vec2 v_uv[8];
 out vec4 colour;
 void main() {
   colour = vec4(0.0);
   for (int k = 0; k < 8; ++k)
-    if (weights[k] != 0.0) colour += weights[k] * texture(drawings, vec3(v_uv[k], float(layers[k])));
+    if (weights[k] != 0.0)
+      colour += weights[k] * texture(pages, vec3(v_uv[k] * maps[k].xz + maps[k].yw, float(layers[k])));
   colour *= tint;
 }`;
 
-function loadImage(url) {
+function loadPage(url, name) {
   return new Promise((resolve, reject) => {
     const image = new Image();
     image.onload = () => resolve(image);
-    image.onerror = () => reject(new Error(`${url}: cannot load the drawing`));
+    image.onerror = () => reject(new Error(`${name}: cannot load the page`));
     image.src = url;
   });
 }
@@ -67,13 +70,19 @@ async function main() {
   if (!response.ok) throw new Error(`${rigName}: HTTP ${response.status}`);
   const rig = pm.loadRig(new Uint8Array(await response.arrayBuffer()), rigName);
   const N = rig.poseCount, V = rig.vertexCount;
-  const { width, height } = rig.canvas(0);
-  if (!width || !rig.poseImage(0)) throw new Error(`${rigName}: the rig was not baked from drawings`);
-  const images = await Promise.all([...Array(N).keys()].map((i) => loadImage(rig.poseImage(i))));
-  images.forEach((image, i) => {
+  // The texture pages: the atlas the bake packed beside the rig (one size,
+  // premultiplied), or for a rig without one each pose's drawing.
+  const pages = rig.pages(), { width, height } = pages[0] || {};
+  if (!width || !pages[0].name) throw new Error(`${rigName}: the rig was not baked from drawings`);
+  const folder = rigName.slice(0, rigName.lastIndexOf('/') + 1);
+  const images = await Promise.all(pages.map((p) => loadPage(p.atlas ? folder + p.name : p.name, p.name)));
+  images.forEach((image, k) => {
+    const p = pages[k];
     if (image.width !== width || image.height !== height)
-      throw new Error(`${rig.poseImage(i)}: the drawing is ${image.width}x${image.height}, the rig was baked from ${width}x${height}`);
+      throw new Error(p.atlas ? `${p.name}: the atlas page is ${image.width}x${image.height}, the rig's pages are ${width}x${height}`
+                              : `${p.name}: the drawing is ${image.width}x${image.height}, the rig was baked from ${width}x${height}`);
   });
+  const regions = [...Array(N).keys()].map((i) => rig.region(i));
 
   const size = Number(query.get('size') || 512);
   const canvas = document.getElementById('view');
@@ -91,12 +100,15 @@ async function main() {
   gl.linkProgram(program);
   gl.useProgram(program);
 
-  // Once: the drawings (premultiplied) as a texture array, every pose's uvs, the triangles.
+  // Once: the pages (premultiplied) as a texture array, every pose's uvs, the triangles.
   const texture = gl.createTexture();
   gl.bindTexture(gl.TEXTURE_2D_ARRAY, texture);
-  gl.pixelStorei(gl.UNPACK_PREMULTIPLY_ALPHA_WEBGL, true);
-  gl.texStorage3D(gl.TEXTURE_2D_ARRAY, 1, gl.RGBA8, width, height, N);
-  images.forEach((image, i) => gl.texSubImage3D(gl.TEXTURE_2D_ARRAY, 0, 0, 0, i, width, height, 1, gl.RGBA, gl.UNSIGNED_BYTE, image));
+  gl.texStorage3D(gl.TEXTURE_2D_ARRAY, 1, gl.RGBA8, width, height, pages.length);
+  gl.pixelStorei(gl.UNPACK_COLORSPACE_CONVERSION_WEBGL, gl.NONE);  // the pixels as stored
+  images.forEach((image, k) => {
+    gl.pixelStorei(gl.UNPACK_PREMULTIPLY_ALPHA_WEBGL, !pages[k].premultiplied);  // a drawing: straight alpha
+    gl.texSubImage3D(gl.TEXTURE_2D_ARRAY, 0, 0, 0, k, width, height, 1, gl.RGBA, gl.UNSIGNED_BYTE, image);
+  });
   gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_MIN_FILTER, gl.LINEAR);
   gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_WRAP_S, gl.CLAMP_TO_EDGE);  // WebGL has no border colour:
   gl.texParameteri(gl.TEXTURE_2D_ARRAY, gl.TEXTURE_WRAP_T, gl.CLAMP_TO_EDGE);  // drawings keep a clear edge
@@ -127,6 +139,7 @@ async function main() {
   });
 
   const weightsAt = gl.getUniformLocation(program, 'weights'), layersAt = gl.getUniformLocation(program, 'layers');
+  const mapsAt = gl.getUniformLocation(program, 'maps');
   const tintAt = gl.getUniformLocation(program, 'tint');
   let tint = (query.get('tint') || '').split(',').map(Number);  // ?tint=r,g,b,a
   if (tint.length !== 4 || !tint.every(Number.isFinite)) tint = null;
@@ -141,15 +154,17 @@ async function main() {
     gl.bufferData(gl.ARRAY_BUFFER, list.positions, gl.STREAM_DRAW);
     gl.vertexAttribPointer(0, 2, gl.FLOAT, false, 0, 0);
     gl.bindBuffer(gl.ARRAY_BUFFER, uvs);
-    const weights = new Float32Array(8), layers = new Int32Array(8);
+    const weights = new Float32Array(8), layers = new Int32Array(8), maps = new Float32Array(32);
     for (let s = 0; s < 8; ++s) {
       const d = list.drawings[s < list.drawings.length ? s : 0];
       weights[s] = s < list.drawings.length ? d.weight : 0;
-      layers[s] = d.pose;
+      layers[s] = regions[d.pose].page;
+      maps.set(regions[d.pose].map, 4 * s);
       gl.vertexAttribPointer(1 + s, 2, gl.FLOAT, false, 0, 8 * V * d.pose);
     }
     gl.uniform1fv(weightsAt, weights);
     gl.uniform1iv(layersAt, layers);
+    gl.uniform4fv(mapsAt, maps);
     const [r, g, b, a] = list.colour;
     gl.uniform4f(tintAt, r * a * list.partOpacity[0], g * a * list.partOpacity[0], b * a * list.partOpacity[0],
                  a * list.partOpacity[0]);

@@ -7,10 +7,12 @@
 //   const lists = rig.drawLists(1, [x, y]);           // [{positions, indices, drawings: [{pose, weight, uvs}], colour, ...}]
 //   rig.drawLists(1, [x, y], { tint: [r, g, b, a] }); // every character tinted (multiply) at opacity a
 //   const { raw, limited, texture } = rig.weights(x, y); // the pose-space weights alone
+//   const pages = rig.pages();                         // [{name, width, height, atlas, premultiplied}]: what to upload
+//   const { page, map } = rig.region(i);               // where pose i's drawing lies: page, uv map [su, ou, sv, ov]
 //
 // Arrays returned are views into wasm memory, valid until the next call.
 
-const LAYOUT = [424, 0, 16, 20, 12, 4, 8, 140, 32, 48, 32, 32, 152, 20];  // wasm32 (bindings.c checks them)
+const LAYOUT = [424, 0, 16, 20, 12, 4, 8, 140, 32, 48, 32, 32, 152, 20, 16, 36];  // wasm32 (bindings.c checks them)
 
 export class Posemorph {
   static async create(createWasm) {
@@ -60,6 +62,34 @@ export class Rig {
     const name = m.UTF8ToString(s);
     m._free(s);
     return name;
+  }
+  // The texture pages to upload (the body's list): with an atlas
+  // (hasAtlas), the pages the bake packed beside the rig file, premultiplied;
+  // without, one per pose, the drawing itself (a name like poseImage's).
+  get hasAtlas() {
+    return this.wasm._pm_rig_has_atlas(this.handle) === 1;
+  }
+  pages() {
+    const m = this.wasm, n = m._pm_character_page_count(this.handle, 0), p = m._malloc(16), s = m._malloc(1024);
+    const pages = [];
+    for (let k = 0; k < n; ++k) {
+      m._pm_character_page(this.handle, 0, k, p);
+      m._pm_character_page_name(this.handle, 0, k, s, 1024, 0);
+      const u = m.HEAPU32.subarray(p >> 2);
+      pages.push({ name: m.UTF8ToString(s), width: u[0], height: u[1], atlas: u[2] === 1, premultiplied: u[3] === 1 });
+    }
+    [p, s].forEach((q) => m._free(q));
+    return pages;
+  }
+  // Pose i's region: its page and the map from its uvs to the page's,
+  // (u map[0] + map[1], v map[2] + map[3]).
+  region(i) {
+    const m = this.wasm, r = m._malloc(36);
+    const status = m._pm_character_part_region(this.handle, 0, 0, i, r);
+    const page = m.HEAPU32[r >> 2], map = Array.from(m.HEAPF32.subarray((r >> 2) + 1, (r >> 2) + 5));
+    m._free(r);
+    if (status !== 0) throw new Error(`pm_character_part_region failed (${status})`);
+    return { page, map };
   }
   // Pose i's uvs into its own drawing (2 x vertexCount).
   uvs(i) {

@@ -2,18 +2,27 @@
 # SPDX-License-Identifier: MIT
 # The web example in headless Chromium (SwiftShader WebGL2), served from
 # 127.0.0.1: the page's vertex positions equal the native runtime's bit for
-# bit, its frame matches posemorph-view's (plain and tinted), load errors show in the page, and
-# the runtime's time per frame in the browser is reported.
-# Usage: run_test.sh WASM-DIR RIG IMAGES VIEW COMPARE HASH WORK SHOTS
+# bit, its frame matches posemorph-view's (plain and tinted) drawn from the
+# rig's atlas page, and from the drawings for a rig baked without one, load
+# errors show in the page, and the runtime's time per frame in the browser
+# is reported.
+# Usage: run_test.sh WASM-DIR RIG IMAGES VIEW COMPARE HASH WORK SHOTS BAKE
+#   RIG: a rig with an atlas (its pages beside it); IMAGES: its drawings and
+#   description, baked again here without an atlas.
 set -euo pipefail
-wasm=$1 rig=$2 images=$3 view=$4 compare=$5 hash=$6 work=$7 shots=$8
+wasm=$1 rig=$2 images=$3 view=$4 compare=$5 hash=$6 work=$7 shots=$8 bake=$9
 here=$(cd "$(dirname "$0")" && pwd)
 rm -rf "$work" && mkdir -p "$work/site/resized" "$shots"
+"$bake" "$images/$(basename "$rig" .pmrig).json" --no-atlas --quiet -o "$work/flat.pmrig"
+pages=("${rig%.pmrig}".page*.png)
+[ -f "${pages[0]}" ] || { echo "FAIL: $rig has no atlas page beside it"; exit 1; }
 for d in "$work/site" "$work/site/resized"; do
   cp "$here/index.html" "$here/main.js" "$here/posemorph.js" "$wasm/posemorph_wasm.js" "$wasm/posemorph_wasm.wasm" \
-     "$rig" "$images"/*.png "$d/"
+     "$rig" "${pages[@]}" "$work/flat.pmrig" "$images"/*.png "$d/"
 done
-cp "$here/../../docs/crowd.png" "$work/site/resized/rest.png"   # 960x320: not the size Pip was baked from
+# 960x320: neither the size the drawings were baked from nor the page's.
+cp "$here/../../docs/crowd.png" "$work/site/resized/rest.png"
+cp "$here/../../docs/crowd.png" "$work/site/resized/$(basename "${pages[0]}")"
 head -c 1000 "$rig" > "$work/site/bad.pmrig"                    # truncated
 
 python3 -m http.server 0 --bind 127.0.0.1 --directory "$work/site" > "$work/server.log" 2>&1 &
@@ -46,6 +55,14 @@ timeout 60 "${chrome[@]}" --virtual-time-budget=30000 --window-size=256,256 --sc
 echo -n "web page against posemorph-view, tinted 1,0.5,0.25 at opacity 0.6: "
 "$compare" "$work/web-tint.png" "$work/view-tint.png" 0.01
 if "$compare" "$work/web-tint.png" "$work/web.png" 0.01 > /dev/null; then echo "FAIL: the tint changed nothing"; exit 1; fi
+# A rig without an atlas: the page draws each pose's drawing, the same frame.
+timeout 60 "${chrome[@]}" --virtual-time-budget=30000 --window-size=256,256 --screenshot="$work/web-flat.png" \
+  "$site/index.html?rig=flat.pmrig&at=0.5,0.5&size=256" 2>/dev/null
+"$view" "$work/flat.pmrig" --images "$images" --headless --at 0.5,0.5 --size 256x256 -o "$work/view-flat.png" > /dev/null
+echo -n "web page from the drawings (a rig without an atlas) against posemorph-view: "
+"$compare" "$work/web-flat.png" "$work/view-flat.png" 0.01
+echo -n "web page from the atlas page against from the drawings: "
+"$compare" "$work/web.png" "$work/web-flat.png" 0.01
 
 # 3. Load errors show in the page.
 expect() {
@@ -54,7 +71,10 @@ expect() {
 }
 expect "index.html?rig=missing.pmrig" "error: missing.pmrig: HTTP 404"
 expect "index.html?rig=bad.pmrig" "error: bad.pmrig: "
-expect "resized/index.html?at=0,0" "error: rest.png: the drawing is 960x320, the rig was baked from 256x256"
+page_name=$(basename "${pages[0]}")
+expect "resized/index.html?at=0,0" "error: $page_name: the atlas page is 960x320, the rig's pages are"
+expect "resized/index.html?rig=flat.pmrig&at=0,0" \
+  "error: rest.png: the drawing is 960x320, the rig was baked from 256x256"
 
 # 4. Real time (virtual time stops the clock): the page's title, read over the debugging port.
 title=$(python3 "$here/../../scripts/chromium-title.py" "$site/index.html?at=0.5,0.5&size=256" ready,error 60 \
