@@ -150,15 +150,16 @@ window "$work/pell-face.pmrig" --images "$drawn/pell" --size 1300x920 --inputs "
 # took after comparing them with posemorph-view's frames
 # (examples/CMakeLists.txt, integrations/*/tests/run.sh). Shots newer than
 # every program that made them come from this build's test run (CI's release
-# step has just run the four tests) and are taken as they are; otherwise the
-# four run again here.
+# step has just run the five tests) and are taken as they are; otherwise the
+# five run again here.
 shots=("$build/example-shots/sdl2-opengl/sdl2.png" "$build/example-shots/sdl2-opengl/crowd.png"
        "$build/example-shots/web/web.png" "$build/example-shots/love/love-crowd.png"
-       "$build/example-shots/web-pixi/web-crowd.png")
+       "$build/example-shots/web-pixi/web-crowd.png" "$build/example-shots/csharp/csharp-crowd.png")
 makers=("$bin/posemorph-view" "$bin/posemorph-example-sdl2" "$build/examples/web-wasm/posemorph_wasm.wasm"
         "$build/rigs/pip.pmrig" "$build/rigs/pell-face.compact.pmrig" "$build/bindings/libposemorph.so"
         integrations/love/posemorph.lua integrations/love/example/main.lua
-        "$build/integrations/web/wasm/posemorph_wasm.wasm" integrations/web/pixi.mjs integrations/web/example/main.mjs)
+        "$build/integrations/web/wasm/posemorph_wasm.wasm" integrations/web/pixi.mjs integrations/web/example/main.mjs
+        integrations/csharp/Posemorph.cs integrations/csharp/example/Example.cs integrations/csharp/example/Picture.cs)
 fresh=1
 for shot in "${shots[@]}"; do
   [ -f "$shot" ] || { fresh=0; break; }
@@ -169,7 +170,7 @@ done
 if [ "$fresh" = 1 ]; then
   echo "docs-figures: the example shots in $build/example-shots are newer than their programs: taken as they are"
 else
-  ctest --test-dir "$build" -R '^(example\.(sdl2_opengl|web)|integration\.(love|web))$' --output-on-failure \
+  ctest --test-dir "$build" -R '^(example\.(sdl2_opengl|web)|integration\.(love|web|csharp))$' --output-on-failure \
     > "$work/examples.log" ||
     { cat "$work/examples.log" >&2; exit 1; }
 fi
@@ -177,6 +178,7 @@ cp "$build/example-shots/sdl2-opengl/sdl2.png" "$out/examples/sdl2-opengl.png" &
 cp "$build/example-shots/sdl2-opengl/crowd.png" "$out/examples/sdl2-opengl-crowd.png" && wrote examples/sdl2-opengl-crowd.png
 cp "$build/example-shots/web/web.png" "$out/examples/web.png" && wrote examples/web.png
 cp "$build/example-shots/love/love-crowd.png" "$out/examples/love-crowd.png" && wrote examples/love-crowd.png
+cp "$build/example-shots/csharp/csharp-crowd.png" "$out/examples/csharp-crowd.png" && wrote examples/csharp-crowd.png
 if [ -f "$build/example-shots/web-pixi/web-crowd.png" ]; then
   cp "$build/example-shots/web-pixi/web-crowd.png" "$out/examples/web-crowd.png" && wrote examples/web-crowd.png
 else  # integration.web skips, with its reason, where the npm registry cannot be reached

@@ -24,7 +24,8 @@ done
 for i in opengl csharp love web; do
   case $i in
     opengl) files=(integrations/opengl/posemorph_gl.h integrations/opengl/posemorph_gl.cpp) ;;
-    csharp) files=(integrations/csharp/Posemorph.cs integrations/csharp/example/Example.cs) ;;
+    csharp) files=(integrations/csharp/Posemorph.cs integrations/csharp/example/Example.cs
+            integrations/csharp/example/Picture.cs) ;;
     love) files=(integrations/love/posemorph.lua integrations/love/example/main.lua) ;;
     web) files=(integrations/web/src/posemorph_web.c integrations/web/posemorph.mjs integrations/web/pixi.mjs
                integrations/web/example/main.mjs) ;;

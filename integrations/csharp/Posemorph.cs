@@ -244,6 +244,7 @@ internal static class Native {
                                                                 int face_left, out Transform t);
   [DllImport(Lib)] public static extern int pm_rig_placement(IntPtr rig, out double x, out double y, out int left);
   [DllImport(Lib)] public static extern int pm_channel_pad_range(IntPtr rig, uint c, out Bounds b);
+  [DllImport(Lib)] public static extern int pm_rig_pose_bounds(IntPtr rig, uint pose, out Bounds b);
   [DllImport(Lib)] public static extern void pm_draw_options_default(out DrawOptions o);
   [DllImport(Lib)] public static extern int pm_character_buffers(IntPtr rig, UIntPtr count, out BufferSizes s);
   [DllImport(Lib)] public static extern int pm_character_draw_lists(
@@ -417,6 +418,23 @@ public sealed class Rig : IDisposable {
     Bounds b;
     if (Native.pm_channel_pad_range(H, c, out b) != 0) throw new PosemorphException(1, File + ": no channel " + c);
     return b;
+  }
+  // The body's bounds in pose `pose` (rig units, y up); Bounds() over them all.
+  public Bounds PoseBounds(uint pose) {
+    Bounds b;
+    if (Native.pm_rig_pose_bounds(H, pose, out b) != 0) throw new PosemorphException(1, File + ": no pose " + pose);
+    return b;
+  }
+  public Bounds Bounds() {
+    Bounds all = PoseBounds(0);
+    for (uint i = 1; i < PoseCount; ++i) {
+      Bounds b = PoseBounds(i);
+      all.MinX = Math.Min(all.MinX, b.MinX);
+      all.MinY = Math.Min(all.MinY, b.MinY);
+      all.MaxX = Math.Max(all.MaxX, b.MaxX);
+      all.MaxY = Math.Max(all.MaxY, b.MaxY);
+    }
+    return all;
   }
   public bool NearestFilter(uint list) { return Native.pm_character_texture_filter(H, list) == 1; }
   // Texture pages (Rig::page): what a renderer uploads for list `list`, and
