@@ -128,18 +128,19 @@ def init_alone(binary, character, cache, out_dir):
     """Whether `posemorph-bake init` on the character's drawings alone (one
     per pose, in the description's order; none placed by hand) writes a
     description that bakes as written: True, False, or None for a layered
-    character (parts), which init takes as POSE-PART.png files."""
+    character (parts), which init takes as POSE-PART.png files; and what
+    init said."""
     name = character["name"]
     folder = os.path.join(fetch(character["package"], cache), character["folder"])
     with open(os.path.join(CORPUS, name + ".json")) as f:
         description = json.load(f)
     if description.get("parts") or not description.get("poses"):
-        return None
+        return None, ""
     drawings = [os.path.join(folder, p["drawing"]) for p in description["poses"] if "drawing" in p]
     os.makedirs(os.path.join(out_dir, "init"), exist_ok=True)
     r = subprocess.run([binary, "init", *drawings, "-o", os.path.join(out_dir, "init", name + ".json"), "--force"],
                        capture_output=True, text=True)
-    return r.returncode == 0 and "it bakes as written" in r.stdout
+    return r.returncode == 0 and "it bakes as written" in r.stdout, r.stdout + r.stderr
 
 
 def alone(r):
@@ -179,6 +180,11 @@ def check(rows, expected):
         bound = dict(expected, **gap)
         for key, value in gap.items():
             print(f"game-art: known gap: {name}: {key} {value} (the bound is {expected[key]})")
+        # An internal error is a bug whatever the drawings: in the bake, or in
+        # init's trial bakes (its lowest points, the starts it suggests).
+        for what, said in (("the bake", r.get("error") or ""), ("init", r.get("init_said", ""))):
+            if "internal:" in said:
+                problems.append(f"{name}: {what} says: " + next(l for l in said.splitlines() if "internal:" in l))
         if name in expected["bakes"] and not r["baked"]:
             problems.append(f"{name}: no longer bakes with default settings: {r['error']}")
         if not r["baked"]:
@@ -218,7 +224,7 @@ def main():
     os.makedirs(out_dir, exist_ok=True)
     rows = [bake(os.path.abspath(args.bake), c, args.cache, out_dir) for c in characters]
     for r, c in zip(rows, characters):
-        r["init"] = init_alone(os.path.abspath(args.bake), c, args.cache, out_dir)
+        r["init"], r["init_said"] = init_alone(os.path.abspath(args.bake), c, args.cache, out_dir)
     text = table(rows)
     print(text)
     for r in rows:

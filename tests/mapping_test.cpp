@@ -409,6 +409,25 @@ TEST_CASE("mapping: every stage keeps its promise on the corpus") {
   }
 }
 
+TEST_CASE("mapping: a polygon's self-crossing edges are named exactly") {
+  // The enclosing simplification splits the spans of these edges when its
+  // outward pushes made them cross each other.
+  using V = std::vector<std::size_t>;
+  const Polygon square = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  CHECK(pm::SelfCrossingEdges(square).empty());
+  CHECK(pm::IsSimplePolygon(square));
+  // A bow tie: edges 0 (0,0)-(10,10) and 2 (10,0)-(0,10) cross.
+  CHECK(pm::SelfCrossingEdges({{0, 0}, {10, 10}, {10, 0}, {0, 10}}) == V{0, 2});
+  // Two edges pushed down through a notch's two sides: 5 meets 2, 6 meets 1.
+  const Polygon notch = {{0, 0}, {4, 0}, {5, 8}, {6, 0}, {10, 0}, {10, 10}, {5, -2}, {0, 10}};
+  CHECK(pm::SelfCrossingEdges(notch) == V{1, 2, 5, 6});
+  CHECK_FALSE(pm::IsSimplePolygon(notch));
+  // A spike folding back onto its neighbour (and so ending on edge 0, where
+  // edge 2 starts), and an edge of no length (its neighbours 0 and 2 touch).
+  CHECK(pm::SelfCrossingEdges({{0, 0}, {10, 0}, {5, 0}, {5, 5}}) == V{0, 1, 2});
+  CHECK(pm::SelfCrossingEdges({{0, 0}, {10, 0}, {10, 0}, {0, 10}}) == V{0, 1, 2});
+}
+
 TEST_CASE("mapping: matching a shape to its own rotated, scaled copy is the identity") {
   Polygon blob;
   for (int k = 0; k < 400; ++k) {

@@ -394,11 +394,13 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
         const std::string other = Description(name, drawings, aligned);
         std::string list;
         for (const std::string& m : moved) list += (list.empty() ? " " : "; ") + m;
-        if (TryBake(other, output, folder.string()).empty()) {
+        const std::string other_problem = TryBake(other, output, folder.string());
+        if (other_problem.empty()) {
           text = other, tried = std::string();
           summary += ", except where the outlines' bends place it elsewhere (the lowest points do not bake):" + list;
         } else {
-          advice = "the outlines' bends suggest other starts (neither bakes as written):" + list;
+          advice = "the outlines' bends suggest other starts (neither bakes as written):" + list +
+                   "; with them: " + other_problem;
         }
       }
     }

@@ -189,7 +189,8 @@ class Simplifier {
   // 1. The corresponding points of pose i, each edge pushed out just past
   // its span. Returns the edges no push could make enclose their span (an
   // outline tip between two points whose normals point past it, as a
-  // pixel-art hand one pixel wide makes): empty when every edge does.
+  // pixel-art hand one pixel wide makes), or when every edge encloses its
+  // span, those that cross each other: empty when the polygon is simple.
   // Careful (after a first failure): an edge that encloses its span but
   // crosses the outline elsewhere is not pushed farther (that only made it
   // cross more, across a narrow gap); its ends move back to their share of
@@ -236,7 +237,11 @@ class Simplifier {
           failing.push_back(e);
         }
       }
-      if (failing.empty() && IsSimplePolygon(s.pos)) return {};
+      // Every edge encloses its span, but pushed out far enough they may
+      // cross each other (two sides of a narrow gap, or a sharp turn's
+      // miter): pushing more cannot help, so those edges' spans are split
+      // (nearer their outline, they need shorter pushes).
+      if (failing.empty()) return SelfCrossingEdges(s.pos);
       if (attempt == 30) return failing;
     }
   }

@@ -22,9 +22,14 @@ double SignedArea(const Polygon& p) {
   return twice / 2;
 }
 
-bool IsSimplePolygon(const Polygon& p) {
+namespace {
+
+// The edges (index i: p[i] to p[i + 1]) that meet another edge other than
+// at a shared vertex, fold back onto a neighbour, or have no length; the
+// first such edge only when `first_only`.
+std::vector<std::size_t> BadEdges(const Polygon& p, bool first_only) {
   const std::size_t n = p.size();
-  if (n < 3) return false;
+  std::vector<std::size_t> bad;
   // Sweep over x so long outlines stay fast: edges sorted by their left end.
   std::vector<std::size_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = i;
@@ -34,23 +39,39 @@ bool IsSimplePolygon(const Polygon& p) {
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t e = order[k];
     const Point &a = p[e], &b = p[(e + 1) % n];
-    if (a == b) return false;
+    if (a == b) {
+      bad.push_back(e);
+      if (first_only) return bad;
+      continue;
+    }
     for (std::size_t m = k + 1; m < n && lo(order[m]) <= hi(e); ++m) {
       const std::size_t f = order[m];
       const Point &c = p[f], &d = p[(f + 1) % n];
+      bool meet;
       if (f == (e + 1) % n || e == (f + 1) % n) {
         // Neighbours share one vertex; they may not fold back onto each other.
         const Point& shared = f == (e + 1) % n ? b : a;
         const Point& x = f == (e + 1) % n ? a : b;
         const Point& y = f == (e + 1) % n ? d : c;
-        if (Cross(shared, x, y) == 0 && (x - shared).dot(y - shared) > 0) return false;
-        continue;
+        meet = Cross(shared, x, y) == 0 && (x - shared).dot(y - shared) > 0;
+      } else {
+        meet = c != d && SegmentsMeet(a, b, c, d);
       }
-      if (SegmentsMeet(a, b, c, d)) return false;
+      if (!meet) continue;
+      bad.push_back(e), bad.push_back(f);
+      if (first_only) return bad;
     }
   }
-  return true;
+  std::sort(bad.begin(), bad.end());
+  bad.erase(std::unique(bad.begin(), bad.end()), bad.end());
+  return bad;
 }
+
+}  // namespace
+
+bool IsSimplePolygon(const Polygon& p) { return p.size() >= 3 && BadEdges(p, true).empty(); }
+
+std::vector<std::size_t> SelfCrossingEdges(const Polygon& p) { return BadEdges(p, false); }
 
 int PointInPolygon(const Polygon& p, const Point& q) {
   bool inside = false;

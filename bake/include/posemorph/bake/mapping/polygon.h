@@ -2,6 +2,7 @@
 // The mapping's polygons, and exact geometry on the integer grid every
 // mapping stage runs on.
 #pragma once
+#include <cstddef>
 #include <vector>
 
 #include <Eigen/Core>
@@ -17,6 +18,10 @@ using Polygon = std::vector<Point>;  // closed implicitly
 int Orient(const Point& a, const Point& b, const Point& c);  // +1 left turn, -1 right, 0 collinear
 double SignedArea(const Polygon& p);
 bool IsSimplePolygon(const Polygon& p);  // no two edges meet except neighbours at their shared vertex
+// The edges (i: p[i] to p[i + 1]) that keep a polygon from being simple:
+// each edge that meets another, folds back onto a neighbour or has no
+// length; sorted, empty for a simple polygon. Exact.
+std::vector<std::size_t> SelfCrossingEdges(const Polygon& p);
 // +1 strictly inside, 0 on the boundary, -1 outside. Exact.
 int PointInPolygon(const Polygon& p, const Point& q);
 // Every point of `inner` (vertices and edges) inside or on `outer`. Exact.
