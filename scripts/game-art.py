@@ -7,6 +7,10 @@
 #
 #   scripts/game-art.py --bake BUILD/bin/posemorph-bake [--cache DIR] [--table FILE.md] [--check]
 #
+# A character a game draws as parts (Teeworlds' tee) has a recipe beside
+# its description: scripts/game_art_compose.py lays out the game's part
+# images in its poses first.
+#
 # Prints one row per character: baked with defaults or not (and the bake's
 # first error line), folded in-between triangles, the smallest angle of the
 # mesh over all poses, vertices, rig bytes (without its atlas section) against the drawings' PNG bytes,
@@ -30,6 +34,8 @@ import sys
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import game_art_compose  # noqa: E402  (beside this script)
 ROOT = os.path.dirname(HERE)
 CORPUS = os.path.join(ROOT, "tests", "game-art")
 SKIP = 77
@@ -77,10 +83,30 @@ def atlas_section_bytes(path):
     return 0
 
 
+def drawings_folder(character, cache):
+    """The folder the character's description names drawings in: the
+    unpacked package's, with the poses composed from the game's part images
+    first where the character has a recipe (into posemorph-NAME/ there,
+    again whenever the recipe changed)."""
+    folder = os.path.join(fetch(character["package"], cache), character["folder"])
+    if "compose" in character:
+        recipe = os.path.join(CORPUS, character["compose"])
+        out = os.path.join(folder, "posemorph-" + character["name"])
+        stamp = os.path.join(out, ".recipe")
+        with open(recipe) as f:
+            text = f.read()
+        if not os.path.exists(stamp) or open(stamp).read() != text:
+            shutil.rmtree(out, ignore_errors=True)
+            game_art_compose.compose(recipe, folder, out)
+            with open(stamp, "w") as f:
+                f.write(text)
+    return folder
+
+
 def bake(binary, character, cache, out_dir):
     """Bakes one character with default settings; returns its row."""
     name = character["name"]
-    folder = os.path.join(fetch(character["package"], cache), character["folder"])
+    folder = drawings_folder(character, cache)
     with open(os.path.join(CORPUS, name + ".json")) as f:
         description = json.load(f)
     # The description sits beside the drawings it names (a hidden name, so
@@ -90,7 +116,8 @@ def bake(binary, character, cache, out_dir):
         json.dump(description, f)
     drawings = set()
     for pose in description.get("poses", []):
-        drawings.add(pose["drawing"])
+        if "drawing" in pose:  # a layered character's poses are only points; its parts have the drawings
+            drawings.add(pose["drawing"])
     for part in description.get("parts", []):
         for pose in part["poses"]:
             drawings.add(pose["drawing"])
@@ -131,7 +158,7 @@ def init_alone(binary, character, cache, out_dir):
     character (parts), which init takes as POSE-PART.png files; and what
     init said."""
     name = character["name"]
-    folder = os.path.join(fetch(character["package"], cache), character["folder"])
+    folder = drawings_folder(character, cache)
     with open(os.path.join(CORPUS, name + ".json")) as f:
         description = json.load(f)
     if description.get("parts") or not description.get("poses"):
