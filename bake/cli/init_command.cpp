@@ -187,6 +187,8 @@ bool AsLayeredSvg(const std::vector<Drawing>& drawings, Layered* out) {
     for (std::size_t k = 0; k < v.size() && k < 16; ++k) s += (k ? ", '" : "'") + v[k] + "'";
     return s + (v.size() > 16 ? ", ..." : "");
   };
+  std::vector<std::string> first = names[0];
+  std::sort(first.begin(), first.end());
   for (std::size_t k = 0; k < drawings.size(); ++k) {
     std::vector<std::string> sorted = names[k];
     std::sort(sorted.begin(), sorted.end());
@@ -194,8 +196,6 @@ bool AsLayeredSvg(const std::vector<Drawing>& drawings, Layered* out) {
       throw BakeError(drawings[k].path,
                       "two top-level groups are named '" + *twice + "': each part is one layer or group, named apart");
     if (sorted.size() > 64) throw BakeError(drawings[k].path, "has more than 64 layers (parts); a rig has at most 64");
-    std::vector<std::string> first = names[0];
-    std::sort(first.begin(), first.end());
     if (sorted != first)
       throw BakeError(drawings[k].path, "its layers (" + listed(names[k]) + ") are not " + drawings[0].path + "'s (" +
                                             listed(names[0]) +
@@ -356,12 +356,11 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   const bool svg_layers = AsLayeredSvg(drawings, &layered);
   if (svg_layers || AsLayered(drawings, &layered)) {
     ChannelDrawings only;
-    only.poses = layered.poses, only.parts = layered.parts;
+    only.poses = layered.poses, only.parts = layered.parts, only.svg_layers = svg_layers;
     for (const std::vector<std::size_t>& row : layered.drawing) {
       only.path.emplace_back(), only.reference.emplace_back();
       for (std::size_t k : row)
         only.path.back().push_back(drawings[k].path), only.reference.back().push_back(drawings[k].reference);
-      if (svg_layers) only.layer.push_back(layered.parts);
     }
     text = LayeredDescription(name, {only});
     summary = std::to_string(layered.poses.size()) + " poses (" + layered.poses[0] +

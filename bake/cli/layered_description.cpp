@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "posemorph/bake/error.h"
+#include "posemorph/bake/mapping/boundary_matching.h"
 #include "posemorph/bake/mapping/outline_image.h"
 #include "posemorph/bake/mapping/outline_svg.h"
 #include "posemorph/bake/rig_description.h"
@@ -117,16 +118,10 @@ bool JointOf(const Mask& a, const Mask& b, std::array<double, 2>* at) {
 // traced outline runs.
 std::array<double, 2> EdgeNearest(const Mask& m, std::array<double, 2> target) {
   if (!m.outline.empty()) {
+    double distance = 0;
     const mapping::Point t(target[0], target[1]);
-    mapping::Point best = m.outline[0];
-    for (std::size_t k = 0; k < m.outline.size(); ++k) {
-      const mapping::Point& a = m.outline[k];
-      const mapping::Point d = m.outline[(k + 1) % m.outline.size()] - a;
-      const double along = d.squaredNorm() > 0 ? std::clamp((t - a).dot(d) / d.squaredNorm(), 0.0, 1.0) : 0.0;
-      const mapping::Point p = a + along * d;
-      if ((p - t).squaredNorm() < (best - t).squaredNorm()) best = p;
-    }
-    return {best.x(), best.y()};
+    const mapping::Point p = mapping::PointAtArcLength(m.outline, mapping::NearestArcLength(m.outline, t, &distance));
+    return {p.x(), p.y()};
   }
   double best = 1e300;
   std::array<double, 2> out = target;
@@ -169,9 +164,9 @@ std::string LayeredDescription(const std::string& name, const std::vector<Channe
       masks[c].emplace_back();
       scale[c].push_back(1), origin[c].emplace_back(0, 0);
       for (std::size_t q = 0; q < channels[c].parts.size(); ++q)
-        masks[c][i].push_back(channels[c].layer.empty() ? ReadMask(channels[c].path[i][q])
-                                                        : SvgLayerMask(channels[c].path[i][q], channels[c].layer[i][q],
-                                                                       &scale[c][i], &origin[c][i]));
+        masks[c][i].push_back(channels[c].svg_layers ? SvgLayerMask(channels[c].path[i][q], channels[c].parts[q],
+                                                                    &scale[c][i], &origin[c][i])
+                                                     : ReadMask(channels[c].path[i][q]));
     }
   // Pose i's mask point as the drawing's coordinates.
   auto drawn = [&](std::size_t c, std::size_t i, std::array<double, 2> at) {
@@ -296,10 +291,8 @@ std::string LayeredDescription(const std::string& name, const std::vector<Channe
         }
         const std::array<double, 2> lm = EdgeNearest(m, target);
         const std::array<double, 2> at = drawn(c, i, lm);
-        s << "      {\"drawing\": " << Quoted(ch.reference[i][q]);
-        if (!ch.layer.empty() && ch.layer[i][q] != ch.parts[q]) s << ", \"layer\": " << Quoted(ch.layer[i][q]);
-        s << ", \"landmarks\": [[" << Coordinate(at[0]) << ", " << Coordinate(at[1]) << "]]}"
-          << (i + 1 < ch.poses.size() ? "," : "") << "\n";
+        s << "      {\"drawing\": " << Quoted(ch.reference[i][q]) << ", \"landmarks\": [[" << Coordinate(at[0]) << ", "
+          << Coordinate(at[1]) << "]]}" << (i + 1 < ch.poses.size() ? "," : "") << "\n";
       }
       const bool last = c + 1 == channels.size() && q + 1 == ch.parts.size();
       s << "    ]}" << (last ? "" : ",") << "\n";

@@ -25,9 +25,9 @@ struct ChannelDrawings {
   std::string name;  // "": a rig without channels
   std::vector<std::string> poses, parts;
   std::vector<std::vector<std::string>> path, reference;  // [pose][part]: to read, and as the description names it
-  // An SVG drawing per pose whose top-level groups are the parts: the
-  // group of each part ([pose][part]); empty for a drawing per part.
-  std::vector<std::vector<std::string>> layer;
+  // One SVG drawing per pose whose top-level groups are the parts, each
+  // named like its part (the bake's default `layer`); false: a drawing per part.
+  bool svg_layers = false;
 };
 
 // The layered description: the first channel's parts back to front by size

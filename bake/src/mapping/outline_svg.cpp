@@ -229,14 +229,21 @@ void FindGroups(const tinyxml2::XMLElement* root, const std::string& name,
   }
 }
 
+// The document's <svg> element, parsed into `doc`; BakeError if it is none.
+const tinyxml2::XMLElement* SvgRoot(tinyxml2::XMLDocument& doc, const char* text, std::size_t size,
+                                    const ErrorSource& source) {
+  if (doc.Parse(text, size) != tinyxml2::XML_SUCCESS)
+    throw source.Error(std::string("invalid SVG (XML): ") + doc.ErrorStr());
+  const tinyxml2::XMLElement* root = doc.RootElement();
+  if (!root || std::string(root->Name()) != "svg") throw source.Error("not an SVG document (no <svg> root)");
+  return root;
+}
+
 }  // namespace
 
 SvgOutline OutlineFromSvgText(const std::string& text, double tol, const ErrorSource& source, const SvgLayer& layer) {
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(text.c_str(), text.size()) != tinyxml2::XML_SUCCESS)
-    throw source.Error(std::string("invalid SVG (XML): ") + doc.ErrorStr());
-  const tinyxml2::XMLElement* root = doc.RootElement();
-  if (!root || std::string(root->Name()) != "svg") throw source.Error("not an SVG document (no <svg> root)");
+  const tinyxml2::XMLElement* root = SvgRoot(doc, text.c_str(), text.size(), source);
 
   SvgOutline result;
   if (const char* vb = root->Attribute("viewBox")) {
@@ -330,10 +337,7 @@ SvgOutline OutlineFromSvg(const std::string& path, double tol, const ErrorSource
 std::vector<std::string> SvgLayerNames(const std::string& path, const ErrorSource& source) {
   const std::vector<unsigned char> bytes = ReadInputFile(path, kMaxTextFileBytes, "an SVG drawing", source);
   tinyxml2::XMLDocument doc;
-  if (doc.Parse(reinterpret_cast<const char*>(bytes.data()), bytes.size()) != tinyxml2::XML_SUCCESS)
-    throw source.Error(std::string("invalid SVG (XML): ") + doc.ErrorStr());
-  const tinyxml2::XMLElement* root = doc.RootElement();
-  if (!root || std::string(root->Name()) != "svg") throw source.Error("not an SVG document (no <svg> root)");
+  const tinyxml2::XMLElement* root = SvgRoot(doc, reinterpret_cast<const char*>(bytes.data()), bytes.size(), source);
   std::vector<std::string> names;
   for (const tinyxml2::XMLElement* g = root->FirstChildElement("g"); g; g = g->NextSiblingElement("g")) {
     const char* style = g->Attribute("style");
