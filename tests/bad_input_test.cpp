@@ -1,10 +1,8 @@
 // SPDX-License-Identifier: MIT
 // Bad input to posemorph-bake: one clear message naming the file and the
 // problem, a non-zero exit, and no output file (an existing one untouched).
-#include <png.h>
 
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -15,6 +13,7 @@
 
 #include "cli.h"
 #include "posemorph/posemorph.h"
+#include "posemorph/bake/import/layered_image.h"
 #include "posemorph/bake/validate_rig.h"
 #include "posemorph/bake/stage.h"
 #include "posemorph/rig_format.h"
@@ -274,13 +273,9 @@ void WritePngAlpha(const fs::path& p, int w, int h, const std::function<int(int,
   std::vector<unsigned char> rgba(std::size_t(w) * h * 4, 0);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) rgba[(std::size_t(y) * w + x) * 4 + 3] = (unsigned char)alpha(x, y);
-  png_image image;
-  std::memset(&image, 0, sizeof image);
-  image.version = PNG_IMAGE_VERSION;
-  image.width = png_uint_32(w);
-  image.height = png_uint_32(h);
-  image.format = PNG_FORMAT_RGBA;
-  REQUIRE(png_image_write_to_file(&image, p.string().c_str(), 0, rgba.data(), 0, nullptr));
+  const std::vector<unsigned char> png = posemorph::bake::import::EncodeRgbaPng(rgba, w, h, p.string());
+  std::ofstream(p, std::ios::binary).write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+  REQUIRE(fs::file_size(p) == png.size());
 }
 
 json Outline(const std::vector<std::array<double, 2>>& points) {

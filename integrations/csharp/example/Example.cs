@@ -136,10 +136,7 @@ static class Example {
         renderer.CentreX = cw * (columns - 1) / 2;
         renderer.CentreY = -ch * (rows - 1) / 2;
         int steps = 0;
-        for (int k = 0; k < n; ++k) {
-          renderer.Draw(picture, crowd, k);
-          steps += crowd.Steps(k).Length;
-        }
+        for (int k = 0; k < n; ++k) steps += renderer.Draw(picture, crowd, k);
         Png.Write(output, picture);
         Console.WriteLine("wrote {0}: {1} character(s) of {2}, {3}x{4}, {5} draw steps", output, n, rig.File, width,
                           height, steps);

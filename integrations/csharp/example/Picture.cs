@@ -238,12 +238,14 @@ sealed class SoftwareRenderer {
   // of the two triangles sharing it (the one seeing it this way round).
   static bool Inside(double e, double dx, double dy) { return e > 0 || (e == 0 && (dy > 0 || (dy == 0 && dx > 0))); }
 
-  public void Draw(Picture into, Crowd crowd, int character) {
+  // Draws the character's steps back to front; returns how many it drew.
+  public int Draw(Picture into, Crowd crowd, int character) {
     var uvs = new float[8][];
     var pictures = new Picture[8];
     var maps = new Region[8];
     var sum = new float[4];
-    foreach (DrawStep step in crowd.Steps(character)) {
+    DrawStep[] steps = crowd.Steps(character);
+    foreach (DrawStep step in steps) {
       DrawList list = crowd.List(character, step.List);
       int V = (int)list.VertexCount, D = list.Drawings.Length;
       var positions = new float[2 * V];
@@ -308,5 +310,6 @@ sealed class SoftwareRenderer {
           }
       }
     }
+    return steps.Length;
   }
 }
