@@ -10,14 +10,18 @@
 #include <doctest/doctest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
+#include <vector>
 #include <string>
 #include <unistd.h>
 
+#include "bad_input_support.h"
 #include "cli.h"
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/ghosting.h"
+#include "posemorph/bake/import/layered_image.h"
 #include "posemorph/bake/rig_description.h"
 #include "posemorph/rig.h"
 
@@ -57,6 +61,47 @@ TEST_CASE("ghosting: adjacent poses are the Gabriel graph, a drawing over itself
   CHECK(r.ghosting.pairs[1].name_b == "c");
   CHECK(r.ghosting.pairs[1].difference > 1);
   CHECK(r.ghosting.mean == doctest::Approx(0.5 * r.ghosting.pairs[1].difference));
+}
+
+TEST_CASE("ghosting: an HD drawing is measured within the bounds of a 512-pixel one") {
+  // The bake's copy of a drawing: halved, premultiplied, until 512 px at most.
+  std::vector<unsigned char> rgba(1200 * 1200 * 4, 0);
+  for (std::size_t i = 0; i < 1200 * 1200; i += 2) rgba[i * 4] = 255, rgba[i * 4 + 3] = 255;  // red, every other pixel
+  std::uint32_t w = 1200, h = 1200;
+  const std::vector<unsigned char> reduced = pb::ReduceDrawing(rgba, &w, &h);
+  CHECK(w == 300);
+  CHECK(h == 300);
+  REQUIRE(reduced.size() == 300u * 300u * 4u);
+  CHECK(int(reduced[3]) == 128);  // half covered
+  CHECK(int(reduced[0]) == 255);  // still pure red: the transparent pixels' colour does not count
+  CHECK(int(reduced[1]) == 0);
+
+  // A disc 1100 px across in two poses drawn by the same drawing: measured
+  // on a raster of kGhostingMaxPixels samples at most, not one per pixel.
+  const posemorph::test::TempDir temp;
+  const std::string dir = temp.path.string();
+  std::vector<unsigned char> disc(1200 * 1200 * 4, 0);
+  for (int y = 0; y < 1200; ++y)
+    for (int x = 0; x < 1200; ++x)
+      if ((x - 600) * (x - 600) + (y - 600) * (y - 600) < 550 * 550) {
+        unsigned char* q = &disc[(std::size_t(y) * 1200 + std::size_t(x)) * 4];
+        q[0] = (unsigned char)(x / 5), q[1] = (unsigned char)(y / 5), q[2] = 90, q[3] = 255;
+      }
+  const std::vector<unsigned char> png = pb::import::EncodeRgbaPng(disc, 1200, 1200, dir + "/disc.png");
+  std::ofstream(dir + "/disc.png", std::ios::binary)
+      .write(reinterpret_cast<const char*>(png.data()), std::streamsize(png.size()));
+  const std::string text = R"({"posemorph": 1, "poses": [
+      {"name": "a", "point": [0, 0], "drawing": "disc.png", "landmarks": [[50, 600], [1150, 600], [600, 50]]},
+      {"name": "b", "point": [1, 0], "drawing": "disc.png", "landmarks": [[50, 600], [1150, 600], [600, 50]]}],
+    "bake": {"grid_resolution": 8}})";
+  const pb::BakeReport r = Bake(pb::ParseRigDescription(text, dir + "/disc.json", dir), false);
+  REQUIRE(r.ghosting.pairs.size() == 1);
+  CHECK(r.ghosting.pairs[0].difference == doctest::Approx(0).epsilon(1e-9));
+  // At one sample per pixel the disc would take about 950,000; every third
+  // pixel is about 105,000.
+  CHECK(pb::kGhostingMaxPixels == 512.0 * 512.0);
+  CHECK(double(r.ghosting.pairs[0].pixels) <= pb::kGhostingMaxPixels);
+  CHECK(double(r.ghosting.pairs[0].pixels) > pb::kGhostingMaxPixels / 4);
 }
 
 TEST_CASE("ghosting: the interior alignment cuts it for every adjacent pair of the sprites and Pip") {

@@ -71,14 +71,18 @@ std::vector<std::pair<std::uint32_t, std::uint32_t>> AdjacentPoses(const Rig& ri
 // the points of the pose hull, rasterised at one pixel per rig unit, or
 // coarser so that no in-between takes more than kGhostingMaxPixels samples
 // (per drawing drawn; the hull's points share kGhostingMaxHullPixels). Throws BakeError(file) when
-// the rig has no uvs or does not evaluate.
-constexpr double kGhostingMaxPixels = 1048576, kGhostingMaxHullPixels = 16777216;
+// the rig has no uvs or does not evaluate. The bounds are those of a
+// drawing of 512 x 512 pixels, so that an HD drawing's measure costs what
+// a 512-pixel one's does (the bake measures up to four meshes: Pip drawn at
+// 2048 px spent a fifth of its bake here with bounds four times larger).
+constexpr double kGhostingMaxPixels = 262144, kGhostingMaxHullPixels = 4194304;
 Ghosting MeasureGhosting(const Rig& rig, const std::vector<DrawingPixels>& drawings, const std::string& file);
 
 // A drawing halved (premultiplied 2 x 2 means) until its longer side is at
-// most max_side: what the bake keeps of each drawing for the measure.
+// most max_side: what the bake keeps of each drawing for the measure (512:
+// no finer than the measure's raster of kGhostingMaxPixels samples).
 std::vector<unsigned char> ReduceDrawing(std::vector<unsigned char> rgba, std::uint32_t* width, std::uint32_t* height,
-                                         std::uint32_t max_side = 1024);
+                                         std::uint32_t max_side = 512);
 
 // "rest-stretch 4.1, rest-squash 3.2, ...; mean 3.6 (of 255)".
 std::string DescribeGhosting(const Ghosting& ghosting);
