@@ -157,28 +157,55 @@ void Refiner::Smooth(int passes) {
   std::vector<std::vector<std::size_t>> incident(V);
   for (std::size_t t = 0; t < m_.triangles.size(); ++t)
     for (std::size_t v : m_.triangles[t]) incident[v].push_back(t);
-  for (int pass = 0; pass < passes; ++pass) {
-    std::size_t moved = 0;
-    for (Polygon& pos : m_.vertices)
+  // Around v: each triangle (v, a, b) counter-clockwise; neighbour a's ring
+  // neighbours are the previous and next vertices around v. The ring is
+  // read once (the connectivity does not change here), in the order the
+  // sums below have always taken (an unordered_map's, built the same way),
+  // so the positions are the same to the bit.
+  struct Neighbour {
+    std::size_t at, next, prev;
+    bool inner;  // has a previous vertex too (not at the ring's open end)
+  };
+  std::vector<std::vector<Neighbour>> ring(V);
+  std::vector<std::vector<Tri>> turned(V);  // the incident triangles, v first
+  for (std::size_t v = 0; v < V; ++v) {
+    if (held_[v] || incident[v].empty()) continue;
+    std::unordered_map<std::size_t, std::size_t> after_of, before_of;
+    for (std::size_t t : incident[v]) {
+      Tri tri = m_.triangles[t];
+      while (tri[0] != v) std::rotate(tri.begin(), tri.begin() + 1, tri.end());
+      after_of[tri[1]] = tri[2];
+      before_of[tri[2]] = tri[1];
+      turned[v].push_back(tri);
+    }
+    for (const auto& [nj, next] : after_of) {
+      const auto b = before_of.find(nj);
+      ring[v].push_back({nj, next, b == before_of.end() ? 0 : b->second, b != before_of.end()});
+    }
+  }
+  // A vertex whose ring has not moved since it last stayed put stays put
+  // again: it is not evaluated (exact, not an approximation).
+  std::vector<std::uint64_t> moved_at(V), settled_at(V);
+  std::uint64_t clock = 0;
+  for (Polygon& pos : m_.vertices) {
+    std::fill(moved_at.begin(), moved_at.end(), 1);
+    std::fill(settled_at.begin(), settled_at.end(), 0);
+    for (int pass = 0; pass < passes; ++pass) {
+      std::size_t moved = 0;
       for (std::size_t v = 0; v < V; ++v) {
         if (held_[v] || incident[v].empty()) continue;
-        // Around v: each triangle (v, a, b) counter-clockwise; neighbour a's ring
-        // neighbours are the previous and next vertices around v.
-        Point sum = Point::Zero();
+        std::uint64_t last = moved_at[v];
+        for (const Neighbour& n : ring[v]) last = std::max({last, moved_at[n.at], moved_at[n.next]});
+        if (settled_at[v] > last) continue;
+        ++clock;
         double local_before = 1;  // smallest angle as -cos: larger is better
-        std::unordered_map<std::size_t, std::size_t> after_of, before_of;
-        for (std::size_t t : incident[v]) {
-          Tri tri = m_.triangles[t];
-          while (tri[0] != v) std::rotate(tri.begin(), tri.begin() + 1, tri.end());
-          after_of[tri[1]] = tri[2];
-          before_of[tri[2]] = tri[1];
+        for (const Tri& tri : turned[v])
           local_before = std::min(local_before, -MinAngleCosine(pos[tri[0]], pos[tri[1]], pos[tri[2]]));
-        }
+        Point sum = Point::Zero();
         int count = 0;
-        for (const auto& [nj, next] : after_of) {
-          if (!before_of.count(nj)) continue;
-          const std::size_t prev = before_of[nj];
-          const Point& N = pos[nj];
+        for (const Neighbour& n : ring[v]) {
+          if (!n.inner) continue;
+          const Point& N = pos[n.at];
           const Point dv = pos[v] - N;
           const double tv = std::atan2(dv.y(), dv.x());
           auto rel = [&](const Point& q) {
@@ -187,20 +214,20 @@ void Refiner::Smooth(int passes) {
             while (a < -M_PI) a += 2 * M_PI;
             return a;
           };
-          const double target = tv + (rel(pos[next]) + rel(pos[prev])) / 2;
+          const double target = tv + (rel(pos[n.next]) + rel(pos[n.prev])) / 2;
           sum += N + dv.norm() * Point(std::cos(target), std::sin(target));
           ++count;
         }
-        if (count == 0) continue;
+        if (count == 0) {
+          settled_at[v] = clock;
+          continue;
+        }
         // Try steps of 1, 1/2, 1/4 and 1/10 toward the angle-based position and
         // toward the neighbours' centroid; keep whichever raises the local
         // smallest angle most.
         Point centroid = Point::Zero();
-        for (const auto& [nj, next] : after_of) {
-          (void)next;
-          centroid += pos[nj];
-        }
-        centroid /= double(after_of.size());
+        for (const Neighbour& n : ring[v]) centroid += pos[n.at];
+        centroid /= double(ring[v].size());
         const Point old = pos[v];
         const Point angle_based = sum / count;
         Point best = old;
@@ -217,10 +244,16 @@ void Refiner::Smooth(int passes) {
           }
           if (ok && local_after > best_angle) best = pos[v], best_angle = local_after;
         }
-        moved += best != old;
         pos[v] = best;
+        if (best != old) {
+          ++moved;
+          moved_at[v] = ++clock;
+        } else {
+          settled_at[v] = clock;
+        }
       }
-    if (moved == 0) break;
+      if (moved == 0) break;
+    }
   }
 }
 
