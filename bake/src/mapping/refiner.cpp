@@ -257,8 +257,25 @@ void Refiner::Smooth(int passes) {
   }
 }
 
-// Splits the longest edge of each triangle whose smallest angle is below the goal.
-int Refiner::SplitBad(double goal, double min_length) {
+// The ratio of the longest to the shortest edge of t in the pose where its
+// smallest angle is smallest.
+double Refiner::WorstPoseEdgeRatio(const Tri& t) const {
+  double worst = M_PI, ratio = 1;
+  for (const Polygon& v : m_.vertices) {
+    const double angle = TriangleMinAngle(v[t[0]], v[t[1]], v[t[2]]);
+    if (!(angle < worst)) continue;
+    worst = angle;
+    double lo = HUGE_VAL, hi = 0;
+    for (int e = 0; e < 3; ++e) {
+      const double l = (v[t[e]] - v[t[(e + 1) % 3]]).norm();
+      lo = std::min(lo, l), hi = std::max(hi, l);
+    }
+    ratio = lo > 0 ? hi / lo : HUGE_VAL;
+  }
+  return ratio;
+}
+
+int Refiner::SplitBad(double goal, double min_length, double graded_ratio) {
   EdgeMap em(m_.triangles);
   std::vector<bool> touched(m_.triangles.size(), false);
   int splits = 0;
@@ -269,7 +286,7 @@ int Refiner::SplitBad(double goal, double min_length) {
     std::size_t a = tri[0], b = tri[1];
     for (int e = 1; e < 3; ++e)
       if (Length(tri[e], tri[(e + 1) % 3]) > Length(a, b)) a = tri[e], b = tri[(e + 1) % 3];
-    if (Length(a, b) < min_length) continue;
+    if (Length(a, b) < min_length && !(graded_ratio > 0 && WorstPoseEdgeRatio(tri) > graded_ratio)) continue;
     if (Full()) break;
     const auto& ts = em.at.at(Key(a, b));
     if ((ts[0] != EdgeMap::kNone && touched[ts[0]]) || (ts[1] != EdgeMap::kNone && touched[ts[1]])) continue;

@@ -71,11 +71,17 @@ class Refiner {
   // the outline) within max_distance of the new edge (the mesh grows by no
   // more). Features are never removed. Returns the number removed.
   int CollapseBoundarySlivers(double goal, double max_distance);
-  // Splits the longest edge of each triangle whose smallest angle is below the goal.
-  int SplitBad(double goal, double min_length);
+  // Splits the longest edge of each triangle whose smallest angle is below
+  // the goal, if that edge is min_length long in some pose; with
+  // graded_ratio > 0 also a shorter one where, in the pose the triangle is
+  // worst in, its longest edge is more than graded_ratio times its
+  // shortest (a sliver on an edge one pose squeezes: the mesh grades toward
+  // that edge).
+  int SplitBad(double goal, double min_length, double graded_ratio = 0);
 
  private:
   int CollapseOnce(double goal, double max_distance);
+  double WorstPoseEdgeRatio(const Tri& t) const;
   // Collapses boundary vertex v into its boundary neighbour u (the edge u-v
   // is in triangle `gone`, which disappears), if that is acceptable.
   bool TryCollapse(std::size_t v, std::size_t u, std::size_t gone,
