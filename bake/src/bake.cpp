@@ -12,6 +12,7 @@
 #include <iterator>
 #include <optional>
 
+#include "drawing_memo.h"
 #include "posemorph/bake/arap_system.h"
 #include "posemorph/bake/bake_channels.h"
 #include "posemorph/bake/deform_poses.h"
@@ -97,12 +98,9 @@ GhostingDrawings ReadGhostingDrawings(const RigDescription& description) {
       return GhostingDrawings{
           {}, {}, "pose '" + pose.name + "' draws another image than the PNG drawing it was mapped from"};
     }
-    int width = 0, height = 0;
-    std::vector<unsigned char> rgba =
-        mapping::ReadPngRgba(pose.drawing_path, &width, &height,
-                             ErrorSource(description.file, "pose '" + pose.name + "': " + pose.drawing_path));
-    std::uint32_t w = std::uint32_t(width), h = std::uint32_t(height);
-    g.pixels.push_back(ReduceDrawing(std::move(rgba), &w, &h));
+    std::uint32_t w = 0, h = 0;
+    g.pixels.push_back(GhostingDrawingOf(
+        pose.drawing_path, ErrorSource(description.file, "pose '" + pose.name + "': " + pose.drawing_path), &w, &h));
     g.sizes.push_back({w, h});
   }
   return g;

@@ -391,23 +391,13 @@ ImageOutline OutlineFromPng(const std::string& path, double threshold, const Err
                              drop_shadows, halvings);
 }
 
-ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double threshold, const ErrorSource& source,
-                                 bool fill_notches, bool drop_shadows, int halvings) {
-  int width = 0, height = 0;
-  std::vector<unsigned char> alpha;
-  ImageOutline found;
-  if (drop_shadows) {
-    const std::vector<unsigned char> rgba = DecodePng(png, source, &width, &height, true);
-    const std::size_t n = std::size_t(width) * std::size_t(height);
-    alpha.resize(n);
-    std::vector<unsigned char> shadow;
-    for (std::size_t i = 0; i < n; ++i) alpha[i] = rgba[4 * i + 3];
-    if (FindDropShadow(rgba.data(), width, height, threshold, shadow, found) > 0)
-      for (std::size_t i = 0; i < n; ++i)
-        if (shadow[i]) alpha[i] = 0;  // transparent to the tracing; the drawing keeps it
-  } else {
-    alpha = DecodePng(png, source, &width, &height, false);
-  }
+namespace {
+
+// The shape of `alpha` traced on pyramid level `halvings`, in the drawing's
+// pixels, with the drop shadow `found` recorded.
+ImageOutline OutlineFromAlphaAtLevel(std::vector<unsigned char> alpha, int width, int height, double threshold,
+                                     const ErrorSource& source, bool fill_notches, int halvings,
+                                     const ImageOutline& found) {
   ImageOutline result;
   if (halvings == 0) {
     result = OutlineFromAlpha(alpha, width, height, threshold, source, fill_notches);
@@ -431,6 +421,32 @@ ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double t
   result.shadow_x1 = found.shadow_x1, result.shadow_y1 = found.shadow_y1;
   result.shadow_alpha = found.shadow_alpha;
   return result;
+}
+
+}  // namespace
+
+ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double threshold, const ErrorSource& source,
+                                 bool fill_notches, bool drop_shadows, int halvings) {
+  int width = 0, height = 0;
+  if (drop_shadows) {
+    const std::vector<unsigned char> rgba = DecodePng(png, source, &width, &height, true);
+    return OutlineFromRgba(rgba, width, height, threshold, source, fill_notches, true, halvings);
+  }
+  return OutlineFromAlphaAtLevel(DecodePng(png, source, &width, &height, false), width, height, threshold, source,
+                                 fill_notches, halvings, ImageOutline{});
+}
+
+ImageOutline OutlineFromRgba(const std::vector<unsigned char>& rgba, int width, int height, double threshold,
+                             const ErrorSource& source, bool fill_notches, bool drop_shadows, int halvings) {
+  const std::size_t n = std::size_t(width) * std::size_t(height);
+  std::vector<unsigned char> alpha(n);
+  for (std::size_t i = 0; i < n; ++i) alpha[i] = rgba[4 * i + 3];
+  ImageOutline found;
+  std::vector<unsigned char> shadow;
+  if (drop_shadows && FindDropShadow(rgba.data(), width, height, threshold, shadow, found) > 0)
+    for (std::size_t i = 0; i < n; ++i)
+      if (shadow[i]) alpha[i] = 0;  // transparent to the tracing; the drawing keeps it
+  return OutlineFromAlphaAtLevel(std::move(alpha), width, height, threshold, source, fill_notches, halvings, found);
 }
 
 ImageOutline OutlineFromPng(const std::string& path, double threshold) {

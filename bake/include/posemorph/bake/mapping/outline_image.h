@@ -62,6 +62,9 @@ ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double a
                                  const ErrorSource& source);
 ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double alpha_threshold,
                                  const ErrorSource& source, bool fill_notches, bool drop_shadows, int halvings);
+// The same from straight-alpha RGBA pixels already decoded (DecodePngRgba).
+ImageOutline OutlineFromRgba(const std::vector<unsigned char>& rgba, int width, int height, double alpha_threshold,
+                             const ErrorSource& source, bool fill_notches, bool drop_shadows, int halvings);
 // The alpha channel of a PNG (any colour type), row by row. Throws BakeError naming the file (or `source`).
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height);
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height, const ErrorSource& source);
