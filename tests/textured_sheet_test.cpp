@@ -15,6 +15,7 @@
 #include "cli.h"
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/mapping/outline_image.h"
+#include "posemorph/bake/texture_atlas.h"
 #include "posemorph/rig.h"
 #include "textured_sheet.h"
 
@@ -83,6 +84,19 @@ TEST_CASE("sheet --textured: the drawings cut back out of the atlas are the draw
     }
   }
   CHECK(compared > 50000);  // Pip's five drawings: 86,254 pixels of alpha >= 32
+}
+
+TEST_CASE("atlas: a part that samples more than a page holds is refused before any drawing is read") {
+  Pip pip;
+  bake::AtlasSettings settings;
+  settings.max_page_size = 64;  // Pip's rest pose samples about 200 x 200 of its drawing
+  // The drawings are not where the rig says: reading one would fail with
+  // another message, so the page size is what refused it.
+  const bake::PackedAtlas atlas = bake::PackAtlas(pip.bytes, "pip.pmrig", "/nonexistent-folder", settings, "pip.json");
+  CHECK(atlas.pages.empty());
+  CHECK(atlas.rig.empty());
+  CHECK(atlas.skipped.find("/nonexistent-folder/rest.png: the part of it the rig samples, at least ") == 0);
+  CHECK(atlas.skipped.find(" pixels, does not fit a page of 64 (atlas.max_page_size)") != std::string::npos);
 }
 
 TEST_CASE("sheet --textured: each base pose is drawn as its own drawing, the in-betweens cross-fade") {

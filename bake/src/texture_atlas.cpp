@@ -142,6 +142,7 @@ PackedAtlas PackAtlas(const std::vector<unsigned char>& bytes, const std::string
   if (!LoadRig(bytes.data(), bytes.size(), &rig, &err))
     throw BakeError(file, std::string("internal: the rig written does not load: ") + err.message);
   const std::uint32_t lists = 1 + rig.attachment_count();
+  const std::uint32_t border = (settings.padding + 1) / 2;
   std::vector<Drawing> drawings;
   std::map<std::string, std::size_t> found;
   std::vector<std::vector<std::size_t>> used(lists);  // per list, part-major: the drawing of each part and pose
@@ -160,6 +161,20 @@ PackedAtlas PackAtlas(const std::vector<unsigned char>& bytes, const std::string
                                     " has no drawing; an atlas needs one per part and pose (\"atlas\": false bakes "
                                     "without one)");
         const std::string path = (std::filesystem::path(drawing_folder) / Text(ref)).string();
+        // What the part samples, as CropToUvs takes it, is already too large
+        // for a page: no atlas, and no drawing is decoded to find out (Pip
+        // drawn at 4096 px: five 64 MiB canvases).
+        Drawing probe;
+        probe.width = int(r.pose_canvas(i).width), probe.height = int(r.pose_canvas(i).height);
+        CropToUvs(probe, r, p, i);
+        if (probe.x1 > probe.x0 && (std::uint64_t(probe.w()) + 2 * border > settings.max_page_size ||
+                                    std::uint64_t(probe.h()) + 2 * border > settings.max_page_size)) {
+          out.skipped = path + ": the part of it the rig samples, at least " + std::to_string(probe.w()) + "x" +
+                        std::to_string(probe.h()) + " pixels, does not fit a page of " +
+                        std::to_string(settings.max_page_size) + " (atlas.max_page_size); the renderers read the " +
+                        "drawings";
+          return out;
+        }
         auto [it, added] = found.emplace(path, drawings.size());
         if (added) {
           Drawing d;
@@ -201,7 +216,6 @@ PackedAtlas PackAtlas(const std::vector<unsigned char>& bytes, const std::string
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
     return drawings[a].h() != drawings[b].h() ? drawings[a].h() > drawings[b].h() : drawings[a].w() > drawings[b].w();
   });
-  const std::uint32_t border = (settings.padding + 1) / 2;
   // The smallest page that holds every crop, W x W/2 or W x W; else pages of the largest size.
   std::uint32_t W = 64, H = 32, pages = 0;
   while (!Pack(drawings, order, W, H, border, true, &pages)) {
