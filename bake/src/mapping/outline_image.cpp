@@ -432,8 +432,9 @@ ImageOutline OutlineFromPngBytes(const std::vector<unsigned char>& png, double t
     const std::vector<unsigned char> rgba = DecodePng(png, source, &width, &height, true);
     return OutlineFromRgba(rgba, width, height, threshold, source, fill_notches, true, halvings);
   }
-  return OutlineFromAlphaAtLevel(DecodePng(png, source, &width, &height, false), width, height, threshold, source,
-                                 fill_notches, halvings, ImageOutline{});
+  std::vector<unsigned char> alpha = DecodePng(png, source, &width, &height, false);  // sets width, height first
+  return OutlineFromAlphaAtLevel(std::move(alpha), width, height, threshold, source, fill_notches, halvings,
+                                 ImageOutline{});
 }
 
 ImageOutline OutlineFromRgba(const std::vector<unsigned char>& rgba, int width, int height, double threshold,
