@@ -70,7 +70,9 @@ std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int
 std::vector<unsigned char> ReadPngAlpha(const std::string& path, int* width, int* height, const ErrorSource& source);
 // Straight-alpha RGBA bytes of a PNG with alpha, row by row (the same checks).
 std::vector<unsigned char> ReadPngRgba(const std::string& path, int* width, int* height, const ErrorSource& source);
-// The same from a PNG already in memory.
+// The same from a PNG already in memory; and its alpha channel alone.
+std::vector<unsigned char> DecodePngAlpha(const std::vector<unsigned char>& png, int* width, int* height,
+                                          const ErrorSource& source);
 std::vector<unsigned char> DecodePngRgba(const std::vector<unsigned char>& png, int* width, int* height,
                                          const ErrorSource& source);
 ImageOutline OutlineFromAlpha(const std::vector<unsigned char>& alpha, int width, int height, double alpha_threshold,
