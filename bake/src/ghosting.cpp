@@ -185,22 +185,31 @@ std::vector<unsigned char> ReduceDrawing(std::vector<unsigned char> rgba, std::u
                                          std::uint32_t max_side) {
   while (std::max(*width, *height) > max_side) {
     const std::uint32_t w = *width, h = *height, hw = (w + 1) / 2, hh = (h + 1) / 2;
-    std::vector<double> acc(std::size_t(hw) * hh * 4, 0.0);
-    for (std::uint32_t y = 0; y < h; ++y)
-      for (std::uint32_t x = 0; x < w; ++x) {
-        const unsigned char* p = &rgba[(std::size_t(y) * w + x) * 4];
-        double* q = &acc[(std::size_t(y / 2) * hw + x / 2) * 4];
-        for (int ch = 0; ch < 3; ++ch) q[ch] += 0.25 * p[3] * p[ch] / 255.0;
-        q[3] += 0.25 * p[3];
+    std::vector<unsigned char> out(std::size_t(hw) * hh * 4, 0);
+    // One output row at a time, from the two input rows it covers: the sums
+    // of a 4096-pixel drawing's first halving took 128 MiB as one array.
+    std::vector<double> acc(std::size_t(hw) * 4);
+    for (std::uint32_t oy = 0; oy < hh; ++oy) {
+      std::fill(acc.begin(), acc.end(), 0.0);
+      // A transparent pixel adds exactly +0 to each sum: skipped (the same
+      // bits, and most of a character's page is transparent).
+      for (std::uint32_t y = 2 * oy; y < std::min(h, 2 * oy + 2); ++y)
+        for (std::uint32_t x = 0; x < w; ++x) {
+          const unsigned char* p = &rgba[(std::size_t(y) * w + x) * 4];
+          if (p[3] == 0) continue;
+          double* q = &acc[std::size_t(x / 2) * 4];
+          for (int ch = 0; ch < 3; ++ch) q[ch] += 0.25 * p[3] * p[ch] / 255.0;
+          q[3] += 0.25 * p[3];
+        }
+      unsigned char* row = &out[std::size_t(oy) * hw * 4];
+      for (std::size_t i = 0; i < hw; ++i) {
+        const double a = acc[i * 4 + 3];
+        if (a == 0) continue;  // out is zeroed: what lround(0) gives
+        for (int ch = 0; ch < 3; ++ch)
+          row[i * 4 + std::size_t(ch)] =
+              static_cast<unsigned char>(std::lround(std::min(255.0, acc[i * 4 + std::size_t(ch)] * 255.0 / a)));
+        row[i * 4 + 3] = static_cast<unsigned char>(std::lround(std::min(255.0, a)));
       }
-    std::vector<unsigned char> out(acc.size());
-    for (std::size_t i = 0; i < std::size_t(hw) * hh; ++i) {
-      const double a = acc[i * 4 + 3];
-      for (int ch = 0; ch < 3; ++ch)
-        out[i * 4 + std::size_t(ch)] =
-            a > 0 ? static_cast<unsigned char>(std::lround(std::min(255.0, acc[i * 4 + std::size_t(ch)] * 255.0 / a)))
-                  : 0;
-      out[i * 4 + 3] = static_cast<unsigned char>(std::lround(std::min(255.0, a)));
     }
     rgba = std::move(out);
     *width = hw, *height = hh;

@@ -172,6 +172,7 @@ AlignmentImage AlignmentImageFromRgba(const unsigned char* rgba, int width, int 
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
       const unsigned char* p = rgba + (std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4;
+      if (p[3] == 0) continue;  // adds exactly +0: the same bits
       float* q = &image.rgba[(std::size_t(y / f) * std::size_t(image.width) + std::size_t(x / f)) * 4];
       const float a = float(p[3]) / 255.0f;
       for (int ch = 0; ch < 3; ++ch) q[ch] += share * a * float(p[ch]) / 255.0f;
