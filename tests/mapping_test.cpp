@@ -548,6 +548,33 @@ TEST_CASE("mapping: refinement removes a boundary vertex whose short edge makes 
   CHECK(collapsed.vertices[0].size() == collapsed.vertices[1].size());
 }
 
+TEST_CASE("mapping: the refinement's runs give the same mesh on one thread or several") {
+  // The squeezed box: below the quality floor after the usual rounds, so the
+  // graded runs run too, and with slivers removed, the run without as well.
+  const Polygon rest = {{0, 0}, {1800, 0}, {2200, 0}, {4000, 0}, {4000, 2000}, {0, 2000}};
+  const Polygon squeezed = {{0, 0}, {1990, 100}, {2010, 100}, {4000, 0}, {4000, 2000}, {0, 2000}};
+  const pm::CompatibleMesh first = pm::TriangulateCompatibly({rest, squeezed}, "squeezed box", 0);
+  for (bool collapse : {false, true}) {
+    pm::RefinementParameters rp;
+    rp.max_edge_length = 500;
+    rp.max_collapse_distance = 200;
+    rp.collapse_slivers = collapse;
+    rp.threads = 1;
+    pm::CompatibleMesh one = first;
+    REQUIRE(pm::RefineCompatibly(one, rp));
+    if (!collapse) REQUIRE(pm::MinAngleDegrees(one) < rp.min_angle_goal / 2);  // graded: below the floor
+    for (unsigned threads : {2u, 3u, 8u, 0u}) {
+      rp.threads = threads;
+      pm::CompatibleMesh many = first;
+      REQUIRE(pm::RefineCompatibly(many, rp));
+      INFO("collapse " << collapse << ", threads " << threads);
+      CHECK(many.triangles == one.triangles);
+      CHECK(many.vertices == one.vertices);  // exact: the same bits
+      CHECK(many.features == one.features);
+    }
+  }
+}
+
 TEST_CASE("mapping: refinement never removes a convex corner, which would uncover the outline") {
   // The same squeeze pushed out instead: the two close vertices are convex
   // corners in pose 1, so the refinement keeps them whatever the sliver.

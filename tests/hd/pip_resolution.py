@@ -13,8 +13,7 @@
 #   outline simplified within mapping.simplify_tolerance (1 px by default),
 #   so two of them may lie up to 2 px apart; 1.2-1.4 px is measured;
 # - the smallest angle at S no worse than at 256 px, or with --min-angle A
-#   at least A degrees (512 px: the quality floor, half of Pip's
-#   mapping.min_angle; its 10.04 degrees are below 256 px's 10.43).
+#   at least A degrees (the quality floor is half of mapping.min_angle).
 #
 #   tests/hd/pip_resolution.py --bake BAKE --work DIR [--size S] [--min-angle A]
 #

@@ -235,12 +235,19 @@ void Refiner::Smooth(int passes) {
         for (int k = 0; k < 8; ++k) {
           const double f = k % 4 == 0 ? 1.0 : k % 4 == 1 ? 0.5 : k % 4 == 2 ? 0.25 : 0.1;
           pos[v] = Snap(old + f * ((k < 4 ? angle_based : centroid) - old));
+          if (pos[v] == old) continue;  // what stays put raises nothing
+          // Stops at the first turned triangle, or once the smallest angle is
+          // no better than the best: either way this step is not kept.
           bool ok = true;
           double local_after = 1;
           for (std::size_t tri : incident[v]) {
             const Tri& tr = m_.triangles[tri];
-            ok = ok && Positive(pos, tr);
+            if (!Positive(pos, tr)) {
+              ok = false;
+              break;
+            }
             local_after = std::min(local_after, -MinAngleCosine(pos[tr[0]], pos[tr[1]], pos[tr[2]]));
+            if (local_after <= best_angle) break;
           }
           if (ok && local_after > best_angle) best = pos[v], best_angle = local_after;
         }

@@ -23,6 +23,10 @@ struct RefinementParameters {
   // angle kept.
   bool collapse_slivers = false;
   double max_collapse_distance = 0;
+  // The refinement's independent runs (with and without removing slivers;
+  // the graded runs) share out this many threads at most, this one counted;
+  // 0: one per core. The mesh is the same bits whatever the number.
+  unsigned threads = 0;
 };
 // Edge splits, flips legal in all N meshes that raise the smallest angle over
 // all poses, and angle-based smoothing of interior vertices that never
