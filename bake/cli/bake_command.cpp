@@ -7,12 +7,14 @@
 #include <iomanip>
 #include <optional>
 #include <sstream>
+#include <vector>
 
 #include "command_args.h"
 #include "textured_sheet.h"
 #include "progress_line.h"
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/input_file.h"
+#include "posemorph/bake/run_each.h"
 #include "posemorph/bake/stage.h"
 
 namespace posemorph::bake::cli {
@@ -85,10 +87,17 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   }
   BakeStage writing("writing the output");
   // The pages first: a rig on disk never names a page that is not there.
-  if (atlas)
-    for (const AtlasPage& page : atlas->pages)
-      WriteFileAtomic((std::filesystem::path(output).parent_path() / page.name).string(),
-                      EncodePng(RgbaImage{page.width, page.height, page.rgba}, page.name));
+  // Encoded over the machine's cores (a 2048 x 2048 page takes half a
+  // second), the same bytes, then written in order.
+  if (atlas) {
+    std::vector<std::vector<unsigned char>> encoded(atlas->pages.size());
+    RunEach(encoded.size(), 0, [&](std::size_t i) {
+      const AtlasPage& page = atlas->pages[i];
+      encoded[i] = EncodePng(RgbaImage{page.width, page.height, page.rgba}, page.name);
+    });
+    for (std::size_t i = 0; i < encoded.size(); ++i)
+      WriteFileAtomic((std::filesystem::path(output).parent_path() / atlas->pages[i].name).string(), encoded[i]);
+  }
   WriteFileAtomic(output, bytes);
   progress.reset();  // erased before the report
   out << "baked " << args.positional << " -> " << output << ": " << report.vertices << " vertices, " << report.triangles

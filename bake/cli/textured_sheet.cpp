@@ -394,6 +394,7 @@ std::vector<unsigned char> EncodePng(const RgbaImage& image, const std::string& 
   if (!png_image_write_to_memory(&png, out.data(), &size, 0, image.rgba.data(), 0, nullptr))
     throw BakeError(file, std::string("cannot encode PNG: ") + png.message);
   out.resize(size);
+  out.shrink_to_fit();  // the largest size is about the pixels' own
   return out;
 }
 

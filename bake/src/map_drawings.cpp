@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "drawing_memo.h"
+#include "posemorph/bake/run_each.h"
 #include "drawn_pose.h"
 #include "mapping/format_number.h"
 #include "mapping/geometry.h"
@@ -223,8 +224,17 @@ MappingInput ReadDrawnOutlines(const RigDescription& rig, std::vector<DrawnPose>
     for (Point& p : points) p *= to_working;
     return points;
   };
+  // The drawings are read over the machine's cores (decoding an HD PNG is
+  // most of its tracing), each pose into its own report, joined in order:
+  // the same outlines and messages, and the first pose's error first.
+  std::vector<MappingReport> each(drawn.size());
+  RunEach(drawn.size(), 0, [&](std::size_t k) { ReadDrawnOutline(rig, rig.mapping, in.halvings, drawn[k], each[k]); });
+  for (const MappingReport& r : each) {
+    report.warnings.insert(report.warnings.end(), r.warnings.begin(), r.warnings.end());
+    report.filled_notch_corners += r.filled_notch_corners;
+    report.outline_vertices.insert(report.outline_vertices.end(), r.outline_vertices.begin(), r.outline_vertices.end());
+  }
   for (DrawnPose& d : drawn) {
-    ReadDrawnOutline(rig, rig.mapping, in.halvings, d, report);
     in.outlines.push_back(working(d.outline));
     in.landmarks.push_back(working(d.landmarks));
     in.features.push_back(working(d.features));

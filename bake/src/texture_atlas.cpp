@@ -10,6 +10,7 @@
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/import/layered_reference.h"
 #include "posemorph/bake/mapping/outline_image.h"
+#include "posemorph/bake/run_each.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
 #include "rig_writer.h"
@@ -147,6 +148,52 @@ PackedAtlas PackAtlas(const std::vector<unsigned char>& bytes, const std::string
   std::map<std::string, std::size_t> found;
   std::vector<std::vector<std::size_t>> used(lists);  // per list, part-major: the drawing of each part and pose
   PackedAtlas out;
+  // The path of part p's drawing in pose i of list l, and whether what the
+  // part samples (as CropToUvs takes it) is already too large for a page: no
+  // atlas then, and no drawing is decoded to find out (Pip drawn at 4096 px:
+  // five 64 MiB canvases).
+  auto path_of = [&](const Rig& r, std::uint32_t p, std::uint32_t i) {
+    return (std::filesystem::path(drawing_folder) / Text(r.part_image(p, i))).string();
+  };
+  auto probe_of = [&](const Rig& r, std::uint32_t p, std::uint32_t i) {
+    Drawing probe;
+    probe.width = int(r.pose_canvas(i).width), probe.height = int(r.pose_canvas(i).height);
+    CropToUvs(probe, r, p, i);
+    return probe;
+  };
+  auto too_large = [&](const Drawing& probe) {
+    return probe.x1 > probe.x0 && (std::uint64_t(probe.w()) + 2 * border > settings.max_page_size ||
+                                   std::uint64_t(probe.h()) + 2 * border > settings.max_page_size);
+  };
+  auto usable = [](const Rig& r, std::uint32_t p, std::uint32_t i) {
+    return r.part_image(p, i).size != 0 && r.uvs(i).size != 0 && r.pose_canvas(i).width >= 1;
+  };
+  // The drawings are decoded first, over the machine's cores, each cropped
+  // to its content at once (two canvases in memory, not all): those the loop
+  // below reads, up to the first part and pose it stops at.
+  std::vector<std::string> paths;
+  for (std::uint32_t l = 0, stop = 0; l < lists && !stop; ++l) {
+    const Rig& r = ListRig(rig, l);
+    for (std::uint32_t p = 0; p < r.part_count() && !stop; ++p)
+      for (std::uint32_t i = 0; i < r.pose_count() && !stop; ++i) {
+        stop = !usable(r, p, i) || too_large(probe_of(r, p, i));
+        if (!stop && std::find(paths.begin(), paths.end(), path_of(r, p, i)) == paths.end())
+          paths.push_back(path_of(r, p, i));
+      }
+  }
+  std::vector<Drawing> decoded(paths.size());
+  std::vector<std::string> unread(paths.size());
+  RunEach(paths.size(), 0, [&](std::size_t k) {
+    Drawing& d = decoded[k];
+    d.path = paths[k];
+    try {
+      d.rgba = mapping::ReadPngRgba(d.path, &d.width, &d.height, ErrorSource(d.path));
+    } catch (const BakeError& e) {
+      unread[k] = e.what();
+      return;
+    }
+    CropToContent(d);
+  });
   for (std::uint32_t l = 0; l < lists; ++l) {
     const Rig& r = ListRig(rig, l);
     const std::uint32_t M = r.part_count(), N = r.pose_count();
@@ -155,20 +202,13 @@ PackedAtlas PackAtlas(const std::vector<unsigned char>& bytes, const std::string
         const std::string whose = (l ? "attachment " + std::to_string(l - 1) + ", " : std::string()) +
                                   (M > 1 ? "part '" + Text(r.part(p).name) + "' in " : std::string()) + "pose '" +
                                   Text(r.pose_name(i)) + "'";
-        const StringView ref = r.part_image(p, i);
-        if (ref.size == 0 || r.uvs(i).size == 0 || !(r.pose_canvas(i).width >= 1))
+        if (!usable(r, p, i))
           throw BakeError(file, "texture atlas: " + whose +
                                     " has no drawing; an atlas needs one per part and pose (\"atlas\": false bakes "
                                     "without one)");
-        const std::string path = (std::filesystem::path(drawing_folder) / Text(ref)).string();
-        // What the part samples, as CropToUvs takes it, is already too large
-        // for a page: no atlas, and no drawing is decoded to find out (Pip
-        // drawn at 4096 px: five 64 MiB canvases).
-        Drawing probe;
-        probe.width = int(r.pose_canvas(i).width), probe.height = int(r.pose_canvas(i).height);
-        CropToUvs(probe, r, p, i);
-        if (probe.x1 > probe.x0 && (std::uint64_t(probe.w()) + 2 * border > settings.max_page_size ||
-                                    std::uint64_t(probe.h()) + 2 * border > settings.max_page_size)) {
+        const std::string path = path_of(r, p, i);
+        const Drawing probe = probe_of(r, p, i);
+        if (too_large(probe)) {
           out.skipped = path + ": the part of it the rig samples, at least " + std::to_string(probe.w()) + "x" +
                         std::to_string(probe.h()) + " pixels, does not fit a page of " +
                         std::to_string(settings.max_page_size) + " (atlas.max_page_size); the renderers read the " +
@@ -177,22 +217,19 @@ PackedAtlas PackAtlas(const std::vector<unsigned char>& bytes, const std::string
         }
         auto [it, added] = found.emplace(path, drawings.size());
         if (added) {
-          Drawing d;
-          d.path = path;
-          try {
-            d.rgba = mapping::ReadPngRgba(path, &d.width, &d.height, ErrorSource(path));
-          } catch (const BakeError& e) {
-            // A reference the bake does not read ("image" given with a
-            // mesh): the game finds that drawing itself.
-            out.skipped = e.what();
+          const std::size_t k = std::size_t(std::find(paths.begin(), paths.end(), path) - paths.begin());
+          // A reference the bake does not read ("image" given with a
+          // mesh): the game finds that drawing itself.
+          if (!unread[k].empty()) {
+            out.skipped = unread[k];
             return out;
           }
+          Drawing d = std::move(decoded[k]);
           const DrawingCanvas canvas = r.pose_canvas(i);
           if (canvas.width > 0 && (double(d.width) != canvas.width || double(d.height) != canvas.height))
             throw BakeError(path, "is " + std::to_string(d.width) + "x" + std::to_string(d.height) +
                                       " pixels; the rig was baked from a drawing of " +
                                       std::to_string(long(canvas.width)) + "x" + std::to_string(long(canvas.height)));
-          CropToContent(d);
           out.drawing_pixels += std::uint64_t(d.width) * std::uint64_t(d.height);
           drawings.push_back(std::move(d));
         }
