@@ -132,7 +132,8 @@ def bake(binary, character, cache, out_dir):
     r = subprocess.run([binary, json_path, "-o", rig], capture_output=True, text=True)
     seconds = time.monotonic() - start
     row = {"name": name, "package": character["package"], "traits": character["traits"], "seconds": seconds,
-           "png_bytes": png_bytes, "side": side, "baked": r.returncode == 0, "poses": len(description.get("poses", []))}
+           "png_bytes": png_bytes, "side": side, "baked": r.returncode == 0, "poses": len(description.get("poses", [])),
+           "shadow": character.get("shadow", False)}
     out = r.stdout + r.stderr
     if r.returncode != 0:
         # The first line, with the unpacked package's folder left out.
@@ -148,6 +149,7 @@ def bake(binary, character, cache, out_dir):
     row["ghosting"] = number(r"ghosting over the pose hull[^\n]*mean ([0-9.]+)", out)
     row["outline_pixels"] = number(r"outlines (\d+)", out)
     row["warnings"] = [line for line in r.stderr.splitlines() if line.strip()]
+    row["shadows"] = sum(1 for line in row["warnings"] if "is taken as its drop shadow" in line)
     return row
 
 
@@ -219,6 +221,9 @@ def check(rows, expected):
                 problems.append(f"{name}: the failing bake took {r['seconds']:.1f} s (the bound is "
                                 f"{expected['max_failure_seconds']} s)")
             continue
+        if r.get("shadow") and r["shadows"] != r["poses"]:
+            problems.append(f"{name}: a drop shadow recognised in {r['shadows']} of {r['poses']} poses; every "
+                            "pose's drawing has one")
         if r["min_angle"] < bound["min_angle_degrees"]:
             problems.append(f"{name}: min angle {r['min_angle']:.2f} degrees, below "
                             f"{bound['min_angle_degrees']}")

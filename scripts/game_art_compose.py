@@ -8,7 +8,10 @@
 # says how: the canvas, each part's layers (a region of an image, tinted or
 # or filled with a colour, laid over each other), and per pose where each part goes (its pivot
 # at a canvas point, turned by an angle). This writes one PNG per pose and
-# part, POSE-PART.png, on one canvas: the drawings the description names.
+# part, POSE-PART.png, on one canvas: the drawings the description names;
+# with "flatten", one per pose, POSE.png, the parts laid over each other in
+# the recipe's order. A layer may also be an ellipse of one colour at an
+# alpha (a shadow the game draws beneath a sprite that has none).
 #
 #   scripts/game_art_compose.py RECIPE.json SOURCE_FOLDER OUT_FOLDER
 #
@@ -96,6 +99,20 @@ def part_image(part, source, cache):
     w, h = part["size"]
     out = [[0.0, 0.0, 0.0, 0.0] for _ in range(w * h)]
     for layer in part["layers"]:
+        if "ellipse" in layer:
+            # A shape the game draws itself (a cast shadow): that colour at
+            # `alpha`, its edge anti-aliased over about a pixel.
+            cx, cy, rx, ry = layer["ellipse"]
+            for y in range(h):
+                for x in range(w):
+                    r = math.hypot((x + 0.5 - cx) / rx, (y + 0.5 - cy) / ry)
+                    a = layer["alpha"] * max(0.0, min(1.0, (1 - r) * min(rx, ry) + 0.5))
+                    if a > 0:
+                        d = out[y * w + x]
+                        for k in range(3):
+                            d[k] = layer["fill"][k] * a + d[k] * (1 - a)
+                        d[3] = a + d[3] * (1 - a)
+            continue
         name = layer["image"]
         if name not in cache:
             cache[name] = read_png(os.path.join(source, name))
@@ -152,19 +169,31 @@ def compose(recipe_path, source, out):
     images = {name: part_image(part, source, cache) for name, part in recipe["parts"].items()}
     os.makedirs(out, exist_ok=True)
     written = []
+    flatten = recipe.get("flatten", False)
+
+    def write(canvas, path):
+        rgba = bytearray()
+        for r, g, b, a in canvas:  # back to straight alpha
+            a8 = max(0, min(255, round(a * 255)))
+            rgba += bytes([max(0, min(255, round(v / a * 255))) if a > 0 else 0 for v in (r, g, b)] + [a8])
+        write_png(path, size[0], size[1], rgba)
+        written.append(path)
+
     for pose, parts in recipe["poses"].items():
+        flat = [[0.0, 0.0, 0.0, 0.0] for _ in range(size[0] * size[1])]
         for name, where in parts.items():
             image = images[where.get("image", name)]
             canvas = [[0.0, 0.0, 0.0, 0.0] for _ in range(size[0] * size[1])]
             pivot = recipe["parts"][where.get("image", name)]["pivot"]
             place(canvas, size, image, pivot, where["at"], where.get("angle", 0))
-            rgba = bytearray()
-            for r, g, b, a in canvas:  # back to straight alpha
-                a8 = max(0, min(255, round(a * 255)))
-                rgba += bytes([max(0, min(255, round(v / a * 255))) if a > 0 else 0 for v in (r, g, b)] + [a8])
-            path = os.path.join(out, f"{pose}-{name}.png")
-            write_png(path, size[0], size[1], rgba)
-            written.append(path)
+            if not flatten:
+                write(canvas, os.path.join(out, f"{pose}-{name}.png"))
+                continue
+            for d, c in zip(flat, canvas):  # over what the parts before drew (premultiplied)
+                for k in range(4):
+                    d[k] = c[k] + d[k] * (1 - c[3])
+        if flatten:
+            write(flat, os.path.join(out, f"{pose}.png"))
     return written
 
 
