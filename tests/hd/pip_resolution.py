@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: MIT
 # Resolution independence of the bake (issue 38, docs/DESIGN.md section 4):
 # Pip's five SVG drawings rasterised with rsvg-convert at 256 and at a
-# larger size S (default 1024), landmarks and features scaled by S / 256,
+# larger sizes S (default 1024; several may be given, 256 px is baked once),
+# landmarks and features scaled by S / 256,
 # everything else as in assets/pip/pip.json, baked with the defaults. The
 # same drawing at a higher resolution should give about the same mesh:
 #
@@ -15,7 +16,7 @@
 # - the smallest angle at S no worse than at 256 px, or with --min-angle A
 #   at least A degrees (the quality floor is half of mapping.min_angle).
 #
-#   tests/hd/pip_resolution.py --bake BAKE --work DIR [--size S] [--min-angle A]
+#   tests/hd/pip_resolution.py --bake BAKE --work DIR [--size S...] [--min-angle A]
 #
 # Exit 77 (ctest's skip) without rsvg-convert.
 import argparse
@@ -134,7 +135,7 @@ def main():
     parser = argparse.ArgumentParser()
     parser.add_argument('--bake', required=True)
     parser.add_argument('--work', required=True)
-    parser.add_argument('--size', type=int, default=1024)
+    parser.add_argument('--size', type=int, nargs='+', default=[1024])
     parser.add_argument('--min-angle', type=float, default=None)
     args = parser.parse_args()
     args.bake = os.path.abspath(args.bake)
@@ -143,27 +144,30 @@ def main():
         return 77
     os.makedirs(args.work, exist_ok=True)
     v0, angle0, boundary0 = bake_at(args.bake, args.work, 256)
-    v1, angle1, boundary1 = bake_at(args.bake, args.work, args.size)
     print('Pip at 256 px: %d vertices, min angle %.2f deg' % (v0, angle0))
-    print('Pip at %d px: %d vertices, min angle %.2f deg' % (args.size, v1, angle1))
     failures = []
-    ratio = v1 / v0
-    if abs(ratio - 1) > VERTEX_TOLERANCE:
-        failures.append('vertex count %d at %d px is %.1f%% off the %d at 256 px (allowed %.0f%%)' %
-                        (v1, args.size, 100 * (ratio - 1), v0, 100 * VERTEX_TOLERANCE))
-    for k, name in enumerate(POSES):
-        d01, p01 = one_way(boundary0[k], boundary1[k])
-        d10, p10 = one_way(boundary1[k], boundary0[k])
-        d, p = (d01, p01) if d01 >= d10 else (d10, p10)
-        print('pose %d %s: boundaries within %.3f px (at 256 px), worst near (%.1f, %.1f)' % (k, name, d, p[0], -p[1]))
-        if d > BOUNDARY_PX:
-            failures.append('pose %d %s: the boundaries at 256 and %d px differ by %.3f px near (%.1f, %.1f) '
-                            '(allowed %.2f)' % (k, name, args.size, d, p[0], -p[1], BOUNDARY_PX))
-    if args.min_angle is not None:
-        if angle1 < args.min_angle:
-            failures.append('min angle %.2f deg at %d px is below %.2f deg' % (angle1, args.size, args.min_angle))
-    elif angle1 < angle0:
-        failures.append('min angle %.2f deg at %d px is worse than the %.2f deg at 256 px' % (angle1, args.size, angle0))
+    for size in args.size:
+        v1, angle1, boundary1 = bake_at(args.bake, args.work, size)
+        print('Pip at %d px: %d vertices, min angle %.2f deg' % (size, v1, angle1))
+        ratio = v1 / v0
+        if abs(ratio - 1) > VERTEX_TOLERANCE:
+            failures.append('vertex count %d at %d px is %.1f%% off the %d at 256 px (allowed %.0f%%)' %
+                            (v1, size, 100 * (ratio - 1), v0, 100 * VERTEX_TOLERANCE))
+        for k, name in enumerate(POSES):
+            d01, p01 = one_way(boundary0[k], boundary1[k])
+            d10, p10 = one_way(boundary1[k], boundary0[k])
+            d, p = (d01, p01) if d01 >= d10 else (d10, p10)
+            print('  pose %d %s: boundaries within %.3f px (at 256 px), worst near (%.1f, %.1f)' %
+                  (k, name, d, p[0], -p[1]))
+            if d > BOUNDARY_PX:
+                failures.append('pose %d %s: the boundaries at 256 and %d px differ by %.3f px near (%.1f, %.1f) '
+                                '(allowed %.2f)' % (k, name, size, d, p[0], -p[1], BOUNDARY_PX))
+        if args.min_angle is not None:
+            if angle1 < args.min_angle:
+                failures.append('min angle %.2f deg at %d px is below %.2f deg' % (angle1, size, args.min_angle))
+        elif angle1 < angle0:
+            failures.append('min angle %.2f deg at %d px is worse than the %.2f deg at 256 px' %
+                            (angle1, size, angle0))
     for f in failures:
         print('FAIL ' + f)
     return 1 if failures else 0
