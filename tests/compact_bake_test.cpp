@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -69,6 +70,71 @@ TEST_CASE("frames evaluated in batches, as the compact search and the fold check
       REQUIRE(bake::EvaluateFrame(rig, at[first + k], one));
       CHECK(std::memcmp(one.data(), buffers.positions.data() + k * frame, frame * sizeof(double)) == 0);
     }
+  }
+}
+
+TEST_CASE("frames evaluated in runs on several threads are EvaluateFrame's bits, and a visit stops them all") {
+  bake::RigDescription desc = samples::PlateRig(10, 5);
+  desc.file = "plate";
+  const std::vector<unsigned char> bytes = bake::BakeRig(desc);
+  Rig rig;
+  Error err;
+  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
+  std::vector<Eigen::Vector2d> at;
+  for (const bake::PoseSpaceSample& s : bake::SamplePoseSpace(rig, bake::PoseSpaceSampling{})) at.push_back(s.at);
+  const std::size_t frame = 2 * std::size_t(rig.vertex_count());
+  const std::size_t groups = (at.size() + bake::kFrameBatch - 1) / bake::kFrameBatch;
+  REQUIRE(groups > 8);
+  std::vector<double> one;
+  for (unsigned threads : {1u, 2u, 3u, 8u, 64u}) {
+    CAPTURE(threads);
+    const std::size_t runs = bake::FrameRunCount(at.size(), threads);
+    CHECK(runs == std::min<std::size_t>(threads, 8));
+    std::vector<bake::FrameBuffers> parts;
+    std::vector<std::vector<double>> frames(at.size());
+    std::vector<std::size_t> run_of(at.size(), runs), last(runs, 0);
+    std::vector<int> in_order(runs, 1);  // each run writes its own
+    std::atomic<bool> bad_run{false};
+    REQUIRE(bake::EvaluateFramesOnEachCore(
+        rig, at, parts,
+        [&](std::size_t run, std::size_t first, std::size_t count, const double* positions) {
+          if (run >= runs) {
+            bad_run = true;
+            return false;
+          }
+          in_order[run] = in_order[run] && first >= last[run] && count <= bake::kFrameBatch;
+          last[run] = first + count;
+          for (std::size_t k = 0; k < count; ++k) {
+            frames[first + k].assign(positions + k * frame, positions + (k + 1) * frame);
+            run_of[first + k] = run;
+          }
+          return true;
+        },
+        threads));
+    CHECK(!bad_run);
+    CHECK(std::count(in_order.begin(), in_order.end(), 1) == std::ptrdiff_t(runs));
+    CHECK(parts.size() == runs);
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      CAPTURE(i);
+      REQUIRE(run_of[i] < runs);
+      CHECK((i == 0 || run_of[i] >= run_of[i - 1]));  // each run a contiguous stretch, in order
+      REQUIRE(bake::EvaluateFrame(rig, at[i], one));
+      REQUIRE(frames[i].size() == frame);
+      CHECK(std::memcmp(one.data(), frames[i].data(), frame * sizeof(double)) == 0);
+    }
+    // A visit that says stop: on one thread nothing after that group is
+    // visited; on several, each run stops by its next group.
+    std::atomic<std::size_t> visited{0};
+    std::vector<bake::FrameBuffers> again;
+    REQUIRE(bake::EvaluateFramesOnEachCore(
+        rig, at, again,
+        [&](std::size_t, std::size_t, std::size_t, const double*) {
+          ++visited;
+          return false;
+        },
+        threads));
+    CHECK(visited.load() >= 1);
+    CHECK(visited.load() <= runs);
   }
 }
 

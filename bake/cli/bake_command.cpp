@@ -66,7 +66,7 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   std::vector<unsigned char> bytes = BakeRig(rig, &report);
   std::optional<PackedAtlas> atlas;
   // A drawing named as a layer of a layered file exists as pixels only in the atlas.
-  const RigDrawings drawn = ReadRigDrawings(bytes);
+  const RigDrawings& drawn = report.drawings;
   const bool layered = drawn.layered;
   if (layered && !rig.atlas.enabled)
     throw BakeError(rig.file,

@@ -337,7 +337,9 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt
 
 std::vector<unsigned char> BakeRig(const RigDescription& description, BakeReport* report) {
   if (description.channels.size() > 1) return BakeCharacter(description, report);
-  return BakeOne(description, report).bytes;  // with its state machine, if any, verified in the one load
+  BakedRig baked = BakeOne(description, report);  // with its state machine, if any, verified in the one load
+  if (report) report->drawings = ReadRigDrawings(baked.rig);
+  return std::move(baked.bytes);
 }
 
 BakedRig BakeOne(const RigDescription& description, BakeReport* report) {

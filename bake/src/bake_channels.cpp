@@ -305,6 +305,7 @@ std::vector<unsigned char> BakeCharacter(const RigDescription& d, BakeReport* re
   if (!d.state_machine.layers.empty()) whole_sections.Add(fmt::kMachine, MachineSection(d.state_machine));
   std::vector<unsigned char> bytes = WriteRig(whole_sections);
   const Rig whole = LoadWithRuntime(bytes, d.file, "the rig written does not load in the runtime");
+  r.drawings = ReadRigDrawings(whole);
   if (whole.attachment_count() != attached.size())
     throw BakeError(d.file, "internal error: the rig written holds " + std::to_string(whole.attachment_count()) +
                                 " attachments, not " + std::to_string(attached.size()));

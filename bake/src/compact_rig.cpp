@@ -127,9 +127,9 @@ struct Trials {
   // the decoded positions only, so trials of weight steps at one position
   // step share them. A new position step starts from the last step's turns.
   std::map<double, std::vector<std::int32_t>> turns_at{};
-  std::vector<std::int32_t> guess;  // starts as the exact positions' own turns
-  RuntimeArena arena{};             // a large rig's arena faulted in once, not once per load
-  FrameBuffers frames{};
+  std::vector<std::int32_t> guess;     // starts as the exact positions' own turns
+  RuntimeArena arena{};                // a large rig's arena faulted in once, not once per load
+  std::vector<FrameBuffers> frames{};  // one per run of frames
 
   // A trial that goes beyond `stop_above` (at most `accept`) is refused.
   Trial Attempt(double ps, double ws, double stop_above) {
@@ -157,21 +157,27 @@ struct Trials {
       }
     }
     t.turns = enc.turns;
-    for (std::size_t first = 0; first < samples.size(); first += kFrameBatch) {
-      const std::size_t count = std::min(kFrameBatch, samples.size() - first);
-      if (!EvaluateFrames(rig, samples, first, count, frames)) return t;
-      for (std::size_t k = 0; k < count; ++k) {
-        const double* f = frames.positions.data() + k * 2 * V;
-        const std::vector<double>& r = reference[first + k];
-        double worst = 0;
-        for (std::uint64_t v = 0; v < V; ++v)
-          worst = std::max(worst, std::hypot(f[2 * v] - r[2 * v], f[2 * v + 1] - r[2 * v + 1]));
-        t.error = std::max(t.error, worst);
-        if (first + k < N) t.pose_error = std::max(t.pose_error, worst);
-      }
-      if (t.error > stop_above) return t;  // refused whatever the other frames give
-    }
-    t.ok = true;
+    // Each run of frames (EvaluateFramesOnEachCore) keeps its own worst; a
+    // trial is refused at the first group beyond stop_above, whatever the
+    // other frames give.
+    const std::size_t runs = FrameRunCount(samples.size());
+    std::vector<double> error(runs, 0.0), pose_error(runs, 0.0);
+    const bool evaluated = EvaluateFramesOnEachCore(
+        rig, samples, frames, [&](std::size_t run, std::size_t first, std::size_t count, const double* positions) {
+          for (std::size_t k = 0; k < count; ++k) {
+            const double* f = positions + k * 2 * V;
+            const std::vector<double>& r = reference[first + k];
+            double worst = 0;
+            for (std::uint64_t v = 0; v < V; ++v)
+              worst = std::max(worst, std::hypot(f[2 * v] - r[2 * v], f[2 * v + 1] - r[2 * v + 1]));
+            error[run] = std::max(error[run], worst);
+            if (first + k < N) pose_error[run] = std::max(pose_error[run], worst);
+          }
+          return error[run] <= stop_above;
+        });
+    for (std::size_t run = 0; run < runs; ++run)
+      t.error = std::max(t.error, error[run]), t.pose_error = std::max(t.pose_error, pose_error[run]);
+    t.ok = evaluated && t.error <= stop_above;
     return t;
   }
 };
@@ -189,22 +195,21 @@ RigSections CompactRig(const RigSections& exact_sections, const CompactSettings&
   const std::vector<Eigen::Vector2d> samples = SamplePoints(exact);
   std::vector<std::vector<double>> reference(samples.size());
   const std::size_t frame_size = 2 * std::size_t(exact.vertex_count());
-  FrameBuffers frames;
-  for (std::size_t first = 0; first < samples.size(); first += kFrameBatch) {
-    const std::size_t count = std::min(kFrameBatch, samples.size() - first);
-    if (!EvaluateFrames(exact, samples, first, count, frames))
-      throw BakeError(file, "internal error: the exact rig does not evaluate");
+  std::vector<FrameBuffers> frames;
+  const auto keep = [&](std::size_t, std::size_t first, std::size_t count, const double* positions) {
     for (std::size_t k = 0; k < count; ++k)
-      reference[first + k].assign(frames.positions.begin() + std::ptrdiff_t(k * frame_size),
-                                  frames.positions.begin() + std::ptrdiff_t((k + 1) * frame_size));
-  }
+      reference[first + k].assign(positions + k * frame_size, positions + (k + 1) * frame_size);
+    return true;
+  };
+  if (!EvaluateFramesOnEachCore(exact, samples, frames, keep))
+    throw BakeError(file, "internal error: the exact rig does not evaluate");
 
   const double budget = settings.max_error_px / settings.pixels_per_unit;  // rig units
   const double reach = WeightReach(exact);
   // Accepted at 90% of the budget: frames between the samples may come out
   // slightly worse than the worst sample.
   CompactReport rep;
-  Trials trials{exact, enc, samples, reference, 0.9 * budget, rep, {}, ExactTurns(exact), {}, {}};
+  Trials trials{exact, enc, samples, reference, 0.9 * budget, rep, {}, ExactTurns(exact), {}, std::move(frames)};
   // Each trial once: the searches below come back to a step they tried.
   std::map<std::tuple<double, double, double>, Trial> tried;
   auto attempt = [&](double ps, double ws, double stop_above) {

@@ -51,27 +51,49 @@ InbetweenCheck CheckInbetweens(const Rig& rig, const std::string& file, double m
   check.min_area_ratio = std::numeric_limits<double>::infinity();
   check.grid = sampling.grid;
   check.frames = samples.size();
-  // Per triangle, the most inverted frame inside the hull and outside it.
+  // Per run of frames (EvaluateFramesOnEachCore), the smallest ratio in the
+  // hull and, per triangle, the most inverted frame inside the hull and
+  // outside it; the runs merged in order, each taking the first of equals.
+  struct Lowest {
+    double ratio = std::numeric_limits<double>::infinity();
+    Eigen::Vector2d at = Eigen::Vector2d::Zero();
+    std::uint32_t triangle = 0;
+    std::vector<double> worst[2];
+    std::vector<std::size_t> where[2];
+  };
+  std::vector<Eigen::Vector2d> points;
+  for (const PoseSpaceSample& s : samples) points.push_back(s.at);
+  std::vector<FrameBuffers> buffers;
+  std::vector<Lowest> runs;
+  const auto visit = [&](std::size_t run, std::size_t first, std::size_t count, const double* positions) {
+    Lowest& low = runs[run];
+    for (std::size_t s = first; s < first + count; ++s) {
+      const double* x = positions + (s - first) * 2 * std::size_t(V);
+      const int side = samples[s].in_hull ? 0 : 1;
+      for (std::uint32_t t = 0; t < T; ++t) {
+        const double ratio = SignedArea(x, tris + 3 * t) / reference[t];
+        if (side == 0 && ratio < low.ratio) low.ratio = ratio, low.at = samples[s].at, low.triangle = t;
+        if (ratio < low.worst[side][t]) low.worst[side][t] = ratio, low.where[side][t] = s;
+      }
+    }
+    return true;
+  };
+  runs.resize(FrameRunCount(points.size()));
+  for (Lowest& low : runs)
+    for (int side = 0; side < 2; ++side)
+      low.worst[side].assign(T, std::numeric_limits<double>::infinity()), low.where[side].assign(T, 0);
+  if (!EvaluateFramesOnEachCore(rig, points, buffers, visit))
+    throw BakeError(file, "internal error: the baked rig does not evaluate at an in-between");
   std::vector<double> worst[2] = {std::vector<double>(T, std::numeric_limits<double>::infinity()),
                                   std::vector<double>(T, std::numeric_limits<double>::infinity())};
   std::vector<std::size_t> where[2] = {std::vector<std::size_t>(T, 0), std::vector<std::size_t>(T, 0)};
-  std::vector<Eigen::Vector2d> points;
-  for (const PoseSpaceSample& s : samples) points.push_back(s.at);
-  FrameBuffers frames;
-  for (std::size_t first = 0; first < samples.size(); first += kFrameBatch) {
-    const std::size_t count = std::min(kFrameBatch, samples.size() - first);
-    if (!EvaluateFrames(rig, points, first, count, frames))
-      throw BakeError(file, "internal error: the baked rig does not evaluate at an in-between");
-    for (std::size_t s = first; s < first + count; ++s) {
-      const double* x = frames.positions.data() + (s - first) * 2 * std::size_t(V);
-      for (std::uint32_t t = 0; t < T; ++t) {
-        const double ratio = SignedArea(x, tris + 3 * t) / reference[t];
-        if (samples[s].in_hull && ratio < check.min_area_ratio)
-          check.min_area_ratio = ratio, check.min_at = samples[s].at, check.min_triangle = t;
-        const int side = samples[s].in_hull ? 0 : 1;
-        if (ratio < worst[side][t]) worst[side][t] = ratio, where[side][t] = s;
-      }
-    }
+  for (const Lowest& low : runs) {
+    if (low.ratio < check.min_area_ratio)
+      check.min_area_ratio = low.ratio, check.min_at = low.at, check.min_triangle = low.triangle;
+    for (int side = 0; side < 2; ++side)
+      for (std::uint32_t t = 0; t < T; ++t)
+        if (low.worst[side][t] < worst[side][t])
+          worst[side][t] = low.worst[side][t], where[side][t] = low.where[side][t];
   }
   for (std::uint32_t t = 0; t < T; ++t) {
     const int side = worst[0][t] > 0 ? 1 : 0;  // a fold inside the hull is the one reported

@@ -2,10 +2,13 @@
 #include "posemorph/bake/pose_space_samples.h"
 
 #include <algorithm>
+#include <atomic>
+#include <thread>
 
 #include <Eigen/Geometry>
 
 #include "posemorph/jobs.h"
+#include "posemorph/bake/run_each.h"
 #include "posemorph/path.h"
 
 namespace posemorph::bake {
@@ -128,6 +131,34 @@ bool EvaluateFrames(const Rig& rig, const std::vector<Eigen::Vector2d>& at, std:
   mj.workspace = MakeSpan(buffers.workspace);
   mj.positions = MakeSpan(buffers.positions);
   return mj.Run();
+}
+
+std::size_t FrameRunCount(std::size_t n, unsigned threads) {
+  const std::size_t groups = (n + kFrameBatch - 1) / kFrameBatch;
+  const std::size_t most = threads > 0 ? threads : std::thread::hardware_concurrency();
+  return std::max<std::size_t>(1, std::min<std::size_t>({groups, most, 8}));
+}
+
+bool EvaluateFramesOnEachCore(
+    const Rig& rig, const std::vector<Eigen::Vector2d>& at, std::vector<FrameBuffers>& parts,
+    const std::function<bool(std::size_t run, std::size_t first, std::size_t count, const double* positions)>& visit,
+    unsigned threads) {
+  const std::size_t groups = (at.size() + kFrameBatch - 1) / kFrameBatch;
+  const std::size_t runs = FrameRunCount(at.size(), threads);
+  parts.resize(runs);
+  std::atomic<bool> stop{false}, failed{false};
+  RunEach(runs, unsigned(runs), [&](std::size_t run) {
+    // Run r takes groups [r * groups / runs, (r + 1) * groups / runs).
+    for (std::size_t g = run * groups / runs; g < (run + 1) * groups / runs && !stop; ++g) {
+      const std::size_t first = g * kFrameBatch, count = std::min(kFrameBatch, at.size() - first);
+      if (!EvaluateFrames(rig, at, first, count, parts[run])) {
+        failed = stop = true;
+      } else if (!visit(run, first, count, parts[run].positions.data())) {
+        stop = true;
+      }
+    }
+  });
+  return !failed;
 }
 
 }  // namespace posemorph::bake

@@ -115,9 +115,13 @@ void Blit(const Drawing& d, std::uint32_t border, AtlasPage& page) {
 }  // namespace
 
 RigDrawings ReadRigDrawings(const std::vector<unsigned char>& bytes) {
-  RigDrawings out;
   Rig rig;
-  if (!LoadRig(bytes.data(), bytes.size(), &rig, nullptr)) return out;
+  if (!LoadRig(bytes.data(), bytes.size(), &rig, nullptr)) return {};
+  return ReadRigDrawings(rig);
+}
+
+RigDrawings ReadRigDrawings(const Rig& rig) {
+  RigDrawings out;
   out.all = true;
   for (std::uint32_t l = 0; l < 1 + rig.attachment_count(); ++l) {
     const Rig& r = ListRig(rig, l);

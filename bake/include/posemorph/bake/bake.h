@@ -13,6 +13,7 @@
 #include "posemorph/bake/pose_meshes.h"
 #include "posemorph/bake/rig_description.h"
 #include "posemorph/bake/rig_sections.h"
+#include "posemorph/bake/texture_atlas.h"
 #include "posemorph/rig.h"
 
 namespace posemorph::bake {
@@ -65,6 +66,9 @@ struct BakeReport {
   // exact_bytes the body's and the attachments' exact encodings summed.
   std::vector<std::string> channels;
   std::vector<AttachmentReport> attachments;
+  // What the rig written draws (ReadRigDrawings), read from the bake's own
+  // verification load: whether it can have a texture atlas.
+  RigDrawings drawings;
 };
 
 // The paper's pipeline, one step per header: map the drawings

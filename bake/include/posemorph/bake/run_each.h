@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // Independent pieces of the bake's work shared out over the machine's cores:
-// the refinement's runs (compatible_refinement.cpp), the atlas pages' PNG
-// encodings (posemorph-bake).
+// the refinement's runs (compatible_refinement.cpp), the tracing of each
+// drawn pose (map_drawings.cpp), the atlas's decoding of its drawings
+// (texture_atlas.cpp) and PNG encoding of its pages (posemorph-bake), the
+// runs of frames the bake evaluates (pose_space_samples.h).
 #pragma once
 #include <cstddef>
 #include <functional>

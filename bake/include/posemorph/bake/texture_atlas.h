@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "posemorph/bake/rig_sections.h"
+#include "posemorph/rig.h"
 
 namespace posemorph::bake {
 
@@ -59,6 +60,9 @@ struct RigDrawings {
   bool all = false, layered = false;
 };
 RigDrawings ReadRigDrawings(const std::vector<unsigned char>& rig);
+// The same of a rig already loaded (the bake's own verification load:
+// BakeReport::drawings), which spares a large rig a second load.
+RigDrawings ReadRigDrawings(const Rig& rig);
 
 // The pages' file names for a rig written to `rig_file`: its name without
 // the extension, then ".page<k>.png".
