@@ -463,6 +463,55 @@ TEST_CASE("mapping: matching a shape to its own rotated, scaled copy is the iden
   }
 }
 
+TEST_CASE("mapping: a smoothed correspondence spreads a squeeze, keeps the landmarks and an identity") {
+  // Pose 1 grows a bump that pose 0 lacks: matching by bending alone gives
+  // the bump's many samples to few of pose 0's, a squeeze a triangle at that
+  // boundary cannot survive in both poses.
+  auto blob = [](double bump) {
+    Polygon p;
+    for (int k = 0; k < 400; ++k) {
+      const double t = 2 * M_PI * k / 400, d = (t - 1.0) / 0.12;
+      const double r = 60 + 15 * std::sin(3 * t) + 8 * std::cos(5 * t) + bump * std::exp(-d * d);
+      p.push_back({r * std::cos(t), r * std::sin(t)});
+    }
+    return p;
+  };
+  const Polygon plain = blob(0), bumped = blob(25);
+  const std::vector<std::vector<Point>> landmarks = {{plain[0], plain[200]}, {bumped[0], bumped[200]}};
+  // The largest ratio of a matched step's length in one pose to the other's, either way.
+  auto squeeze = [](const pm::CorrespondedBoundary& m) {
+    double worst = 1;
+    const std::size_t M = m.points[0].size();
+    for (std::size_t j = 0; j < M; ++j) {
+      const double a = (m.points[0][(j + 1) % M] - m.points[0][j]).norm();
+      const double b = (m.points[1][(j + 1) % M] - m.points[1][j]).norm();
+      if (a > 1e-9 && b > 1e-9) worst = std::max({worst, a / b, b / a});
+    }
+    return worst;
+  };
+  pm::MatchingParameters prm;
+  prm.spacing = 1.0;
+  const pm::CorrespondedBoundary as_matched = pm::MatchBoundaries({plain, bumped}, landmarks, prm);
+  prm.smoothing = 12;
+  const pm::CorrespondedBoundary smoothed = pm::MatchBoundaries({plain, bumped}, landmarks, prm);
+  MESSAGE("squeeze as matched " << squeeze(as_matched) << ", smoothed over 12 samples " << squeeze(smoothed));
+  CHECK(squeeze(as_matched) > 3);
+  CHECK(squeeze(smoothed) < squeeze(as_matched) / 2);
+  for (std::size_t k = 0; k < 2; ++k)
+    for (std::size_t i = 0; i < 2; ++i)
+      CHECK((smoothed.points[i][smoothed.landmarks[k]] - landmarks[i][k]).norm() <= 1e-9);
+  // Every matched point still on its outline, in order round it.
+  for (std::size_t j = 0; j + 1 < smoothed.at[1].size(); ++j) CHECK(smoothed.at[1][j] < smoothed.at[1][j + 1]);
+  // Smoothing an identity matching changes it by roundoff alone.
+  const Polygon copy = Transformed(plain, 0.4, 1.3, Point(3, 4));
+  const pm::CorrespondedBoundary same =
+      pm::MatchBoundaries({plain, copy}, {{plain[0], plain[200]}, {copy[0], copy[200]}}, prm);
+  double worst = 0;
+  for (std::size_t j = 0; j < same.points[0].size(); ++j)
+    worst = std::max(worst, (Transformed({same.points[0][j]}, 0.4, 1.3, Point(3, 4))[0] - same.points[1][j]).norm());
+  CHECK(worst <= 1e-6);
+}
+
 TEST_CASE("mapping: the matching's work is bounded on long outlines, unchanged on short ones") {
   // A 40,000-unit square matched at spacing 1 would need 40,000^2 steps per
   // span: it gets at most kMaxMatchedSamples samples instead, identity still.

@@ -279,16 +279,37 @@ constexpr int kFurtherRefinementRounds = 16;
 struct FurtherRefinement {
   int rounds;
   bool collapse_slivers;
+  int smoothing;  // MappingParameters::correspondence_smoothing
   const char* name;
 };
+// Then the outlines' correspondence averaged over 24, then 12, matched
+// samples on each side (mapping/boundary_matching.h): where one pose
+// squeezes the outline against another (an arm against the body in one,
+// raised in the other), matching by bending alone gave many samples of one
+// outline to one of the other (tux-yes: an edge of 0.31 px in 'down', 1.5
+// px in 'up'). With 24: tux-yes 6.8 -> 12.4 degrees, its ghosting over the
+// pose hull 24.4 -> 12.3; cat-walk 8.8 -> 15.1 degrees, 12.9 -> 8.7. The
+// outcome swings with the width (tux-yes, 4 rounds, at 8 / 10 / 14 / 16 /
+// 20 / 24: 10.1 / 8.4 / 10.4 / 10.3 / 10.8 / 12.4 degrees, folding at 8 and
+// 10, ghosting 32.4 and 32.9 at 14 and 16), so a second width is tried.
+// Not the default: on Pip and Sprout (8 samples) it cross-fades worse, 4.37
+// -> 4.70 and 3.10 -> 3.95 over the pose hull.
+constexpr int kFurtherSmoothing[] = {24, 12};
 // A finer mesh whose ghosting over the pose hull (ghosting.h) is more than
 // 5% worse than the first's is not kept: on the game-art corpus removing
 // slivers lifted cat-springboots 12.8 -> 16.3 degrees and cat-walk 8.8 ->
 // 9.9 but cross-faded 15% and 7% worse.
 constexpr double kFurtherGhostingSlack = 1.05;
 // In this order; once one lifts the mesh over the floor, the rest are not tried.
-constexpr FurtherRefinement kFurtherRefinements[] = {{4, true, "slivers at the boundary removed"},
-                                                     {kFurtherRefinementRounds, false, "16 rounds of splitting"}};
+constexpr FurtherRefinement kFurtherRefinements[] = {
+    {4, true, 0, "slivers at the boundary removed"},
+    {kFurtherRefinementRounds, false, 0, "16 rounds of splitting"},
+    {4, false, kFurtherSmoothing[0], "the outlines' correspondence smoothed over 24 samples"},
+    {kFurtherRefinementRounds, false, kFurtherSmoothing[0],
+     "the outlines' correspondence smoothed over 24 samples, 16 rounds"},
+    {4, false, kFurtherSmoothing[1], "the outlines' correspondence smoothed over 12 samples"},
+    {kFurtherRefinementRounds, false, kFurtherSmoothing[1],
+     "the outlines' correspondence smoothed over 12 samples, 16 rounds"}};
 
 double QualityFloor(const MappingParameters& m) { return m.min_angle / 2; }
 
@@ -297,7 +318,8 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt
   const MappingReport& m = a.drawings.report;
   const double floor = QualityFloor(chosen.mapping);
   if (!m.mapped || m.min_angle_degrees >= floor || m.min_angle_degrees < floor / 4 ||
-      chosen.mapping.refinement_rounds >= kFurtherRefinementRounds || chosen.mapping.collapse_slivers)
+      chosen.mapping.refinement_rounds >= kFurtherRefinementRounds || chosen.mapping.collapse_slivers ||
+      chosen.mapping.correspondence_smoothing > 0)
     return std::nullopt;
   std::optional<Attempt> best;
   const char* how = "";
@@ -305,10 +327,16 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt
   // that cross-fades worse is not kept.
   const GhostingDrawings& g = drawings();
   const Ghosting before = MeasureBakedGhosting(g, a.written.rig, chosen.file);
-  for (const auto& [rounds, collapse, name] : kFurtherRefinements) {
+  // The smoothed correspondence only where a pose squeezes the worst
+  // triangle (not, say, on a spiral finer than any split lifts: 20,000
+  // outline points, a second per mapping).
+  const bool squeezed = Squeezed(FindSmallestAngle(a.written.rig));
+  for (const auto& [rounds, collapse, smoothing, name] : kFurtherRefinements) {
+    if (smoothing > 0 && !squeezed) continue;
     RigDescription finer = chosen;
     finer.mapping.refinement_rounds = rounds;
     finer.mapping.collapse_slivers = collapse;
+    finer.mapping.correspondence_smoothing = smoothing;
     std::optional<Attempt> b;
     try {
       b = BakeOnce(finer);

@@ -47,6 +47,10 @@ SmallestAngle FindSmallestAngle(const Rig& rig) {
   return s;
 }
 
+bool Squeezed(const SmallestAngle& s) {
+  return s.long_pose != s.pose && s.short_edge > 0 && s.long_edge >= 2 * s.short_edge;
+}
+
 std::string DescribeSmallestAngle(const Rig& rig, const SmallestAngle& s, double floor) {
   const std::uint32_t* v = rig.triangles().data + 3 * s.triangle;
   const double* x = rig.pose_positions(s.pose).data;
@@ -66,7 +70,7 @@ std::string DescribeSmallestAngle(const Rig& rig, const SmallestAngle& s, double
     << (drawn && image.size ? RigString(image) : "'" + RigString(rig.pose_name(s.pose)) + "'");
   const double squeeze = s.short_edge > 0 ? s.long_edge / s.short_edge : 0;
   const char* unit = drawn ? " px" : " units";
-  if (s.long_pose != s.pose && squeeze >= 2) {
+  if (Squeezed(s)) {
     o << ", where pose '" << RigString(rig.pose_name(s.pose)) << "' squeezes it " << MessageNumber(squeeze)
       << "x against pose '" << RigString(rig.pose_name(s.long_pose)) << "' (an edge of " << MessageNumber(s.short_edge)
       << unit << " there, " << MessageNumber(s.long_edge) << unit

@@ -55,6 +55,22 @@ void MakeStrictlyIncreasing(std::vector<double>& u) {
   }
 }
 
+// The fractions u (u[0] = 0, the stretch's end at 1) averaged over up to w
+// neighbours on each side, the window narrowed near the ends so that they
+// stay where the landmarks are; strictly increasing again after.
+void SmoothCorrespondence(std::vector<double>& u, int w) {
+  const std::size_t m = u.size();
+  std::vector<double> v(u);
+  for (std::size_t j = 1; j < m; ++j) {
+    const std::size_t r = std::min({std::size_t(w), j, m - j});
+    double sum = 0;
+    for (std::size_t k = j - r; k <= j + r; ++k) sum += k < m ? u[k] : 1.0;
+    v[j] = sum / double(2 * r + 1);
+  }
+  u = std::move(v);
+  MakeStrictlyIncreasing(u);
+}
+
 }  // namespace
 
 std::vector<double> CumulativeArcLength(const Polygon& p) {
@@ -226,6 +242,7 @@ CorrespondedBoundary MatchBoundaries(const std::vector<Polygon>& outlines,
       std::vector<double> theta(m + 1);
       for (std::size_t q = 0; q <= m; ++q) theta[q] = Turning(arc[i], s[i][k] + len * double(q) / double(m), hi);
       std::vector<double> u = MatchSegment(theta0, theta, lambda);
+      if (prm.smoothing > 0) SmoothCorrespondence(u, prm.smoothing);
       for (std::size_t j = 0; j < m; ++j) out.at[i].push_back(s[i][k] + len * u[j]);
     }
   }

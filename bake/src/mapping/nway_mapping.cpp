@@ -202,6 +202,7 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   // Correspondence, simplification, compatible triangulation, refinement.
   MatchingParameters mp;
   mp.spacing = st.sizes.spacing * grid.scale;
+  mp.smoothing = prm.correspondence_smoothing;
   st.matched = MatchBoundaries(st.outlines, st.landmarks, mp);
   if (st.matched.spacing > mp.spacing)
     st.warnings.push_back(labels[0] + ": the outline is " +

@@ -27,6 +27,12 @@ struct SmallestAngle {
 // Over every triangle and pose of `rig` (its pose positions).
 SmallestAngle FindSmallestAngle(const Rig& rig);
 
+// The smallest angle comes from a squeeze: another pose has the triangle's
+// shortest edge at least twice as long. Then the outlines' correspondence
+// is what to change (the bake's smoothed correspondence, bake.h; the
+// advice DescribeSmallestAngle gives), not the refinement.
+bool Squeezed(const SmallestAngle& s);
+
 // One line: the angle, the triangle, its centre in the pose's drawing
 // pixels (y down, as landmarks are given), the part on a layered rig, the
 // squeeze against the other pose and what an animator can do about it.

@@ -108,6 +108,10 @@ struct MappingParameters {
   // that make slivers opposite a short boundary edge (where one pose
   // squeezes the outline); the bake tries it with refining further.
   bool collapse_slivers = false;
+  // Not in the description: the outlines' correspondence averaged over this
+  // many matched samples on each side (mapping/boundary_matching.h); the
+  // bake tries it with refining further.
+  int correspondence_smoothing = 0;
   // Not in the description: drawing units per working unit (2^halvings),
   // set by the mapping driver; messages multiply what they measure on the
   // drawing by it, so that they speak in the drawing's pixels.

@@ -13,6 +13,13 @@ struct MatchingParameters {
   double spacing = 1.0;        // arc length between samples on pose 0's outline
   double stretch_cost = 0.05;  // per unmatched step, against bending differences in radians
   int bending_scale = 3;       // turning angle measured over +-this many samples
+  // Each matched position averaged with up to this many neighbours on each
+  // side, within its stretch between landmarks (0: as matched). The
+  // matching by bending alone can advance many samples on one outline for
+  // one on the other (a limb against the body in one pose, away from it in
+  // another), a squeeze no triangle at that boundary survives; averaging
+  // spreads it over its neighbours.
+  int smoothing = 0;
 };
 struct CorrespondedBoundary {
   std::vector<Polygon> points;          // per pose, M corresponding points on its outline
