@@ -46,15 +46,25 @@ TEST_CASE("a 1035-vertex, 8-pose rig bakes compact within 100 KB and within the 
   CHECK(rig.format_minor() == format::kVersionMinor);
 }
 
-TEST_CASE("frames evaluated in batches, as the compact search and the fold check do, are EvaluateFrame's bits") {
+namespace {
+
+// A 10 x 10 plate of 5 poses, baked and loaded into `rig`; its pose-space samples.
+std::vector<Eigen::Vector2d> BakedPlate(Rig& rig) {
   bake::RigDescription desc = samples::PlateRig(10, 5);
   desc.file = "plate";
   const std::vector<unsigned char> bytes = bake::BakeRig(desc);
-  Rig rig;
   Error err;
   REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
   std::vector<Eigen::Vector2d> at;
   for (const bake::PoseSpaceSample& s : bake::SamplePoseSpace(rig, bake::PoseSpaceSampling{})) at.push_back(s.at);
+  return at;
+}
+
+}  // namespace
+
+TEST_CASE("frames evaluated in batches, as the compact search and the fold check do, are EvaluateFrame's bits") {
+  Rig rig;
+  std::vector<Eigen::Vector2d> at = BakedPlate(rig);
   at.push_back({3.5, -2.0});  // far outside the pose points: limited weights differ from raw ones
   REQUIRE(at.size() > 2 * bake::kFrameBatch);
   const std::size_t frame = 2 * std::size_t(rig.vertex_count());
@@ -74,14 +84,8 @@ TEST_CASE("frames evaluated in batches, as the compact search and the fold check
 }
 
 TEST_CASE("frames evaluated in runs on several threads are EvaluateFrame's bits, and a visit stops them all") {
-  bake::RigDescription desc = samples::PlateRig(10, 5);
-  desc.file = "plate";
-  const std::vector<unsigned char> bytes = bake::BakeRig(desc);
   Rig rig;
-  Error err;
-  REQUIRE_MESSAGE(LoadRig(bytes.data(), bytes.size(), &rig, &err), err.message);
-  std::vector<Eigen::Vector2d> at;
-  for (const bake::PoseSpaceSample& s : bake::SamplePoseSpace(rig, bake::PoseSpaceSampling{})) at.push_back(s.at);
+  std::vector<Eigen::Vector2d> at = BakedPlate(rig);
   const std::size_t frame = 2 * std::size_t(rig.vertex_count());
   const std::size_t groups = (at.size() + bake::kFrameBatch - 1) / bake::kFrameBatch;
   REQUIRE(groups > 8);
