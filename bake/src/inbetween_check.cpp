@@ -84,17 +84,20 @@ InbetweenCheck CheckInbetweens(const Rig& rig, const std::string& file, double m
       low.worst[side].assign(T, std::numeric_limits<double>::infinity()), low.where[side].assign(T, 0);
   if (!EvaluateFramesOnEachCore(rig, points, buffers, visit))
     throw BakeError(file, "internal error: the baked rig does not evaluate at an in-between");
-  std::vector<double> worst[2] = {std::vector<double>(T, std::numeric_limits<double>::infinity()),
-                                  std::vector<double>(T, std::numeric_limits<double>::infinity())};
-  std::vector<std::size_t> where[2] = {std::vector<std::size_t>(T, 0), std::vector<std::size_t>(T, 0)};
-  for (const Lowest& low : runs) {
-    if (low.ratio < check.min_area_ratio)
-      check.min_area_ratio = low.ratio, check.min_at = low.at, check.min_triangle = low.triangle;
+  // The later runs folded into the first, in order.
+  Lowest& all = runs[0];
+  for (std::size_t r = 1; r < runs.size(); ++r) {
+    const Lowest& low = runs[r];
+    if (low.ratio < all.ratio) all.ratio = low.ratio, all.at = low.at, all.triangle = low.triangle;
     for (int side = 0; side < 2; ++side)
       for (std::uint32_t t = 0; t < T; ++t)
-        if (low.worst[side][t] < worst[side][t])
-          worst[side][t] = low.worst[side][t], where[side][t] = low.where[side][t];
+        if (low.worst[side][t] < all.worst[side][t])
+          all.worst[side][t] = low.worst[side][t], all.where[side][t] = low.where[side][t];
   }
+  if (all.ratio < check.min_area_ratio)
+    check.min_area_ratio = all.ratio, check.min_at = all.at, check.min_triangle = all.triangle;
+  const std::vector<double>(&worst)[2] = all.worst;
+  const std::vector<std::size_t>(&where)[2] = all.where;
   for (std::uint32_t t = 0; t < T; ++t) {
     const int side = worst[0][t] > 0 ? 1 : 0;  // a fold inside the hull is the one reported
     if (worst[side][t] > 0) continue;

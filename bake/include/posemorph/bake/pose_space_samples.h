@@ -63,12 +63,15 @@ bool EvaluateFrames(const Rig& rig, const std::vector<Eigen::Vector2d>& at, std:
 // least one.
 std::size_t FrameRunCount(std::size_t n, unsigned threads = 0);
 // The frames at every point of `at` on the machine's cores: the points are
-// cut into FrameRunCount(at.size(), threads) runs of kFrameBatch groups, each run
-// evaluated group by group into its own buffers (parts[run], sized here), and visit(run, first, count, positions)
-// called after each group with that group's count frames. A visit that returns false, or a job that fails, stops every
-// run at its next group. Visits of one run come in order; different runs' at once, so a visit writes only what belongs
-// to its run or its points, and the caller merges the runs in order: the outcome is then the same bits on any number of
-// cores. False if a job failed.
+// cut into FrameRunCount(at.size(), threads) runs of kFrameBatch groups,
+// each run evaluated group by group into its own buffers (parts[run], sized
+// here), and visit(run, first, count, positions) called after each group
+// with that group's count frames. A visit that returns false, or a job that
+// fails, stops every run at its next group. Visits of one run come in
+// order, different runs' at once, so a visit writes only what belongs to
+// its run or its points, and the caller merges the runs in order: the
+// outcome is then the same bits on any number of cores. False if a job
+// failed.
 bool EvaluateFramesOnEachCore(
     const Rig& rig, const std::vector<Eigen::Vector2d>& at, std::vector<FrameBuffers>& parts,
     const std::function<bool(std::size_t run, std::size_t first, std::size_t count, const double* positions)>& visit,
