@@ -188,6 +188,11 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     if (m.refined_further_from > 0)
       out << " (refined further, " << m.refined_further_by << ": " << m.refined_further_from
           << " degrees after the usual rounds)";
+    if (m.registered) {
+      out << " (pose 0's mesh deformed onto the others";
+      if (m.registered_over > 0) out << "; " << m.registered_over << " degrees by compatible triangulation";
+      out << ")";
+    }
     out << "; " << m.seconds * 1e3 << " ms\n";
     out << "interior alignment: ";
     if (m.aligned) {

@@ -12,6 +12,7 @@
 #include "geometry.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/mapping/interior_features.h"
+#include "posemorph/bake/mapping/mesh_registration.h"
 
 namespace posemorph {
 namespace bake::mapping {
@@ -229,8 +230,6 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   }
   std::string names;
   for (const std::string& l : labels) names += (names.empty() ? "" : ", ") + l;
-  st.mesh =
-      TriangulateCompatibly(st.simplified.polygons, ErrorSource(file, names), std::size_t(prm.max_steiner_points));
   RefinementParameters rp;
   rp.max_edge_length = st.sizes.max_edge_length * grid.scale;
   rp.min_angle_goal = prm.min_angle;
@@ -242,6 +241,14 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   // -> 11.0 degrees, the boundary where it was within 0.01 px; half: the
   // same; the whole tolerance: 9.6 degrees).
   rp.max_collapse_distance = st.sizes.simplify_tolerance * grid.scale / 4;
+  std::vector<ErrorSource> each;
+  for (const std::string& label : labels) each.emplace_back(file, label);
+  if (prm.registration) {
+    st.mesh = RegisterCompatibly(st.simplified.polygons, rp, each, std::size_t(prm.max_steiner_points));
+  } else {
+    st.mesh =
+        TriangulateCompatibly(st.simplified.polygons, ErrorSource(file, names), std::size_t(prm.max_steiner_points));
+  }
   auto refine = [&] {
     if (!RefineCompatibly(st.mesh, rp))
       throw BakeError(file, "mapping.max_edge_length " + Format(rp.max_edge_length / grid.scale) +
@@ -253,8 +260,6 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   if (!features.empty() && !features[0].empty()) {
     // Placed in the refined mesh (room for the interior to follow them), then
     // refined again around them, the features held.
-    std::vector<ErrorSource> each;
-    for (const std::string& label : labels) each.emplace_back(file, label);
     PlaceFeatures(st.mesh, features, each, grid.scale / prm.working_scale);  // messages in drawing units
     refine();
   }

@@ -44,7 +44,13 @@ struct MappingReport {
   // floor (bake.h): the smallest angle before, when the finer mesh was kept
   // (0: it was not).
   double refined_further_from = 0;
-  std::string refined_further_by;     // how (bake.cpp, kFurtherRefinements)
+  std::string refined_further_by;  // how (bake.cpp, kFurtherRefinements)
+  // The meshes were made by deforming pose 0's mesh onto the others
+  // (mapping/mesh_registration.h), and with them the smallest angle the
+  // compatible triangulation gave, when the bake chose that mapping because
+  // it was better (bake.h; 0: it did not).
+  bool registered = false;
+  double registered_over = 0;
   std::vector<std::string> warnings;  // "FILE: ...", e.g. specks dropped from a drawing
 };
 

@@ -112,6 +112,10 @@ struct MappingParameters {
   // many matched samples on each side (mapping/boundary_matching.h); the
   // bake tries it with refining further.
   int correspondence_smoothing = 0;
+  // Not in the description: the meshes are made by deforming pose 0's mesh
+  // onto the other poses (mapping/mesh_registration.h) instead of
+  // triangulating all poses together.
+  bool registration = false;
   // Not in the description: drawing units per working unit (2^halvings),
   // set by the mapping driver; messages multiply what they measure on the
   // drawing by it, so that they speak in the drawing's pixels.

@@ -6,6 +6,7 @@
 //   boundary_matching.h               dense corresponding boundary points
 //   enclosing_simplification.h        fewer points, still enclosing
 //   compatible_triangulation.h        stages I-III
+//   mesh_registration.h               or: pose 0's mesh deformed onto the others
 //   compatible_refinement.h           splits, flips, smoothing
 //   interior_features.h               points inside the shape that correspond
 //   polygon.h                         polygons and exact grid geometry
