@@ -212,6 +212,33 @@ TEST_CASE("mapping: robustness corpus triangulates compatibly") {
   CHECK(folding_drawn == 0);
 }
 
+TEST_CASE("mapping: where no compatible triangulation is found, the first pose's mesh is deformed onto the others") {
+  // A spiral against an S needs 5 Steiner points triangulated compatibly;
+  // allowed 2, the triangulation fails and registration maps them instead.
+  pb::RigDescription rig = OutlineRig({Spiral(1.5, 8), SShape(50, 8)});
+  rig.mapping.max_steiner_points = 2;
+  pb::MappedDrawings mapped;
+  REQUIRE_NOTHROW(mapped = pb::MapDrawings(rig));
+  const pb::MappingReport& r = mapped.report;
+  CHECK(r.registered == false);  // not asked for: the fallback
+  bool said = false;
+  for (const std::string& w : r.warnings) {
+    MESSAGE(w);
+    said = said || (w.find("with at most 2 Steiner points") != std::string::npos &&
+                    w.find("mapped instead by deforming the first pose's mesh onto the others") != std::string::npos);
+  }
+  CHECK(said);
+  rig = pb::WithPoseMeshes(rig, pb::DeformPoses(rig, mapped));
+  // As good a mesh as the triangulation makes with its 5 Steiner points.
+  const pb::MappingReport triangulated = pb::MapDrawings(OutlineRig({Spiral(1.5, 8), SShape(50, 8)})).report;
+  MESSAGE("spiral vs S by registration: " << r.vertices << " vertices, min angle " << r.min_angle_degrees
+                                          << "; triangulated compatibly: " << triangulated.vertices
+                                          << " vertices, min angle " << triangulated.min_angle_degrees);
+  CHECK(r.min_angle_degrees >= triangulated.min_angle_degrees);
+  CHECK(r.vertices <= triangulated.vertices * 5 / 4);
+  CheckCompatible(rig);  // every triangle positive in every pose; it bakes
+}
+
 TEST_CASE("bake: an in-between that folds fails the bake, naming the triangle, where, the poses and where to hold it") {
   // A spiral and an S with only their start points as landmarks: half-way
   // between them some triangles turn over.

@@ -246,8 +246,22 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   if (prm.registration) {
     st.mesh = RegisterCompatibly(st.simplified.polygons, rp, each, std::size_t(prm.max_steiner_points));
   } else {
-    st.mesh =
-        TriangulateCompatibly(st.simplified.polygons, ErrorSource(file, names), std::size_t(prm.max_steiner_points));
+    try {
+      st.mesh =
+          TriangulateCompatibly(st.simplified.polygons, ErrorSource(file, names), std::size_t(prm.max_steiner_points));
+    } catch (const BakeError& triangulation) {
+      // Where no compatible triangulation is found, pose 0's mesh deformed
+      // onto the others may still be; if not, the triangulation's message
+      // says why.
+      try {
+        st.mesh = RegisterCompatibly(st.simplified.polygons, rp, each, std::size_t(prm.max_steiner_points));
+        std::string why = triangulation.what();
+        if (why.compare(0, file.size() + 2, file + ": ") == 0) why.erase(0, file.size() + 2);
+        st.warnings.push_back(why + "; mapped instead by deforming the first pose's mesh onto the others");
+      } catch (const BakeError&) {
+        throw triangulation;
+      }
+    }
   }
   auto refine = [&] {
     if (!RefineCompatibly(st.mesh, rp))
