@@ -60,18 +60,6 @@ void SplitChords(CompatibleMesh& m) {
   }
 }
 
-// A grid point near m on the directed boundary edge a -> b or just outside it (to its right).
-Point OnEdgeOrOutside(const Point& a, const Point& b, const Point& m) {
-  Point best = Snap(m);
-  double best_d = std::numeric_limits<double>::infinity();
-  for (double dx : {std::floor(m.x()), std::ceil(m.x())})
-    for (double dy : {std::floor(m.y()), std::ceil(m.y())}) {
-      const Point q(dx, dy);
-      if (Cross(a, b, q) <= 0 && (q - m).norm() < best_d) best = q, best_d = (q - m).norm();
-    }
-  return best;
-}
-
 // Where every boundary vertex of `m` (pose 0 alone, its first K vertices the
 // polygon's corners) goes in `polygon`: the corners to their corners, each
 // vertex between two corners at the same share of the way along the edge.
@@ -100,7 +88,7 @@ std::vector<std::pair<std::size_t, Point>> BoundaryTargets(const CompatibleMesh&
     }
     const Point &a = polygon[corner], &b = polygon[(corner + 1) % K];
     for (std::size_t j = 0; j < chain.size(); ++j)
-      targets.emplace_back(chain[j], OnEdgeOrOutside(a, b, a + (b - a) * (along[j + 1] / along.back())));
+      targets.emplace_back(chain[j], refine::OnEdgeOrOutside(a, b, a + (b - a) * (along[j + 1] / along.back())));
   }
   return targets;
 }

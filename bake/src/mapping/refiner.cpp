@@ -28,8 +28,9 @@ bool EdgeFirst(Tri& t, std::size_t a, std::size_t b) {
   return false;
 }
 
-Point BoundaryMidpoint(const Point& a, const Point& b) {
-  const Point m = (a + b) / 2;
+Point BoundaryMidpoint(const Point& a, const Point& b) { return OnEdgeOrOutside(a, b, (a + b) / 2); }
+
+Point OnEdgeOrOutside(const Point& a, const Point& b, const Point& m) {
   Point best = Snap(m);
   double best_d = std::numeric_limits<double>::infinity();
   for (double dx : {std::floor(m.x()), std::ceil(m.x())})

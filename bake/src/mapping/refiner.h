@@ -46,6 +46,9 @@ bool EdgeFirst(Tri& t, std::size_t a, std::size_t b);
 // A grid point near the midpoint of a boundary edge a -> b, on it or just
 // outside (to its right), so the polygon still encloses what it enclosed.
 Point BoundaryMidpoint(const Point& a, const Point& b);
+// A grid point near m (a point of the boundary edge a -> b) on the edge or
+// just outside it (to its right): the one nearest m of the four around it.
+Point OnEdgeOrOutside(const Point& a, const Point& b, const Point& m);
 
 class Refiner {
  public:
