@@ -23,7 +23,7 @@ namespace {
 // An arm 100 long and 20 wide along a circular arc that turns by `bend`
 // radians (0: straight), from its shoulder at the origin: one side out, the
 // other back, counter-clockwise.
-Polygon Arm(double bend) {
+Polygon BentArm(double bend) {
   const int samples = 200;
   auto centre = [&](double t) -> Point {
     if (std::abs(bend) < 1e-9) return {100 * t, 0};
@@ -44,7 +44,7 @@ Polygon Arm(double bend) {
 }
 
 // The stages up to the simplified polygons (compatible triangulation, as the default).
-pm::MappingStages Stages(const std::vector<Polygon>& outlines, const std::vector<std::vector<Point>>& landmarks,
+pm::MappingStages ArmStages(const std::vector<Polygon>& outlines, const std::vector<std::vector<Point>>& landmarks,
                          bool registration) {
   pb::MappingParameters prm;
   prm.registration = registration;
@@ -54,7 +54,7 @@ pm::MappingStages Stages(const std::vector<Polygon>& outlines, const std::vector
 }
 
 // Every triangle counter-clockwise in every pose, exactly (grid coordinates).
-bool AllPositive(const pm::CompatibleMesh& m) {
+bool EveryTrianglePositive(const pm::CompatibleMesh& m) {
   for (const pm::Polygon& v : m.vertices)
     for (const auto& t : m.triangles)
       if (pm::Orient(v[t[0]], v[t[1]], v[t[2]]) <= 0) return false;
@@ -70,21 +70,21 @@ std::vector<std::vector<Point>> ArmLandmarks(const std::vector<Polygon>& arms) {
 }  // namespace
 
 TEST_CASE("registration: a rigid motion of the outline moves the mesh rigidly") {
-  const Polygon arm = Arm(0.6);
+  const Polygon arm = BentArm(0.6);
   const double angle = 2.0;
   const Point shift(40, -25);
   Polygon moved;
   for (const Point& p : arm)
     moved.push_back(Point(std::cos(angle) * p.x() - std::sin(angle) * p.y() + shift.x(),
                           std::sin(angle) * p.x() + std::cos(angle) * p.y() + shift.y()));
-  const pm::MappingStages st = Stages({arm, moved}, ArmLandmarks({arm, moved}), false);
+  const pm::MappingStages st = ArmStages({arm, moved}, ArmLandmarks({arm, moved}), false);
   const std::vector<Polygon>& polygons = st.simplified.polygons;
   pm::RefinementParameters rp;
   rp.max_edge_length = st.sizes.max_edge_length * st.grid_scale;
   const pm::CompatibleMesh m = pm::RegisterCompatibly(
       polygons, rp, {pb::ErrorSource("arm.json", "pose 0"), pb::ErrorSource("arm.json", "pose 1")}, 100);
   REQUIRE(m.vertices.size() == 2);
-  CHECK(AllPositive(m));
+  CHECK(EveryTrianglePositive(m));
   CHECK(m.vertices[0].size() > polygons[0].size());  // an interior to follow
   // The polygon's corners go to their corners; every vertex, interior too,
   // where the motion takes it (to the grid's rounding, against the arm's
@@ -105,12 +105,12 @@ TEST_CASE("registration: a rigid motion of the outline moves the mesh rigidly") 
 TEST_CASE("registration: an arm that turns by 90 and 180 degrees keeps its triangles' shapes") {
   for (double bend : {M_PI / 2, M_PI}) {
     CAPTURE(bend);
-    const std::vector<Polygon> arms = {Arm(0), Arm(bend)};
-    const pm::MappingStages compatible = Stages(arms, ArmLandmarks(arms), false);
-    const pm::MappingStages registered = Stages(arms, ArmLandmarks(arms), true);
+    const std::vector<Polygon> arms = {BentArm(0), BentArm(bend)};
+    const pm::MappingStages compatible = ArmStages(arms, ArmLandmarks(arms), false);
+    const pm::MappingStages registered = ArmStages(arms, ArmLandmarks(arms), true);
     const pm::CompatibleMesh& m = registered.mesh;
-    CHECK(AllPositive(m));
-    CHECK(AllPositive(compatible.mesh));
+    CHECK(EveryTrianglePositive(m));
+    CHECK(EveryTrianglePositive(compatible.mesh));
     // The boundary on (or just outside) each pose's simplified polygon: it
     // encloses the outline as the polygon does.
     for (std::size_t k = 0; k < 2; ++k) {
@@ -130,8 +130,8 @@ TEST_CASE("registration: an arm that turns by 90 and 180 degrees keeps its trian
 TEST_CASE("registration: a pose its mesh cannot reach is named") {
   // Pose 1 is pose 0's mirror image, its corners in the same order (so
   // clockwise): only a mesh turned over reaches it.
-  const Polygon arm = Arm(0.6);
-  const pm::MappingStages st = Stages({arm, arm}, ArmLandmarks({arm, arm}), false);
+  const Polygon arm = BentArm(0.6);
+  const pm::MappingStages st = ArmStages({arm, arm}, ArmLandmarks({arm, arm}), false);
   Polygon target;
   for (const Point& p : st.simplified.polygons[1]) target.push_back({-p.x(), p.y()});
   pm::RefinementParameters rp;
