@@ -45,7 +45,7 @@ Polygon BentArm(double bend) {
 
 // The stages up to the simplified polygons (compatible triangulation, as the default).
 pm::MappingStages ArmStages(const std::vector<Polygon>& outlines, const std::vector<std::vector<Point>>& landmarks,
-                         bool registration) {
+                            bool registration) {
   pb::MappingParameters prm;
   prm.registration = registration;
   std::vector<std::string> labels;
