@@ -339,7 +339,7 @@ CompatibleMesh RegisterCompatibly(const std::vector<Polygon>& polygons, const Re
   CompatibleMesh mesh;
   mesh.triangles = m0.triangles;
   mesh.boundary_vertices = m0.boundary_vertices;
-  mesh.steiner_points = m0.vertices[0].size() - K;
+  mesh.steiner_points = m0.steiner_points;  // as triangulated; the refinement adds the rest, as it does anyway
   mesh.vertices.resize(N);
   mesh.vertices[0] = m0.vertices[0];
   std::vector<char> reached(N, 1);
