@@ -372,8 +372,9 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, const Attempt
 // in-betweens of tux-egypt and cat-walk, and cross-faded Sprout 40% worse
 // (3.10 -> 4.36) at 20 degrees: not the only way.
 // Not below the floor: refining further has mapped such a mesh several
-// times already (a spiral of 20,000 outline points at 8.9 degrees: 7 -> 11
-// s), and on the corpus registration was never kept there.
+// times already (a spiral of 20,000 outline points at 8.9 degrees: 4.5 -> 10
+// s of CPU, past the hostile corpus's bound), and on the corpus registration
+// was never kept there.
 // A clear gain only: the registered mesh's angle swings with small changes
 // of the drawing (Pip drawn at 256 / 512 / 4096 px: 12.1 / 2.9 / 9.3
 // degrees, against 10.4 / 10.6 / 11.0 triangulated compatibly), so a gain
