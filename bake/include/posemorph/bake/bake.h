@@ -80,9 +80,11 @@ struct BakeReport {
 // (serialise_rig.h; compact_rig.h within the error budget) -> check the
 // poses with the runtime (reproduction_check.h) -> check the in-betweens for
 // folds (inbetween_check.h) -> measure the ghosting (ghosting.h). When the in-betweens fold inside the pose hull
-// and the meshes come from drawings, the bake maps them again, coarser
-// (kFoldRetries variants: matched-sample spacing x2, longest edge x1.5, both;
-// the first fold-free one is written, with a warning naming it); if every
+// and the meshes come from drawings, the bake maps them again (the fold
+// retries of map_again.h: matched-sample spacing x2, longest edge x1.5,
+// both; the same with the outlines' thin notches filled; last the first
+// pose's mesh deformed onto the others; the first fold-free one is written,
+// with a warning naming it); if every
 // variant folds, the fold of the mapping as given throws unless
 // description.parameters.allow_folds (then the first mapping is written).
 // Returns the rig's bytes. Throws BakeError naming the file and the problem.

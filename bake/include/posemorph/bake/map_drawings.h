@@ -44,7 +44,7 @@ struct MappingReport {
   // floor (bake.h): the smallest angle before, when the finer mesh was kept
   // (0: it was not).
   double refined_further_from = 0;
-  std::string refined_further_by;  // how (bake.cpp, kFurtherRefinements)
+  std::string refined_further_by;  // how (map_again.cpp, kFurtherRefinements)
   // The meshes were made by deforming pose 0's mesh onto the others
   // (mapping/mesh_registration.h), and with them the smallest angle the
   // compatible triangulation gave, when the bake chose that mapping because

@@ -1,0 +1,224 @@
+// SPDX-License-Identifier: MIT
+// The mapping's variants (map_again.h): the fold retries, further
+// refinement below the quality floor and the mapping by deformation, each
+// a BakeOnce of a changed description, kept by what it measures.
+#include "map_again.h"
+
+#include <algorithm>
+#include <iterator>
+
+#include "posemorph/bake/error.h"
+#include "posemorph/bake/map_drawings.h"
+#include "posemorph/bake/mesh_quality.h"
+
+namespace posemorph::bake {
+namespace {
+
+// The mapping variants tried, in order, when the in-betweens fold: coarser
+// matching, longer edges, both; then the outlines' thin notches filled; and
+// last the mapping by deformation (MappingParameters::registration).
+struct FoldRetry {
+  double spacing_scale, edge_scale;
+  bool fill_notches, registration;
+  const char* name;
+};
+constexpr FoldRetry kFoldRetries[] = {
+    {2, 1, false, false, "matched-sample spacing x2"},
+    {1, 1.5, false, false, "longest edge x1.5"},
+    {2, 1.5, false, false, "spacing x2, longest edge x1.5"},
+    {1, 1, true, false, "the outlines' thin notches filled"},
+    {2, 1, true, false, "thin notches filled, spacing x2"},
+    {1, 1.5, true, false, "thin notches filled, longest edge x1.5"},
+    {2, 1.5, true, false, "thin notches filled, spacing x2, longest edge x1.5"},
+    {1, 1, false, true, "the first pose's mesh deformed onto the others (registration)"}};
+
+// Fold retry k's description: `description` with kFoldRetries[k]'s
+// settings; nothing when it would map the same as the description.
+std::optional<RigDescription> FoldRetryVariant(const RigDescription& description, int k) {
+  RigDescription variant = description;
+  variant.mapping.spacing_scale = kFoldRetries[k].spacing_scale;
+  variant.mapping.edge_scale = kFoldRetries[k].edge_scale;
+  if (kFoldRetries[k].fill_notches) {
+    if (!TracesPngOutline(description)) return std::nullopt;  // nothing is traced from a PNG: the same mapping
+    variant.mapping.fill_notches = true;
+  }
+  if (kFoldRetries[k].registration) {
+    if (description.mapping.registration) return std::nullopt;  // mapped so already
+    variant.mapping.registration = true;
+  }
+  return variant;
+}
+
+// The quality floor: a mapped mesh whose smallest angle over all poses is
+// below half of mapping.min_angle (10 degrees by default) is mapped again
+// in the ways of kFurtherRefinements (refinement stops early once every
+// angle reaches min_angle) until one reaches the floor. The best of them is
+// kept when its in-betweens do not fold either and its smallest angle is
+// larger; otherwise the first one stays. (Splitting more
+// where one pose squeezes the outline, as an arm against the body does, can
+// fold the in-betweens; trying the fold retries' variants too cost up to
+// eight more mappings and gained nothing on the game-art corpus.) A mesh
+// below a quarter of the floor (2.5 degrees) is not mapped again: such an
+// angle comes from a squeeze or an outline finer than any split lifts, and
+// mapping again only doubled the bake (a 1024-pixel star at 0.77 degrees:
+// 3.3 s more, nothing kept).
+constexpr int kFurtherRefinementRounds = 16;
+// The ways tried, the best kept: more rounds of splitting; the usual rounds
+// with the boundary vertices that make slivers removed (a short boundary
+// edge where one pose squeezes the outline leaves a sliver no split lifts:
+// Pip drawn at 1024 px, 5.1 -> 11.0 degrees).
+struct FurtherRefinement {
+  int rounds;
+  bool collapse_slivers;
+  int smoothing;  // MappingParameters::correspondence_smoothing
+  const char* name;
+};
+// Then the outlines' correspondence averaged over 24, then 12, matched
+// samples on each side (mapping/boundary_matching.h): where one pose
+// squeezes the outline against another (an arm against the body in one,
+// raised in the other), matching by bending alone gave many samples of one
+// outline to one of the other (tux-yes: an edge of 0.31 px in 'down', 1.5
+// px in 'up'). With 24: tux-yes 6.8 -> 12.4 degrees, its ghosting over the
+// pose hull 24.4 -> 12.3; cat-walk 8.8 -> 15.1 degrees, 12.9 -> 8.7. The
+// outcome swings with the width (tux-yes, 4 rounds, at 8 / 10 / 14 / 16 /
+// 20 / 24: 10.1 / 8.4 / 10.4 / 10.3 / 10.8 / 12.4 degrees, folding at 8 and
+// 10, ghosting 32.4 and 32.9 at 14 and 16), so a second width is tried.
+// Not the default: on Pip and Sprout (8 samples) it cross-fades worse, 4.37
+// -> 4.70 and 3.10 -> 3.95 over the pose hull.
+constexpr int kFurtherSmoothing[] = {24, 12};
+// A finer mesh whose ghosting over the pose hull (ghosting.h) is more than
+// 5% worse than the first's is not kept: on the game-art corpus removing
+// slivers lifted cat-springboots 12.8 -> 16.3 degrees and cat-walk 8.8 ->
+// 9.9 but cross-faded 15% and 7% worse.
+constexpr double kFurtherGhostingSlack = 1.05;
+// In this order; once one lifts the mesh over the floor, the rest are not tried.
+constexpr FurtherRefinement kFurtherRefinements[] = {
+    {4, true, 0, "slivers at the boundary removed"},
+    {kFurtherRefinementRounds, false, 0, "16 rounds of splitting"},
+    {4, false, kFurtherSmoothing[0], "the outlines' correspondence smoothed over 24 samples"},
+    {kFurtherRefinementRounds, false, kFurtherSmoothing[0],
+     "the outlines' correspondence smoothed over 24 samples, 16 rounds"},
+    {4, false, kFurtherSmoothing[1], "the outlines' correspondence smoothed over 12 samples"},
+    {kFurtherRefinementRounds, false, kFurtherSmoothing[1],
+     "the outlines' correspondence smoothed over 12 samples, 16 rounds"}};
+
+}  // namespace
+
+// The first variant's bake whose in-betweens do not fold in the hull, with
+// *tried set to its place in kFoldRetries + 1 and *chosen to its description;
+// nothing when none does (a variant that cannot be baked at all is passed
+// over).
+std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, int* tried, std::string* name,
+                                            RigDescription* chosen) {
+  for (int k = 0; k < int(std::size(kFoldRetries)); ++k) {
+    std::optional<RigDescription> variant = FoldRetryVariant(description, k);
+    if (!variant) continue;
+    std::optional<Attempt> again;
+    try {
+      again = BakeOnce(*variant);
+    } catch (const BakeError&) {
+      continue;
+    }
+    if (again->inbetweens.FoldsInHull() == 0) {
+      *tried = k + 1;
+      *name = kFoldRetries[k].name;
+      *chosen = std::move(*variant);
+      return again;
+    }
+  }
+  return std::nullopt;
+}
+
+double QualityFloor(const MappingParameters& m) { return m.min_angle / 2; }
+std::optional<Attempt> RefineFurther(const RigDescription& chosen, Attempt& a,
+                                     const std::function<const GhostingDrawings&()>& drawings) {
+  const MappingReport& m = a.drawings.report;
+  const double floor = QualityFloor(chosen.mapping);
+  if (!m.mapped || m.min_angle_degrees >= floor || m.min_angle_degrees < floor / 4 ||
+      chosen.mapping.refinement_rounds >= kFurtherRefinementRounds || chosen.mapping.collapse_slivers ||
+      chosen.mapping.correspondence_smoothing > 0)
+    return std::nullopt;
+  std::optional<Attempt> best;
+  const char* how = "";
+  // The ghosting of the first mesh, where it can be measured: a finer mesh
+  // that cross-fades worse is not kept.
+  const GhostingDrawings& g = drawings();
+  const Ghosting& before = GhostingOf(a, g, chosen.file);
+  // The smoothed correspondence only where a pose squeezes the worst
+  // triangle (not, say, on a spiral finer than any split lifts: 20,000
+  // outline points, a second per mapping).
+  const bool squeezed = Squeezed(FindSmallestAngle(a.written.rig));
+  for (const auto& [rounds, collapse, smoothing, name] : kFurtherRefinements) {
+    if (smoothing > 0 && !squeezed) continue;
+    RigDescription finer = chosen;
+    finer.mapping.refinement_rounds = rounds;
+    finer.mapping.collapse_slivers = collapse;
+    finer.mapping.correspondence_smoothing = smoothing;
+    std::optional<Attempt> b;
+    try {
+      b = BakeOnce(finer);
+    } catch (const BakeError&) {
+      continue;
+    }
+    const double angle = b->drawings.report.min_angle_degrees;
+    if (b->inbetweens.FoldsInHull() > 0 ||
+        angle <= (best ? best->drawings.report.min_angle_degrees : m.min_angle_degrees))
+      continue;
+    if (!before.hull.empty() && GhostingOf(*b, g, chosen.file).hull_mean > before.hull_mean * kFurtherGhostingSlack)
+      continue;
+    best = std::move(b);
+    how = name;
+    if (angle >= floor) break;
+  }
+  if (best) {
+    best->drawings.report.refined_further_from = m.min_angle_degrees;
+    best->drawings.report.refined_further_by = how;
+  }
+  return best;
+}
+
+// Mapping by deformation (mapping/mesh_registration.h), the other way to
+// make the meshes: where the compatible triangulation's mesh is between the
+// quality floor and mapping.min_angle, the drawings are mapped again by deforming pose 0's
+// mesh onto the others, and that mesh is kept when its in-betweens do not
+// fold, its smallest angle reaches kRegistrationGain times the first's (or
+// min_angle) and it cross-fades at most 5% worse (kFurtherGhostingSlack).
+// Alone, on the game-art corpus it lifted tux-relax 12.1 -> 18.6 degrees
+// and gnujump-hero 12.9 -> 19.0 (but ghosting 5.77 -> 7.46), folded the
+// in-betweens of tux-egypt and cat-walk, and cross-faded Sprout 40% worse
+// (3.10 -> 4.36) at 20 degrees: not the only way.
+// Not below the floor: refining further has mapped such a mesh several
+// times already (a spiral of 20,000 outline points at 8.9 degrees: 4.5 -> 10
+// s of CPU, past the hostile corpus's bound), and on the corpus registration
+// was never kept there.
+// A clear gain only: the registered mesh's angle swings with small changes
+// of the drawing (Pip drawn at 256 / 512 / 4096 px: 12.1 / 2.9 / 9.3
+// degrees, against 10.4 / 10.6 / 11.0 triangulated compatibly), so a gain
+// of a few degrees would pick one way at one size and the other at the next.
+constexpr double kRegistrationGain = 1.25;
+std::optional<Attempt> MapByRegistration(const RigDescription& chosen, Attempt& a,
+                                         const std::function<const GhostingDrawings&()>& drawings) {
+  const MappingReport& m = a.drawings.report;
+  const double goal = chosen.mapping.min_angle;
+  if (!m.mapped || chosen.mapping.registration || m.min_angle_degrees >= goal ||
+      m.min_angle_degrees < QualityFloor(chosen.mapping))
+    return std::nullopt;
+  RigDescription registered = chosen;
+  registered.mapping.registration = true;
+  std::optional<Attempt> b;
+  try {
+    b = BakeOnce(registered);
+  } catch (const BakeError&) {
+    return std::nullopt;
+  }
+  if (b->inbetweens.FoldsInHull() > 0 ||
+      std::min(b->drawings.report.min_angle_degrees, goal) < std::min(m.min_angle_degrees * kRegistrationGain, goal))
+    return std::nullopt;
+  const GhostingDrawings& g = drawings();
+  const Ghosting& before = GhostingOf(a, g, chosen.file);
+  if (!before.hull.empty() && GhostingOf(*b, g, chosen.file).hull_mean > before.hull_mean * kFurtherGhostingSlack)
+    return std::nullopt;
+  b->drawings.report.registered_over = m.min_angle_degrees;
+  return b;
+}
+}  // namespace posemorph::bake

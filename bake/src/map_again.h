@@ -1,0 +1,44 @@
+// SPDX-License-Identifier: MIT
+// The mapping's variants (map_again.cpp): when the first bake's in-betweens
+// fold, or its mesh is below the quality floor or below
+// mapping.min_angle, the drawings are mapped again in other ways and the
+// bake keeps what measures better. Each variant is a BakeOnce of a changed
+// description; one that cannot be baked at all is passed over. Internal to
+// the bake.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <string>
+
+#include "bake_attempt.h"
+#include "posemorph/bake/rig_description.h"
+
+namespace posemorph::bake {
+
+// The fold retries, in order: the first variant whose in-betweens do not
+// fold in the pose hull, with *tried set to its place in the retries + 1,
+// *name to its name and *chosen to its description; nothing when none does.
+std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, int* tried, std::string* name,
+                                            RigDescription* chosen);
+
+// Half of mapping.min_angle: a mapped mesh below it is refined further and,
+// where it stays below, warned of.
+double QualityFloor(const MappingParameters& m);
+
+// A mesh between a quarter of the floor and the floor, mapped again with
+// more splitting, slivers removed or the correspondence smoothed: the best
+// that does not fold, has a larger smallest angle and cross-fades at most
+// 5% worse than `a`; nothing when none does. `drawings` reads the ghosting
+// drawings when first needed; a's and the kept one's ghosting is measured
+// once (GhostingOf).
+std::optional<Attempt> RefineFurther(const RigDescription& chosen, Attempt& a,
+                                     const std::function<const GhostingDrawings&()>& drawings);
+
+// A mesh between the floor and mapping.min_angle, mapped by deformation
+// (MappingParameters::registration): kept when it does not fold, its
+// smallest angle gains enough and it cross-fades at most 5% worse than `a`.
+std::optional<Attempt> MapByRegistration(const RigDescription& chosen, Attempt& a,
+                                         const std::function<const GhostingDrawings&()>& drawings);
+
+}  // namespace posemorph::bake
