@@ -203,6 +203,15 @@ TEST_CASE("mapping: robustness corpus triangulates compatibly") {
                    << report.inbetweens.FoldsInHull() << " triangles fold in the hull");
       folding_drawn += report.inbetweens.FoldsInHull() > 0;
       rescued += report.inbetweens.FoldsInHull() == 0;
+      // Mapped once (mapping.map_again false), the first mapping is written, folds and all.
+      drawn.mapping.map_again = false;
+      pb::BakeReport once;
+      pb::BakeRig(drawn, &once);
+      CHECK(once.mapping.fold_retries == 0);
+      CHECK(once.mapping.refined_further_by.empty());
+      CHECK(once.mapping.registered_over == 0);
+      CHECK(once.inbetweens.FoldsInHull() > 0);
+      CHECK(once.vertices == r.vertices);
     }
   }
   MESSAGE(folding << " of " << corpus.size() << " corpus rigs fold in the pose hull (no landmarks but the start) "
@@ -210,6 +219,16 @@ TEST_CASE("mapping: robustness corpus triangulates compatibly") {
                   << folding_drawn << " still fold");
   CHECK(folding > 0);  // the corpus does exercise the retries
   CHECK(folding_drawn == 0);
+}
+
+TEST_CASE("mapping: map_again is read as written, true by default, and a bad value fails naming the key") {
+  const std::string base = R"({"posemorph": 1, "poses": [
+      {"name": "a", "point": [0, 0], "outline": [[0, 0], [1, 0], [0, 1]], "landmarks": [[0, 0]]},
+      {"name": "b", "point": [1, 0], "outline": [[0, 0], [2, 0], [0, 1]], "landmarks": [[0, 0]]}], "mapping": )";
+  CHECK(pb::ParseRigDescription(base + "{}}", "r.json", ".").mapping.map_again);
+  CHECK(!pb::ParseRigDescription(base + R"({"map_again": false}})", "r.json", ".").mapping.map_again);
+  CHECK_THROWS_WITH_AS(pb::ParseRigDescription(base + R"({"map_again": 0}})", "r.json", "."),
+                       "r.json: mapping.map_again: expected true or false", pb::BakeError);
 }
 
 TEST_CASE("mapping: where no compatible triangulation is found, the first pose's mesh is deformed onto the others") {

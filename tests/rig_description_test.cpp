@@ -66,6 +66,7 @@ pb::RigDescription DrawnDescription() {
   d.parameters.compact = false;
   d.parameters.max_error_px = 0.02;
   d.parameters.allow_folds = true;
+  d.mapping.map_again = false;
   pb::PathDescription p;
   p.name = "walk";
   p.catmull_rom = true;
@@ -111,6 +112,7 @@ void CheckSame(const pb::RigDescription& x, const pb::RigDescription& y) {
   CHECK(m.landmark_distance == n.landmark_distance);
   CHECK(m.max_steiner_points == n.max_steiner_points);
   CHECK(m.max_vertices == n.max_vertices);
+  CHECK(m.map_again == n.map_again);
   const pb::BakeParameters &b = x.parameters, &c = y.parameters;
   CHECK(b.grid_resolution == c.grid_resolution);
   CHECK(b.margin == c.margin);

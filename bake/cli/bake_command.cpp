@@ -21,7 +21,7 @@ namespace posemorph::bake::cli {
 
 int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostream& report_out, std::ostream& err) {
   const Args args = Args::Parse(a, from, {"-o", "--precision", "--max-error"},
-                                {"--allow-folds", "--no-align", "--quiet", "--no-atlas"});
+                                {"--allow-folds", "--no-align", "--map-once", "--quiet", "--no-atlas"});
   // --quiet: no progress line and no report; warnings and errors still go to stderr.
   const bool quiet = args.switches.count("--quiet") > 0;
   std::ostringstream discarded;
@@ -52,6 +52,7 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
   }
   if (args.switches.count("--allow-folds")) rig.parameters.allow_folds = true;
   if (args.switches.count("--no-align")) rig.mapping.align_interiors = false;
+  if (args.switches.count("--map-once")) rig.mapping.map_again = false;
   if (args.switches.count("--no-atlas")) rig.atlas.enabled = false;
   BakeReport report;
   rig.rig_file = output;

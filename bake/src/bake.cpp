@@ -62,7 +62,9 @@ BakedRig BakeOne(const RigDescription& description, BakeReport* report) {
   std::string variant;
   std::optional<Attempt> again;
   RigDescription chosen = description;
-  if (first.inbetweens.FoldsInHull() > 0 && first.drawings.report.mapped)
+  // mapping.map_again false: the first mapping, whatever it measures.
+  const bool map_again = description.mapping.map_again && first.drawings.report.mapped;
+  if (map_again && first.inbetweens.FoldsInHull() > 0)
     again = MapAgainWithoutFolds(description, &tried, &variant, &chosen);
   if (again)
     retry_warnings.push_back(file + ": the in-betweens folded (" + std::to_string(first.inbetweens.FoldsInHull()) +
@@ -75,8 +77,11 @@ BakedRig BakeOne(const RigDescription& description, BakeReport* report) {
     if (!ghosting_drawings) ghosting_drawings = ReadGhostingDrawings(description);
     return *ghosting_drawings;
   };
-  std::optional<Attempt> finer = RefineFurther(chosen, again ? *again : first, drawings);
-  std::optional<Attempt> registered = MapByRegistration(chosen, finer ? *finer : again ? *again : first, drawings);
+  std::optional<Attempt> finer, registered;
+  if (map_again) {
+    finer = RefineFurther(chosen, again ? *again : first, drawings);
+    registered = MapByRegistration(chosen, finer ? *finer : again ? *again : first, drawings);
+  }
   Attempt& a = registered ? *registered : finer ? *finer : again ? *again : first;
   const PoseMeshes& meshes = a.meshes;
 

@@ -105,6 +105,7 @@ json MappingJson(const MappingParameters& p) {
   put("drop_shadows", p.drop_shadows, d.drop_shadows);
   put("align_rigidity", p.align_rigidity, d.align_rigidity);
   put("working_size", p.working_size, d.working_size);
+  put("map_again", p.map_again, d.map_again);
   return j.empty() ? json() : j;
 }
 

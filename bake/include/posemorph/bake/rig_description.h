@@ -93,6 +93,11 @@ struct MappingParameters {
   // default; rigidity weighs the as-rigid-as-possible term against colour.
   bool align_interiors = true;
   double align_rigidity = 0.005;
+  // The bake's own variants (map_again.h): where the in-betweens fold, or
+  // the mesh is below min_angle, the drawings are mapped again in other
+  // ways and the better mesh kept. false: mapped once, as the paper maps
+  // them (a quicker bake while editing; the mesh may be poorer or fold).
+  bool map_again = true;
   // Not in the description: the bake's own retries when the in-betweens fold
   // (bake.h) scale the spacing and the longest edge, automatic or given.
   double spacing_scale = 1, edge_scale = 1;
