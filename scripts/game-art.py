@@ -23,6 +23,15 @@
 # its bounds (min angle, no fold, rig/PNG ratio for sprites under 128 px,
 # vertices per point of the traced outline, a failure's time). A registry that cannot be reached skips the run with a
 # line saying so (exit 77, ctest's skip).
+#
+# --sheets DIR draws before/after contact sheets of tux-relax and tux-yes
+# (or of the characters named): "before" mapped once, as the paper maps
+# (posemorph-bake --map-once, folds allowed), "after" as the bake maps with
+# its defaults; per character a mesh sheet (SVG) and a textured sheet (PNG)
+# each way, and DIR/index.html setting them side by side with each way's
+# smallest angle, ghosting and folds. Nothing of the drawings is committed,
+# so the docs cannot show these pictures; the corpus test writes them under
+# the build's game-art/sheets.
 import argparse
 import json
 import os
@@ -133,7 +142,7 @@ def bake(binary, character, cache, out_dir):
     seconds = time.monotonic() - start
     row = {"name": name, "package": character["package"], "traits": character["traits"], "seconds": seconds,
            "png_bytes": png_bytes, "side": side, "baked": r.returncode == 0, "poses": len(description.get("poses", [])),
-           "shadow": character.get("shadow", False)}
+           "shadow": character.get("shadow", False), "description": json_path}
     out = r.stdout + r.stderr
     if r.returncode != 0:
         # The first line, with the unpacked package's folder left out.
@@ -240,12 +249,78 @@ def check(rows, expected):
     return problems
 
 
+SHEET_CHARACTERS = ["tux-relax", "tux-yes"]
+
+
+def sheets(binary, rows, out_dir, sheet_dir, names):
+    """Before/after contact sheets (see the top of this file); returns the
+    problems found (a bake or sheet that failed)."""
+    os.makedirs(sheet_dir, exist_ok=True)
+    problems, cells = [], []
+    by_name = {r["name"]: r for r in rows}
+    for name in names:
+        r = by_name.get(name)
+        if r is None or not r["baked"]:
+            problems.append(f"{name}: no sheets: the character is not in this run or did not bake")
+            continue
+        json_path = r["description"]
+        ways = []
+        once = os.path.join(sheet_dir, name + "-once.pmrig")
+        for way, extra, rig in (("before", ["--map-once", "--allow-folds"], once),
+                                ("after", [], os.path.join(out_dir, name + ".pmrig"))):
+            out = ""
+            if extra:
+                b = subprocess.run([binary, json_path, "-o", rig, "--no-atlas", *extra], capture_output=True, text=True)
+                if b.returncode != 0:
+                    problems.append(f"{name}: the bake mapped once failed: {b.stderr.strip()}")
+                    break
+                out = b.stdout + b.stderr
+                stats = {"min_angle": number(r"min angle ([0-9.]+) degrees over all poses", out),
+                         "ghosting": number(r"ghosting over the pose hull[^\n]*mean ([0-9.]+)", out),
+                         "folds": int(number(r"(\d+) folded triangles", out, 0)),
+                         "vertices": int(number(r"(\d+) vertices", out))}
+            else:
+                stats = {k: r[k] for k in ("min_angle", "ghosting", "folds", "vertices")}
+            stem = os.path.join(sheet_dir, f"{name}-{way}")
+            for args in (["-o", stem + ".svg"], ["--textured", "--columns", "5", "--rows", "3", "-o", stem + ".png"]):
+                s = subprocess.run([binary, "sheet", rig, *args], capture_output=True, text=True)
+                if s.returncode != 0:
+                    problems.append(f"{name}: the {way} sheet failed: {s.stderr.strip()}")
+            ways.append((way, stats))
+        cells.append((name, ways))
+    html = ["<!doctype html><meta charset=utf-8><title>posemorph game-art contact sheets</title>",
+            "<style>body{font-family:sans-serif}img{max-width:48vw;border:1px solid #ccc}td{vertical-align:top}</style>",
+            "<h1>Before / after</h1><p>Before: the drawings mapped once, as the paper maps them "
+            "(<code>posemorph-bake --map-once --allow-folds</code>). After: the bake's defaults (fold retries, "
+            "further refinement, registration where each measures better). Rows: the mesh over the pose space, "
+            "then the drawings cross-faded.</p>"]
+    for name, ways in cells:
+        html.append(f"<h2>{name}</h2><table><tr>")
+        for way, st in ways:
+            ghosting = "-" if st["ghosting"] is None else f"{st['ghosting']:.2f}"
+            html.append(f"<th>{way}: min angle {st['min_angle']:.1f} degrees, {st['vertices']} vertices, "
+                        f"ghosting {ghosting}, {st['folds']} folded triangles</th>")
+        html.append("</tr><tr>")
+        for way, _ in ways:
+            html.append(f"<td><img src='{name}-{way}.svg'></td>")
+        html.append("</tr><tr>")
+        for way, _ in ways:
+            html.append(f"<td><img src='{name}-{way}.png'></td>")
+        html.append("</tr></table>")
+    with open(os.path.join(sheet_dir, "index.html"), "w") as f:
+        f.write("\n".join(html) + "\n")
+    print(f"game-art: wrote before/after contact sheets of {', '.join(n for n, _ in cells)} to "
+          f"{os.path.join(sheet_dir, 'index.html')}")
+    return problems
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__)
     ap.add_argument("--bake", required=True)
     ap.add_argument("--cache", default=os.path.join(ROOT, "build", "game-art"))
     ap.add_argument("--table")
     ap.add_argument("--check", action="store_true")
+    ap.add_argument("--sheets", metavar="DIR")
     ap.add_argument("names", nargs="*")
     args = ap.parse_args()
     with open(os.path.join(CORPUS, "characters.json")) as f:
@@ -265,10 +340,14 @@ def main():
     if args.table:
         with open(args.table, "w") as f:
             f.write(text + "\n")
+    problems = []
+    if args.sheets:
+        names = [n for n in SHEET_CHARACTERS if not args.names or n in args.names] or [r["name"] for r in rows]
+        problems += sheets(os.path.abspath(args.bake), rows, out_dir, args.sheets, names)
     if args.check:
         with open(os.path.join(CORPUS, "expected.json")) as f:
             expected = json.load(f)
-        problems = check(rows, expected)
+        problems += check(rows, expected)
         for p in problems:
             print("game-art: " + p)
         if problems:
