@@ -348,11 +348,9 @@ def main():
         with open(os.path.join(CORPUS, "expected.json")) as f:
             expected = json.load(f)
         problems += check(rows, expected)
-        for p in problems:
-            print("game-art: " + p)
-        if problems:
-            return 1
-    return 0
+    for p in problems:
+        print("game-art: " + p)
+    return 1 if problems else 0
 
 
 if __name__ == "__main__":
