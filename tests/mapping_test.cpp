@@ -891,3 +891,51 @@ TEST_CASE("mapping: the drawn samples map with the quality reached") {
     }
   }
 }
+
+TEST_CASE("mapping: an arm raised over the head is matched to the arm, its tip to its tip when stretch is resisted") {
+  // y up; a body 40 x 60 with a head, and an arm 8 wide from the shoulder:
+  // hanging down, raised beside the head (turned 180 degrees) and held out
+  // sideways (90 degrees). Only the start point is a landmark.
+  const Polygon down = {{0, 0},   {40, 0},  {40, 50}, {42, 50}, {42, 26}, {50, 26}, {50, 58},
+                        {40, 58}, {40, 60}, {32, 60}, {32, 84}, {8, 84},  {8, 60},  {0, 60}};
+  const Polygon up = {{0, 0},   {40, 0},  {40, 50}, {50, 50}, {50, 90}, {42, 90}, {42, 58},
+                      {40, 58}, {40, 60}, {32, 60}, {32, 84}, {8, 84},  {8, 60},  {0, 60}};
+  const Polygon out = {{0, 0},   {40, 0},  {40, 50}, {74, 50}, {74, 58}, {40, 58},
+                       {40, 60}, {32, 60}, {32, 84}, {8, 84},  {8, 60},  {0, 60}};
+  const Point hanging_tip(46, 26);
+  struct Case {
+    const char* name;
+    Polygon outline;
+    Point tip;
+    double stretch_cost, tip_within;
+  };
+  // Matched by bends alone, a 180-degree turn is ambiguous with a 90-degree
+  // one (the shoulder's corners change their turn): the tip lands on the
+  // arm's side a corner off (6.0 px). Resisting stretch, the sides keep
+  // their lengths and the tip lands on the tip.
+  for (const Case& c : {Case{"raised", up, Point(46, 90), 0.05, 8}, Case{"raised", up, Point(46, 90), 0.2, 1},
+                        Case{"held out", out, Point(74, 54), 0.05, 1}, Case{"held out", out, Point(74, 54), 0.2, 1}}) {
+    const std::string name = c.name;
+    CAPTURE(name);
+    CAPTURE(c.stretch_cost);
+    pm::MatchingParameters prm;
+    prm.spacing = 1.0;
+    prm.stretch_cost = c.stretch_cost;
+    const pm::CorrespondedBoundary m = pm::MatchBoundaries({down, c.outline}, {{Point(20, 0)}, {Point(20, 0)}}, prm);
+    std::size_t tip = 0, on_arm = 0, arm = 0;
+    for (std::size_t j = 0; j < m.points[0].size(); ++j) {
+      const Point& p = m.points[0][j];
+      if ((p - hanging_tip).norm() < (m.points[0][tip] - hanging_tip).norm()) tip = j;
+      if (p.x() > 41.9 && p.y() < 56) {  // on the hanging arm (x 42..50), below the shoulder
+        ++arm;
+        on_arm += m.points[1][j].x() > 40.5;  // on the other pose's arm: the head is at x 8..32
+      }
+    }
+    const double off = (m.points[1][tip] - c.tip).norm();
+    MESSAGE(name << ", stretch cost " << c.stretch_cost << ": the tip lands " << off << " from the tip; " << on_arm
+                 << " of the arm's " << arm << " samples on the arm");
+    CHECK(arm > 50);
+    CHECK(on_arm == arm);
+    CHECK(off <= c.tip_within);
+  }
+}

@@ -194,6 +194,9 @@ int BakeCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
       if (m.registered_over > 0) out << "; " << m.registered_over << " degrees by compatible triangulation";
       out << ")";
     }
+    if (m.matched_stiffer_over > 0)
+      out << " (the outlines matched resisting stretch, " << m.stretch_cost << " per sample; " << m.matched_stiffer_over
+          << " degrees as matched first)";
     out << "; " << m.seconds * 1e3 << " ms\n";
     out << "interior alignment: ";
     if (m.aligned) {

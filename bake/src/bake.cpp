@@ -77,12 +77,12 @@ BakedRig BakeOne(const RigDescription& description, BakeReport* report) {
     if (!ghosting_drawings) ghosting_drawings = ReadGhostingDrawings(description);
     return *ghosting_drawings;
   };
-  std::optional<Attempt> finer, registered;
+  std::optional<Attempt> finer, other;
   if (map_again) {
     finer = RefineFurther(chosen, again ? *again : first, drawings);
-    registered = MapByRegistration(chosen, finer ? *finer : again ? *again : first, drawings);
+    other = MapAnotherWay(chosen, finer ? *finer : again ? *again : first, drawings);
   }
-  Attempt& a = registered ? *registered : finer ? *finer : again ? *again : first;
+  Attempt& a = other ? *other : finer ? *finer : again ? *again : first;
   const PoseMeshes& meshes = a.meshes;
 
   if (report) {

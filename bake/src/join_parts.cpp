@@ -261,6 +261,7 @@ JoinedParts JoinParts(const RigDescription& d) {
   out.report.vertices = meshes.poses[0].vertices.size();
   out.report.triangles = meshes.triangles.size();
   out.report.registered = d.mapping.registration;
+  out.report.stretch_cost = d.mapping.stretch_cost;
   return out;
 }
 

@@ -36,9 +36,12 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, Attempt& a,
                                      const std::function<const GhostingDrawings&()>& drawings);
 
 // A mesh between the floor and mapping.min_angle, mapped by deformation
-// (MappingParameters::registration): kept when it does not fold, its
-// smallest angle gains enough and it cross-fades at most 5% worse than `a`.
-std::optional<Attempt> MapByRegistration(const RigDescription& chosen, Attempt& a,
-                                         const std::function<const GhostingDrawings&()>& drawings);
+// (MappingParameters::registration) and with the outlines matched
+// resisting stretch (MappingParameters::stretch_cost): of those whose
+// in-betweens do not fold, whose smallest angle gains enough and which
+// cross-fade at most 5% worse than `a`, the one with the larger smallest
+// angle up to min_angle (registration on a tie); nothing when neither is.
+std::optional<Attempt> MapAnotherWay(const RigDescription& chosen, Attempt& a,
+                                     const std::function<const GhostingDrawings&()>& drawings);
 
 }  // namespace posemorph::bake

@@ -344,6 +344,7 @@ MappedDrawings MapDrawingsAsTraced(const RigDescription& rig) {
   report.simplification_error = st.simplified.max_error / grid.scale * in.working_scale;
   report.steiner_points = mesh.steiner_points;
   report.registered = prm.registration;
+  report.stretch_cost = prm.stretch_cost;
   report.features = mesh.features.size();
   for (std::size_t v : mesh.features) result.feature_vertices.push_back(std::uint32_t(v));
   report.min_angle_degrees = report.min_angle_before_alignment = mapping::MinAngleDegrees(mesh);

@@ -204,6 +204,7 @@ MappingStages MapPolygons(const std::vector<Polygon>& rig_outlines,
   MatchingParameters mp;
   mp.spacing = st.sizes.spacing * grid.scale;
   mp.smoothing = prm.correspondence_smoothing;
+  if (prm.stretch_cost > 0) mp.stretch_cost = prm.stretch_cost;
   st.matched = MatchBoundaries(st.outlines, st.landmarks, mp);
   if (st.matched.spacing > mp.spacing)
     st.warnings.push_back(labels[0] + ": the outline is " +

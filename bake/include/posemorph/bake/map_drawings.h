@@ -51,6 +51,11 @@ struct MappingReport {
   // it was better (bake.h; 0: it did not).
   bool registered = false;
   double registered_over = 0;
+  // The outlines were matched resisting stretch (MappingParameters::
+  // stretch_cost), and the smallest angle the usual matching gave, when the
+  // bake chose that mapping because it was better (0: it did not).
+  double stretch_cost = 0;
+  double matched_stiffer_over = 0;
   std::vector<std::string> warnings;  // "FILE: ...", e.g. specks dropped from a drawing
 };
 

@@ -117,6 +117,10 @@ struct MappingParameters {
   // many matched samples on each side (mapping/boundary_matching.h); the
   // bake tries it with refining further.
   int correspondence_smoothing = 0;
+  // Not in the description: the outlines' matching charges this per sample
+  // advanced on one outline alone (MatchingParameters::stretch_cost; 0: its
+  // default); the bake tries a stiffer matching where the mesh is poor.
+  double stretch_cost = 0;
   // Not in the description: the meshes are made by deforming pose 0's mesh
   // onto the other poses (mapping/mesh_registration.h) instead of
   // triangulating all poses together.
