@@ -37,10 +37,11 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, Attempt& a,
 
 // A mesh between the floor and mapping.min_angle, mapped by deformation
 // (MappingParameters::registration) and with the outlines matched
-// resisting stretch (MappingParameters::stretch_cost): of those whose
-// in-betweens do not fold, whose smallest angle gains enough and which
-// cross-fade at most 5% worse than `a`, the one with the larger smallest
-// angle up to min_angle (registration on a tie); nothing when neither is.
+// resisting stretch (MappingParameters::stretch_cost; 4 and 16 rounds of
+// splitting): of those whose in-betweens do not fold, whose smallest angle
+// gains enough and which cross-fade at most 5% worse than `a`, the one with
+// the larger smallest angle up to min_angle (registration on a tie);
+// nothing when none is.
 std::optional<Attempt> MapAnotherWay(const RigDescription& chosen, Attempt& a,
                                      const std::function<const GhostingDrawings&()>& drawings);
 
