@@ -112,6 +112,16 @@ def drawings_folder(character, cache):
     return folder
 
 
+def baked_figures(out):
+    """What a bake that wrote its rig printed: vertices, folded triangles,
+    the smallest angle and the ghosting over the pose hull (None when not
+    measured)."""
+    return {"vertices": int(number(r"(\d+) vertices", out)),
+            "folds": int(number(r"(\d+) folded triangles", out, 0)),
+            "min_angle": number(r"min angle ([0-9.]+) degrees over all poses", out),
+            "ghosting": number(r"ghosting over the pose hull[^\n]*mean ([0-9.]+)", out)}
+
+
 def bake(binary, character, cache, out_dir):
     """Bakes one character with default settings; returns its row."""
     name = character["name"]
@@ -150,12 +160,9 @@ def bake(binary, character, cache, out_dir):
         row["error"] = error.replace("posemorph-bake: error: ", "").replace(folder + "/", "")
         row["folds"] = number(r"(\d+) triangles? turns? over", r.stderr)
         return row
-    row["vertices"] = int(number(r"(\d+) vertices", out))
+    row.update(baked_figures(out))
     row["triangles"] = int(number(r"(\d+) triangles", out))
     row["rig_bytes"] = os.path.getsize(rig) - atlas_section_bytes(rig)
-    row["folds"] = int(number(r"(\d+) folded triangles", out, 0))
-    row["min_angle"] = number(r"min angle ([0-9.]+) degrees over all poses", out)
-    row["ghosting"] = number(r"ghosting over the pose hull[^\n]*mean ([0-9.]+)", out)
     row["outline_pixels"] = number(r"outlines (\d+)", out)
     row["warnings"] = [line for line in r.stderr.splitlines() if line.strip()]
     row["shadows"] = sum(1 for line in row["warnings"] if "is taken as its drop shadow" in line)
@@ -268,19 +275,14 @@ def sheets(binary, rows, out_dir, sheet_dir, names):
         once = os.path.join(sheet_dir, name + "-once.pmrig")
         for way, extra, rig in (("before", ["--map-once", "--allow-folds"], once),
                                 ("after", [], os.path.join(out_dir, name + ".pmrig"))):
-            out = ""
             if extra:
                 b = subprocess.run([binary, json_path, "-o", rig, "--no-atlas", *extra], capture_output=True, text=True)
                 if b.returncode != 0:
                     problems.append(f"{name}: the bake mapped once failed: {b.stderr.strip()}")
                     break
-                out = b.stdout + b.stderr
-                stats = {"min_angle": number(r"min angle ([0-9.]+) degrees over all poses", out),
-                         "ghosting": number(r"ghosting over the pose hull[^\n]*mean ([0-9.]+)", out),
-                         "folds": int(number(r"(\d+) folded triangles", out, 0)),
-                         "vertices": int(number(r"(\d+) vertices", out))}
+                stats = baked_figures(b.stdout + b.stderr)
             else:
-                stats = {k: r[k] for k in ("min_angle", "ghosting", "folds", "vertices")}
+                stats = r
             stem = os.path.join(sheet_dir, f"{name}-{way}")
             for args in (["-o", stem + ".svg"], ["--textured", "--columns", "5", "--rows", "3", "-o", stem + ".png"]):
                 s = subprocess.run([binary, "sheet", rig, *args], capture_output=True, text=True)
