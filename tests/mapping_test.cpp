@@ -892,14 +892,25 @@ TEST_CASE("mapping: the drawn samples map with the quality reached") {
   }
 }
 
+namespace {
+// y up; a body 40 x 60 with a head, and an arm 8 wide from the shoulder:
+// hanging down 2 units from the body (squeezed against it), and raised
+// beside the head (turned 180 degrees).
+Polygon ArmHangingFigure() {
+  return {{0, 0},   {40, 0},  {40, 50}, {42, 50}, {42, 26}, {50, 26}, {50, 58},
+          {40, 58}, {40, 60}, {32, 60}, {32, 84}, {8, 84},  {8, 60},  {0, 60}};
+}
+Polygon ArmRaisedFigure() {
+  return {{0, 0},   {40, 0},  {40, 50}, {50, 50}, {50, 90}, {42, 90}, {42, 58},
+          {40, 58}, {40, 60}, {32, 60}, {32, 84}, {8, 84},  {8, 60},  {0, 60}};
+}
+}  // namespace
+
 TEST_CASE("mapping: an arm raised over the head is matched to the arm, its tip to its tip when stretch is resisted") {
-  // y up; a body 40 x 60 with a head, and an arm 8 wide from the shoulder:
-  // hanging down, raised beside the head (turned 180 degrees) and held out
-  // sideways (90 degrees). Only the start point is a landmark.
-  const Polygon down = {{0, 0},   {40, 0},  {40, 50}, {42, 50}, {42, 26}, {50, 26}, {50, 58},
-                        {40, 58}, {40, 60}, {32, 60}, {32, 84}, {8, 84},  {8, 60},  {0, 60}};
-  const Polygon up = {{0, 0},   {40, 0},  {40, 50}, {50, 50}, {50, 90}, {42, 90}, {42, 58},
-                      {40, 58}, {40, 60}, {32, 60}, {32, 84}, {8, 84},  {8, 60},  {0, 60}};
+  // The figure hanging its arm, raising it and holding it out sideways (90
+  // degrees). Only the start point is a landmark.
+  const Polygon down = ArmHangingFigure();
+  const Polygon up = ArmRaisedFigure();
   const Polygon out = {{0, 0},   {40, 0},  {40, 50}, {74, 50}, {74, 58}, {40, 58},
                        {40, 60}, {32, 60}, {32, 84}, {8, 84},  {8, 60},  {0, 60}};
   const Point hanging_tip(46, 26);
@@ -938,4 +949,23 @@ TEST_CASE("mapping: an arm raised over the head is matched to the arm, its tip t
     CHECK(on_arm == arm);
     CHECK(off <= c.tip_within);
   }
+}
+
+TEST_CASE("bake: a sprite's mesh left below the quality floor by refining is mapped the other ways too") {
+  // The arm squeezed 2 units from the body, then raised: mapped once the
+  // mesh reaches 5.3 degrees, refined further 8.0, under the floor (10);
+  // a mapping of a sprite's few outline points is worth the other ways
+  // there too, and the outlines matched resisting stretch reach 12.2.
+  pb::RigDescription rig = OutlineRig({ArmHangingFigure(), ArmRaisedFigure()});
+  for (pb::PoseDescription& pose : rig.poses) pose.landmarks = {Point(20, 0)};
+  pb::BakeReport report;
+  pb::BakeRig(rig, &report);
+  const pb::MappingReport& m = report.mapping;
+  const double floor = rig.mapping.min_angle / 2;
+  MESSAGE("mapped another way from " << m.matched_stiffer_over + m.registered_over << " to " << m.min_angle_degrees
+                                     << " degrees");
+  CHECK(m.matched_stiffer_over + m.registered_over > 0);
+  CHECK(m.matched_stiffer_over + m.registered_over < floor);
+  CHECK(m.min_angle_degrees >= floor);
+  CHECK(report.inbetweens.FoldsInHull() == 0);
 }

@@ -218,8 +218,9 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, Attempt& a,
   return best;
 }
 
-// The other ways to make the meshes, where the mesh is between the quality
-// floor and mapping.min_angle: the drawings mapped again by deforming pose
+// The other ways to make the meshes, where the mesh is below
+// mapping.min_angle (below the quality floor only on a sprite's outlines,
+// below): the drawings mapped again by deforming pose
 // 0's mesh onto the others (mapping by deformation,
 // mapping/mesh_registration.h), and with the outlines matched resisting
 // stretch (kStiffStretchCost per sample advanced on one outline alone, 4x
@@ -240,20 +241,32 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, Attempt& a,
 // cat-poncho 10.3 -> 20.9 degrees, but lowered cat-walk 15.1 -> 10.3 and
 // cat-springboots 12.8 -> 8.2 and cross-faded tux-egypt and tux-kiss 15%
 // worse: not the default either.
-// Not below the floor: refining further has mapped such a mesh several
-// times already (a spiral of 20,000 outline points at 8.9 degrees: 4.5 -> 10
-// s of CPU with registration, past the hostile corpus's bound).
+// Below the floor (where refining further did not lift the mesh over it)
+// only for outlines of at most kAnotherWayBelowFloorPoints points in all
+// poses together, a sprite's: refining further has mapped such a mesh
+// several times already, and on a large outline the other ways cost too
+// much (a spiral of 20,000 outline points at 8.9 degrees: 4.5 -> 10 s of
+// CPU with registration, past the hostile corpus's bound). On a sprite
+// they rescue what refining could not: tuxtype's tux raising its arms
+// (win0, win1: 85 x 120 px, 1,042 outline points) 9.07 -> 12.1 degrees by
+// registration, ghosting over the pose hull 10.0 -> 9.58. Not below a
+// quarter of the floor, as refining further.
 // A clear gain only: the registered mesh's angle swings with small changes
 // of the drawing (Pip drawn at 256 / 512 / 4096 px: 12.1 / 2.9 / 9.3
 // degrees, against 10.4 / 10.6 / 11.0 triangulated compatibly), so a gain
 // of a few degrees would pick one way at one size and the other at the next.
 constexpr double kAnotherWayGain = 1.25;
 constexpr double kStiffStretchCost = 0.2;
+constexpr std::size_t kAnotherWayBelowFloorPoints = 4096;
 std::optional<Attempt> MapAnotherWay(const RigDescription& chosen, Attempt& a,
                                      const std::function<const GhostingDrawings&()>& drawings) {
   const MappingReport& m = a.drawings.report;
   const double goal = chosen.mapping.min_angle;
-  if (!m.mapped || m.min_angle_degrees >= goal || m.min_angle_degrees < QualityFloor(chosen.mapping))
+  std::size_t outline_points = 0;
+  for (std::size_t n : m.outline_vertices) outline_points += n;
+  const double floor = QualityFloor(chosen.mapping);
+  if (!m.mapped || m.min_angle_degrees >= goal || m.min_angle_degrees < floor / 4 ||
+      (m.min_angle_degrees < floor && outline_points > kAnotherWayBelowFloorPoints))
     return std::nullopt;
   std::vector<RigDescription> variants;
   if (!chosen.mapping.registration) {

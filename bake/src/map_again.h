@@ -35,7 +35,9 @@ double QualityFloor(const MappingParameters& m);
 std::optional<Attempt> RefineFurther(const RigDescription& chosen, Attempt& a,
                                      const std::function<const GhostingDrawings&()>& drawings);
 
-// A mesh between the floor and mapping.min_angle, mapped by deformation
+// A mesh below mapping.min_angle (below the floor only where the outlines
+// have at most 4,096 points in all poses, and not below a quarter of it),
+// mapped by deformation
 // (MappingParameters::registration) and with the outlines matched
 // resisting stretch (MappingParameters::stretch_cost; 4 and 16 rounds of
 // splitting): of those whose in-betweens do not fold, whose smallest angle
