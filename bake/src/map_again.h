@@ -17,8 +17,10 @@
 namespace posemorph::bake {
 
 // The fold retries, in order: the first variant whose in-betweens do not
-// fold in the pose hull, with *tried set to its place in the retries + 1,
-// *name to its name and *chosen to its description; nothing when none does.
+// fold in the pose hull (or, when its mesh is below the quality floor, the
+// last retry, registration, where that does not fold and reaches the
+// floor), with *tried set to its place in the retries + 1, *name to its
+// name and *chosen to its description; nothing when none does.
 std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, int* tried, std::string* name,
                                             RigDescription* chosen);
 
