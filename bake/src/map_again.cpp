@@ -65,10 +65,12 @@ std::optional<RigDescription> FoldRetryVariant(const RigDescription& description
 // where one pose squeezes the outline, as an arm against the body does, can
 // fold the in-betweens; trying the fold retries' variants too cost up to
 // eight more mappings and gained nothing on the game-art corpus.) A mesh
-// below a quarter of the floor (2.5 degrees) is not mapped again: such an
-// angle comes from a squeeze or an outline finer than any split lifts, and
-// mapping again only doubled the bake (a 1024-pixel star at 0.77 degrees:
-// 3.3 s more, nothing kept).
+// below a quarter of the floor (2.5 degrees) is mapped again only when its
+// outlines are a sprite's (IsSprite): such an angle comes from a squeeze or
+// an outline finer than any split lifts, and on a large outline mapping
+// again only doubled the bake, while on a sprite it costs little and can
+// lift it (fillets-ng's octopus curling its tentacles, 75 x 30 px: 1.34 ->
+// 11.5 degrees, then 15.8 with the outlines matched resisting stretch).
 constexpr int kFurtherRefinementRounds = 16;
 // The ways tried, the best kept: more rounds of splitting; the usual rounds
 // with the boundary vertices that make slivers removed (a short boundary
@@ -106,6 +108,19 @@ constexpr double kFurtherGhostingSlack = 1.05;
 // the player (60 x 30 px, outlines of 222, 200 and 176 points) 538
 // vertices, 2.4 per point of its first outline.
 constexpr double kVerticesPerOutlinePoint = 2;
+// A sprite's outlines: at most this many points in all poses together.
+// Below a quarter of the floor (and, for the other ways, below the floor)
+// only a sprite is mapped again: there the variants cost little, while a
+// large outline finer than any split lifts only doubled the bake (a
+// 1024-pixel star at 0.77 degrees: 3.3 s more, nothing kept; a spiral of
+// 20,000 outline points at 8.9 degrees: 4.5 -> 10 s of CPU with
+// registration, past the hostile corpus's bound).
+constexpr std::size_t kSpriteOutlinePoints = 4096;
+bool IsSprite(const MappingReport& m) {
+  std::size_t points = 0;
+  for (std::size_t n : m.outline_vertices) points += n;
+  return points <= kSpriteOutlinePoints;
+}
 bool WithinVertexBound(const MappingReport& variant, const MappingReport& first, std::size_t poses) {
   std::size_t points = 0;
   for (std::size_t n : first.outline_vertices) points += n;
@@ -207,7 +222,7 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, Attempt& a,
                                      const std::function<const GhostingDrawings&()>& drawings) {
   const MappingReport& m = a.drawings.report;
   const double floor = QualityFloor(chosen.mapping);
-  if (!m.mapped || m.min_angle_degrees >= floor || m.min_angle_degrees < floor / 4 ||
+  if (!m.mapped || m.min_angle_degrees >= floor || (m.min_angle_degrees < floor / 4 && !IsSprite(m)) ||
       chosen.mapping.refinement_rounds >= kFurtherRefinementRounds || chosen.mapping.collapse_slivers ||
       chosen.mapping.correspondence_smoothing > 0)
     return std::nullopt;
@@ -276,31 +291,23 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, Attempt& a,
 // cat-springboots 12.8 -> 8.2 and cross-faded tux-egypt and tux-kiss 15%
 // worse: not the default either.
 // Below the floor (where refining further did not lift the mesh over it)
-// only for outlines of at most kAnotherWayBelowFloorPoints points in all
-// poses together, a sprite's: refining further has mapped such a mesh
-// several times already, and on a large outline the other ways cost too
-// much (a spiral of 20,000 outline points at 8.9 degrees: 4.5 -> 10 s of
-// CPU with registration, past the hostile corpus's bound). On a sprite
-// they rescue what refining could not: tuxtype's tux raising its arms
-// (win0, win1: 85 x 120 px, 1,042 outline points) 9.07 -> 12.1 degrees by
-// registration, ghosting over the pose hull 10.0 -> 9.58. Not below a
-// quarter of the floor, as refining further.
+// only for a sprite's outlines (IsSprite): refining further has mapped
+// such a mesh several times already, and on a large outline the other ways
+// cost too much. On a sprite they rescue what refining could not:
+// tuxtype's tux raising its arms (win0, win1: 85 x 120 px, 1,042 outline
+// points) 9.07 -> 12.1 degrees by registration, ghosting over the pose
+// hull 10.0 -> 9.58.
 // A clear gain only: the registered mesh's angle swings with small changes
 // of the drawing (Pip drawn at 256 / 512 / 4096 px: 12.1 / 2.9 / 9.3
 // degrees, against 10.4 / 10.6 / 11.0 triangulated compatibly), so a gain
 // of a few degrees would pick one way at one size and the other at the next.
 constexpr double kAnotherWayGain = 1.25;
 constexpr double kStiffStretchCost = 0.2;
-constexpr std::size_t kAnotherWayBelowFloorPoints = 4096;
 std::optional<Attempt> MapAnotherWay(const RigDescription& chosen, Attempt& a,
                                      const std::function<const GhostingDrawings&()>& drawings) {
   const MappingReport& m = a.drawings.report;
   const double goal = chosen.mapping.min_angle;
-  std::size_t outline_points = 0;
-  for (std::size_t n : m.outline_vertices) outline_points += n;
-  const double floor = QualityFloor(chosen.mapping);
-  if (!m.mapped || m.min_angle_degrees >= goal || m.min_angle_degrees < floor / 4 ||
-      (m.min_angle_degrees < floor && outline_points > kAnotherWayBelowFloorPoints))
+  if (!m.mapped || m.min_angle_degrees >= goal || (m.min_angle_degrees < QualityFloor(chosen.mapping) && !IsSprite(m)))
     return std::nullopt;
   std::vector<RigDescription> variants;
   if (!chosen.mapping.registration) {

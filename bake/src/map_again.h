@@ -28,7 +28,8 @@ std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, i
 // where it stays below, warned of.
 double QualityFloor(const MappingParameters& m);
 
-// A mesh between a quarter of the floor and the floor, mapped again with
+// A mesh between a quarter of the floor and the floor (or below the floor
+// where the outlines have at most 4,096 points in all poses), mapped again with
 // more splitting, slivers removed or the correspondence smoothed: the best
 // that does not fold, has a larger smallest angle and cross-fades at most
 // 5% worse than `a`; nothing when none does. `drawings` reads the ghosting
@@ -38,8 +39,7 @@ std::optional<Attempt> RefineFurther(const RigDescription& chosen, Attempt& a,
                                      const std::function<const GhostingDrawings&()>& drawings);
 
 // A mesh below mapping.min_angle (below the floor only where the outlines
-// have at most 4,096 points in all poses, and not below a quarter of it),
-// mapped by deformation
+// have at most 4,096 points in all poses), mapped by deformation
 // (MappingParameters::registration) and with the outlines matched
 // resisting stretch (MappingParameters::stretch_cost; 4 and 16 rounds of
 // splitting): of those whose in-betweens do not fold, whose smallest angle
