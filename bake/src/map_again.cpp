@@ -173,10 +173,10 @@ void BakeEachInOrder(const std::vector<RigDescription>& variants,
 
 }  // namespace
 
-// The first variant's bake whose in-betweens do not fold in the hull, with
-// *tried set to its place in kFoldRetries + 1 and *chosen to its description;
-// nothing when none does (a variant that cannot be baked at all is passed
-// over).
+// The first variant's bake whose in-betweens do not fold in the hull (or
+// the registration variant's, below), with *tried set to its place in
+// kFoldRetries + 1 and *chosen to its description; nothing when none does
+// (a variant that cannot be baked at all is passed over).
 std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, bool aligned, int* tried,
                                             std::string* name, RigDescription* chosen) {
   std::vector<RigDescription> variants;
