@@ -4,6 +4,7 @@
 
 #include "alignment_image.h"
 #include "posemorph/bake/mapping/interior_regions.h"
+#include "posemorph/bake/run_each.h"
 
 #include <algorithm>
 #include <array>
@@ -288,7 +289,12 @@ void AlignInteriors(const std::vector<AlignmentImage>& images, const Triangles& 
     double least = M_PI;
     for (const Points& mesh : vertices)
       for (const auto& t : triangles) least = std::min(least, SmallestAngle(mesh[t[0]], mesh[t[1]], mesh[t[2]]));
-    for (std::size_t k = 1; k < N; ++k) {
+    // Each pose aligns to pose 0 alone: the poses are shared out over the
+    // cores (each writes only its own mesh and report entries, so the
+    // outcome is the same bits on any number of threads).
+    std::vector<int> steps(N, 0);
+    RunEach(N - 1, 0, [&](std::size_t j) {
+      const std::size_t k = j + 1;
       const std::vector<Level> pyramid = Pyramid(images[k], levels, true);
       const Level raw = MakeLevel(images[k].rgba, images[k].width, images[k].height, false);
       const Points rest = vertices[k];
@@ -350,14 +356,15 @@ void AlignInteriors(const std::vector<AlignmentImage>& images, const Triangles& 
         for (int it = 0; it < parameters.iterations; ++it) {
           double moved = 0;
           if (!solve.Step(x, &moved)) break;
-          ++r.steps;
+          ++steps[k];
           if (moved < 0.01) break;
         }
       }
       r.difference_after[k] = MeanDifference(raw, raw_samples, triangles, x, 1.0);
       for (std::size_t v = 0; v < x.size(); ++v) r.max_move[k] = std::max(r.max_move[k], (x[v] - rest[v]).norm());
       vertices[k] = std::move(x);
-    }
+    });
+    for (int s : steps) r.steps += s;
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (report) *report = std::move(r);
