@@ -5,7 +5,9 @@
 #include "posemorph/bake/mapping/mesh_registration.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include <Eigen/Dense>
@@ -254,7 +256,9 @@ struct Deformation {
 // Pose 0's mesh deformed onto `targets` (grid); the interior on the grid
 // too. False when a boundary vertex cannot reach its target or a triangle
 // turns over on the grid.
-bool Deform(const CompatibleMesh& m0, const std::vector<std::pair<std::size_t, Point>>& targets, Polygon* out) {
+// `give_up`: whether to stop now, as not reached (another pose has failed).
+bool Deform(const CompatibleMesh& m0, const std::vector<std::pair<std::size_t, Point>>& targets, Polygon* out,
+            const std::function<bool()>& give_up) {
   const Polygon& p0 = m0.vertices[0];
   Point centre = Point::Zero();
   for (const Point& p : p0) centre += p;
@@ -297,6 +301,7 @@ bool Deform(const CompatibleMesh& m0, const std::vector<std::pair<std::size_t, P
   auto pull = [&](double last_weight) {
     bool reached = false;
     for (double w = kFirstWeight; w <= last_weight && !reached; w *= 10) {
+      if (give_up()) return false;
       for (int s = 0; s < kStepsPerWeight; ++s)
         if (!d.Step(y, w)) break;
       reached = d.LargestResidual(y) <= kResidual;
@@ -320,6 +325,7 @@ bool Deform(const CompatibleMesh& m0, const std::vector<std::pair<std::size_t, P
       const std::vector<Eigen::Vector2d> at = BoundaryPath(from, to, double(step) / kPathSteps);
       for (std::size_t i = 0; i < at.size(); ++i) d.targets[i].second = at[i];
       reached = pull(step == kPathSteps ? kLastWeight : kPathWeight);
+      if (give_up()) return false;
     }
     if (!reached) return false;
   }
@@ -350,9 +356,20 @@ CompatibleMesh RegisterCompatibly(const std::vector<Polygon>& polygons, const Re
   mesh.vertices.resize(N);
   mesh.vertices[0] = m0.vertices[0];
   std::vector<char> reached(N, 1);
+  // The first pose (by index) that cannot be reached is the one reported:
+  // once one fails, the poses after it stop (their outcome cannot change
+  // the message), those before it go on.
+  std::atomic<std::size_t> first_failed{N};
   RunEach(N - 1, parameters.threads, [&](std::size_t i) {
     const std::size_t k = i + 1;
-    reached[k] = Deform(m0, BoundaryTargets(m0, K, polygons[k]), &mesh.vertices[k]) ? 1 : 0;
+    reached[k] =
+        Deform(m0, BoundaryTargets(m0, K, polygons[k]), &mesh.vertices[k], [&] { return first_failed.load() < k; }) ? 1
+                                                                                                                    : 0;
+    if (!reached[k]) {
+      std::size_t seen = first_failed.load();
+      while (k < seen && !first_failed.compare_exchange_weak(seen, k)) {
+      }
+    }
   });
   for (std::size_t k = 1; k < N; ++k)
     if (!reached[k])
