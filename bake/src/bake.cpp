@@ -65,7 +65,7 @@ BakedRig BakeOne(const RigDescription& description, BakeReport* report) {
   // mapping.map_again false: the first mapping, whatever it measures.
   const bool map_again = description.mapping.map_again && first.drawings.report.mapped;
   if (map_again && first.inbetweens.FoldsInHull() > 0)
-    again = MapAgainWithoutFolds(description, first.drawings.report.aligned, &tried, &variant, &chosen);
+    again = MapAgainWithoutFolds(description, first.drawings.report, &tried, &variant, &chosen);
   if (again)
     retry_warnings.push_back(file + ": the in-betweens folded (" + std::to_string(first.inbetweens.FoldsInHull()) +
                              " triangles; the worst: " + DescribeFold(first.written.rig, first.inbetweens.folds[0]) +

@@ -147,17 +147,24 @@ constexpr FurtherRefinement kFurtherRefinements[] = {
 // other exception thrown where that loop would have met it. A bake that
 // folds in every fold retry tries eight of them: one at a time, tux-egypt
 // without landmarks failed in 14.7-15.6 s on two cores.
+// A variant for which `skip` (when given) returns true is not baked; it is
+// asked as its batch is formed, after every earlier batch went to `take`.
 constexpr unsigned kVariantsAtOnce = 2;
 void BakeEachInOrder(const std::vector<RigDescription>& variants,
-                     const std::function<bool(std::size_t, std::optional<Attempt>&)>& take) {
+                     const std::function<bool(std::size_t, std::optional<Attempt>&)>& take,
+                     const std::function<bool(std::size_t)>& skip = nullptr) {
   const std::size_t at_once = std::min(std::max(1u, std::thread::hardware_concurrency()), kVariantsAtOnce);
-  for (std::size_t from = 0; from < variants.size(); from += at_once) {
-    const std::size_t n = std::min(at_once, variants.size() - from);
+  for (std::size_t next = 0; next < variants.size();) {
+    std::vector<std::size_t> batch;
+    for (; batch.size() < at_once && next < variants.size(); ++next)
+      if (!skip || !skip(next)) batch.push_back(next);
+    const std::size_t n = batch.size();
+    if (n == 0) break;  // the rest skipped
     std::vector<std::optional<Attempt>> baked(n);
     std::vector<std::exception_ptr> failed(n);
     RunEach(n, unsigned(n), [&](std::size_t k) {
       try {
-        baked[k] = BakeOnce(variants[from + k]);
+        baked[k] = BakeOnce(variants[batch[k]]);
       } catch (const BakeError&) {
         // passed over, as a variant that cannot be baked
       } catch (...) {
@@ -166,7 +173,7 @@ void BakeEachInOrder(const std::vector<RigDescription>& variants,
     });
     for (std::size_t k = 0; k < n; ++k) {
       if (failed[k]) std::rethrow_exception(failed[k]);
-      if (take(from + k, baked[k])) return;
+      if (take(batch[k], baked[k])) return;
     }
   }
 }
@@ -177,8 +184,9 @@ void BakeEachInOrder(const std::vector<RigDescription>& variants,
 // the registration variant's, below), with *tried set to its place in
 // kFoldRetries + 1 and *chosen to its description; nothing when none does
 // (a variant that cannot be baked at all is passed over).
-std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, bool aligned, int* tried,
+std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, const MappingReport& first, int* tried,
                                             std::string* name, RigDescription* chosen) {
+  const bool aligned = first.aligned;
   std::vector<RigDescription> variants;
   std::vector<int> place;  // each variant's k in kFoldRetries
   for (int k = 0; k < int(std::size(kFoldRetries)); ++k) {
@@ -194,21 +202,40 @@ std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, b
   std::vector<RigDescription> quick = variants;
   if (aligned)
     for (RigDescription& v : quick) v.mapping.align_interiors = false;
+  // A mapping that cannot be made as traced is made with the outlines'
+  // thin notches filled (MapDrawings): a retry that fills them with the
+  // spacing and edge scales of a mapping that did so already (the first, or
+  // an earlier retry) is that mapping again, and is not baked again
+  // (tux-egypt from init's start points: 3 of its 8 retries).
+  std::vector<std::pair<double, double>> filled;  // spacing and edge scales mapped with notches filled
+  auto note_filled = [&](const MappingReport& r, const MappingParameters& m) {
+    if (r.mapped && r.filled_notch_corners > 0) filled.emplace_back(m.spacing_scale, m.edge_scale);
+  };
+  note_filled(first, description.mapping);
+  auto mapped_already = [&](std::size_t j) {
+    const MappingParameters& m = variants[j].mapping;
+    return m.fill_notches &&
+           std::find(filled.begin(), filled.end(), std::make_pair(m.spacing_scale, m.edge_scale)) != filled.end();
+  };
   std::optional<Attempt> found;
   std::size_t found_at = 0;
-  BakeEachInOrder(quick, [&](std::size_t j, std::optional<Attempt>& again) {
-    if (!again || again->inbetweens.FoldsInHull() > 0) return false;
-    if (aligned) {
-      try {
-        again = BakeOnce(variants[j]);
-      } catch (const BakeError&) {
-        return false;  // passed over, as a variant that cannot be baked
-      }
-      if (again->inbetweens.FoldsInHull() > 0) return false;
-    }
-    found = std::move(again), found_at = j;
-    return true;
-  });
+  BakeEachInOrder(
+      quick,
+      [&](std::size_t j, std::optional<Attempt>& again) {
+        if (again) note_filled(again->drawings.report, variants[j].mapping);
+        if (!again || again->inbetweens.FoldsInHull() > 0) return false;
+        if (aligned) {
+          try {
+            again = BakeOnce(variants[j]);
+          } catch (const BakeError&) {
+            return false;  // passed over, as a variant that cannot be baked
+          }
+          if (again->inbetweens.FoldsInHull() > 0) return false;
+        }
+        found = std::move(again), found_at = j;
+        return true;
+      },
+      mapped_already);
   // A fold-free variant whose mesh is below the quality floor: the last
   // retry (registration) too, kept when it does not fold and reaches the
   // floor. fillets-ng's big fish turning to face the player and away

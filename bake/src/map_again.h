@@ -20,10 +20,12 @@ namespace posemorph::bake {
 // fold in the pose hull (or, when its mesh is below the quality floor, the
 // last retry, registration, where that does not fold and reaches the
 // floor), with *tried set to its place in the retries + 1, *name to its
-// name and *chosen to its description; nothing when none does. `aligned`:
-// the first mapping aligned the interiors, so each variant is baked
-// without that first and, where it does not fold, again with it.
-std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, bool aligned, int* tried,
+// name and *chosen to its description; nothing when none does. `first`:
+// the first mapping's report. Where it aligned the interiors, each variant
+// is baked without that first and, where it does not fold, again with it;
+// a retry that would map as the first mapping or an earlier retry did (the
+// outlines' thin notches filled at the same scales) is not baked.
+std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, const MappingReport& first, int* tried,
                                             std::string* name, RigDescription* chosen);
 
 // Half of mapping.min_angle: a mapped mesh below it is refined further and,
