@@ -197,6 +197,7 @@ TEST_CASE("mapping: robustness corpus triangulates compatibly") {
       // Baked from the outlines, the bake maps again when the first mapping folds.
       pb::RigDescription drawn = OutlineRig(shapes);
       drawn.parameters.allow_folds = true;
+      drawn.mapping.retry_seconds = 0;  // every retry, however slow the build
       pb::BakeReport report;
       pb::BakeRig(drawn, &report);
       MESSAGE(name << " from its outlines: " << report.mapping.fold_retries << " mapping(s) tried again, "
@@ -306,16 +307,19 @@ TEST_CASE("bake: an in-between that folds fails the bake, naming the triangle, w
 
 TEST_CASE(
     "posemorph-bake: a folding rig exits 1 with one line and writes nothing, --allow-folds writes it with warnings, "
-    "info lists the folds, and a drawn rig that folds is mapped again until it does not") {
+    "info lists the folds, and a drawn rig that folds is mapped again until it does not, or until "
+    "mapping.retry_seconds") {
   namespace fs = std::filesystem;
   const fs::path dir = fs::temp_directory_path() / ("posemorph-folds-" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   const fs::path input = dir / "folds.json", output = dir / "folds.pmrig";
-  {
+  // mapping.retry_seconds 0: every retry, however slow the build (the
+  // sanitizers'); a tiny limit: none begun.
+  auto write_input = [&](double retry_seconds) {
     std::ofstream f(input);
     f.precision(17);
-    f << "{\"posemorph\": 1, \"poses\": [";
+    f << "{\"posemorph\": 1, \"mapping\": {\"retry_seconds\": " << retry_seconds << "}, \"poses\": [";
     const std::vector<Polygon> shapes = {Spiral(1.5, 8), SShape(50, 8)};
     for (std::size_t i = 0; i < shapes.size(); ++i) {
       f << (i ? ", " : "") << "{\"name\": \"" << (i ? "s" : "spiral") << "\", \"point\": [" << (i ? -1 : 1)
@@ -325,7 +329,8 @@ TEST_CASE(
       f << "]}";
     }
     f << "]}";
-  }
+  };
+  write_input(1e-9);
   auto run = [](const std::vector<std::string>& args, std::string* out, std::string* err) {
     std::ostringstream o, e;
     const int status = pb::RunBakeCommand(args, o, e);
@@ -334,8 +339,24 @@ TEST_CASE(
     return status;
   };
   std::string out, err;
+  // Past mapping.retry_seconds no retry is begun: the fold is refused,
+  // saying how many retries were left, and nothing is written.
+  CHECK(run({input.string(), "-o", output.string()}, &out, &err) == 1);
+  CHECK(err.rfind("posemorph-bake: error: " + input.string() + ": the in-betweens fold: ", 0) == 0);
+  CHECK(err.find("; mapping again stopped at mapping.retry_seconds (1e-09 s) with 4 of its 4 fold retries untried "
+                 "(0 tries them all)\n") != std::string::npos);
+  CHECK(std::count(err.begin(), err.end(), '\n') == 1);
+  CHECK_FALSE(fs::exists(output));
+  // Allowed to fold, the first mapping is written, and the line says so too.
+  CHECK(run({input.string(), "-o", output.string(), "--allow-folds"}, &out, &err) == 0);
+  CHECK(err.find("posemorph-bake: warning: " + input.string() +
+                 ": mapping again stopped at mapping.retry_seconds (1e-09 s) with 4 of its 4 fold retries untried "
+                 "(0 tries them all)\n") != std::string::npos);
+  fs::remove(output);
+
   // Drawn (here: outlines), the bake maps the spiral and the S again, coarser,
   // and writes the first fold-free mapping, saying so in one warning.
+  write_input(0);
   CHECK(run({input.string(), "-o", output.string()}, &out, &err) == 0);
   CHECK(err.rfind("posemorph-bake: warning: " + input.string() + ": the in-betweens folded (", 0) == 0);
   CHECK(err.find("); mapped again with ") != std::string::npos);

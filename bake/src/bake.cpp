@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <chrono>
 #include <optional>
+#include <sstream>
+#include <string>
 
 #include "bake_attempt.h"
 #include "map_again.h"
@@ -19,14 +21,25 @@ namespace posemorph::bake {
 namespace {
 
 // A fold inside the pose hull fails the bake unless folds are allowed.
-void RefuseFolds(const RigDescription& description, const ReproductionCheck& written,
-                 const InbetweenCheck& inbetweens) {
+// The fold retries left untried at mapping.retry_seconds, said; "" when none was.
+std::string RetriesUntried(const RetriesLeft& left) {
+  if (left.untried == 0) return "";
+  std::ostringstream s;
+  s << "mapping again stopped at mapping.retry_seconds (" << left.seconds << " s) with " << left.untried << " of its "
+    << left.retries << " fold retries untried (0 tries them all)";
+  return s.str();
+}
+
+void RefuseFolds(const RigDescription& description, const ReproductionCheck& written, const InbetweenCheck& inbetweens,
+                 const RetriesLeft& left) {
   const std::size_t n = inbetweens.FoldsInHull();
   if (n == 0 || description.parameters.allow_folds) return;
+  const std::string untried = RetriesUntried(left);
   throw BakeError(description.file,
                   "the in-betweens fold: " + std::to_string(n) + (n == 1 ? " triangle turns" : " triangles turn") +
                       " over (the worst: " + DescribeFold(written.rig, inbetweens.folds[0]) +
-                      "); add a landmark there, or bake with --allow-folds (bake.allow_folds) to write it anyway");
+                      "); add a landmark there, or bake with --allow-folds (bake.allow_folds) to write it anyway" +
+                      (untried.empty() ? "" : "; " + untried));
 }
 
 // Folds that were allowed, or found only on paths outside the hull: ten, then a count.
@@ -61,17 +74,19 @@ BakedRig BakeOne(const RigDescription& description, BakeReport* report) {
   int tried = 0;
   std::string variant;
   std::optional<Attempt> again;
+  RetriesLeft left;
   RigDescription chosen = description;
   // mapping.map_again false: the first mapping, whatever it measures.
   const bool map_again = description.mapping.map_again && first.drawings.report.mapped;
   if (map_again && first.inbetweens.FoldsInHull() > 0)
-    again = MapAgainWithoutFolds(description, first.drawings.report, &tried, &variant, &chosen);
+    again = MapAgainWithoutFolds(description, first.drawings.report, start, &tried, &variant, &chosen, &left);
   if (again)
     retry_warnings.push_back(file + ": the in-betweens folded (" + std::to_string(first.inbetweens.FoldsInHull()) +
                              " triangles; the worst: " + DescribeFold(first.written.rig, first.inbetweens.folds[0]) +
                              "); mapped again with " + variant + ": fold-free");
   else
-    RefuseFolds(description, first.written, first.inbetweens);
+    RefuseFolds(description, first.written, first.inbetweens, left);
+  if (!again && !RetriesUntried(left).empty()) retry_warnings.push_back(file + ": " + RetriesUntried(left));
   std::optional<GhostingDrawings> ghosting_drawings;  // read once, when first needed
   auto drawings = [&]() -> const GhostingDrawings& {
     if (!ghosting_drawings) ghosting_drawings = ReadGhostingDrawings(description);

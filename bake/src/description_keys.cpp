@@ -47,7 +47,7 @@ void WarnUnknownKeys(const json& root, const std::string& file, std::vector<std:
     WarnUnknownKeys(root["mapping"], "mapping",
                     {"simplify_tolerance", "max_edge_length", "min_angle", "alpha_threshold", "curve_tolerance",
                      "spacing", "landmark_distance", "max_steiner_points", "max_vertices", "align_interiors",
-                     "align_rigidity", "drop_shadows", "working_size", "map_again"},
+                     "align_rigidity", "drop_shadows", "working_size", "map_again", "retry_seconds"},
                     file, warnings);
   if (root.contains("bake"))
     WarnUnknownKeys(

@@ -27,6 +27,7 @@ void ParseMapping(const Reader& r, const json& m, MappingParameters* parameters)
   if (p.spacing > 0 && p.spacing < 1e-6) r.Fail("mapping.spacing", "must be 0 (automatic) or in [1e-6, 1e9]");
   number("landmark_distance", p.landmark_distance, 0, 1, "[0, 1]");
   number("align_rigidity", p.align_rigidity, 1e-6, 1e6, "[1e-6, 1e6]");
+  number("retry_seconds", p.retry_seconds, 0, 86400, "[0, 86400] seconds (0: no limit)");
   if (m.contains("map_again")) {
     if (!m["map_again"].is_boolean()) r.Fail("mapping.map_again", "expected true or false");
     p.map_again = m["map_again"].get<bool>();

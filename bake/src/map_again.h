@@ -7,6 +7,8 @@
 // the bake.
 #pragma once
 
+#include <chrono>
+#include <cstddef>
 #include <functional>
 #include <optional>
 #include <string>
@@ -25,8 +27,15 @@ namespace posemorph::bake {
 // is baked without that first and, where it does not fold, again with it;
 // a retry that would map as the first mapping or an earlier retry did (the
 // outlines' thin notches filled at the same scales) is not baked.
-std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, const MappingReport& first, int* tried,
-                                            std::string* name, RigDescription* chosen);
+// Retries begin only until mapping.retry_seconds have passed since
+// `started` (the bake's start): *left says how many were left untried.
+struct RetriesLeft {
+  std::size_t untried = 0, retries = 0;  // of the fold retries that would map differently
+  double seconds = 0;                    // mapping.retry_seconds
+};
+std::optional<Attempt> MapAgainWithoutFolds(const RigDescription& description, const MappingReport& first,
+                                            std::chrono::steady_clock::time_point started, int* tried,
+                                            std::string* name, RigDescription* chosen, RetriesLeft* left);
 
 // Half of mapping.min_angle: a mapped mesh below it is refined further and,
 // where it stays below, warned of.

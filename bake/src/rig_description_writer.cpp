@@ -106,6 +106,7 @@ json MappingJson(const MappingParameters& p) {
   put("align_rigidity", p.align_rigidity, d.align_rigidity);
   put("working_size", p.working_size, d.working_size);
   put("map_again", p.map_again, d.map_again);
+  put("retry_seconds", p.retry_seconds, d.retry_seconds);
   return j.empty() ? json() : j;
 }
 

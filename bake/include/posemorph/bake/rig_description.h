@@ -98,6 +98,13 @@ struct MappingParameters {
   // ways and the better mesh kept. false: mapped once, as the paper maps
   // them (a quicker bake while editing; the mesh may be poorer or fold).
   bool map_again = true;
+  // Where the in-betweens fold, the fold retries are tried until the bake
+  // of this pose space has run this long (seconds, by the clock); one
+  // found fold-free by then is kept, and a bake that found none fails,
+  // saying how many retries were left untried. A retry kept is the same
+  // bits on any machine; only whether it is reached depends on the
+  // machine's speed. 0: every retry is tried, however long it takes.
+  double retry_seconds = 10;
   // Not in the description: the bake's own retries when the in-betweens fold
   // (bake.h) scale the spacing and the longest edge, automatic or given.
   double spacing_scale = 1, edge_scale = 1;
