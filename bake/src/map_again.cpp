@@ -117,15 +117,16 @@ constexpr double kVerticesPerOutlinePoint = 2;
 // 20,000 outline points at 8.9 degrees: 4.5 -> 10 s of CPU with
 // registration, past the hostile corpus's bound).
 constexpr std::size_t kSpriteOutlinePoints = 4096;
-bool IsSprite(const MappingReport& m) {
+// The traced outlines' points, all poses together.
+std::size_t OutlinePoints(const MappingReport& m) {
   std::size_t points = 0;
   for (std::size_t n : m.outline_vertices) points += n;
-  return points <= kSpriteOutlinePoints;
+  return points;
 }
+bool IsSprite(const MappingReport& m) { return OutlinePoints(m) <= kSpriteOutlinePoints; }
 bool WithinVertexBound(const MappingReport& variant, const MappingReport& first, std::size_t poses) {
-  std::size_t points = 0;
-  for (std::size_t n : first.outline_vertices) points += n;
-  const double bound = kVerticesPerOutlinePoint * double(points) / double(std::max<std::size_t>(poses, 1));
+  const double bound =
+      kVerticesPerOutlinePoint * double(OutlinePoints(first)) / double(std::max<std::size_t>(poses, 1));
   return double(variant.vertices) <= std::max(bound, double(first.vertices));
 }
 // In this order; once one lifts the mesh over the floor, the rest are not tried.
