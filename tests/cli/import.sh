@@ -124,8 +124,8 @@ head -c 3000 "$data/features.psd" > "$work/cut.psd"
 refuse 1 "$work/cut.psd: damaged or truncated: " "$work/cut" import "$work/cut.psd" -o "$work/cut"
 refuse 1 "$data/features.psd: a canvas of 64 x 48, but $data/pell/rest.psd's is 256 x 256" "$work/mixed" \
   import "$data/pell/rest.psd" "$data/features.psd" -o "$work/mixed"
-refuse 1 "$assets/pell/rest-body.png: not a layered file import reads (.ora or .psd)" "$work/png" \
-  import "$assets/pell/rest-body.png" -o "$work/png"
+refuse 1 "$assets/pell/rest-body.png: not a layered file import reads (.ora or .psd); a sprite sheet (.png) is imported alone" \
+  "$work/png" import "$data/pell/rest.psd" "$assets/pell/rest-body.png" -o "$work/png"
 refuse 2 "init takes layered files (.ora, .psd) or flat drawings (PNG, SVG), not both" "$work/both.json" \
   init "$data/pell/pell.ora" "$assets/pell/rest-body.png" -o "$work/both.json"
 refuse 2 "--flatten is for layered files (.ora, .psd)" "$work/flat.json" \

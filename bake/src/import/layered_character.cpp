@@ -41,6 +41,8 @@ std::string Describe(const PoseSource& p) { return p.where.empty() ? p.file : p.
 
 }  // namespace
 
+std::string SafeName(const std::string& name, bool dash) { return Safe(name, dash); }
+
 std::string LayeredCharacter::FileName(std::size_t pose, std::size_t part) const {
   return parts.empty() ? poses[pose] + ".png" : poses[pose] + "-" + parts[part] + ".png";
 }

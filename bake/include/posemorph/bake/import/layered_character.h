@@ -33,6 +33,11 @@ struct LayeredCharacter {
   std::string FileName(std::size_t pose, std::size_t part) const;
 };
 
+// A name as a file name, as above: characters but letters, digits, '_',
+// '.' (not first) and, with `dash`, '-' (not first) turn into '_'; a
+// trailing " #N" is dropped; an empty name is "layer".
+std::string SafeName(const std::string& name, bool dash);
+
 // Throws BakeError naming the file (and the layer or group) that breaks the
 // convention, or that cannot be read (layered_image.h).
 LayeredCharacter ImportLayeredCharacter(const std::vector<std::string>& paths, bool flatten);
