@@ -14,6 +14,7 @@
 
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/grid_resolution.h"
+#include "posemorph/bake/pose_space_weights.h"
 #include "posemorph/bake/pose_space_samples.h"
 #include "posemorph/bake/rig_description.h"
 #include "posemorph/rig.h"
@@ -122,4 +123,52 @@ TEST_CASE("grid resolution: two poses get the coarsest grid, their weights being
   CHECK(report.grid_coarsened);
   CHECK(std::max(report.grid_cells_x, report.grid_cells_y) == pb::kCoarseGridResolutions[0]);
   CHECK(report.grid_move_px < 1e-9);  // the same weights along the segment, to rounding
+}
+
+TEST_CASE("grid resolution: poses on a line get a grid 8 cells across it, with the frames along the line kept") {
+  // Three poses on a vertical line, as init lays out three drawings.
+  const std::string text = R"({
+    "posemorph": 1,
+    "poses": [
+      {"name": "a", "point": [0, 0], "outline": [[0, 0], [40, 0], [40, 40], [0, 40]], "landmarks": [[0, 0], [40, 40]]},
+      {"name": "b", "point": [0, 1], "outline": [[0, 0], [40, 0], [50, 40], [10, 40]], "landmarks": [[0, 0], [50, 40]]},
+      {"name": "c", "point": [0, -1], "outline": [[0, 0], [40, 0], [30, 40], [-10, 40]], "landmarks": [[0, 0], [30, 40]]}
+    ]
+  })";
+  pb::RigDescription line = pb::ParseRigDescription(text, "line.json", ".");
+  line.parameters.compact = false;  // exact doubles: only the grids differ
+  pb::RigDescription wide = line;   // a given resolution keeps the whole domain
+  wide.parameters.grid_resolution = 64;
+  wide.parameters.grid_resolution_given = true;
+  pb::BakeReport l_report, w_report;
+  const std::vector<unsigned char> l_bytes = pb::BakeRig(line, &l_report);
+  const std::vector<unsigned char> w_bytes = pb::BakeRig(wide, &w_report);
+  CHECK(l_report.grid_cells_x == pb::kLineLayoutCells);
+  CHECK(w_report.grid_cells_x > 32);  // the domain's width: the box grown by its length on each side
+  CHECK(w_report.grid_cells_y == 64);
+  REQUIRE(l_report.vertices == w_report.vertices);
+  CHECK(l_bytes.size() < w_bytes.size());
+
+  // Driven along the line (and within its pad range across it), the frames
+  // stay within the grid tolerance of the whole domain's.
+  const posemorph::Rig l = Load(l_bytes), w = Load(w_bytes);
+  const posemorph::PadRange pad = l.pad_range();
+  CHECK(pad.min_x < 0);
+  CHECK(pad.max_x > 0);
+  CHECK(pad.min_x >= l.grid().origin_x);
+  CHECK(pad.max_x <= l.grid().origin_x + l.grid().cell * l.grid().cells_x);
+  double worst = 0;
+  std::vector<double> pl, pw;
+  for (int k = 0; k <= 200; ++k)
+    for (double across : {pad.min_x, 0.0, pad.max_x}) {
+      const Eigen::Vector2d at(across, -1 + k / 100.0);
+      REQUIRE(pb::EvaluateFrame(l, at, pl));
+      REQUIRE(pb::EvaluateFrame(w, at, pw));
+      for (std::size_t v = 0; v + 1 < pl.size(); v += 2)
+        worst = std::max(worst, std::hypot(pl[v] - pw[v], pl[v + 1] - pw[v + 1]));
+    }
+  MESSAGE("line layout: grid " << l_report.grid_cells_x << " x " << l_report.grid_cells_y << ", " << l_bytes.size()
+                               << " bytes against " << w_bytes.size() << " across the domain; frames apart by at most "
+                               << worst << " px along the line");
+  CHECK(worst <= pb::kGridTolerancePx);
 }

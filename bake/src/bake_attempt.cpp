@@ -74,8 +74,11 @@ Attempt BakeOnce(const RigDescription& description) {
   for (const PoseMesh& p : meshes.poses) points.push_back(p.point), names.push_back(p.name);
   a.compact_settings = CompactSettingsFor(description.parameters, meshes);
   BakeParameters weight_parameters = description.parameters;
+  // Where the bake chooses the resolution, it narrows a line layout's grid too.
+  weight_parameters.narrow_line_layout = !description.parameters.grid_resolution_given &&
+                                         description.parameters.grid_resolution == BakeParameters{}.grid_resolution;
   weight_parameters.grid_resolution =
-      ChooseGridResolution(points, names, description.parameters, file, meshes, a.compact_settings.pixels_per_unit,
+      ChooseGridResolution(points, names, weight_parameters, file, meshes, a.compact_settings.pixels_per_unit,
                            &a.grid_coarsened, &a.grid_move_px);
   weight_parameters.grid_resolution_given = true;
   const WeightGrid grid = SolvePoseSpaceWeights(points, names, weight_parameters, file, &a.weight_warnings);

@@ -23,7 +23,9 @@ namespace {
 GridLocation Locate(const WeightGrid& g, const Eigen::Vector2d& p) { return LocateInGrid(g, true, p.x(), p.y()); }
 
 // The grid: the points' box grown by margin x spread on every side (a 1D
-// arrangement still gets a 2D domain), covered by square cells; no weights yet.
+// arrangement still gets a 2D domain), covered by square cells; no weights
+// yet. With narrow_line_layout, a layout on a horizontal or vertical line
+// is kLineLayoutCells wide across it.
 WeightGrid CoveringGrid(const std::vector<Eigen::Vector2d>& points, const BakeParameters& params, double* spread_out) {
   Eigen::AlignedBox2d box;
   for (const auto& p : points) box.extend(p);
@@ -35,6 +37,10 @@ WeightGrid CoveringGrid(const std::vector<Eigen::Vector2d>& points, const BakePa
   g.cell = size.maxCoeff() / params.grid_resolution;
   g.cells_x = std::max<std::uint32_t>(1, std::uint32_t(std::ceil(size.x() / g.cell - 1e-9)));
   g.cells_y = std::max<std::uint32_t>(1, std::uint32_t(std::ceil(size.y() / g.cell - 1e-9)));
+  if (params.narrow_line_layout) {
+    if (box.sizes().x() <= 1e-12 * spread) g.cells_x = std::min(g.cells_x, kLineLayoutCells);
+    if (box.sizes().y() <= 1e-12 * spread) g.cells_y = std::min(g.cells_y, kLineLayoutCells);
+  }
   const Eigen::Vector2d center = 0.5 * (lo + hi);
   g.origin_x = center.x() - 0.5 * g.cells_x * g.cell;
   g.origin_y = center.y() - 0.5 * g.cells_y * g.cell;

@@ -29,6 +29,17 @@ struct WeightGrid : GridGeometry {
   std::vector<double> centre_weights;
 };
 
+// Poses on a horizontal or vertical line (a walk's three frames from left
+// to right, init's three poses from top to bottom) are driven along it:
+// the pad range reaches one cell across (Rig::pad_range), and the weights
+// vary along the line. With BakeParameters::narrow_line_layout the grid
+// is this many cells across the line, centred on it, rather than the
+// domain's full width: the spline's band (two cells each side) and two
+// more cells to level out, where a 64-cell grid spent 43 columns (a 32 x 32
+// sprite's three frames: 3,673 of its 5,894 bytes were weights). A point
+// beyond the grid takes the weights at its edge, as everywhere.
+constexpr std::uint32_t kLineLayoutCells = 8;
+
 // Throws BakeError (with `file`) if two points share a grid cell. Appends to
 // *warnings ("FILE: ...") each pair of points closer than two cells, between
 // which the grid's linear interpolation is coarse.

@@ -158,6 +158,10 @@ struct BakeParameters {
   int grid_resolution = 64;
   bool grid_resolution_given = false;
   double margin = 1.0;  // domain = points' bounding box grown by margin x its larger side
+  // Not in the description: poses on a horizontal or vertical line get a
+  // grid only kLineLayoutCells wide across the line (pose_space_weights.h).
+  // The bake sets it where it chooses the grid's resolution itself.
+  bool narrow_line_layout = false;
   // Weight of the gradient term relative to the biharmonic one; the field
   // levels out beyond about spread * sqrt(3 / epsilon) from the points.
   double epsilon = 3.0;
