@@ -616,6 +616,31 @@ TEST_CASE("mapping: refinement stops at its vertex budget and says so") {
   CHECK(mesh.vertices[0].size() < rp.max_vertices);
 }
 
+TEST_CASE("mapping: the splits for the angle goal stop at max_angle_vertices, the splits for length do not") {
+  // A square against a flat, sheared quadrilateral: no mesh keeps 20
+  // degrees in both, so the rounds split as much as they may.
+  const Polygon square = {{0, 0}, {400000, 0}, {400000, 400000}, {0, 400000}};
+  const Polygon sheared = {{0, 0}, {400000, 0}, {1400000, 60000}, {1000000, 60000}};
+  const pm::CompatibleMesh start = pm::TriangulateCompatibly({square, sheared}, "square and sheared", 0);
+  pm::RefinementParameters rp;
+  pm::CompatibleMesh free = start;
+  REQUIRE(pm::RefineCompatibly(free, rp));
+  const std::size_t unbounded = free.vertices[0].size();
+  MESSAGE("the angle goal alone: " << unbounded << " vertices, " << pm::MinAngleDegrees(free) << " degrees");
+  REQUIRE(unbounded > 12);
+  rp.max_angle_vertices = 12;
+  pm::CompatibleMesh bounded = start;
+  REQUIRE(pm::RefineCompatibly(bounded, rp));
+  CHECK(bounded.vertices[0].size() <= 12);
+  CHECK(bounded.vertices[0].size() > start.vertices[0].size());  // it split up to the bound
+  // Splitting for length is not bounded by it: its vertices stay, and the
+  // angle splits stop there.
+  rp.max_edge_length = 40000;
+  pm::CompatibleMesh long_split = start;
+  REQUIRE(pm::RefineCompatibly(long_split, rp));
+  CHECK(long_split.vertices[0].size() > 100);
+}
+
 namespace {
 // Whether p lies in (or on) some triangle of the mesh in pose k.
 bool Covered(const pm::CompatibleMesh& mesh, std::size_t k, const Point& p) {

@@ -13,6 +13,7 @@
 
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/map_drawings.h"
+#include "posemorph/bake/mapping/compatible_refinement.h"
 #include "posemorph/bake/mesh_quality.h"
 #include "posemorph/bake/run_each.h"
 
@@ -108,7 +109,7 @@ constexpr double kFurtherGhostingSlack = 1.05;
 // bound, 16 rounds of splitting gave fillets-ng's big fish turning to face
 // the player (60 x 30 px, outlines of 222, 200 and 176 points) 538
 // vertices, 2.4 per point of its first outline.
-constexpr double kVerticesPerOutlinePoint = 2;
+using mapping::kVerticesPerOutlinePoint;
 // A sprite's outlines: at most this many points in all poses together.
 // Below a quarter of the floor (and, for the other ways, below the floor)
 // only a sprite is mapped again: there the variants cost little, while a

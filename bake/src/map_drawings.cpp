@@ -219,6 +219,10 @@ MappingInput ReadDrawnOutlines(const RigDescription& rig, std::vector<DrawnPose>
   in.working_scale = std::ldexp(1.0, in.halvings);
   in.parameters = rig.mapping;
   in.parameters.working_scale = in.working_scale;
+  if (!drawn.empty()) {
+    const PoseDescription& first = rig.poses[drawn[0].index];
+    in.parameters.proportional_vertices = first.vertices.empty() && IsRasterDrawing(first.drawing);
+  }
   const double to_working = 1 / in.working_scale;
   auto working = [&](std::vector<Point> points) {
     for (Point& p : points) p *= to_working;

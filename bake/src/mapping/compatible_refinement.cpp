@@ -76,6 +76,11 @@ bool RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& prm) {
   Refiner r(mesh, prm.max_vertices);
   const bool within_budget = prm.max_edge_length > 0 ? r.SplitLong(prm.max_edge_length) : true;
   if (!within_budget) return false;
+  // The splits for the angle goal: within max_angle_vertices too.
+  const std::size_t budget = prm.max_angle_vertices > 0
+                                 ? std::max(mesh.vertices[0].size(), std::min(prm.max_vertices, prm.max_angle_vertices))
+                                 : prm.max_vertices;
+  r.SetMaxVertices(budget);
   r.Flip();
   r.Smooth(24);
   r.Flip();
@@ -92,7 +97,7 @@ bool RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& prm) {
     // Removing vertices can also leave the boundary too coarse for the splits
     // that follow: the rounds without it are run too, and the better kept.
     CompatibleMesh plain = start;
-    Refiner p(plain, prm.max_vertices);  // holds the same: the boundary and the features
+    Refiner p(plain, budget);  // holds the same: the boundary and the features
     RunEach(2, prm.threads,
             [&](std::size_t i) { i == 0 ? RefineRounds(p, plain, prm, false) : RefineRounds(r, mesh, prm, true); });
     if (MinAngleDegrees(plain) >= MinAngleDegrees(mesh)) mesh = std::move(plain);
@@ -103,7 +108,7 @@ bool RefineCompatibly(CompatibleMesh& mesh, const RefinementParameters& prm) {
   // And a graded mesh grows by kGradedGrowth at most.
   const double angle = MinAngleDegrees(mesh);
   if (angle < prm.min_angle_goal / 2 && angle >= prm.min_angle_goal / 8) {
-    const std::size_t most = std::min(prm.max_vertices, std::size_t(double(mesh.vertices[0].size()) * kGradedGrowth));
+    const std::size_t most = std::min(budget, std::size_t(double(mesh.vertices[0].size()) * kGradedGrowth));
     std::vector<CompatibleMesh> graded(std::size(kGradedRatios), start);
     RunEach(graded.size(), prm.threads, [&](std::size_t i) {
       Refiner g(graded[i], most);

@@ -57,6 +57,7 @@ class Refiner {
   double Length(std::size_t a, std::size_t b) const;
   // The vertex budget is spent.
   bool Full() const { return m_.vertices[0].size() >= max_vertices_; }
+  void SetMaxVertices(std::size_t n) { max_vertices_ = n; }
   // Splits every edge longer than max_length (longest first), until none is;
   // false when the vertex budget ran out first.
   bool SplitLong(double max_length);

@@ -112,6 +112,11 @@ struct MappingParameters {
   // notches filled (mapping/outline_image.h), which the bake tries when the
   // outlines as traced cannot be mapped or their in-betweens fold.
   bool fill_notches = false;
+  // Not in the description: the first pose's outline is traced from a PNG
+  // drawing, its points about its border's pixels, so the splits for the
+  // angle goal keep the mesh in proportion to it (nway_mapping.cpp). A
+  // polygon's or an SVG's points say nothing of its size.
+  bool proportional_vertices = false;
   // Not in the description: rounds of splitting triangles below min_angle
   // (mapping/compatible_refinement.h). The bake refines further when the
   // mesh it made stays below its quality floor (bake.h).

@@ -7,11 +7,22 @@
 
 namespace posemorph::bake::mapping {
 
+// The bound that keeps a mesh in proportion to the sprite: at most this
+// many vertices per point of a traced outline (the splits for the angle
+// goal stop there: nway_mapping.cpp; the bake's variants keep to it too:
+// map_again.cpp).
+constexpr double kVerticesPerOutlinePoint = 2;
+
 struct RefinementParameters {
   double max_edge_length = 0;  // 0: no splitting for length
   double min_angle_goal = 20;  // degrees; triangles below it get their longest edge split (bounded)
   int rounds = 4;
   std::size_t max_vertices = 20000;  // no split beyond this many vertices
+  // The splits for the angle goal stop at this many vertices too (0: no
+  // such bound), or at the count the splits for length left, if more: the
+  // mesh stays in proportion to the sprite (nway_mapping.cpp: 2 per point
+  // of the first pose's outline).
+  std::size_t max_angle_vertices = 0;
   // Each round first removes boundary vertices that make slivers: where a
   // triangle's smallest angle is below the goal opposite a boundary edge,
   // one end of that edge is collapsed into the other, only where the
