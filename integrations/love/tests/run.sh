@@ -14,15 +14,26 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 build=$1 bindings=$2 hash=$3 view=$4 compare=$5 shots=$6
-if ! command -v love >/dev/null || ! command -v xvfb-run >/dev/null; then
-  echo "integration.love: skipped: love (LÖVE 11) or xvfb-run is not installed (scripts/setup.sh installs them)"
+if ! command -v love >/dev/null || ! command -v Xvfb >/dev/null; then
+  echo "integration.love: skipped: love (LÖVE 11) or Xvfb is not installed (scripts/setup.sh installs them)"
   exit 77
 fi
 work=$build/integration-tests/love  # not integrations/love: that is the CMake binary folder
 rm -rf "$work" && mkdir -p "$work" "$shots"
 export POSEMORPH_LIBRARY=$bindings/libposemorph.so
-game() {  # the example under Xvfb, without the audio device's complaints
-  xvfb-run -a -s "-screen 0 1024x768x24" love "$here/example" "$@" 2> >(grep -v "ALSA\|AL lib\|Could not open device" >&2)
+# One X server for every run of the example, started and stopped here: an
+# Xvfb that xvfb-run left running once held the test's output open, and
+# ctest waited on it until the timeout (the test itself had ended).
+display=99
+while [ -e "/tmp/.X$display-lock" ] || [ -e "/tmp/.X11-unix/X$display" ]; do display=$((display + 1)); done
+Xvfb ":$display" -screen 0 1024x768x24 -nolisten tcp > /dev/null 2>&1 &
+xvfb=$!
+trap 'kill "$xvfb" 2> /dev/null || true; wait "$xvfb" 2> /dev/null || true' EXIT
+for _ in $(seq 100); do [ -e "/tmp/.X11-unix/X$display" ] && break; sleep 0.1; done
+[ -e "/tmp/.X11-unix/X$display" ] || { echo "integration.love: Xvfb :$display did not start"; exit 1; }
+export DISPLAY=":$display"
+game() {  # the example on that server, without the audio device's complaints
+  love "$here/example" "$@" 2> >(grep -v "ALSA\|AL lib\|Could not open device" >&2)
 }
 failures=0
 for rig in pip.compact pip pell-face.compact pell-face sprout.compact arm.compact; do
