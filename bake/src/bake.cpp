@@ -86,7 +86,8 @@ BakedRig BakeOne(const RigDescription& description, BakeReport* report) {
                              "); mapped again with " + variant + ": fold-free");
   else
     RefuseFolds(description, first.written, first.inbetweens, left);
-  if (!again && !RetriesUntried(left).empty()) retry_warnings.push_back(file + ": " + RetriesUntried(left));
+  if (const std::string untried = RetriesUntried(left); !again && !untried.empty())
+    retry_warnings.push_back(file + ": " + untried);
   std::optional<GhostingDrawings> ghosting_drawings;  // read once, when first needed
   auto drawings = [&]() -> const GhostingDrawings& {
     if (!ghosting_drawings) ghosting_drawings = ReadGhostingDrawings(description);

@@ -75,8 +75,7 @@ Attempt BakeOnce(const RigDescription& description) {
   a.compact_settings = CompactSettingsFor(description.parameters, meshes);
   BakeParameters weight_parameters = description.parameters;
   // Where the bake chooses the resolution, it narrows a line layout's grid too.
-  weight_parameters.narrow_line_layout = !description.parameters.grid_resolution_given &&
-                                         description.parameters.grid_resolution == BakeParameters{}.grid_resolution;
+  weight_parameters.narrow_line_layout = GridResolutionIsAutomatic(description.parameters);
   weight_parameters.grid_resolution =
       ChooseGridResolution(points, names, weight_parameters, file, meshes, a.compact_settings.pixels_per_unit,
                            &a.grid_coarsened, &a.grid_move_px);

@@ -35,9 +35,8 @@ int ChooseGridResolution(const std::vector<Eigen::Vector2d>& points, const std::
                          double pixels_per_unit, bool* coarsened, double* moved) {
   if (moved) *moved = 0;
   if (coarsened) *coarsened = false;
-  const bool automatic =
-      !parameters.grid_resolution_given && parameters.grid_resolution == BakeParameters{}.grid_resolution;
-  if (!automatic || points.size() < 2 || meshes.poses.empty()) return parameters.grid_resolution;
+  if (!GridResolutionIsAutomatic(parameters) || points.size() < 2 || meshes.poses.empty())
+    return parameters.grid_resolution;
   const std::size_t N = points.size(), V = meshes.poses[0].vertices.size();
   // Each pose's offsets from the poses' mean (pixels), and how far they
   // reach at most.

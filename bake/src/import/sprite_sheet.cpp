@@ -37,18 +37,17 @@ LayeredCharacter ImportSpriteSheet(const std::string& path, const SheetCut& cut,
   std::size_t frame = 0;
   for (int r = 0; r < rows; ++r)
     for (int k = 0; k < columns; ++k) {
-      std::vector<unsigned char> cell(std::size_t(cw) * std::size_t(ch) * 4);
+      // The cell's rows, each a run of cw pixels in the sheet's row.
+      const std::size_t row_bytes = std::size_t(cw) * 4;
+      std::vector<unsigned char> cell(row_bytes * std::size_t(ch));
+      for (int y = 0; y < ch; ++y) {
+        const std::size_t from = ((std::size_t(r) * std::size_t(ch) + std::size_t(y)) * std::size_t(width) +
+                                  std::size_t(k) * std::size_t(cw)) *
+                                 4;
+        std::copy_n(rgba.begin() + std::ptrdiff_t(from), row_bytes, cell.begin() + std::ptrdiff_t(y * row_bytes));
+      }
       bool drawn = false;
-      for (int y = 0; y < ch; ++y)
-        for (int x = 0; x < cw; ++x)
-          for (int b = 0; b < 4; ++b) {
-            const unsigned char v = rgba[((std::size_t(r) * std::size_t(ch) + std::size_t(y)) * std::size_t(width) +
-                                          std::size_t(k) * std::size_t(cw) + std::size_t(x)) *
-                                             4 +
-                                         std::size_t(b)];
-            cell[(std::size_t(y) * std::size_t(cw) + std::size_t(x)) * 4 + std::size_t(b)] = v;
-            drawn = drawn || (b == 3 && v > 0);
-          }
+      for (std::size_t p = 3; p < cell.size() && !drawn; p += 4) drawn = cell[p] > 0;
       const std::string where = "cell (column " + std::to_string(k) + ", row " + std::to_string(r) + ") at (" +
                                 std::to_string(k * cw) + ", " + std::to_string(r * ch) + ")";
       if (!drawn) {

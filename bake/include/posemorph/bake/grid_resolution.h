@@ -21,6 +21,12 @@ constexpr int kCoarseGridResolutions[] = {8, 16, 32};
 // default grid's put it, at most, anywhere on the grid.
 constexpr double kGridTolerancePx = 0.25;
 
+// Whether the bake chooses the grid's resolution: the description leaves
+// bake.grid_resolution out and no code changed it from the default.
+inline bool GridResolutionIsAutomatic(const BakeParameters& parameters) {
+  return !parameters.grid_resolution_given && parameters.grid_resolution == BakeParameters{}.grid_resolution;
+}
+
 // The grid resolution the bake uses. A description that gives
 // bake.grid_resolution (or code that changed it) gets that. Otherwise the
 // coarsest of kCoarseGridResolutions whose weights keep every vertex within
