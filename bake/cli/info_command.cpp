@@ -48,6 +48,7 @@ std::string DescribeSection(std::uint32_t tag, const unsigned char* d, std::uint
   if (tag == f::kQuantPositions) {
     const auto h = header(f::QuantPositionsHeader{});
     s << "positions: step " << h.step << " rig units, differences Exp-Golomb coded (order " << h.code_order << ")";
+    if (h.predicted != 0) s << "; the poses after the first less pose 0's differences (an order per pose)";
   } else if (tag == f::kQuantTriangles) {
     s << "vertex indices: differences Exp-Golomb coded (order " << header(f::CodedTrianglesHeader{}).code_order << ")";
   } else if (tag == f::kQuantPermutation) {

@@ -137,27 +137,59 @@ RigSections Encoder::Encode(double position_step, double weight_step, CompactRep
     }
   }
   if (qmax >= (std::uint64_t(1) << 40)) return {};
-  // Each vertex's integers as differences from the previous vertex's.
-  std::vector<std::uint64_t> pos_codes;
+  // Each vertex's integers as differences from the previous vertex's; in the
+  // poses after the first, less pose 0's difference there (a limb that moves
+  // as a whole moves its neighbouring vertices alike), where that codes in
+  // fewer bits than each pose alone.
+  auto difference = [&](std::uint64_t i, std::uint64_t v, int d) {
+    const std::uint64_t k = 2 * (i * V + v) + d;
+    return std::int64_t(q[k]) - (v > 0 ? std::int64_t(q[k - 2]) : 0);
+  };
+  // Pose 0's codes, every pose's alone, and each later pose's against pose 0.
+  std::vector<std::uint64_t> first_codes, all_alone;
+  std::vector<std::vector<std::uint64_t>> against(N > 0 ? N - 1 : 0);
   for (std::uint64_t i = 0; i < N; ++i)
     for (std::uint64_t v = 0; v < V; ++v)
       for (int d = 0; d < 2; ++d) {
-        const std::uint64_t k = 2 * (i * V + v) + d;
-        const std::int64_t previous = v > 0 ? std::int64_t(q[k - 2]) : 0;
-        pos_codes.push_back(fmt::ZigZag(std::int64_t(q[k]) - previous));
+        if (i == 0) first_codes.push_back(fmt::ZigZag(difference(i, v, d)));
+        all_alone.push_back(fmt::ZigZag(difference(i, v, d)));
+        if (i > 0) against[i - 1].push_back(fmt::ZigZag(difference(i, v, d) - difference(0, v, d)));
       }
-  const unsigned pos_k = BestOrder(pos_codes);
+  auto coded_bits = [](const std::vector<std::uint64_t>& codes, unsigned k) {
+    std::uint64_t bits = 0;
+    for (std::uint64_t u : codes) bits += GolombBits(u, k);
+    return bits;
+  };
+  const unsigned alone_k = BestOrder(all_alone), first_k = BestOrder(first_codes);
+  std::vector<unsigned> against_k;
+  std::uint64_t predicted_bits = coded_bits(first_codes, first_k);
+  for (const std::vector<std::uint64_t>& codes : against) {
+    against_k.push_back(BestOrder(codes));
+    predicted_bits += 5 + coded_bits(codes, against_k.back());
+  }
+  const bool predicted = N > 1 && predicted_bits < coded_bits(all_alone, alone_k);
   fmt::QuantPositionsHeader qpos_header{};
   qpos_header.step = position_step;
-  qpos_header.code_order = pos_k;
+  qpos_header.code_order = predicted ? first_k : alone_k;
+  qpos_header.predicted = predicted ? 1 : 0;
   AppendRecord(qpos, qpos_header);
   for (std::uint64_t i = 0; i < N; ++i) AppendRecord(qpos, fmt::Point{origins[2 * i], origins[2 * i + 1]});
   {
     BitWriter bw;
-    for (std::uint64_t u : pos_codes) bw.Golomb(u, pos_k);
+    if (predicted) {
+      for (std::uint64_t u : first_codes) bw.Golomb(u, first_k);
+      for (std::size_t i = 0; i < against.size(); ++i) {
+        bw.Put(against_k[i], 5);
+        for (std::uint64_t u : against[i]) bw.Golomb(u, against_k[i]);
+      }
+    } else {
+      for (std::uint64_t u : all_alone) bw.Golomb(u, alone_k);
+    }
     qpos.insert(qpos.end(), bw.bytes().begin(), bw.bytes().end());
   }
-  note(fmt::kQuantPositions, qpos.size(), "positions, step " + std::to_string(position_step) + ", delta coded");
+  note(fmt::kQuantPositions, qpos.size(),
+       "positions, step " + std::to_string(position_step) +
+           (predicted ? ", delta coded, the poses after the first against pose 0" : ", delta coded"));
   w.Add(fmt::kQuantPositions, qpos);
 
   std::vector<std::uint64_t> tri_codes;

@@ -225,6 +225,18 @@ TEST_CASE("hostile compact sections are refused with the section named") {
   for (double step : {0.0, -1.0, std::nan(""), HUGE_VAL})
     expect([&](auto& b) { Poke(b, qpos.offset, step); }, "section QPOS: step");
   expect([&](auto& b) { Poke(b, qpos.offset + 8, std::uint32_t(33)); }, "section QPOS: code order 33 above 20");
+  // 1.13: the poses after the first coded against pose 0 (Pip's are).
+  std::uint32_t predicted = 0;
+  std::memcpy(&predicted, good.data() + qpos.offset + 12, 4);
+  REQUIRE(predicted == 1);
+  expect([&](auto& b) { Poke(b, qpos.offset + 12, std::uint32_t(2)); },
+         "section QPOS: predicted field 2 is not 0 or 1");
+  expect(
+      [&](auto& b) {
+        const std::uint16_t minor = 12;  // the header is outside the checksum
+        std::memcpy(b.data() + format::kOffVersionMinor, &minor, 2);
+      },
+      "section QPOS: predicted field 1 is not 0 or 1, or is set in a file of format 1.12");
   expect([&](auto& b) { Poke(b, qpos.offset + 16 + 16 * 5, std::uint64_t(0)); },
          "section QPOS: vertex 0 of pose 0: code runs past");
   expect([&](auto& b) { Poke(b, qpos.offset + 16, std::nan("")); }, "section QPOS: origin of pose 0");

@@ -58,10 +58,10 @@ TEST_CASE("a format 1.1 rig loads and interpolates its grid as it was baked") {
     }
 }
 
-TEST_CASE("a rig baked now is format 1.12 with a centre per grid cell and its drawings' folder") {
+TEST_CASE("a rig baked now is format 1.13 with a centre per grid cell and its drawings' folder") {
   const Rig rig = LoadTestRig("small");
   CHECK(rig.format_minor() == format::kVersionMinor);
-  CHECK(format::kVersionMinor == 12);
+  CHECK(format::kVersionMinor == 13);
   // Baked by the CLI from tests/runtime/rigs/small.json into the build's rig
   // folder: the folder of the description, relative to the rig.
   const std::string folder(rig.drawing_folder().data, rig.drawing_folder().size);
@@ -78,6 +78,33 @@ TEST_CASE("a rig baked now is format 1.12 with a centre per grid cell and its dr
   const Weights w = WeightsAt(rig, g.origin_x + 1.5 * g.cell, g.origin_y + 2.5 * g.cell);
   const double* c = g.centre_weights.data + (2 * g.cells_x + 1) * n;
   for (std::uint32_t k = 0; k < n; ++k) CHECK(w.raw[k] == doctest::Approx(c[k]).epsilon(1e-14));
+}
+
+// small-format-1.12-compact.pmrig: small.json as the 1.12 bake wrote it
+// (compact, at commit 8444392), each pose's positions coded alone. 1.13
+// codes the poses after the first against pose 0, the same integers: the
+// build's small.compact.pmrig decodes to the same arrays and frames, bit for
+// bit, in fewer bytes.
+TEST_CASE("a format 1.12 compact rig loads to the positions and frames of today's, coded against pose 0") {
+  const std::vector<unsigned char> old_bytes =
+      ReadFileBytes(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/small-format-1.12-compact.pmrig");
+  const std::vector<unsigned char> now_bytes = TestRigBytes("small.compact");
+  const Rig old = LoadCommitted("small-format-1.12-compact.pmrig");
+  const Rig now = LoadTestRig("small.compact");
+  CHECK(old.format_minor() == 12);
+  CHECK(now.format_minor() == 13);
+  MESSAGE("small.compact: " << old_bytes.size() << " bytes at 1.12, " << now_bytes.size() << " at 1.13");
+  CHECK(now_bytes.size() < old_bytes.size());
+  REQUIRE(old.pose_count() == now.pose_count());
+  for (std::uint32_t i = 0; i < now.pose_count(); ++i) {
+    REQUIRE(old.pose_positions(i).size == now.pose_positions(i).size);
+    for (std::size_t k = 0; k < now.pose_positions(i).size; ++k)
+      CHECK(old.pose_positions(i)[k] == now.pose_positions(i)[k]);
+  }
+  for (double x : {-0.5, 0.0, 0.3, 1.0, 1.7}) {
+    CAPTURE(x);
+    CHECK(MorphAt(old, x, 0.2) == MorphAt(now, x, 0.2));
+  }
 }
 
 // small-format-1.2.pmrig: small.json baked with --precision exact and the

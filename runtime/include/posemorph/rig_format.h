@@ -24,9 +24,10 @@ constexpr std::uint16_t kVersionMajor = 1;
 // 1.8 named events on paths (kMetaFlagEvents, EVNT); 1.9 a state machine
 // (MACH, in the top-level rig only); 1.10 colours set by states (MACH's
 // colour entries); 1.11 where the character stands and which way it faces
-// (PLCE, optional); 1.12 a texture atlas (ATLS, optional). Older files load
-// unchanged.
-constexpr std::uint16_t kVersionMinor = 12;
+// (PLCE, optional); 1.12 a texture atlas (ATLS, optional); 1.13 compact
+// positions of the poses after the first coded against pose 0's (QPOS's
+// predicted order). Older files load unchanged.
+constexpr std::uint16_t kVersionMinor = 13;
 constexpr std::uint32_t kHeaderSize = FileHeader::kSize;
 constexpr std::uint32_t kSectionEntrySize = SectionEntry::kSize;
 constexpr std::uint32_t kSectionAlignment = 16;

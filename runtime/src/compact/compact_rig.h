@@ -21,6 +21,7 @@ struct CompactCounts {
   std::uint64_t cells_x, cells_y;
   bool grid_centres;
   std::uint64_t file_size;
+  std::uint16_t minor;  // the file's format version (1.minor)
 };
 
 // What the headers say, checked against the counts and the sections' sizes.
@@ -28,6 +29,7 @@ struct CompactLayout {
   SectionBytes positions, triangles, permutation, turns, grid, affine_uvs;
   double position_step = 0;
   unsigned position_k = 0, triangle_k = 0;       // Exp-Golomb orders
+  bool position_predicted = false;               // QPOS: the poses after the first coded against pose 0
   unsigned permutation_bits = 0, turn_bits = 0;  // fixed widths
   std::int32_t turn_base = 0;
   double grid_step = 0;

@@ -105,8 +105,8 @@ bool RigLoader::FindSections(const unsigned char* bytes, const Header& h, Parser
     return false;
   if (!parser.Get(fmt::kPosePoints, N * 16, &s->points) || !parser.Get(fmt::kPaths, P * fmt::kPathEntrySize, &s->paths))
     return false;
-  s->packed_counts =
-      detail::CompactCounts{V, T, N, n, nnz, c.meta.grid_cells_x, c.meta.grid_cells_y, c.grid_centres > 0, h.file_size};
+  s->packed_counts = detail::CompactCounts{
+      V, T, N, n, nnz, c.meta.grid_cells_x, c.meta.grid_cells_y, c.grid_centres > 0, h.file_size, h.minor};
   if (c.compact) {
     auto bytes_of = [&](std::uint32_t tag) {
       const Section* section = parser.table.Find(tag);
