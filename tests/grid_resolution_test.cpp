@@ -97,7 +97,7 @@ TEST_CASE("grid resolution: a 256-pixel drawing keeps the default grid, and a gi
   sprout.parameters = pb::BakeParameters{};  // as if the description left the "bake" block out
   pb::BakeReport report;
   pb::BakeRig(sprout, &report);
-  CHECK(std::max(report.grid_cells_x, report.grid_cells_y) == 64);  // 16 and 32 would move Sprout too far
+  CHECK(std::max(report.grid_cells_x, report.grid_cells_y) == 64);  // 8 to 32 would move Sprout too far
   CHECK_FALSE(report.grid_coarsened);
 
   const std::string slime = Drawn("sprites/slime/slime.json");

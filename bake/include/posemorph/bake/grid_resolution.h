@@ -16,7 +16,7 @@
 namespace posemorph::bake {
 
 // The coarser grids tried, coarsest first, before the default one.
-constexpr int kCoarseGridResolutions[] = {8, 16, 32};
+constexpr int kCoarseGridResolutions[] = {8, 12, 16, 24, 32};
 // How far (pixels) a coarser grid's weights may move a vertex from where the
 // default grid's put it, at most, anywhere on the grid.
 constexpr double kGridTolerancePx = 0.25;
