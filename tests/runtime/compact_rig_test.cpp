@@ -8,6 +8,7 @@
 #include <cstring>
 #include <random>
 
+#include "posemorph/compact_codec.h"
 #include "posemorph/path.h"
 #include "posemorph/rig_format.h"
 #include "runtime_support.h"
@@ -237,6 +238,35 @@ TEST_CASE("hostile compact sections are refused with the section named") {
         std::memcpy(b.data() + format::kOffVersionMinor, &minor, 2);
       },
       "section QPOS: predicted field 1 is not 0 or 1, or is set in a file of format 1.12");
+  {
+    // Pose 1's own order, the 5 bits after pose 0's codes, set to 31: where
+    // they start is summed from pose 0's integers as the loader decoded them.
+    const Rig rig = LoadTestRig("pip.compact");
+    double step = 0, origin[2] = {0, 0};
+    std::uint32_t k = 0;
+    std::memcpy(&step, good.data() + qpos.offset, 8);
+    std::memcpy(&k, good.data() + qpos.offset + 8, 4);
+    std::memcpy(origin, good.data() + qpos.offset + 16, 16);
+    const Span<const double> p = rig.pose_positions(0);
+    std::uint64_t bits = 0;
+    std::int64_t previous[2] = {0, 0};
+    for (std::size_t c = 0; c < p.size; ++c) {
+      const std::int64_t q = std::llround((p[c] - origin[c % 2]) / step);
+      const std::uint64_t w = format::ZigZag(q - previous[c % 2]) + (std::uint64_t(1) << k);
+      previous[c % 2] = q;
+      unsigned width = 0;
+      while ((w >> (width + 1)) != 0) ++width;
+      bits += 2 * width - k + 1;
+    }
+    const std::uint64_t stream = qpos.offset + 16 + 16 * std::uint64_t(rig.pose_count());
+    expect(
+        [&](auto& b) {
+          for (std::uint64_t i = bits; i < bits + 5; ++i)
+            b[stream + i / 8] |= static_cast<unsigned char>(1u << (i % 8));
+          Reseal(b);
+        },
+        "section QPOS: code order 31 of pose 1 above 20");
+  }
   expect([&](auto& b) { Poke(b, qpos.offset + 16 + 16 * 5, std::uint64_t(0)); },
          "section QPOS: vertex 0 of pose 0: code runs past");
   expect([&](auto& b) { Poke(b, qpos.offset + 16, std::nan("")); }, "section QPOS: origin of pose 0");
