@@ -61,13 +61,19 @@ unsigned GolombBits(std::uint64_t u, unsigned k) {
   return 2 * width - k + 1;
 }
 
+// The bits these values take as order-k Exp-Golomb codes.
+std::uint64_t CodedBits(const std::vector<std::uint64_t>& codes, unsigned k) {
+  std::uint64_t bits = 0;
+  for (std::uint64_t u : codes) bits += GolombBits(u, k);
+  return bits;
+}
+
 // The Exp-Golomb order (0..20) that codes these values in the fewest bits.
 unsigned BestOrder(const std::vector<std::uint64_t>& codes) {
   unsigned best = 0;
   std::uint64_t best_bits = ~std::uint64_t(0);
   for (unsigned k = 0; k <= 20; ++k) {
-    std::uint64_t bits = 0;
-    for (std::uint64_t u : codes) bits += GolombBits(u, k);
+    const std::uint64_t bits = CodedBits(codes, k);
     if (bits < best_bits) best_bits = bits, best = k;
   }
   return best;
@@ -155,19 +161,14 @@ RigSections Encoder::Encode(double position_step, double weight_step, CompactRep
         all_alone.push_back(fmt::ZigZag(difference(i, v, d)));
         if (i > 0) against[i - 1].push_back(fmt::ZigZag(difference(i, v, d) - difference(0, v, d)));
       }
-  auto coded_bits = [](const std::vector<std::uint64_t>& codes, unsigned k) {
-    std::uint64_t bits = 0;
-    for (std::uint64_t u : codes) bits += GolombBits(u, k);
-    return bits;
-  };
   const unsigned alone_k = BestOrder(all_alone), first_k = BestOrder(first_codes);
   std::vector<unsigned> against_k;
-  std::uint64_t predicted_bits = coded_bits(first_codes, first_k);
+  std::uint64_t predicted_bits = CodedBits(first_codes, first_k);
   for (const std::vector<std::uint64_t>& codes : against) {
     against_k.push_back(BestOrder(codes));
-    predicted_bits += 5 + coded_bits(codes, against_k.back());
+    predicted_bits += 5 + CodedBits(codes, against_k.back());
   }
-  const bool predicted = N > 1 && predicted_bits < coded_bits(all_alone, alone_k);
+  const bool predicted = N > 1 && predicted_bits < CodedBits(all_alone, alone_k);
   fmt::QuantPositionsHeader qpos_header{};
   qpos_header.step = position_step;
   qpos_header.code_order = predicted ? first_k : alone_k;
@@ -252,10 +253,7 @@ RigSections Encoder::Encode(double position_step, double weight_step, CompactRep
             by_order[o - 1].push_back(
                 fmt::ZigZag(qc[y * row + x] - fmt::GridCornerPrediction(qc.data(), row, x, y, o)));
       const unsigned k1 = BestOrder(by_order[0]), k2 = BestOrder(by_order[1]);
-      std::uint64_t bits1 = 0, bits2 = 0;
-      for (std::uint64_t u : by_order[0]) bits1 += GolombBits(u, k1);
-      for (std::uint64_t u : by_order[1]) bits2 += GolombBits(u, k2);
-      const unsigned corner_order = bits2 < bits1 ? 2 : 1;
+      const unsigned corner_order = CodedBits(by_order[1], k2) < CodedBits(by_order[0], k1) ? 2 : 1;
       corner_codes = by_order[corner_order - 1];
       for (std::uint64_t y = 0; y < g.cells_y && !g.centre_weights.empty(); ++y)
         for (std::uint64_t x = 0; x < g.cells_x; ++x) {
