@@ -399,7 +399,7 @@ int main(int argc, char** argv) {
     uint32_t crc = 0, crc_at = 0, major = 0, minor = 9;
     memcpy(&crc_at, bytes + 32, 4); /* the header's checksum field */
     EXPECT(pm_rig_checksum(rig, &crc) == PM_OK && crc == crc_at);
-    EXPECT(pm_rig_format_version(rig, &major, &minor) == PM_OK && major == 1 && minor == 13);
+    EXPECT(pm_rig_format_version(rig, &major, &minor) == PM_OK && major == 1 && minor == 14);
   }
   EXPECT(pm_rig_channel_count(rig) == 1 && pm_rig_attachment_count(rig) == 0);
   EXPECT(pm_rig_channel_count(NULL) == 0 && pm_rig_attached_vertex_count(rig) == 0);

@@ -44,7 +44,7 @@ void PlaceApply(const Transform2D& t, double x, double y, double* ox, double* oy
 TEST_CASE("placement: without anchor or facing, the bottom centre of pose 0, facing right, and no PLCE") {
   std::vector<unsigned char> bytes;
   const Rig rig = PlacedRig(ValidDescription(), &bytes);
-  CHECK(rig.format_minor() == 13);
+  CHECK(rig.format_minor() == 14);
   CHECK_FALSE(rig.anchor_given());
   CHECK_FALSE(rig.facing_left());
   // The bottom centre of pose 0 as loaded (the unit square, within the compact encoding's step).

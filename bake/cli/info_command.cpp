@@ -15,6 +15,7 @@
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/ghosting.h"
 #include "posemorph/bake/inbetween_check.h"
+#include "posemorph/compact_codec.h"
 #include "posemorph/path.h"
 #include "posemorph/rig.h"
 #include "posemorph/rig_format.h"
@@ -47,8 +48,11 @@ std::string DescribeSection(std::uint32_t tag, const unsigned char* d, std::uint
   std::ostringstream s;
   if (tag == f::kQuantPositions) {
     const auto h = header(f::QuantPositionsHeader{});
-    s << "positions: step " << h.step << " rig units, differences Exp-Golomb coded (order " << h.code_order << ")";
-    if (h.predicted != 0) s << "; the poses after the first less pose 0's differences (an order per pose)";
+    s << "positions: step " << h.step << " rig units, "
+      << (h.prediction & f::kPositionsFromNeighbours ? "residuals of the mean of earlier neighbours" : "differences")
+      << " Exp-Golomb coded (order " << h.code_order << ")";
+    if (h.prediction & f::kPositionsAgainstPose0)
+      s << "; the poses after the first less pose 0's residuals (an order per pose)";
   } else if (tag == f::kQuantTriangles) {
     s << "vertex indices: differences Exp-Golomb coded (order " << header(f::CodedTrianglesHeader{}).code_order << ")";
   } else if (tag == f::kQuantPermutation) {

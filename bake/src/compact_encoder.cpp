@@ -6,9 +6,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -95,6 +98,50 @@ std::vector<unsigned char> Packed(const std::vector<std::uint32_t>& values, unsi
   return out;
 }
 
+// QPOS's codes under one predictor of a vertex's integers (the previous
+// vertex's where `start` is null, else the mean of its earlier neighbours):
+// each pose alone, or the poses after the first less pose 0's residuals,
+// whichever takes fewer bits.
+struct PositionCoding {
+  std::uint32_t prediction = 0;                   // QuantPositionsHeader::prediction
+  unsigned first_k = 0;                           // the order of `first`
+  std::vector<std::uint64_t> first;               // pose 0's codes, or every pose's when coded alone
+  std::vector<unsigned> later_k;                  // against pose 0: each later pose's order
+  std::vector<std::vector<std::uint64_t>> later;  // and its codes
+  std::uint64_t bits = 0;
+};
+
+PositionCoding CodePositions(const std::vector<std::int64_t>& q, std::uint64_t V, std::uint64_t N,
+                             const std::uint32_t* start, const std::uint32_t* list) {
+  std::vector<std::int64_t> residual(q.size());
+  for (std::uint64_t i = 0; i < N; ++i)
+    for (std::uint64_t v = 0; v < V; ++v)
+      for (std::uint64_t d = 0; d < 2; ++d) {
+        const std::int64_t* pose = q.data() + 2 * i * V + d;
+        const std::int64_t prediction =
+            start ? fmt::NeighbourPrediction(pose, 2, v, start, list) : (v > 0 ? pose[2 * (v - 1)] : 0);
+        residual[2 * (i * V + v) + d] = pose[2 * v] - prediction;
+      }
+  PositionCoding alone, against;
+  for (std::int64_t r : residual) alone.first.push_back(fmt::ZigZag(r));
+  alone.first_k = BestOrder(alone.first);
+  alone.bits = CodedBits(alone.first, alone.first_k);
+  against.prediction = fmt::kPositionsAgainstPose0;
+  against.first.assign(alone.first.begin(), alone.first.begin() + std::ptrdiff_t(2 * V));
+  against.first_k = BestOrder(against.first);
+  against.bits = CodedBits(against.first, against.first_k);
+  for (std::uint64_t i = 1; i < N; ++i) {
+    std::vector<std::uint64_t> codes;
+    for (std::uint64_t k = 0; k < 2 * V; ++k) codes.push_back(fmt::ZigZag(residual[2 * i * V + k] - residual[k]));
+    against.later_k.push_back(BestOrder(codes));
+    against.bits += 5 + CodedBits(codes, against.later_k.back());
+    against.later.push_back(std::move(codes));
+  }
+  PositionCoding best = N > 1 && against.bits < alone.bits ? std::move(against) : std::move(alone);
+  if (start) best.prediction |= fmt::kPositionsFromNeighbours;
+  return best;
+}
+
 std::string TagText(std::uint32_t tag) {
   std::string s(4, ' ');
   for (int i = 0; i < 4; ++i) s[std::size_t(i)] = char((tag >> (8 * i)) & 0xFFu);
@@ -143,54 +190,36 @@ RigSections Encoder::Encode(double position_step, double weight_step, CompactRep
     }
   }
   if (qmax >= (std::uint64_t(1) << 40)) return {};
-  // Each vertex's integers as differences from the previous vertex's; in the
-  // poses after the first, less pose 0's difference there (a limb that moves
-  // as a whole moves its neighbouring vertices alike), where that codes in
-  // fewer bits than each pose alone.
-  auto difference = [&](std::uint64_t i, std::uint64_t v, int d) {
-    const std::uint64_t k = 2 * (i * V + v) + d;
-    return std::int64_t(q[k]) - (v > 0 ? std::int64_t(q[k - 2]) : 0);
-  };
-  // Pose 0's codes, every pose's alone, and each later pose's against pose 0.
-  std::vector<std::uint64_t> first_codes, all_alone;
-  std::vector<std::vector<std::uint64_t>> against(N > 0 ? N - 1 : 0);
-  for (std::uint64_t i = 0; i < N; ++i)
-    for (std::uint64_t v = 0; v < V; ++v)
-      for (int d = 0; d < 2; ++d) {
-        if (i == 0) first_codes.push_back(fmt::ZigZag(difference(i, v, d)));
-        all_alone.push_back(fmt::ZigZag(difference(i, v, d)));
-        if (i > 0) against[i - 1].push_back(fmt::ZigZag(difference(i, v, d) - difference(0, v, d)));
-      }
-  const unsigned alone_k = BestOrder(all_alone), first_k = BestOrder(first_codes);
-  std::vector<unsigned> against_k;
-  std::uint64_t predicted_bits = CodedBits(first_codes, first_k);
-  for (const std::vector<std::uint64_t>& codes : against) {
-    against_k.push_back(BestOrder(codes));
-    predicted_bits += 5 + CodedBits(codes, against_k.back());
-  }
-  const bool predicted = N > 1 && predicted_bits < CodedBits(all_alone, alone_k);
+  // Each vertex's integers as residuals of a prediction: the previous
+  // vertex's, or (1.14) the mean of the vertex's earlier neighbours in the
+  // mesh (a vertex split from an edge and smoothed sits near it); in the
+  // poses after the first, less pose 0's residual there (a limb that moves
+  // as a whole moves its neighbouring vertices alike). The choice that codes
+  // in the fewest bits is written.
+  std::vector<std::int64_t> signed_q(q.begin(), q.end());
+  std::vector<std::uint32_t> start(V + 1), fill(V), list(3 * T);
+  fmt::EarlierNeighbours(exact.triangles().data, T, V, start.data(), fill.data(), list.data());
+  const PositionCoding by_previous = CodePositions(signed_q, V, N, nullptr, nullptr);
+  const PositionCoding by_neighbours = CodePositions(signed_q, V, N, start.data(), list.data());
+  const PositionCoding& coding = by_neighbours.bits < by_previous.bits ? by_neighbours : by_previous;
   fmt::QuantPositionsHeader qpos_header{};
   qpos_header.step = position_step;
-  qpos_header.code_order = predicted ? first_k : alone_k;
-  qpos_header.predicted = predicted ? 1 : 0;
+  qpos_header.code_order = coding.first_k;
+  qpos_header.prediction = coding.prediction;
   AppendRecord(qpos, qpos_header);
   for (std::uint64_t i = 0; i < N; ++i) AppendRecord(qpos, fmt::Point{origins[2 * i], origins[2 * i + 1]});
   {
     BitWriter bw;
-    if (predicted) {
-      for (std::uint64_t u : first_codes) bw.Golomb(u, first_k);
-      for (std::size_t i = 0; i < against.size(); ++i) {
-        bw.Put(against_k[i], 5);
-        for (std::uint64_t u : against[i]) bw.Golomb(u, against_k[i]);
-      }
-    } else {
-      for (std::uint64_t u : all_alone) bw.Golomb(u, alone_k);
+    for (std::uint64_t u : coding.first) bw.Golomb(u, coding.first_k);
+    for (std::size_t i = 0; i < coding.later.size(); ++i) {
+      bw.Put(coding.later_k[i], 5);
+      for (std::uint64_t u : coding.later[i]) bw.Golomb(u, coding.later_k[i]);
     }
     qpos.insert(qpos.end(), bw.bytes().begin(), bw.bytes().end());
   }
-  note(fmt::kQuantPositions, qpos.size(),
-       "positions, step " + std::to_string(position_step) +
-           (predicted ? ", delta coded, the poses after the first against pose 0" : ", delta coded"));
+  std::string how = coding.prediction & fmt::kPositionsFromNeighbours ? ", from earlier neighbours" : ", delta coded";
+  if (coding.prediction & fmt::kPositionsAgainstPose0) how += ", the poses after the first against pose 0";
+  note(fmt::kQuantPositions, qpos.size(), "positions, step " + std::to_string(position_step) + how);
   w.Add(fmt::kQuantPositions, qpos);
 
   std::vector<std::uint64_t> tri_codes;

@@ -209,6 +209,34 @@ TEST_CASE("a compact rig's derived arrays match the exact rig's") {
   CHECK(mass < 1e-3);
 }
 
+TEST_CASE("a vertex's earlier neighbours are the corners before it, in triangle order, at most 16") {
+  // A fan: ring vertices 0..19 around the centre, vertex 20.
+  std::vector<std::uint32_t> tris;
+  for (std::uint32_t i = 0; i < 20; ++i) tris.insert(tris.end(), {i, (i + 1) % 20, 20});
+  const std::uint64_t V = 21, T = 20;
+  std::vector<std::uint32_t> start(V + 1), fill(V), list(3 * T);
+  format::EarlierNeighbours(tris.data(), T, V, start.data(), fill.data(), list.data());
+  auto of = [&](std::uint32_t v) {
+    return std::vector<std::uint32_t>(list.begin() + start[v], list.begin() + start[v + 1]);
+  };
+  CHECK(of(0).empty());
+  CHECK(of(1) == std::vector<std::uint32_t>{0});
+  CHECK(of(19) == std::vector<std::uint32_t>{18, 0});
+  // The centre: each ring edge's two ends, the first 16 of 40.
+  CHECK(of(20) == std::vector<std::uint32_t>{0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7, 8});
+  // Predictions: the mean rounded down; the previous vertex's without
+  // neighbours; 0 for vertex 0.
+  std::vector<std::int64_t> q(V);
+  for (std::uint32_t v = 0; v < V; ++v) q[v] = 10 * v + 3;
+  CHECK(format::NeighbourPrediction(q.data(), 1, 0, start.data(), list.data()) == 0);
+  CHECK(format::NeighbourPrediction(q.data(), 1, 19, start.data(), list.data()) == (183 + 3) / 2);
+  CHECK(format::NeighbourPrediction(q.data(), 1, 20, start.data(), list.data()) == (10 * 64 + 3 * 16) / 16);
+  tris = {0, 1, 2};  // vertex 3 in no triangle: the previous vertex's
+  format::EarlierNeighbours(tris.data(), 1, 4, start.data(), fill.data(), list.data());
+  CHECK(format::NeighbourPrediction(q.data(), 1, 3, start.data(), list.data()) == 23);
+  CHECK(format::NeighbourPrediction(q.data(), 1, 2, start.data(), list.data()) == (3 + 13) / 2);
+}
+
 TEST_CASE("hostile compact sections are refused with the section named") {
   const std::vector<unsigned char> good = TestRigBytes("pip.compact");
   REQUIRE(LoadMessage(good) == "loaded");
@@ -226,21 +254,23 @@ TEST_CASE("hostile compact sections are refused with the section named") {
   for (double step : {0.0, -1.0, std::nan(""), HUGE_VAL})
     expect([&](auto& b) { Poke(b, qpos.offset, step); }, "section QPOS: step");
   expect([&](auto& b) { Poke(b, qpos.offset + 8, std::uint32_t(33)); }, "section QPOS: code order 33 above 20");
-  // 1.13: the poses after the first coded against pose 0 (Pip's are).
-  std::uint32_t predicted = 0;
-  std::memcpy(&predicted, good.data() + qpos.offset + 12, 4);
-  REQUIRE(predicted == 1);
-  expect([&](auto& b) { Poke(b, qpos.offset + 12, std::uint32_t(2)); },
-         "section QPOS: predicted field 2 is not 0 or 1");
-  expect(
-      [&](auto& b) {
-        const std::uint16_t minor = 12;  // the header is outside the checksum
-        std::memcpy(b.data() + format::kOffVersionMinor, &minor, 2);
-      },
-      "section QPOS: predicted field 1 is not 0 or 1, or is set in a file of format 1.12");
+  // 1.13: the poses after the first coded against pose 0; 1.14: each vertex
+  // predicted by its earlier neighbours (Pip's are both).
+  std::uint32_t prediction = 0;
+  std::memcpy(&prediction, good.data() + qpos.offset + 12, 4);
+  REQUIRE(prediction == (format::kPositionsAgainstPose0 | format::kPositionsFromNeighbours));
+  expect([&](auto& b) { Poke(b, qpos.offset + 12, std::uint32_t(4)); },
+         "section QPOS: prediction field 4 has a bit outside 3");
+  auto with_minor = [](std::vector<unsigned char>& b, std::uint16_t minor) {
+    std::memcpy(b.data() + format::kOffVersionMinor, &minor, 2);  // the header is outside the checksum
+  };
+  expect([&](auto& b) { with_minor(b, 13); },
+         "section QPOS: prediction field 3 has a bit outside 1 (format 1.13: 1 from 1.13, 2 from 1.14)");
+  expect([&](auto& b) { with_minor(b, 12); }, "section QPOS: prediction field 3 has a bit outside 0 (format 1.12");
   {
     // Pose 1's own order, the 5 bits after pose 0's codes, set to 31: where
-    // they start is summed from pose 0's integers as the loader decoded them.
+    // they start is summed from pose 0's integers as the loader decoded
+    // them, each the residual of its earlier neighbours' mean.
     const Rig rig = LoadTestRig("pip.compact");
     double step = 0, origin[2] = {0, 0};
     std::uint32_t k = 0;
@@ -248,12 +278,15 @@ TEST_CASE("hostile compact sections are refused with the section named") {
     std::memcpy(&k, good.data() + qpos.offset + 8, 4);
     std::memcpy(origin, good.data() + qpos.offset + 16, 16);
     const Span<const double> p = rig.pose_positions(0);
+    const std::uint64_t V = rig.vertex_count(), T = rig.triangle_count();
+    std::vector<std::int64_t> q(p.size);
+    for (std::size_t c = 0; c < p.size; ++c) q[c] = std::llround((p[c] - origin[c % 2]) / step);
+    std::vector<std::uint32_t> start(V + 1), fill(V), list(3 * T);
+    format::EarlierNeighbours(rig.triangles().data, T, V, start.data(), fill.data(), list.data());
     std::uint64_t bits = 0;
-    std::int64_t previous[2] = {0, 0};
     for (std::size_t c = 0; c < p.size; ++c) {
-      const std::int64_t q = std::llround((p[c] - origin[c % 2]) / step);
-      const std::uint64_t w = format::ZigZag(q - previous[c % 2]) + (std::uint64_t(1) << k);
-      previous[c % 2] = q;
+      const std::int64_t e = format::NeighbourPrediction(q.data() + c % 2, 2, c / 2, start.data(), list.data());
+      const std::uint64_t w = format::ZigZag(q[c] - e) + (std::uint64_t(1) << k);
       unsigned width = 0;
       while ((w >> (width + 1)) != 0) ++width;
       bits += 2 * width - k + 1;

@@ -25,6 +25,23 @@ Rig LoadCommitted(const std::string& name) {
   return rig;
 }
 
+// An older compact file and today's of the same description decode to the
+// same triangles and positions and give the same frames, bit for bit.
+void CheckDecodesAlike(const Rig& old, const Rig& now) {
+  REQUIRE(old.pose_count() == now.pose_count());
+  REQUIRE(old.triangles().size == now.triangles().size);
+  for (std::size_t k = 0; k < now.triangles().size; ++k) CHECK(old.triangles()[k] == now.triangles()[k]);
+  for (std::uint32_t i = 0; i < now.pose_count(); ++i) {
+    REQUIRE(old.pose_positions(i).size == now.pose_positions(i).size);
+    for (std::size_t k = 0; k < now.pose_positions(i).size; ++k)
+      CHECK(old.pose_positions(i)[k] == now.pose_positions(i)[k]);
+  }
+  for (double x : {-0.5, 0.0, 0.3, 1.0, 1.7}) {
+    CAPTURE(x);
+    CHECK(MorphAt(old, x, 0.2) == MorphAt(now, x, 0.2));
+  }
+}
+
 }  // namespace
 
 TEST_CASE("a format 1.1 rig loads and interpolates its grid as it was baked") {
@@ -58,10 +75,10 @@ TEST_CASE("a format 1.1 rig loads and interpolates its grid as it was baked") {
     }
 }
 
-TEST_CASE("a rig baked now is format 1.13 with a centre per grid cell and its drawings' folder") {
+TEST_CASE("a rig baked now is format 1.14 with a centre per grid cell and its drawings' folder") {
   const Rig rig = LoadTestRig("small");
   CHECK(rig.format_minor() == format::kVersionMinor);
-  CHECK(format::kVersionMinor == 13);
+  CHECK(format::kVersionMinor == 14);
   // Baked by the CLI from tests/runtime/rigs/small.json into the build's rig
   // folder: the folder of the description, relative to the rig.
   const std::string folder(rig.drawing_folder().data, rig.drawing_folder().size);
@@ -92,19 +109,29 @@ TEST_CASE("a format 1.12 compact rig loads to the positions and frames of today'
   const Rig old = LoadCommitted("small-format-1.12-compact.pmrig");
   const Rig now = LoadTestRig("small.compact");
   CHECK(old.format_minor() == 12);
-  CHECK(now.format_minor() == 13);
-  MESSAGE("small.compact: " << old_bytes.size() << " bytes at 1.12, " << now_bytes.size() << " at 1.13");
+  CHECK(now.format_minor() == format::kVersionMinor);
+  MESSAGE("small.compact: " << old_bytes.size() << " bytes at 1.12, " << now_bytes.size() << " now");
   CHECK(now_bytes.size() < old_bytes.size());
-  REQUIRE(old.pose_count() == now.pose_count());
-  for (std::uint32_t i = 0; i < now.pose_count(); ++i) {
-    REQUIRE(old.pose_positions(i).size == now.pose_positions(i).size);
-    for (std::size_t k = 0; k < now.pose_positions(i).size; ++k)
-      CHECK(old.pose_positions(i)[k] == now.pose_positions(i)[k]);
-  }
-  for (double x : {-0.5, 0.0, 0.3, 1.0, 1.7}) {
-    CAPTURE(x);
-    CHECK(MorphAt(old, x, 0.2) == MorphAt(now, x, 0.2));
-  }
+  CheckDecodesAlike(old, now);
+}
+
+// arm-format-1.13-compact.pmrig: tests/runtime/rigs/arm.json as the 1.13
+// bake wrote it (compact, at commit 77adb28), each vertex predicted by the
+// previous one. 1.14 predicts it by the mean of its earlier neighbours in
+// the mesh, the same integers: the build's arm.compact.pmrig decodes to the
+// same arrays and frames, bit for bit, with a shorter QPOS.
+TEST_CASE("a format 1.13 compact rig loads to the positions and frames of today's, predicted from neighbours") {
+  const std::vector<unsigned char> old_bytes =
+      ReadFileBytes(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/arm-format-1.13-compact.pmrig");
+  const std::vector<unsigned char> now_bytes = TestRigBytes("arm.compact");
+  const Rig old = LoadCommitted("arm-format-1.13-compact.pmrig");
+  const Rig now = LoadTestRig("arm.compact");
+  CHECK(old.format_minor() == 13);
+  CHECK(now.format_minor() == 14);
+  auto qpos_size = [](const std::vector<unsigned char>& bytes) { return SectionSize(bytes, format::kQuantPositions); };
+  MESSAGE("arm.compact QPOS: " << qpos_size(old_bytes) << " bytes at 1.13, " << qpos_size(now_bytes) << " at 1.14");
+  CHECK(qpos_size(now_bytes) < qpos_size(old_bytes));
+  CheckDecodesAlike(old, now);
 }
 
 // small-format-1.2.pmrig: small.json baked with --precision exact and the

@@ -118,9 +118,10 @@ inline double MinAreaRatio(const Rig& rig, const std::vector<double>& x) {
   return worst;
 }
 
-// The offset of the first section with `tag` in a rig file's table (0
-// when none), read directly: it works on bytes a test has mutated.
-inline std::size_t SectionOffset(const std::vector<unsigned char>& bytes, std::uint32_t tag) {
+// The offset (entry field 8) or size (field 16) of the first section with
+// `tag` in a rig file's table (0 when none), read directly: it works on
+// bytes a test has mutated.
+inline std::uint64_t SectionField(const std::vector<unsigned char>& bytes, std::uint32_t tag, std::size_t field) {
   std::uint32_t sections = 0;
   std::memcpy(&sections, bytes.data() + format::kOffSectionCount, 4);
   for (std::uint32_t s = 0; s < sections; ++s) {
@@ -128,12 +129,18 @@ inline std::size_t SectionOffset(const std::vector<unsigned char>& bytes, std::u
     std::uint32_t t;
     std::memcpy(&t, e, 4);
     if (t == tag) {
-      std::uint64_t offset;
-      std::memcpy(&offset, e + 8, 8);
-      return std::size_t(offset);
+      std::uint64_t value;
+      std::memcpy(&value, e + field, 8);
+      return value;
     }
   }
   return 0;
+}
+inline std::size_t SectionOffset(const std::vector<unsigned char>& bytes, std::uint32_t tag) {
+  return std::size_t(SectionField(bytes, tag, 8));
+}
+inline std::uint64_t SectionSize(const std::vector<unsigned char>& bytes, std::uint32_t tag) {
+  return SectionField(bytes, tag, 16);
 }
 
 inline void PutU32(unsigned char* at, std::uint32_t v) { std::memcpy(at, &v, 4); }

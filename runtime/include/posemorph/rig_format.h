@@ -26,8 +26,9 @@ constexpr std::uint16_t kVersionMajor = 1;
 // colour entries); 1.11 where the character stands and which way it faces
 // (PLCE, optional); 1.12 a texture atlas (ATLS, optional); 1.13 compact
 // positions of the poses after the first coded against pose 0's (QPOS's
-// predicted order). Older files load unchanged.
-constexpr std::uint16_t kVersionMinor = 13;
+// prediction field); 1.14 compact positions predicted from each vertex's
+// earlier neighbours in the mesh. Older files load unchanged.
+constexpr std::uint16_t kVersionMinor = 14;
 constexpr std::uint32_t kHeaderSize = FileHeader::kSize;
 constexpr std::uint32_t kSectionEntrySize = SectionEntry::kSize;
 constexpr std::uint32_t kSectionAlignment = 16;

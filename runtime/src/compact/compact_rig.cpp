@@ -43,10 +43,12 @@ constexpr std::int64_t kMaxPositionCode = std::int64_t(1) << 40;
 std::uint64_t PositionsPreamble(std::uint64_t N) { return fmt::QuantPositionsHeader::kSize + fmt::Point::kSize * N; }
 
 // QPOS: a QuantPositionsHeader, N Points (each pose's origin), then per pose
-// and vertex the x and y integers as codes of their differences from the
-// previous vertex's (zigzag, order k); from 1.13, where the header's
-// `predicted` is 1, the poses after the first code those differences less
-// pose 0's, each pose after its own order (5 bits).
+// and vertex the x and y integers as codes of their residuals (zigzag, order
+// k) against the previous vertex's integers or, from 1.14 where the
+// header's prediction has kPositionsFromNeighbours, against the mean of the
+// vertex's earlier neighbours (compact_codec.h); from 1.13, where it has
+// kPositionsAgainstPose0, the poses after the first code those residuals
+// less pose 0's, each pose after its own order (5 bits).
 bool ReadPositionsHeader(const SectionBytes& qpos, const CompactCounts& c, CompactLayout& L, Error* err) {
   if (!qpos.data) return Fail(err, ErrorCode::kBadLayout, "missing section QPOS");
   if (qpos.size < PositionsPreamble(c.N))
@@ -54,14 +56,17 @@ bool ReadPositionsHeader(const SectionBytes& qpos, const CompactCounts& c, Compa
   const auto header = fmt::DecodeRecord<fmt::QuantPositionsHeader>(qpos.data);
   L.position_step = header.step;
   L.position_k = header.code_order;
-  L.position_predicted = header.predicted == 1;
+  L.position_prediction = header.prediction;
   if (!(L.position_step > 0) || !FiniteWithin(L.position_step, fmt::kMaxMagnitude))
     return Fail(err, ErrorCode::kBadValue, "section QPOS: step %g is not finite and positive", L.position_step);
   if (L.position_k > 20) return Fail(err, ErrorCode::kBadValue, "section QPOS: code order %u above 20", L.position_k);
-  if (header.predicted > 1 || (header.predicted != 0 && c.minor < 13))
+  const std::uint32_t known = c.minor >= 14   ? fmt::kPositionsAgainstPose0 | fmt::kPositionsFromNeighbours
+                              : c.minor >= 13 ? fmt::kPositionsAgainstPose0
+                                              : 0;
+  if ((header.prediction & ~known) != 0)
     return Fail(err, ErrorCode::kBadValue,
-                "section QPOS: predicted field %u is not 0 or 1, or is set in a file of format 1.%u (before 1.13)",
-                header.predicted, unsigned(c.minor));
+                "section QPOS: prediction field %u has a bit outside %u (format 1.%u: 1 from 1.13, 2 from 1.14)",
+                header.prediction, known, unsigned(c.minor));
   for (std::uint64_t i = 0; i < c.N; ++i) {
     const auto origin = fmt::DecodeEntry<fmt::Point>(qpos.data + fmt::QuantPositionsHeader::kSize, i);
     if (!FiniteWithin(origin.x, fmt::kMaxMagnitude) || !FiniteWithin(origin.y, fmt::kMaxMagnitude))
@@ -230,36 +235,51 @@ bool DecodePermutation(const CompactLayout& L, const CompactCounts& c, const Com
 }
 
 // Positions: origin + step * q, pose by pose. Where the poses after the
-// first are predicted, a second reader goes over pose 0's codes again beside
-// each of them (pose 0's differences, exactly as coded; nothing stored).
+// first are coded against pose 0, a second reader goes over pose 0's codes
+// again beside each of them (pose 0's residuals, exactly as coded; nothing
+// stored). The integers of the pose at hand are kept in o.position_codes for
+// the predictions; the earlier neighbours' lists are built from the
+// triangles, decoded before.
 bool DecodePositions(const CompactLayout& L, const CompactCounts& c, const CompactOutputs& o, Error* err) {
   const std::uint64_t V = c.V, N = c.N;
   const unsigned char* origins = L.positions.data + fmt::QuantPositionsHeader::kSize;
   const unsigned char* stream = L.positions.data + PositionsPreamble(N);
   const std::uint64_t stream_bytes = L.positions.size - PositionsPreamble(N);
+  const bool against = (L.position_prediction & fmt::kPositionsAgainstPose0) != 0;
+  const bool neighbours = (L.position_prediction & fmt::kPositionsFromNeighbours) != 0;
+  if (neighbours) fmt::EarlierNeighbours(o.triangles, c.T, V, o.neighbour_start, o.neighbour_fill, o.neighbour_list);
+  std::int64_t* q = o.position_codes;
   BitReader r(stream, stream_bytes);
   for (std::uint64_t i = 0; i < N; ++i) {
     const auto origin = fmt::DecodeEntry<fmt::Point>(origins, i);
     const double ox = origin.x, oy = origin.y;
-    const bool predicted = i > 0 && L.position_predicted;
+    const bool predicted = i > 0 && against;
     const unsigned order = predicted ? r.Read(5) : L.position_k;
     if (order > 20)
       return Fail(err, ErrorCode::kBadValue, "section QPOS: code order %u of pose %llu above 20", order,
                   (unsigned long long)i);
     BitReader pose0(stream, stream_bytes);
-    std::int64_t qx = 0, qy = 0;
     for (std::uint64_t v = 0; v < V; ++v) {
       const std::uint64_t k = 2 * (i * V + v);
-      qx += fmt::UnZigZag(r.ReadGolomb(order, fmt::kMaxGolombZeros));
-      qy += fmt::UnZigZag(r.ReadGolomb(order, fmt::kMaxGolombZeros));
+      std::int64_t qx = fmt::UnZigZag(r.ReadGolomb(order, fmt::kMaxGolombZeros));
+      std::int64_t qy = fmt::UnZigZag(r.ReadGolomb(order, fmt::kMaxGolombZeros));
       if (predicted) {
         qx += fmt::UnZigZag(pose0.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
         qy += fmt::UnZigZag(pose0.ReadGolomb(L.position_k, fmt::kMaxGolombZeros));
+      }
+      if (neighbours) {
+        qx += fmt::NeighbourPrediction(q, 2, v, o.neighbour_start, o.neighbour_list);
+        qy += fmt::NeighbourPrediction(q + 1, 2, v, o.neighbour_start, o.neighbour_list);
+      } else if (v > 0) {
+        qx += q[2 * (v - 1)];
+        qy += q[2 * (v - 1) + 1];
       }
       if (r.overrun || pose0.overrun || qx < 0 || qy < 0 || qx > kMaxPositionCode || qy > kMaxPositionCode)
         return Fail(err, ErrorCode::kBadValue,
                     "section QPOS: vertex %llu of pose %llu: code runs past the section or out of range",
                     (unsigned long long)v, (unsigned long long)i);
+      q[2 * v] = qx;
+      q[2 * v + 1] = qy;
       o.positions[k] = ox + L.position_step * double(qx);
       o.positions[k + 1] = oy + L.position_step * double(qy);
       if (!FiniteWithin(o.positions[k], fmt::kMaxMagnitude) || !FiniteWithin(o.positions[k + 1], fmt::kMaxMagnitude))

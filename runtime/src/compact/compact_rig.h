@@ -29,7 +29,7 @@ struct CompactLayout {
   SectionBytes positions, triangles, permutation, turns, grid, affine_uvs;
   double position_step = 0;
   unsigned position_k = 0, triangle_k = 0;       // Exp-Golomb orders
-  bool position_predicted = false;               // QPOS: the poses after the first coded against pose 0
+  std::uint32_t position_prediction = 0;         // QPOS: kPositionsAgainstPose0, kPositionsFromNeighbours
   unsigned permutation_bits = 0, turn_bits = 0;  // fixed widths
   std::int32_t turn_base = 0;
   double grid_step = 0;
@@ -43,17 +43,21 @@ bool ReadCompactLayout(const SectionBytes& qpos, const SectionBytes& qtri, const
                        const CompactCounts& counts, CompactLayout* out, Error* err);
 
 struct CompactOutputs {
-  std::uint32_t* triangles;    // 3T
-  double* positions;           // 2NV
-  double* centroids;           // 2N
-  double* angles;              // TN
-  double* stretches;           // 3TN
-  std::uint32_t* order;        // n
-  double* grid_corners;        // (cells_x+1)(cells_y+1) N
-  double* grid_centres;        // cells_x cells_y N, or null
-  float* uvs;                  // 2NV when QUVA is present, else null
-  std::int64_t* grid_scratch;  // (cells_x+1)(cells_y+1)
-  unsigned char* seen;         // n
+  std::uint32_t* triangles;        // 3T
+  double* positions;               // 2NV
+  double* centroids;               // 2N
+  double* angles;                  // TN
+  double* stretches;               // 3TN
+  std::uint32_t* order;            // n
+  double* grid_corners;            // (cells_x+1)(cells_y+1) N
+  double* grid_centres;            // cells_x cells_y N, or null
+  float* uvs;                      // 2NV when QUVA is present, else null
+  std::int64_t* grid_scratch;      // (cells_x+1)(cells_y+1)
+  unsigned char* seen;             // n
+  std::int64_t* position_codes;    // 2V: one pose's integers (QPOS)
+  std::uint32_t* neighbour_start;  // V + 1: the earlier neighbours' lists (QPOS, 1.14)
+  std::uint32_t* neighbour_fill;   // V
+  std::uint32_t* neighbour_list;   // 3T
   ArapFactorBuffers factor;
 };
 

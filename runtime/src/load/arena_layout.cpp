@@ -94,6 +94,10 @@ void RigLoader::LayoutCompact(ArenaLayout& arena, const Counts& c, const Sources
   // Scratch, used once at load.
   decoded.grid_scratch = arena.Take<std::int64_t>(grid_corners);
   decoded.seen = arena.Take<unsigned char>(n);
+  decoded.position_codes = arena.Take<std::int64_t>(2 * V);
+  decoded.neighbour_start = arena.Take<std::uint32_t>(V + 1);
+  decoded.neighbour_fill = arena.Take<std::uint32_t>(V);
+  decoded.neighbour_list = arena.Take<std::uint32_t>(3 * T);
   detail::ArapFactorBuffers& f = decoded.factor;
   f.position = arena.Take<std::uint32_t>(n);
   f.parent = arena.Take<std::uint32_t>(n);

@@ -208,14 +208,16 @@ struct AtlasRegionEntry {
 struct QuantPositionsHeader {
   static constexpr std::uint32_t kSize = 16;
   double step;
-  std::uint32_t code_order;  // Exp-Golomb order k, 0..20 (every pose, or pose 0 where predicted)
-  // 1.13: 0, every pose coded alone; 1, the poses after the first coded
-  // against pose 0 (their differences less pose 0's), each after its own
-  // order in 5 bits. Zero before 1.13.
-  std::uint32_t predicted;
+  std::uint32_t code_order;  // Exp-Golomb order k, 0..20 (every pose, or pose 0 against pose 0)
+  // Bits (compact_codec.h): kPositionsAgainstPose0 (1.13), the poses after
+  // the first coded against pose 0 (their residuals less pose 0's), each
+  // after its own order in 5 bits; kPositionsFromNeighbours (1.14), each
+  // vertex predicted by the mean of its earlier neighbours, not by the
+  // previous vertex. Zero before 1.13.
+  std::uint32_t prediction;
   template <typename Self, typename F>
   static constexpr void Fields(Self& r, F& f) {
-    f(r.step), f(r.code_order), f(r.predicted);
+    f(r.step), f(r.code_order), f(r.prediction);
   }
 };
 
@@ -369,7 +371,7 @@ PM_FORMAT_FIELD(AtlasRegionEntry, canvas_x, 12);
 PM_FORMAT_FIELD(AtlasRegionEntry, canvas_y, 16);
 PM_FORMAT_RECORD(QuantPositionsHeader);
 PM_FORMAT_FIELD(QuantPositionsHeader, code_order, 8);
-PM_FORMAT_FIELD(QuantPositionsHeader, predicted, 12);
+PM_FORMAT_FIELD(QuantPositionsHeader, prediction, 12);
 PM_FORMAT_RECORD(Point);
 PM_FORMAT_FIELD(Point, y, 8);
 PM_FORMAT_RECORD(CodedTrianglesHeader);
