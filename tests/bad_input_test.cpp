@@ -412,7 +412,7 @@ TEST_CASE("drawn poses: bad drawings and correspondences") {
 
 TEST_CASE(
     "drawn poses: a PNG drawing with separate parts bakes with a warning naming the pose, the parts' sizes and "
-    "shares") {
+    "shares, and where the largest lies") {
   TempDir dir;
   json d = DrawnDescription();
   d["poses"][0].erase("outline");
@@ -427,8 +427,9 @@ TEST_CASE(
   CAPTURE(r.err);
   CHECK(r.status == 0);
   CHECK(r.err.find("rig.json: pose 'a' (index 0): " + (dir.path / "a.png").string() +
-                   ": dropped a separate part of 1 pixels (0.06246% of the drawing): only the largest part is meshed; "
-                   "join the parts in the drawing to keep them\n") != std::string::npos);  // 1 of 1601 pixels
+                   ": dropped a separate part of 1 pixels (0.06246% of the drawing, from (60, 60) to (60, 60) in the "
+                   "drawing): only the largest part is meshed; join the parts in the drawing to keep them\n") !=
+        std::string::npos);  // 1 of 1601 pixels
 
   // Two eyes apart from the head: 3 x 3 and 2 x 2 pixels.
   WritePngAlpha(dir.path / "a.png", 64, 64, [](int x, int y) {
@@ -440,7 +441,24 @@ TEST_CASE(
   CAPTURE(two.err);
   CHECK(two.status == 0);
   CHECK(two.err.find("a.png: dropped 2 separate parts of 13 pixels (0.806% of the drawing; the largest 9 pixels, "
-                     "0.558%): only the largest part is meshed") != std::string::npos);  // of 1613 pixels
+                     "0.558%, from (52, 10) to (54, 12) in the drawing): only the largest part is meshed") !=
+        std::string::npos);  // of 1613 pixels
+
+  // Traced at a working level (600 px: halved twice), the box is still in
+  // the drawing's pixels: a 4 x 4 speck at (520, 40).
+  d["poses"][0]["landmarks"] = json::parse("[[80, 480], [480, 80]]");
+  d["poses"][1]["outline"] = json::parse("[[0, 0], [400, 0], [500, 400], [100, 400]]");
+  d["poses"][1]["landmarks"] = json::parse("[[0, 0], [500, 400]]");
+  WritePngAlpha(dir.path / "a.png", 600, 600, [](int x, int y) {
+    if (x >= 80 && x < 480 && y >= 80 && y < 480) return 255;
+    return (x >= 520 && x < 524 && y >= 40 && y < 44) ? 255 : 0;
+  });
+  Write(dir.path / "rig.json", d.dump());
+  const Result large = Run({(dir.path / "rig.json").string(), "-o", (dir.path / "out.pmrig").string()});
+  CAPTURE(large.err);
+  CHECK(large.status == 0);
+  CHECK(large.err.find("a.png: dropped a separate part of 16 pixels (") != std::string::npos);
+  CHECK(large.err.find(" of the drawing, from (520, 40) to (523, 43) in the drawing)") != std::string::npos);
 }
 
 TEST_CASE("drawn poses: an origin per pose lines up drawings on canvases of different sizes") {

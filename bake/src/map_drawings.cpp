@@ -33,13 +33,15 @@ using mapping::Polygon;
 // where the mesh covers it).
 std::string DroppedParts(const mapping::ImageOutline& io) {
   auto share = [&](std::size_t pixels) { return Format(100.0 * double(pixels) / double(io.shape_pixels)) + "%"; };
+  const std::string where = "from (" + std::to_string(io.dropped_x0) + ", " + std::to_string(io.dropped_y0) + ") to (" +
+                            std::to_string(io.dropped_x1) + ", " + std::to_string(io.dropped_y1) + ") in the drawing";
   const std::size_t n = io.dropped_parts.size();
   if (n == 1)
     return "a separate part of " + std::to_string(io.dropped_parts[0]) + " pixels (" + share(io.dropped_parts[0]) +
-           " of the drawing)";
+           " of the drawing, " + where + ")";
   return std::to_string(n) + " separate parts of " + std::to_string(io.dropped_pixels) + " pixels (" +
          share(io.dropped_pixels) + " of the drawing; the largest " + std::to_string(io.dropped_parts[0]) +
-         " pixels, " + share(io.dropped_parts[0]) + ")";
+         " pixels, " + share(io.dropped_parts[0]) + ", " + where + ")";
 }
 
 // A point of a pose's drawing (y down) -> rig coordinates (y up, the pose's

@@ -172,6 +172,22 @@ Mask ShapeMask(const std::vector<unsigned char>& alpha, int width, int height, d
   }
   std::sort(result.dropped_parts.begin(), result.dropped_parts.end(), std::greater<std::size_t>());
   if (sizes[keep] < 4) throw source.Error("the drawn shape is smaller than 4 pixels");
+  if (sizes.size() > 1) {
+    // Where the largest dropped part lies (mask coordinates are the
+    // drawing's plus the padding of 1).
+    std::size_t largest = keep == 0 ? 1 : 0;
+    for (std::size_t c = 0; c < sizes.size(); ++c)
+      if (int(c) != keep && sizes[c] > sizes[largest]) largest = c;
+    result.dropped_x0 = m.w, result.dropped_y0 = m.h, result.dropped_x1 = -1, result.dropped_y1 = -1;
+    for (int y = 0; y < m.h; ++y)
+      for (std::size_t i = shape.row_start[y]; i < shape.row_start[std::size_t(y) + 1]; ++i) {
+        if (shape.component[i] != largest) continue;
+        result.dropped_x0 = std::min(result.dropped_x0, shape.runs[i].x0 - 1);
+        result.dropped_x1 = std::max(result.dropped_x1, shape.runs[i].x1 - 2);
+        result.dropped_y0 = std::min(result.dropped_y0, y - 1);
+        result.dropped_y1 = std::max(result.dropped_y1, y - 1);
+      }
+  }
 
   for (;;) {
     result.filled_hole_pixels += FillHoles(m);
@@ -353,6 +369,10 @@ ImageOutline OutlineFromAlphaAtLevel(std::vector<unsigned char> alpha, int width
     result.height = height;
     result.dropped_pixels *= area;
     for (std::size_t& part : result.dropped_parts) part *= area;
+    // A working pixel covers 2^halvings drawing pixels each way.
+    const int side = 1 << halvings;
+    result.dropped_x0 *= side, result.dropped_y0 *= side;
+    result.dropped_x1 = (result.dropped_x1 + 1) * side - 1, result.dropped_y1 = (result.dropped_y1 + 1) * side - 1;
     result.shape_pixels *= area;
     result.filled_hole_pixels *= area;
   }

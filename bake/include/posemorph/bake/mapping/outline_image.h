@@ -16,7 +16,10 @@ struct ImageOutline {
   int dropped_components = 0;  // separate parts smaller than the kept shape
   std::size_t dropped_pixels = 0;
   std::vector<std::size_t> dropped_parts;  // pixels of each dropped part, largest first
-  std::size_t shape_pixels = 0;            // every pixel at or above the threshold, before anything is dropped
+  // The largest dropped part's box in the drawing's pixels (inclusive; the
+  // first in raster order of the largest where several tie).
+  int dropped_x0 = 0, dropped_y0 = 0, dropped_x1 = 0, dropped_y1 = 0;
+  std::size_t shape_pixels = 0;  // every pixel at or above the threshold, before anything is dropped
   std::size_t filled_hole_pixels = 0;
   std::size_t filled_notch_corners = 0;  // with fill_notches: corners of thin notches filled
   // A drop shadow found and left out (OutlineFromPng with drop_shadows):
