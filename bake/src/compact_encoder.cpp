@@ -173,8 +173,8 @@ RigSections Encoder::Encode(double position_step, double weight_step, CompactRep
   note(fmt::kMeta, meta_bytes.size(), "counts and grid geometry");
   // Positions: per pose its lower-left corner, then step * q.
   std::vector<unsigned char> qpos;
-  std::vector<std::uint64_t> q(2 * N * V);
-  std::uint64_t qmax = 0;
+  std::vector<std::int64_t> q(2 * N * V);  // each in 0..2^40 (checked below)
+  std::int64_t qmax = 0;
   std::vector<double> origins;
   for (std::uint64_t i = 0; i < N; ++i) {
     const Span<const double> p = exact.pose_positions(std::uint32_t(i));
@@ -185,22 +185,21 @@ RigSections Encoder::Encode(double position_step, double weight_step, CompactRep
     for (std::uint64_t v = 0; v < 2 * V; ++v) {
       const double o = v % 2 ? oy : ox;
       const double value = std::llround((p[v] - o) / position_step);
-      q[2 * i * V + v] = std::uint64_t(value);
-      qmax = std::max<std::uint64_t>(qmax, std::uint64_t(value));
+      q[2 * i * V + v] = std::int64_t(value);
+      qmax = std::max(qmax, q[2 * i * V + v]);
     }
   }
-  if (qmax >= (std::uint64_t(1) << 40)) return {};
+  if (qmax >= (std::int64_t(1) << 40)) return {};
   // Each vertex's integers as residuals of a prediction: the previous
   // vertex's, or (1.14) the mean of the vertex's earlier neighbours in the
   // mesh (a vertex split from an edge and smoothed sits near it); in the
   // poses after the first, less pose 0's residual there (a limb that moves
   // as a whole moves its neighbouring vertices alike). The choice that codes
   // in the fewest bits is written.
-  std::vector<std::int64_t> signed_q(q.begin(), q.end());
   std::vector<std::uint32_t> start(V + 1), fill(V), list(3 * T);
   fmt::EarlierNeighbours(exact.triangles().data, T, V, start.data(), fill.data(), list.data());
-  const PositionCoding by_previous = CodePositions(signed_q, V, N, nullptr, nullptr);
-  const PositionCoding by_neighbours = CodePositions(signed_q, V, N, start.data(), list.data());
+  const PositionCoding by_previous = CodePositions(q, V, N, nullptr, nullptr);
+  const PositionCoding by_neighbours = CodePositions(q, V, N, start.data(), list.data());
   const PositionCoding& coding = by_neighbours.bits < by_previous.bits ? by_neighbours : by_previous;
   fmt::QuantPositionsHeader qpos_header{};
   qpos_header.step = position_step;

@@ -25,6 +25,21 @@ Rig LoadCommitted(const std::string& name) {
   return rig;
 }
 
+// A committed older file and the build's rig of the same description: the
+// bytes of each and each loaded.
+struct OldAndNow {
+  std::vector<unsigned char> old_bytes, now_bytes;
+  Rig old, now;
+};
+OldAndNow LoadOldAndNow(const std::string& committed, const std::string& build_rig) {
+  OldAndNow r;
+  r.old_bytes = ReadFileBytes(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/" + committed);
+  r.now_bytes = TestRigBytes(build_rig);
+  r.old = LoadCommitted(committed);
+  r.now = LoadTestRig(build_rig);
+  return r;
+}
+
 // An older compact file and today's of the same description decode to the
 // same triangles and positions and give the same frames, bit for bit.
 void CheckDecodesAlike(const Rig& old, const Rig& now) {
@@ -103,16 +118,12 @@ TEST_CASE("a rig baked now is format 1.14 with a centre per grid cell and its dr
 // build's small.compact.pmrig decodes to the same arrays and frames, bit for
 // bit, in fewer bytes.
 TEST_CASE("a format 1.12 compact rig loads to the positions and frames of today's, coded against pose 0") {
-  const std::vector<unsigned char> old_bytes =
-      ReadFileBytes(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/small-format-1.12-compact.pmrig");
-  const std::vector<unsigned char> now_bytes = TestRigBytes("small.compact");
-  const Rig old = LoadCommitted("small-format-1.12-compact.pmrig");
-  const Rig now = LoadTestRig("small.compact");
-  CHECK(old.format_minor() == 12);
-  CHECK(now.format_minor() == format::kVersionMinor);
-  MESSAGE("small.compact: " << old_bytes.size() << " bytes at 1.12, " << now_bytes.size() << " now");
-  CHECK(now_bytes.size() < old_bytes.size());
-  CheckDecodesAlike(old, now);
+  const OldAndNow r = LoadOldAndNow("small-format-1.12-compact.pmrig", "small.compact");
+  CHECK(r.old.format_minor() == 12);
+  CHECK(r.now.format_minor() == format::kVersionMinor);
+  MESSAGE("small.compact: " << r.old_bytes.size() << " bytes at 1.12, " << r.now_bytes.size() << " now");
+  CHECK(r.now_bytes.size() < r.old_bytes.size());
+  CheckDecodesAlike(r.old, r.now);
 }
 
 // arm-format-1.13-compact.pmrig: tests/runtime/rigs/arm.json as the 1.13
@@ -121,17 +132,13 @@ TEST_CASE("a format 1.12 compact rig loads to the positions and frames of today'
 // the mesh, the same integers: the build's arm.compact.pmrig decodes to the
 // same arrays and frames, bit for bit, with a shorter QPOS.
 TEST_CASE("a format 1.13 compact rig loads to the positions and frames of today's, predicted from neighbours") {
-  const std::vector<unsigned char> old_bytes =
-      ReadFileBytes(std::string(POSEMORPH_SOURCE_DIR) + "/tests/runtime/rigs/arm-format-1.13-compact.pmrig");
-  const std::vector<unsigned char> now_bytes = TestRigBytes("arm.compact");
-  const Rig old = LoadCommitted("arm-format-1.13-compact.pmrig");
-  const Rig now = LoadTestRig("arm.compact");
-  CHECK(old.format_minor() == 13);
-  CHECK(now.format_minor() == 14);
+  const OldAndNow r = LoadOldAndNow("arm-format-1.13-compact.pmrig", "arm.compact");
+  CHECK(r.old.format_minor() == 13);
+  CHECK(r.now.format_minor() == 14);
   auto qpos_size = [](const std::vector<unsigned char>& bytes) { return SectionSize(bytes, format::kQuantPositions); };
-  MESSAGE("arm.compact QPOS: " << qpos_size(old_bytes) << " bytes at 1.13, " << qpos_size(now_bytes) << " at 1.14");
-  CHECK(qpos_size(now_bytes) < qpos_size(old_bytes));
-  CheckDecodesAlike(old, now);
+  MESSAGE("arm.compact QPOS: " << qpos_size(r.old_bytes) << " bytes at 1.13, " << qpos_size(r.now_bytes) << " at 1.14");
+  CHECK(qpos_size(r.now_bytes) < qpos_size(r.old_bytes));
+  CheckDecodesAlike(r.old, r.now);
 }
 
 // small-format-1.2.pmrig: small.json baked with --precision exact and the
