@@ -50,10 +50,14 @@ void Editor::SavePose(const Scene& scene, std::string* status) const {
   pose.deformed = true;
   const StringView from = rig_->pose_name(std::uint32_t(edit_.pose));
   pose.deform.from.assign(from.data, from.size);
+  // Each handle saved where its vertex lies in the source pose, not by the
+  // vertex's number: the bake takes the nearest vertex of the triangle
+  // there, so the pose survives a re-bake that meshes the drawings anew
+  // (a landmark added, a drawing edited), which numbers the vertices anew.
+  const Span<const double> at = rig_->pose_positions(std::uint32_t(edit_.pose));
   for (std::size_t k = 0; k < edit_.handles.size(); ++k) {
     bake::HandleDescription h;
-    h.by_vertex = true;
-    h.vertex = edit_.handles[k];
+    h.at = Eigen::Vector2d(at[2 * std::size_t(edit_.handles[k])], at[2 * std::size_t(edit_.handles[k]) + 1]);
     h.to = Eigen::Vector2d(edit_.targets[k].x, edit_.targets[k].y);
     pose.deform.handles.push_back(h);
   }
