@@ -3,6 +3,7 @@
 // description -> traced outlines -> MapPolygons -> one shared triangle list
 // and per-pose vertices and uvs, the interiors aligned (DESIGN.md section 4).
 #include "posemorph/bake/map_drawings.h"
+#include "posemorph/bake/mesh_order.h"
 
 #include <algorithm>
 #include <chrono>
@@ -362,6 +363,8 @@ MappedDrawings MapDrawingsAsTraced(const RigDescription& rig) {
   // 7. The drawings align the interiors.
   AlignDrawnInteriors(rig, drawn, mesh, in.halvings, result);
   if (report.aligned) report.min_angle_degrees = MinAngleDegrees(result.triangles, result.meshes);
+  // 8. Numbered for the compact encoding (mesh_order.h).
+  OrderForCoding(&result);
   report.mapped = true;
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

@@ -174,7 +174,7 @@ struct LoadLimits {
   // Bounds for a game loading characters from players: 4 MiB files, 32 MiB
   // in memory, 20,000 vertices, 8 attachments, 1,000,000 factor nonzeros,
   // a fill of 8 (the samples need at most 1.4 MB files, 2 MB of memory, 991
-  // vertices with attachments and 5,733 nonzeros). docs/runtime.md says
+  // vertices with attachments and 5,730 nonzeros). docs/runtime.md says
   // what they cost.
   static LoadLimits Untrusted() {
     LoadLimits l;
