@@ -19,7 +19,8 @@
 # bakes as written (no landmark placed by hand). --table
 # writes the same table as Markdown (docs/game-art.md is made by it).
 # --check fails when a character listed as baking in
-# tests/game-art/expected.json no longer bakes, or a baked rig breaks one of
+# tests/game-art/expected.json no longer bakes (or, listed in init_bakes, no
+# longer bakes from init's description alone), or a baked rig breaks one of
 # its bounds (min angle, no fold, rig/PNG ratio for sprites under 128 px,
 # vertices per point of the traced outline, a failure's time). A registry that cannot be reached skips the run with a
 # line saying so (exit 77, ctest's skip).
@@ -232,6 +233,9 @@ def check(rows, expected):
                 problems.append(f"{name}: {what} says: " + next(l for l in said.splitlines() if "internal:" in l))
         if name in expected["bakes"] and not r["baked"]:
             problems.append(f"{name}: no longer bakes with default settings: {r['error']}")
+        if name in expected.get("init_bakes", []) and r.get("init") is not True:
+            problems.append(f"{name}: `posemorph-bake init` on its drawings alone no longer writes a description "
+                            "that bakes: " + (r.get("init_said", "").strip().splitlines() or ["(not tried)"])[-1])
         if not r["baked"]:
             if r["seconds"] > expected["max_failure_seconds"]:
                 problems.append(f"{name}: the failing bake took {r['seconds']:.1f} s (the bound is "

@@ -14,13 +14,13 @@
 #include "command_args.h"
 #include "commands.h"
 #include "import_command.h"
+#include "init_starts.h"
 #include "layered_description.h"
 #include "posemorph/bake/bake.h"
 #include "posemorph/bake/error.h"
 #include "posemorph/bake/import/layered_image.h"
 #include "posemorph/bake/input_file.h"
 #include "posemorph/bake/map_drawings.h"
-#include "posemorph/bake/mapping/boundary_matching.h"
 #include "posemorph/bake/mapping/outline_image.h"
 #include "posemorph/bake/mapping/outline_svg.h"
 #include "posemorph/bake/rig_description.h"
@@ -74,56 +74,6 @@ std::string Description(const std::string& name, const std::vector<Drawing>& dra
   }
   s << "  ]\n}\n";
   return s.str();
-}
-
-// Where each drawing stands: its outline's lowest point (the largest y in
-// drawing pixels; the middle of a flat bottom), a landmark that matches
-// across poses of a character standing on the ground. Where the matching
-// is unsure of it (the outline's bends agree clearly better with another
-// start, more than an eighth of the way round from it: a character that
-// stands on the other foot, or does not stand), `suggested` gets the start
-// where they agree best with the first pose's, and `moved` says which poses
-// (empty when none is unsure).
-std::vector<std::array<double, 2>> StartPoints(const RigDescription& rig, std::vector<std::array<double, 2>>* suggested,
-                                               std::vector<std::string>* moved) {
-  std::vector<std::array<double, 2>> out;
-  const DrawnOutlines traced = TraceDrawings(rig);
-  // In rig orientation (y up) the traced outlines, counter-clockwise as
-  // seen, are counter-clockwise as AlignStart takes them.
-  auto flipped = [](const std::vector<Eigen::Vector2d>& points) {
-    mapping::Polygon p;
-    for (const Eigen::Vector2d& q : points) p.emplace_back(q.x(), -q.y());
-    return p;
-  };
-  for (const DrawnPoseOutline& pose : traced.poses) {
-    const std::vector<Eigen::Vector2d>& outline = pose.traced;
-    double bottom = -1e300;
-    for (const Eigen::Vector2d& p : outline) bottom = std::max(bottom, p.y());
-    double x0 = 1e300, x1 = -1e300;
-    for (const Eigen::Vector2d& p : outline)
-      if (p.y() >= bottom - 0.5) x0 = std::min(x0, p.x()), x1 = std::max(x1, p.x());
-    // The outline point nearest the middle of the flat bottom.
-    const double mid = (x0 + x1) / 2;
-    std::array<double, 2> best{mid, bottom};
-    double best_d = 1e300;
-    for (const Eigen::Vector2d& p : outline)
-      if (p.y() >= bottom - 0.5 && std::abs(p.x() - mid) < best_d)
-        best_d = std::abs(p.x() - mid), best = {p.x(), p.y()};
-    out.push_back(best);
-  }
-  *suggested = out;
-  for (std::size_t k = 1; k < out.size() && k < traced.poses.size(); ++k) {
-    const mapping::Polygon o0 = flipped(traced.poses[0].traced), ok = flipped(traced.poses[k].traced);
-    const mapping::StartAlignment a = mapping::AlignStart(o0, {out[0][0], -out[0][1]}, ok, {out[k][0], -out[k][1]});
-    if (!a.Misplaced()) continue;
-    const mapping::Point at = mapping::PointAtArcLength(ok, a.best_start);
-    moved->push_back(traced.poses[k].label + ": from its lowest point (" + Coordinate(out[k][0]) + ", " +
-                     Coordinate(out[k][1]) + ") to (" + Coordinate(at.x()) + ", " + Coordinate(-at.y()) +
-                     "), where its outline's bends agree with the first pose's");
-    (*suggested)[k] = {at.x(), -at.y()};
-  }
-  if (moved->empty()) suggested->clear();
-  return out;
 }
 
 // Bakes the description in memory (exact, nothing written): "" if it
@@ -375,13 +325,13 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
     const std::string placeholder = Description(name, drawings, landmarks);
     std::vector<std::array<double, 2>> suggested;
     std::vector<std::string> moved;
-    const std::vector<std::array<double, 2>> lowest =
-        StartPoints(ParseRigDescription(placeholder, output, folder.string()), &suggested, &moved);
+    const DrawnOutlines traced = TraceDrawings(ParseRigDescription(placeholder, output, folder.string()));
+    const std::vector<std::array<double, 2>> lowest = StartPoints(traced, &suggested, &moved);
     for (std::size_t k = 0; k < lowest.size(); ++k) landmarks[k] = {lowest[k]};
     text = Description(name, drawings, landmarks);
-    summary = std::to_string(drawings.size()) + " poses (" + drawings[0].name +
-              " at the pad's centre, the others around it); the start landmark at each drawing's lowest point "
-              "(where it stands)";
+    const std::string poses = std::to_string(drawings.size()) + " poses (" + drawings[0].name +
+                              " at the pad's centre, the others around it); the start landmark at each drawing's ";
+    summary = poses + "lowest point (where it stands)";
     // Where the matching is unsure of a start and the description does not
     // bake with the lowest points, the starts the outlines' bends suggest
     // are tried; kept when they bake, else said.
@@ -402,6 +352,29 @@ int InitCommand(const std::vector<std::string>& a, std::size_t from, std::ostrea
                    "; with them: " + other_problem;
         }
       }
+    }
+    // Where that does not bake, the outline's other extremes (a head, a
+    // nose, a tail), the side the outlines' bends agree with best first;
+    // the first that bakes is kept (one drawing has no start to match).
+    if (!tried) tried = TryBake(text, output, folder.string());
+    if (!tried->empty() && drawings.size() > 1) {
+      std::string failed;
+      for (const OutlineSide side : OtherSidesByAgreement(traced)) {
+        const std::vector<std::array<double, 2>> at = SidePoints(traced, side);
+        std::vector<std::vector<std::array<double, 2>>> starts(drawings.size());
+        for (std::size_t k = 0; k < at.size() && k < starts.size(); ++k) starts[k] = {at[k]};
+        const std::string other = Description(name, drawings, starts);
+        if (TryBake(other, output, folder.string()).empty()) {
+          text = other, tried = std::string(), advice.clear();
+          summary = poses + SideName(side) + " point (the lowest points do not bake" +
+                    (suggested.empty() ? "" : ", nor the starts the outlines' bends suggest") + ")";
+          break;
+        }
+        failed += (failed.empty() ? "" : ", ") + std::string(SideName(side));
+      }
+      if (!tried->empty())
+        advice += (advice.empty() ? "" : "; ") + std::string("the outlines' ") + failed +
+                  " points do not bake as starts either";
     }
   }
   if (!import_files.empty()) text = WithImport(text, import_files, folder, false, flatten), tried.reset();
